@@ -1,0 +1,269 @@
+// The engine for one backend: owns the particle, bond and hash buffers in the backend's
+// memory and runs the step as the sequence of the seven kernels. Included by
+// host/engine_cpu.cpp (CpuExec) and cuda/engine_cuda.cu (CudaExec).
+#pragma once
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "../host/engine.h"
+#include "device_array.h"
+#include "launch.h"
+
+namespace pd {
+
+inline uint32_t hash_bins_for(int64_t n) {
+  uint32_t bins = 1024;
+  while (bins < 2 * n && bins < (1u << 30)) bins <<= 1;
+  return bins;
+}
+
+template <class Exec>
+class EngineImpl final : public Engine {
+ public:
+  EngineImpl(const SimulationInput& in, std::string device)
+      : exec_(&stats_), device_(std::move(device)), materials_(in.materials), step_params_(in.step),
+        contact_(in.contact) {
+    const ParticleSet& ps = in.particles;
+    n_ = int32_t(ps.size());
+    if (n_ <= 0) throw std::runtime_error("the scene has no particles");
+    upload_particles(ps);
+    build_families();
+    if (contact_) allocate_contact_hash();
+    body_forces_ = step_params_.n_projectiles > 0 || step_params_.floor_enabled ||
+                   step_params_.gravity.x != 0 || step_params_.gravity.y != 0 || step_params_.gravity.z != 0;
+    compute_forces();
+    exec_.flush_stats();
+  }
+
+  Backend backend() const override { return Exec::kDevice ? Backend::kCuda : Backend::kCpu; }
+  std::string device_name() const override { return device_; }
+  const FamilyStats& family_stats() const override { return family_; }
+  int64_t step() const override { return step_; }
+  double time() const override { return time_; }
+  KernelStats& stats() override { return stats_; }
+
+  void advance(int64_t steps) override {
+    const real dt = step_params_.dt;
+    for (int64_t s = 0; s < steps; ++s) {
+      step_params_.time = real(time_ + dt);
+      launch_position_update(exec_, particles(), dt);
+      compute_forces();
+      launch_velocity_update(exec_, particles(), dt);
+      time_ += dt;
+      ++step_;
+    }
+    exec_.flush_stats();
+  }
+
+  void read_state(ParticleState& out) override {
+    disp_.download(out.disp);
+    vel_.download(out.vel);
+    force_.download(out.force);
+    intact_.download(out.intact);
+  }
+
+  void read_bonds(BondLists& out) override {
+    slice_offset_.download(out.slice_offset);
+    count_.download(out.count);
+    neighbor_.download(out.neighbor);
+  }
+
+  int64_t broken_bonds() override { return reduce_broken_bonds(exec_, bonds(), intact_.data()); }
+
+  int64_t first_non_finite() override {
+    if (reduce_non_finite(exec_, particles()) == 0) return -1;
+    ParticleState s;
+    read_state(s);
+    for (int32_t i = 0; i < n_; ++i)
+      if (!is_finite(s.disp[i]) || !is_finite(s.vel[i]) || !is_finite(s.force[i])) return i;
+    return -1;
+  }
+
+  size_t memory_bytes() const override { return allocated_; }
+
+ private:
+  template <class T>
+  DeviceArray<T, Exec> make(size_t n) {
+    allocated_ += n * sizeof(T);
+    return DeviceArray<T, Exec>(&exec_, n);
+  }
+  template <class T>
+  DeviceArray<T, Exec> make_from(const std::vector<T>& host) {
+    auto a = make<T>(host.size());
+    a.upload(host);
+    return a;
+  }
+
+  ParticlesView particles() const {
+    ParticlesView p;
+    p.n = n_;
+    p.rest = rest_.data();
+    p.disp = disp_.data();
+    p.vel = vel_.data();
+    p.force = force_.data();
+    p.volume = volume_.data();
+    p.inv_mass = inv_mass_.data();
+    p.material = material_.data();
+    p.body = body_.data();
+    p.flags = flags_.data();
+    p.strain_limit0 = strain_limit0_.data();
+    p.strain_limit = strain_limit_.data();
+    p.strain_min = strain_min_.data();
+    p.intact = intact_.data();
+    return p;
+  }
+
+  BondsView bonds() const {
+    BondsView b;
+    b.n = n_;
+    b.slice_offset = slice_offset_.data();
+    b.count = count_.data();
+    b.neighbor = neighbor_.data();
+    return b;
+  }
+
+  HashView hash_view(bool sorted) const {
+    HashView h;
+    h.bins = bins_;
+    h.inv_cell = inv_cell_;
+    h.key = sorted ? key_sorted_.data() : key_.data();
+    h.sorted = sorted ? ids_sorted_.data() : ids_.data();
+    h.bin_start = bin_start_.data();
+    h.bin_end = bin_end_.data();
+    return h;
+  }
+
+  void upload_particles(const ParticleSet& ps) {
+    rest_ = make_from(ps.rest);
+    disp_ = make<Vec3>(n_);
+    disp_.zero();
+    vel_ = make_from(ps.velocity);
+    force_ = make<Vec3>(n_);
+    force_.zero();
+    volume_ = make_from(ps.volume);
+    std::vector<real> inv_mass(ps.mass.size());
+    for (size_t i = 0; i < inv_mass.size(); ++i) inv_mass[i] = real(1) / ps.mass[i];
+    inv_mass_ = make_from(inv_mass);
+    material_ = make_from(ps.material);
+    body_ = make_from(ps.body);
+    flags_ = make_from(ps.flags);
+    strain_limit0_ = make_from(ps.strain_limit0);
+    strain_limit_ = make_from(ps.strain_limit0);
+    strain_min_ = make<real>(n_);
+    strain_min_.zero();
+    intact_ = make<int32_t>(n_);
+  }
+
+  // Hash buffers sized for n particles with cells of side `cell`.
+  void allocate_hash(real cell) {
+    bins_ = hash_bins_for(n_);
+    inv_cell_ = real(1) / cell;
+    key_ = make<uint32_t>(n_);
+    key_sorted_ = make<uint32_t>(n_);
+    ids_ = make<int32_t>(n_);
+    ids_sorted_ = make<int32_t>(n_);
+    bin_start_ = make<int32_t>(bins_);
+    bin_end_ = make<int32_t>(bins_);
+  }
+
+  template <class T>
+  void drop(DeviceArray<T, Exec>& a) {
+    allocated_ -= a.bytes();
+    a = DeviceArray<T, Exec>();
+  }
+
+  void release_hash() {
+    drop(key_);
+    drop(key_sorted_);
+    drop(ids_);
+    drop(ids_sorted_);
+    drop(bin_start_);
+    drop(bin_end_);
+    bins_ = 0;
+  }
+
+  void build_families() {
+    real horizon = 0;
+    for (int m = 0; m < materials_.count; ++m) horizon = std::max(horizon, materials_.m[m].horizon);
+    allocate_hash(real(horizon * (1.0 + 2 * kHorizonSlack)));
+    const ParticlesView p = particles();
+    launch_reset_bins(exec_, "family/reset", hash_view(true));
+    launch_collection<false>(exec_, "family/collection", p, hash_view(false), hash_view(true));
+
+    count_ = make<int32_t>(n_);
+    launch_count_family(exec_, p, hash_view(true), materials_, count_.data());
+    const int64_t slices = (int64_t(n_) + kSliceWidth - 1) / kSliceWidth;
+    auto length = make<int64_t>(slices);
+    slice_offset_ = make<int64_t>(slices + 1);
+    launch_slice_length(exec_, n_, count_.data(), length.data());
+    const int64_t slots = exec_.exclusive_scan(length.data(), slice_offset_.data(), slices);
+    exec_.upload(slice_offset_.data() + slices, &slots, sizeof(int64_t));
+    drop(length);
+
+    neighbor_ = make<int32_t>(size_t(std::max<int64_t>(slots, 1)));
+    neighbor_.zero();
+    launch_fill_family(exec_, p, hash_view(true), materials_, bonds());
+    release_hash();
+
+    std::vector<int32_t> counts;
+    count_.download(counts);
+    family_.slots = slots;
+    family_.min = *std::min_element(counts.begin(), counts.end());
+    family_.max = *std::max_element(counts.begin(), counts.end());
+    for (int32_t c : counts) family_.bonds += c;
+    family_.mean = double(family_.bonds) / n_;
+    intact_.upload(counts);
+  }
+
+  // Collision cells of side max(lambda)/2, the largest contact distance.
+  void allocate_contact_hash() {
+    real spacing = 0;
+    for (int m = 0; m < materials_.count; ++m) spacing = std::max(spacing, materials_.m[m].spacing);
+    allocate_hash(real(0.5) * spacing);
+  }
+
+  // Kernels 1-5: the forces at the current positions.
+  void compute_forces() {
+    const ParticlesView p = particles();
+    launch_init(exec_, p, hash_view(true), materials_);
+    if (contact_) {
+      launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true));
+      launch_collisions(exec_, p, hash_view(true), materials_, step_params_.contact_stiffness);
+      launch_springforces<true>(exec_, p, bonds(), materials_);
+    } else {
+      launch_springforces<false>(exec_, p, bonds(), materials_);
+    }
+    if (body_forces_) launch_bodyforces(exec_, p, step_params_);
+  }
+
+  KernelStats stats_;
+  Exec exec_;
+  std::string device_;
+  MaterialTable materials_;
+  StepParams step_params_;
+  bool contact_ = false;
+  bool body_forces_ = false;
+  int32_t n_ = 0;
+  int64_t step_ = 0;
+  double time_ = 0;
+  size_t allocated_ = 0;
+  FamilyStats family_;
+
+  DeviceArray<Vec3, Exec> rest_, disp_, vel_, force_;
+  DeviceArray<real, Exec> volume_, inv_mass_, strain_limit0_, strain_limit_, strain_min_;
+  DeviceArray<uint16_t, Exec> material_;
+  DeviceArray<int32_t, Exec> body_, intact_;
+  DeviceArray<uint8_t, Exec> flags_;
+
+  DeviceArray<int64_t, Exec> slice_offset_;
+  DeviceArray<int32_t, Exec> count_, neighbor_;
+
+  uint32_t bins_ = 0;
+  real inv_cell_ = 0;
+  DeviceArray<uint32_t, Exec> key_, key_sorted_;
+  DeviceArray<int32_t, Exec> ids_, ids_sorted_, bin_start_, bin_end_;
+};
+
+}  // namespace pd

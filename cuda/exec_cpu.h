@@ -1,0 +1,91 @@
+// CPU-reference backend: parallel_for is an OpenMP loop over the same PD_HD kernel bodies
+// the GPU runs. Memory is plain host memory.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <new>
+#include <vector>
+
+#include "kernel_stats.h"
+#include "pd_common.h"
+
+namespace pd {
+
+class CpuExec {
+ public:
+  static constexpr bool kDevice = false;
+
+  explicit CpuExec(KernelStats* stats) : stats_(stats) {}
+
+  template <class F>
+  void parallel_for(const char* name, int64_t n, F f) {
+    const auto t0 = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(static)
+    for (int64_t i = 0; i < n; ++i) f(i);
+    record(name, t0);
+  }
+
+  // Sum of f(i) over [0, n); deterministic for a fixed thread count.
+  template <class T, class F>
+  T reduce_sum(const char* name, int64_t n, F f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    T total{};
+#pragma omp parallel for schedule(static) reduction(+ : total)
+    for (int64_t i = 0; i < n; ++i) total += f(i);
+    record(name, t0);
+    return total;
+  }
+
+  // Stable sort of (key, value) pairs by key, keys < `bins`: a counting sort.
+  void sort_by_key(const char* name, const uint32_t* key_in, const int32_t* val_in, uint32_t* key_out,
+                   int32_t* val_out, int64_t n, uint32_t bins) {
+    const auto t0 = std::chrono::steady_clock::now();
+    histogram_.assign(size_t(bins) + 1, 0);
+    for (int64_t i = 0; i < n; ++i) ++histogram_[key_in[i] + 1];
+    for (uint32_t b = 0; b < bins; ++b) histogram_[b + 1] += histogram_[b];
+    for (int64_t i = 0; i < n; ++i) {
+      const int64_t dst = histogram_[key_in[i]]++;
+      key_out[dst] = key_in[i];
+      val_out[dst] = val_in[i];
+    }
+    record(name, t0);
+  }
+
+  // out[i] = sum of in[0..i); returns the total.
+  int64_t exclusive_scan(const int64_t* in, int64_t* out, int64_t n) {
+    int64_t running = 0;
+    for (int64_t i = 0; i < n; ++i) {
+      const int64_t v = in[i];
+      out[i] = running;
+      running += v;
+    }
+    return running;
+  }
+
+  void* allocate(size_t bytes) {
+    void* p = std::malloc(bytes ? bytes : 1);
+    if (!p) throw std::bad_alloc();
+    return p;
+  }
+  void release(void* p) { std::free(p); }
+  void upload(void* dst, const void* src, size_t bytes) { std::memcpy(dst, src, bytes); }
+  void download(void* dst, const void* src, size_t bytes) { std::memcpy(dst, src, bytes); }
+  void fill_bytes(void* dst, int value, size_t bytes) { std::memset(dst, value, bytes); }
+  void synchronize() {}
+  void flush_stats() {}
+
+ private:
+  void record(const char* name, std::chrono::steady_clock::time_point t0) {
+    if (!stats_) return;
+    KernelStat& s = stats_->entry(name);
+    s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ++s.launches;
+  }
+
+  KernelStats* stats_;
+  std::vector<int64_t> histogram_;
+};
+
+}  // namespace pd

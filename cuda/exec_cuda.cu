@@ -1,0 +1,142 @@
+// Non-template parts of the CUDA backend.
+#include <cub/device/device_scan.cuh>
+
+#include "exec_cuda.cuh"
+
+namespace pd {
+
+void cuda_check(cudaError_t err, const char* what) {
+  if (err == cudaSuccess) return;
+  throw std::runtime_error(std::string("CUDA error in ") + what + ": " + cudaGetErrorString(err));
+}
+
+CudaExec::CudaExec(KernelStats* stats) : stats_(stats) {}
+
+CudaExec::~CudaExec() {
+  cudaDeviceSynchronize();
+  for (auto& p : pending_) {
+    cudaEventDestroy(p.start);
+    cudaEventDestroy(p.stop);
+  }
+  for (auto e : free_events_) cudaEventDestroy(e);
+  for (void* s : scratch_) cudaFree(s);
+}
+
+void CudaExec::describe(KernelStat* s, const void* kernel) {
+  cudaFuncAttributes attr{};
+  cuda_check(cudaFuncGetAttributes(&attr, kernel), "cudaFuncGetAttributes");
+  int blocks_per_sm = 0;
+  cuda_check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, kernel, kBlockSize, 0),
+             "cudaOccupancyMaxActiveBlocksPerMultiprocessor");
+  int device = 0, max_threads_per_sm = 0;
+  cuda_check(cudaGetDevice(&device), "cudaGetDevice");
+  cuda_check(cudaDeviceGetAttribute(&max_threads_per_sm, cudaDevAttrMaxThreadsPerMultiProcessor, device),
+             "cudaDeviceGetAttribute");
+  s->registers = attr.numRegs;
+  s->block_size = kBlockSize;
+  s->occupancy = double(blocks_per_sm * kBlockSize) / double(max_threads_per_sm);
+}
+
+cudaEvent_t CudaExec::take_event() {
+  if (!free_events_.empty()) {
+    cudaEvent_t e = free_events_.back();
+    free_events_.pop_back();
+    return e;
+  }
+  cudaEvent_t e;
+  cuda_check(cudaEventCreate(&e), "cudaEventCreate");
+  return e;
+}
+
+cudaEvent_t CudaExec::begin_timing() {
+  if (!stats_) return nullptr;
+  cudaEvent_t e = take_event();
+  cuda_check(cudaEventRecord(e), "cudaEventRecord");
+  return e;
+}
+
+void CudaExec::end_timing(const char* name, cudaEvent_t start) {
+  last_name_ = name;
+  if (!stats_) return;
+  cudaEvent_t stop = take_event();
+  cuda_check(cudaEventRecord(stop), "cudaEventRecord");
+  pending_.push_back({name, start, stop});
+  // Bound the event backlog on long runs without a flush.
+  if (pending_.size() >= 4096) flush_stats();
+}
+
+void CudaExec::flush_stats() {
+  cudaError_t err = cudaDeviceSynchronize();
+  if (err != cudaSuccess)
+    throw std::runtime_error(std::string("CUDA error after kernel '") + last_name_ + "': " + cudaGetErrorString(err));
+  for (auto& p : pending_) {
+    float ms = 0;
+    cuda_check(cudaEventElapsedTime(&ms, p.start, p.stop), "cudaEventElapsedTime");
+    KernelStat& s = stats_->entry(p.name);
+    s.seconds += 1e-3 * ms;
+    ++s.launches;
+    free_events_.push_back(p.start);
+    free_events_.push_back(p.stop);
+  }
+  pending_.clear();
+}
+
+void* CudaExec::scratch(int slot, size_t bytes) {
+  if (bytes > scratch_bytes_[slot]) {
+    cudaFree(scratch_[slot]);
+    scratch_[slot] = nullptr;
+    cuda_check(cudaMalloc(&scratch_[slot], bytes), "cudaMalloc (scratch)");
+    scratch_bytes_[slot] = bytes;
+  }
+  return scratch_[slot];
+}
+
+void CudaExec::sort_by_key(const char* name, const uint32_t* key_in, const int32_t* val_in, uint32_t* key_out,
+                           int32_t* val_out, int64_t n, uint32_t bins) {
+  int bits = 1;
+  while ((1ull << bits) < bins) ++bits;
+  size_t temp_bytes = 0;
+  cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, key_in, key_out, val_in, val_out, n, 0, bits);
+  void* temp = scratch(0, temp_bytes);
+  cudaEvent_t start = begin_timing();
+  cuda_check(cub::DeviceRadixSort::SortPairs(temp, temp_bytes, key_in, key_out, val_in, val_out, n, 0, bits), name);
+  end_timing(name, start);
+}
+
+int64_t CudaExec::exclusive_scan(const int64_t* in, int64_t* out, int64_t n) {
+  if (n <= 0) return 0;
+  size_t temp_bytes = 0;
+  cub::DeviceScan::ExclusiveSum(nullptr, temp_bytes, in, out, n);
+  void* temp = scratch(0, temp_bytes);
+  cuda_check(cub::DeviceScan::ExclusiveSum(temp, temp_bytes, in, out, n), "exclusive_scan");
+  int64_t last_in = 0, last_out = 0;
+  cuda_check(cudaMemcpy(&last_in, in + n - 1, sizeof(int64_t), cudaMemcpyDeviceToHost), "exclusive_scan");
+  cuda_check(cudaMemcpy(&last_out, out + n - 1, sizeof(int64_t), cudaMemcpyDeviceToHost), "exclusive_scan");
+  return last_in + last_out;
+}
+
+void* CudaExec::allocate(size_t bytes) {
+  void* p = nullptr;
+  cudaError_t err = cudaMalloc(&p, bytes ? bytes : 1);
+  if (err != cudaSuccess) {
+    size_t free_b = 0, total_b = 0;
+    cudaMemGetInfo(&free_b, &total_b);
+    throw std::runtime_error("GPU allocation of " + std::to_string(bytes) + " bytes failed (" +
+                             std::to_string(free_b >> 20) + " MiB free of " + std::to_string(total_b >> 20) +
+                             " MiB): " + cudaGetErrorString(err));
+  }
+  return p;
+}
+void CudaExec::release(void* p) { cudaFree(p); }
+void CudaExec::upload(void* dst, const void* src, size_t bytes) {
+  cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyHostToDevice), "upload");
+}
+void CudaExec::download(void* dst, const void* src, size_t bytes) {
+  cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost), "download");
+}
+void CudaExec::fill_bytes(void* dst, int value, size_t bytes) {
+  cuda_check(cudaMemset(dst, value, bytes), "fill");
+}
+void CudaExec::synchronize() { cuda_check(cudaDeviceSynchronize(), "synchronize"); }
+
+}  // namespace pd

@@ -1,0 +1,106 @@
+// CUDA backend: parallel_for launches one thread per item on a grid; every launch is timed
+// with CUDA events and resolved in flush_stats(). Sorting, scans and reductions use CUB.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_reduce.cuh>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kernel_stats.h"
+#include "pd_common.h"
+
+namespace pd {
+
+void cuda_check(cudaError_t err, const char* what);
+
+template <class F>
+__global__ void parallel_for_kernel(int64_t n, F f) {
+  const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < n) f(i);
+}
+
+template <class T, class F>
+__global__ void transform_kernel(int64_t n, F f, T* out) {
+  const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < n) out[i] = f(i);
+}
+
+class CudaExec {
+ public:
+  static constexpr bool kDevice = true;
+  static constexpr int kBlockSize = 256;
+
+  explicit CudaExec(KernelStats* stats);
+  ~CudaExec();
+  CudaExec(const CudaExec&) = delete;
+  CudaExec& operator=(const CudaExec&) = delete;
+
+  template <class F>
+  void parallel_for(const char* name, int64_t n, F f) {
+    if (n <= 0) return;
+    KernelStat* s = stats_ ? &stats_->entry(name) : nullptr;
+    if (s && s->registers < 0) describe(s, reinterpret_cast<const void*>(&parallel_for_kernel<F>));
+    const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
+    cudaEvent_t start = begin_timing();
+    parallel_for_kernel<<<unsigned(blocks), kBlockSize>>>(n, f);
+    cuda_check(cudaGetLastError(), name);
+    end_timing(name, start);
+  }
+
+  template <class T, class F>
+  T reduce_sum(const char* name, int64_t n, F f) {
+    if (n <= 0) return T{};
+    T* values = static_cast<T*>(scratch(0, sizeof(T) * size_t(n)));
+    const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
+    cudaEvent_t start = begin_timing();
+    transform_kernel<T><<<unsigned(blocks), kBlockSize>>>(n, f, values);
+    cuda_check(cudaGetLastError(), name);
+    T* total = static_cast<T*>(scratch(1, sizeof(T)));
+    size_t temp_bytes = 0;
+    cub::DeviceReduce::Sum(nullptr, temp_bytes, values, total, n);
+    void* temp = scratch(2, temp_bytes);
+    cuda_check(cub::DeviceReduce::Sum(temp, temp_bytes, values, total, n), name);
+    end_timing(name, start);
+    T host{};
+    cuda_check(cudaMemcpy(&host, total, sizeof(T), cudaMemcpyDeviceToHost), name);
+    return host;
+  }
+
+  void sort_by_key(const char* name, const uint32_t* key_in, const int32_t* val_in, uint32_t* key_out,
+                   int32_t* val_out, int64_t n, uint32_t bins);
+  int64_t exclusive_scan(const int64_t* in, int64_t* out, int64_t n);
+
+  void* allocate(size_t bytes);
+  void release(void* p);
+  void upload(void* dst, const void* src, size_t bytes);
+  void download(void* dst, const void* src, size_t bytes);
+  void fill_bytes(void* dst, int value, size_t bytes);
+  void synchronize();
+  // Waits for the device, adds the timed launches to the stats, and reports any
+  // asynchronous kernel error with the name of the kernel family last launched.
+  void flush_stats();
+
+ private:
+  struct Pending {
+    const char* name;
+    cudaEvent_t start, stop;
+  };
+  void describe(KernelStat* s, const void* kernel);
+  cudaEvent_t begin_timing();
+  void end_timing(const char* name, cudaEvent_t start);
+  cudaEvent_t take_event();
+  void* scratch(int slot, size_t bytes);
+
+  KernelStats* stats_;
+  std::vector<Pending> pending_;
+  std::vector<cudaEvent_t> free_events_;
+  void* scratch_[3] = {nullptr, nullptr, nullptr};
+  size_t scratch_bytes_[3] = {0, 0, 0};
+  const char* last_name_ = "";
+};
+
+}  // namespace pd

@@ -1,0 +1,47 @@
+// Kernel 5, `bodyforces`: gravity, floor contact (the upward velocity component is
+// reflected with restitution, Levine sec. 3) and spherical projectiles (Levine eq. 7).
+#pragma once
+
+#include <cmath>
+
+#include "../views.h"
+
+namespace pd {
+
+// Magnitude of Levine eq. 7 at distance d from the projectile centre: zero outside
+// [3r/4, 3r/2], K_S r^2 at d = r.
+PD_HD inline real projectile_magnitude(real d, real radius, real strength) {
+  const real lo = real(0.75) * radius, hi = real(1.5) * radius;
+  if (d < lo || d > hi) return real(0);
+  const real g = real(16) * (d - lo) * (d - hi) * (d - hi);
+  return strength * std::pow(g, real(2) / real(3));
+}
+
+// Direction halfway between the projectile's unit velocity and the unit repulsion from
+// its centre; pure repulsion for a projectile at rest.
+PD_HD inline Vec3 projectile_force(Vec3 x, const Projectile& pr, real time) {
+  const Vec3 c = pr.center0 + time * pr.velocity;
+  const Vec3 d = x - c;
+  const real dist = length(d);
+  const real mag = projectile_magnitude(dist, pr.radius, pr.strength);
+  if (mag == real(0) || dist <= real(0)) return {0, 0, 0};
+  Vec3 dir = (real(1) / dist) * d;
+  const real speed = length(pr.velocity);
+  if (speed > real(0)) dir += (real(1) / speed) * pr.velocity;
+  const real len = length(dir);
+  if (len <= real(0)) return {0, 0, 0};
+  return (mag / len) * dir;
+}
+
+PD_HD inline void body_forces(int32_t i, ParticlesView p, const StepParams& sp) {
+  const Vec3 x = p.rest[i] + p.disp[i];
+  const real mass = real(1) / p.inv_mass[i];
+  Vec3 f = p.force[i] + mass * sp.gravity;
+  for (int32_t k = 0; k < sp.n_projectiles; ++k) f += projectile_force(x, sp.projectile[k], sp.time);
+  p.force[i] = f;
+  if (sp.floor_enabled && x.y < sp.floor_height && p.vel[i].y < real(0)) {
+    p.vel[i].y = -sp.restitution * p.vel[i].y;
+  }
+}
+
+}  // namespace pd

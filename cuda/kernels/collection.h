@@ -1,0 +1,42 @@
+// Kernel 2, `collection`: put each particle into its spatial-hash bin. The engine sorts
+// (bin, particle) pairs between the two bodies below, which keeps runs deterministic
+// where atomic bin insertion would not be.
+#pragma once
+
+#include "../views.h"
+
+namespace pd {
+
+PD_HD inline void hash_particle(int32_t i, Vec3 x, HashView h) {
+  h.key[i] = cell_bin(cell_of(x, h.inv_cell), h.bins);
+  h.sorted[i] = i;
+}
+
+// After sorting: record where each bin's run of entries starts and ends.
+PD_HD inline void mark_bin_bounds(int32_t s, int32_t n, HashView h) {
+  const uint32_t k = h.key[s];
+  if (s == 0 || h.key[s - 1] != k) h.bin_start[k] = s;
+  if (s == n - 1 || h.key[s + 1] != k) h.bin_end[k] = s + 1;
+}
+
+// Visit every particle whose cell is one of the 27 cells around `x`. `pos(j)` must return
+// the same position that was hashed, so the cell comparison is exact.
+template <class PositionFn, class Visit>
+PD_HD inline void for_each_nearby(Vec3 x, HashView h, PositionFn pos, Visit visit) {
+  const Cell c = cell_of(x, h.inv_cell);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const Cell nc{c.x + dx, c.y + dy, c.z + dz};
+        const uint32_t b = cell_bin(nc, h.bins);
+        const int32_t begin = h.bin_start[b];
+        if (begin < 0) continue;
+        const int32_t end = h.bin_end[b];
+        for (int32_t s = begin; s < end; ++s) {
+          const int32_t j = h.sorted[s];
+          if (same_cell(cell_of(pos(j), h.inv_cell), nc)) visit(j);
+        }
+      }
+}
+
+}  // namespace pd

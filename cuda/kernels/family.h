@@ -1,0 +1,50 @@
+// Family (bond list) construction on either backend: every pair of particles of the same
+// body whose reference distance is at most the horizon delta of particle i. Two passes over
+// a spatial hash of reference positions with cells of side >= delta: count, then fill.
+// Neighbours are visited in a fixed order (cell by cell, bin entries by particle id), so
+// families are identical on CPU and GPU.
+#pragma once
+
+#include "../views.h"
+#include "collection.h"
+
+namespace pd {
+
+// Relative slack on delta so lattice points at exactly delta survive round-off.
+constexpr double kHorizonSlack = 1e-6;
+
+template <class Visit>
+PD_HD inline void for_each_family_member(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt,
+                                         Visit visit) {
+  const Vec3 xi = p.rest[i];
+  const double delta = double(mt.m[p.material[i]].horizon) * (1.0 + kHorizonSlack);
+  const int32_t body = p.body[i];
+  auto pos = [&](int32_t j) { return p.rest[j]; };
+  for_each_nearby(xi, h, pos, [&](int32_t j) {
+    if (j == i || p.body[j] != body) return;
+    const double dx = double(p.rest[j].x) - xi.x, dy = double(p.rest[j].y) - xi.y,
+                 dz = double(p.rest[j].z) - xi.z;
+    if (dx * dx + dy * dy + dz * dz <= delta * delta) visit(j);
+  });
+}
+
+PD_HD inline void count_family(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt, int32_t* count) {
+  int32_t c = 0;
+  for_each_family_member(i, p, h, mt, [&](int32_t) { ++c; });
+  count[i] = c;
+}
+
+// Storage each slice of kSliceWidth particles needs: width x its longest family.
+PD_HD inline void slice_length(int32_t s, int32_t n, const int32_t* count, int64_t* length) {
+  int32_t longest = 0;
+  for (int32_t i = s * kSliceWidth; i < n && i < (s + 1) * kSliceWidth; ++i)
+    longest = count[i] > longest ? count[i] : longest;
+  length[s] = int64_t(longest) * kSliceWidth;
+}
+
+PD_HD inline void fill_family(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt, BondsView b) {
+  int32_t k = 0;
+  for_each_family_member(i, p, h, mt, [&](int32_t j) { b.neighbor[b.slot(i, k++)] = j; });
+}
+
+}  // namespace pd

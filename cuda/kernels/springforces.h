@@ -1,0 +1,61 @@
+// Kernel 4, `springforces` (bond-based PMB, Silling & Askari 2005; Levine sec. 3). For each
+// bond of particle i: stretch s = (|y| - |xi|)/|xi| with y = xi + (u_j - u_i); remove the
+// bond when s > max(tau'_i, tau'_j) (both ends decide identically, so momentum is kept);
+// record the minimum stretch for eq. 5; accumulate f_i = sum_j c s V_i V_j beta_ij y/|y|.
+#pragma once
+
+#include "../views.h"
+
+namespace pd {
+
+// Fraction of a neighbour's volume inside the horizon (LAMMPS peri/pmb rule): 1 up to
+// delta - lambda/2, then falling linearly to 1/2 at delta.
+PD_HD inline real volume_fraction(real r0, const Material& m) {
+  if (!m.partial_volumes) return real(1);
+  const real half = real(0.5) * m.spacing;
+  if (r0 <= m.horizon - half) return real(1);
+  return (m.horizon + half - r0) / m.spacing;
+}
+
+// |y| - |xi| without cancellation: (|y|^2 - |xi|^2) / (|y| + |xi|) with
+// |y|^2 - |xi|^2 = 2 xi.eta + eta.eta. Identical bits from both ends of a bond.
+PD_HD inline real bond_elongation(Vec3 xi, Vec3 eta, real r0, real r) {
+  return (real(2) * dot(xi, eta) + dot(eta, eta)) / (r + r0);
+}
+
+template <bool kAccumulate>
+PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+  const Material& m = mt.m[p.material[i]];
+  const Vec3 rest_i = p.rest[i];
+  const Vec3 disp_i = p.disp[i];
+  const real tau_i = p.strain_limit[i];
+  const int32_t count = b.count[i];
+  Vec3 f{0, 0, 0};
+  real smin = real(0);
+  int32_t intact = 0;
+  for (int32_t k = 0; k < count; ++k) {
+    const int64_t slot = b.slot(i, k);
+    const int32_t j = b.neighbor[slot];
+    if (!bond_intact(j)) continue;
+    const Vec3 xi = p.rest[j] - rest_i;
+    const Vec3 eta = p.disp[j] - disp_i;
+    const Vec3 y = xi + eta;
+    const real r0 = length(xi);
+    const real r = length(y);
+    const real s = bond_elongation(xi, eta, r0, r) / r0;
+    const real tau_j = p.strain_limit[j];
+    if (s > (tau_i > tau_j ? tau_i : tau_j)) {
+      b.neighbor[slot] = ~j;
+      continue;
+    }
+    smin = (intact == 0 || s < smin) ? s : smin;
+    ++intact;
+    if (r > real(0)) f += (m.micromodulus * s * p.volume[j] * volume_fraction(r0, m) / r) * y;
+  }
+  f = p.volume[i] * f;
+  p.force[i] = kAccumulate ? p.force[i] + f : f;
+  p.strain_min[i] = smin;
+  p.intact[i] = intact;
+}
+
+}  // namespace pd

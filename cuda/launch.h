@@ -1,0 +1,104 @@
+// Launchers: each wraps one kernel body in the backend's parallel_for, under the name the
+// profiler reports. Views and parameters are captured by value. One source for both backends.
+#pragma once
+
+#include "kernels/bodyforces.h"
+#include "kernels/collection.h"
+#include "kernels/collisions.h"
+#include "kernels/family.h"
+#include "kernels/init.h"
+#include "kernels/integrate.h"
+#include "kernels/springforces.h"
+
+namespace pd {
+
+// Kernel 1. Threads past the particle count only reset bins (and vice versa).
+template <class Exec>
+void launch_init(Exec& ex, ParticlesView p, HashView h, MaterialTable mt) {
+  const int64_t n = p.n > int64_t(h.bins) ? p.n : int64_t(h.bins);
+  ex.parallel_for("pd/init", n, [=] PD_HD(int64_t i) {
+    if (i < p.n) init_particle(int32_t(i), p, mt);
+    if (i < int64_t(h.bins)) reset_bin(uint32_t(i), h);
+  });
+}
+
+template <class Exec>
+void launch_reset_bins(Exec& ex, const char* name, HashView h) {
+  ex.parallel_for(name, h.bins, [=] PD_HD(int64_t b) { reset_bin(uint32_t(b), h); });
+}
+
+// Kernel 2: bin keys, a stable sort, then bin bounds. kCurrent hashes current positions
+// (collisions), otherwise reference positions (family build).
+template <bool kCurrent, class Exec>
+void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView unsorted, HashView sorted) {
+  ex.parallel_for(name, p.n, [=] PD_HD(int64_t i) {
+    const Vec3 x = kCurrent ? p.rest[i] + p.disp[i] : p.rest[i];
+    hash_particle(int32_t(i), x, unsorted);
+  });
+  ex.sort_by_key("pd/collection_sort", unsorted.key, unsorted.sorted, sorted.key, sorted.sorted, p.n, sorted.bins);
+  ex.parallel_for("pd/collection_bins", p.n, [=] PD_HD(int64_t s) { mark_bin_bounds(int32_t(s), p.n, sorted); });
+}
+
+// Kernel 3.
+template <class Exec>
+void launch_collisions(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, real stiffness) {
+  ex.parallel_for("pd/collisions", p.n,
+                  [=] PD_HD(int64_t i) { collision_forces(int32_t(i), p, h, mt, stiffness); });
+}
+
+// Kernel 4. kAccumulate adds to the force `collisions` wrote.
+template <bool kAccumulate, class Exec>
+void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+  ex.parallel_for("pd/springforces", p.n,
+                  [=] PD_HD(int64_t i) { spring_forces<kAccumulate>(int32_t(i), p, b, mt); });
+}
+
+// Kernel 5.
+template <class Exec>
+void launch_bodyforces(Exec& ex, ParticlesView p, StepParams sp) {
+  ex.parallel_for("pd/bodyforces", p.n, [=] PD_HD(int64_t i) { body_forces(int32_t(i), p, sp); });
+}
+
+// Kernels 6 and 7.
+template <class Exec>
+void launch_position_update(Exec& ex, ParticlesView p, real dt) {
+  ex.parallel_for("pd/position_update", p.n, [=] PD_HD(int64_t i) { position_update(int32_t(i), p, dt); });
+}
+
+template <class Exec>
+void launch_velocity_update(Exec& ex, ParticlesView p, real dt) {
+  ex.parallel_for("pd/velocity_update", p.n, [=] PD_HD(int64_t i) { velocity_update(int32_t(i), p, dt); });
+}
+
+// Family build passes.
+template <class Exec>
+void launch_count_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, int32_t* count) {
+  ex.parallel_for("family/count", p.n, [=] PD_HD(int64_t i) { count_family(int32_t(i), p, h, mt, count); });
+}
+
+template <class Exec>
+void launch_slice_length(Exec& ex, int32_t n, const int32_t* count, int64_t* length) {
+  const int64_t slices = (int64_t(n) + kSliceWidth - 1) / kSliceWidth;
+  ex.parallel_for("family/slices", slices, [=] PD_HD(int64_t s) { slice_length(int32_t(s), n, count, length); });
+}
+
+template <class Exec>
+void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, BondsView b) {
+  ex.parallel_for("family/fill", p.n, [=] PD_HD(int64_t i) { fill_family(int32_t(i), p, h, mt, b); });
+}
+
+// Reductions read once per frame.
+template <class Exec>
+int64_t reduce_broken_bonds(Exec& ex, BondsView b, const int32_t* intact) {
+  return ex.template reduce_sum<int64_t>("stats/broken", b.n,
+                                         [=] PD_HD(int64_t i) { return int64_t(b.count[i] - intact[i]); });
+}
+
+template <class Exec>
+int64_t reduce_non_finite(Exec& ex, ParticlesView p) {
+  return ex.template reduce_sum<int64_t>("stats/finite", p.n, [=] PD_HD(int64_t i) {
+    return int64_t(!(is_finite(p.disp[i]) && is_finite(p.vel[i]) && is_finite(p.force[i])));
+  });
+}
+
+}  // namespace pd

@@ -1,0 +1,46 @@
+// Macros and scalar types shared by host (g++) and device (nvcc) code.
+// Kernel bodies are PD_HD inline functions so one source compiles for both backends.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+
+#if defined(__CUDACC__)
+#define PD_HD __host__ __device__
+#else
+#define PD_HD
+#endif
+
+#if defined(__CUDA_ARCH__)
+#define PD_TRAP() __trap()
+#else
+#define PD_TRAP() std::abort()
+#endif
+
+// Debug bounds checks (Warp style): on in Debug builds, free in Release.
+#if defined(PERIFRAC_BOUNDS_CHECKS)
+#define PD_CHECK_INDEX(i, n)                                                                  \
+  do {                                                                                        \
+    if ((i) < 0 || (i) >= (n)) {                                                              \
+      printf("perifrac: index %lld out of [0, %lld) at %s:%d\n", (long long)(i), (long long)(n), \
+             __FILE__, __LINE__);                                                             \
+      PD_TRAP();                                                                              \
+    }                                                                                         \
+  } while (0)
+#else
+#define PD_CHECK_INDEX(i, n) \
+  do {                       \
+  } while (0)
+#endif
+
+namespace pd {
+
+// Simulation scalar: float by default, double with -DPERIFRAC_DOUBLE=ON (reference runs).
+#if defined(PERIFRAC_DOUBLE)
+using real = double;
+#else
+using real = float;
+#endif
+
+}  // namespace pd

@@ -1,0 +1,36 @@
+// A three-component vector of `real` usable on host and device.
+#pragma once
+
+#include <cmath>
+
+#include "pd_common.h"
+
+namespace pd {
+
+struct Vec3 {
+  real x, y, z;
+};
+
+PD_HD inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+PD_HD inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+PD_HD inline Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
+PD_HD inline Vec3 operator*(real s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+PD_HD inline Vec3 operator*(Vec3 a, real s) { return {s * a.x, s * a.y, s * a.z}; }
+PD_HD inline Vec3& operator+=(Vec3& a, Vec3 b) {
+  a.x += b.x;
+  a.y += b.y;
+  a.z += b.z;
+  return a;
+}
+PD_HD inline Vec3& operator-=(Vec3& a, Vec3 b) {
+  a.x -= b.x;
+  a.y -= b.y;
+  a.z -= b.z;
+  return a;
+}
+PD_HD inline real dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+PD_HD inline real length_squared(Vec3 a) { return dot(a, a); }
+PD_HD inline real length(Vec3 a) { return std::sqrt(dot(a, a)); }
+PD_HD inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+
+}  // namespace pd

@@ -1,0 +1,119 @@
+// Plain views (raw pointers + sizes) passed by value into kernel bodies, and the small
+// parameter structs the kernels read. Owning buffers live in the engine (engine_impl.h).
+#pragma once
+
+#include "pd_common.h"
+#include "vec3.h"
+
+namespace pd {
+
+// Per-particle flag bits.
+enum ParticleFlag : uint8_t {
+  kAnchored = 1u << 0,  // held fixed: zero velocity, displacement never changes
+};
+
+// Particle state, structure of arrays. Current position = rest + disp; bond vectors are
+// formed from displacements (xi + (u_j - u_i)) to keep float32 round-off out of small strains.
+struct ParticlesView {
+  int32_t n = 0;
+  const Vec3* rest = nullptr;       // reference position X
+  Vec3* disp = nullptr;             // displacement u
+  Vec3* vel = nullptr;              // velocity v
+  Vec3* force = nullptr;            // total force on the particle [N]
+  const real* volume = nullptr;     // V [m^3]
+  const real* inv_mass = nullptr;   // 1/m [1/kg]
+  const uint16_t* material = nullptr;  // index into MaterialTable
+  const int32_t* body = nullptr;       // bodies do not bond to each other
+  const uint8_t* flags = nullptr;      // ParticleFlag bits
+  const real* strain_limit0 = nullptr; // scattered base strain limit tau_i
+  real* strain_limit = nullptr;        // effective limit tau'_i (eq. 5), set by `init`
+  real* strain_min = nullptr;          // minimum bond strain of the last force pass
+  int32_t* intact = nullptr;           // unbroken bonds, written by `springforces`
+};
+
+// Bond families in sliced-ELL layout: particles are grouped in slices of kSliceWidth;
+// bond k of particle i lives at slice_offset[i / W] + k * W + i % W, so the threads of a
+// warp read consecutive words for the same k. A broken bond keeps its partner as ~j (< 0).
+constexpr int kSliceWidth = 32;
+
+struct BondsView {
+  int32_t n = 0;                          // particles
+  const int64_t* slice_offset = nullptr;  // n_slices + 1 entries
+  const int32_t* count = nullptr;         // bonds per particle at the start
+  int32_t* neighbor = nullptr;            // partner index, or ~partner once broken
+
+  PD_HD int64_t slot(int32_t i, int32_t k) const {
+    return slice_offset[i / kSliceWidth] + int64_t(k) * kSliceWidth + (i % kSliceWidth);
+  }
+};
+
+PD_HD inline bool bond_intact(int32_t nb) { return nb >= 0; }
+PD_HD inline int32_t bond_partner(int32_t nb) { return nb >= 0 ? nb : ~nb; }
+
+// Spatial hash of cells of side `cell` (Teschner et al. 2003). Particles are sorted by
+// bin; bin b holds sorted entries [bin_start[b], bin_end[b]). Several cells can share a
+// bin, so users compare each candidate's own cell with the cell they are visiting.
+struct HashView {
+  uint32_t bins = 0;  // power of two
+  real inv_cell = 0;
+  uint32_t* key = nullptr;         // bin of each particle, then sorted
+  int32_t* sorted = nullptr;       // particle ids in bin order
+  int32_t* bin_start = nullptr;    // first sorted entry of each bin, -1 when empty
+  int32_t* bin_end = nullptr;      // one past the last sorted entry
+};
+
+struct Cell {
+  int32_t x, y, z;
+};
+
+PD_HD inline int32_t cell_coord(real v, real inv_cell) {
+  return int32_t(std::floor(v * inv_cell));
+}
+PD_HD inline Cell cell_of(Vec3 p, real inv_cell) {
+  return {cell_coord(p.x, inv_cell), cell_coord(p.y, inv_cell), cell_coord(p.z, inv_cell)};
+}
+PD_HD inline bool same_cell(Cell a, Cell b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+PD_HD inline uint32_t cell_bin(Cell c, uint32_t bins) {
+  const uint32_t h = (uint32_t(c.x) * 73856093u) ^ (uint32_t(c.y) * 19349663u) ^ (uint32_t(c.z) * 83492791u);
+  return h & (bins - 1u);
+}
+
+// Bond-based (PMB) material constants, derived on the host (host/material.cpp).
+struct Material {
+  real micromodulus = 0;       // c = 18K / (pi delta^4)  [N/m^6]
+  real horizon = 0;            // delta [m]
+  real spacing = 0;            // lambda [m]
+  real compression_alpha = 0;  // alpha of eq. 5
+  uint8_t partial_volumes = 1; // scale bonds near the horizon edge by their volume fraction
+};
+
+constexpr int kMaxMaterials = 16;
+struct MaterialTable {
+  int32_t count = 0;
+  Material m[kMaxMaterials];
+};
+
+// A spherical projectile moving at constant velocity (Levine eq. 7).
+struct Projectile {
+  Vec3 center0{0, 0, 0};  // centre at t = 0
+  Vec3 velocity{0, 0, 0};
+  real radius = 0;
+  real strength = 0;  // K_S [Pa]
+};
+
+constexpr int kMaxProjectiles = 4;
+
+// Everything the per-step kernels read that is not per-particle.
+struct StepParams {
+  real dt = 0;
+  real time = 0;  // time at the end of the step being computed
+  Vec3 gravity{0, 0, 0};
+  uint8_t floor_enabled = 0;
+  real floor_height = 0;  // floor is the plane y = floor_height (y is up)
+  real restitution = 1;
+  real contact_stiffness = 0;  // K_c [Pa]
+  int32_t n_projectiles = 0;
+  Projectile projectile[kMaxProjectiles];
+};
+
+}  // namespace pd

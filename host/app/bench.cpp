@@ -1,0 +1,140 @@
+#include "bench.h"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "../engine.h"
+#include "../io/atomic_file.h"
+#include "../material.h"
+#include "../scene/scene_setup.h"
+#include "backend_choice.h"
+#include "kernel_report.h"
+#include "run.h"
+
+namespace pd {
+
+namespace {
+
+// A glass cube of n^3 simple-cubic particles, 1 mm apart, that stays elastic under
+// random velocities of 1e-3 m/s (so the break test runs but no bond breaks).
+SimulationInput lattice_input(const BenchOptions& opt) {
+  SimulationInput in;
+  const double lambda = 1e-3, delta = opt.horizon * lambda;
+  in.materials.count = 1;
+  Material& m = in.materials.m[0];
+  m.micromodulus = real(pmb_micromodulus(32.81e9, delta));
+  m.horizon = real(delta);
+  m.spacing = real(lambda);
+  m.compression_alpha = real(0.25);
+  const int64_t n = opt.lattice;
+  in.particles.reserve(size_t(n * n * n));
+  uint64_t state = 1;
+  auto jiggle = [&]() {  // small deterministic velocities so the state is not trivial
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return real((double(state >> 11) * 0x1p-53 - 0.5) * 2e-3);
+  };
+  const double vol = lambda * lambda * lambda;
+  for (int64_t k = 0; k < n; ++k)
+    for (int64_t j = 0; j < n; ++j)
+      for (int64_t i = 0; i < n; ++i)
+        in.particles.add({real(i * lambda), real(j * lambda), real(k * lambda)}, {jiggle(), jiggle(), jiggle()},
+                         real(vol), real(2440 * vol), real(5e-4), 0, 0);
+  in.step.dt = real(0x1p-23);
+  in.step.contact_stiffness = real(1e8);
+  in.contact = opt.contact;
+  return in;
+}
+
+std::string utc_now(const char* fmt) {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, fmt, std::gmtime(&t));
+  return buf;
+}
+
+std::string git_revision() {
+  std::string rev;
+  if (FILE* p = popen("git rev-parse --short HEAD 2>/dev/null", "r")) {
+    char buf[64];
+    if (std::fgets(buf, sizeof buf, p)) rev = buf;
+    pclose(p);
+  }
+  while (!rev.empty() && (rev.back() == '\n' || rev.back() == '\r')) rev.pop_back();
+  return rev.empty() ? "unknown" : rev;
+}
+
+std::string json_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    o += c;
+  }
+  return o;
+}
+
+}  // namespace
+
+int bench_command(const BenchOptions& opt) {
+  if (opt.steps < 1 || opt.warmup < 0 || opt.lattice < 4 || opt.horizon < 1)
+    throw std::invalid_argument("bench: need --steps >= 1, --warmup >= 0, --lattice >= 4, --horizon >= 1");
+  std::string workload;
+  SimulationInput input;
+  if (!opt.scene.empty()) {
+    const Scene scene = load_scene(opt.scene);
+    input = setup_scene(scene, {opt.scale}).input;
+    workload = std::filesystem::path(opt.scene).stem().string();
+  } else {
+    input = lattice_input(opt);
+    workload = "lattice" + std::to_string(opt.lattice) + "_h" + std::to_string(int(opt.horizon)) +
+               (opt.contact ? "_contact" : "");
+  }
+  std::string note;
+  const Backend backend = choose_backend(opt.backend, &note);
+  if (!note.empty()) std::printf("backend    %s\n", note.c_str());
+  auto engine = make_engine(backend, input);
+  const FamilyStats& fam = engine->family_stats();
+  engine->advance(opt.warmup);
+  engine->stats().reset_times();
+  const auto t0 = std::chrono::steady_clock::now();
+  engine->advance(opt.steps);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  const std::string date = utc_now("%Y-%m-%dT%H:%M:%SZ"), rev = git_revision();
+  const auto rows = kernel_rows(engine->stats(), "pd/", fam.bonds, opt.steps);
+  std::printf("bench      %s on %s [%s], %s, git %s\n", workload.c_str(), engine->device_name().c_str(),
+              backend_name(backend), date.c_str(), rev.c_str());
+  std::printf("size       %zu particles, %lld bonds (mean %.1f per particle), %.1f MiB, %lld steps\n",
+              input.particles.size(), (long long)fam.bonds, fam.mean, double(engine->memory_bytes()) / (1 << 20),
+              (long long)opt.steps);
+  print_kernel_table(std::cout, rows);
+  std::printf("wall       %.3f s for %lld steps: %.3e bond-updates/s end to end\n", wall, (long long)opt.steps,
+              double(fam.bonds) * double(opt.steps) / wall);
+
+  // Results file: one JSON document per run.
+  ensure_directory(opt.out);
+  std::ostringstream js;
+  js << "{\n  \"date\": \"" << date << "\",\n  \"git\": \"" << rev << "\",\n  \"device\": \""
+     << json_escape(engine->device_name()) << "\",\n  \"backend\": \"" << backend_name(backend)
+     << "\",\n  \"precision\": \"" << (sizeof(real) == 4 ? "float32" : "float64") << "\",\n  \"workload\": \""
+     << workload << "\",\n  \"particles\": " << input.particles.size() << ",\n  \"bonds\": " << fam.bonds
+     << ",\n  \"steps\": " << opt.steps << ",\n  \"wall_seconds\": " << wall << ",\n  \"kernels\": [\n";
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const auto& r = rows[k];
+    js << "    {\"name\": \"" << r.name << "\", \"launches\": " << r.launches << ", \"seconds\": " << r.seconds
+       << ", \"ms_per_launch\": " << r.ms_per_launch << ", \"share\": " << r.share
+       << ", \"bond_updates_per_s\": " << r.bond_updates_per_s << ", \"registers\": " << r.registers
+       << ", \"occupancy\": " << r.occupancy << "}" << (k + 1 < rows.size() ? "," : "") << "\n";
+  }
+  js << "  ]\n}\n";
+  const std::string file =
+      opt.out + "/" + utc_now("%Y%m%d-%H%M%S") + "_" + backend_name(backend) + "_" + workload + ".json";
+  write_file_atomic(file, js.str());
+  std::printf("results    %s\n", file.c_str());
+  return kExitOk;
+}
+
+}  // namespace pd

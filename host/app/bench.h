@@ -1,0 +1,25 @@
+// `perifrac bench`: times the step kernels on a scene or a synthetic lattice and prints
+// bond-updates per second per kernel and per step, with registers and occupancy; results
+// go to bench/results/ as JSON and CSV with the device, date and git revision.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace pd {
+
+struct BenchOptions {
+  std::string scene;           // a scene file, or empty for the lattice
+  double scale = 1.0;          // scene particle-count scale
+  int64_t lattice = 100;       // particles per side of the synthetic cube
+  double horizon = 3.0;        // delta / lambda of the lattice
+  bool contact = false;        // lattice: launch collection + collisions
+  std::string backend = "auto";
+  int64_t steps = 200;
+  int64_t warmup = 20;
+  std::string out = "bench/results";
+};
+
+int bench_command(const BenchOptions& options);
+
+}  // namespace pd

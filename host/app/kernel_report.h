@@ -1,0 +1,30 @@
+// The per-kernel table printed after a run and by `perifrac bench`.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "../../cuda/kernel_stats.h"
+
+namespace pd {
+
+struct KernelRow {
+  std::string name;
+  double seconds = 0, ms_per_launch = 0, share = 0;
+  int64_t launches = 0;
+  double bond_updates_per_s = 0;  // bonds of one step over this kernel's time per step
+  int registers = -1;
+  double occupancy = -1;
+};
+
+// Rows for the kernels whose name starts with `prefix` ("pd/" for the step kernels), plus a
+// final "step" row summing them. `bonds` is the number of stored bonds (both directions)
+// and `steps` the number of steps the stats cover.
+std::vector<KernelRow> kernel_rows(const KernelStats& stats, const std::string& prefix, int64_t bonds,
+                                   int64_t steps);
+
+void print_kernel_table(std::ostream& os, const std::vector<KernelRow>& rows);
+
+}  // namespace pd

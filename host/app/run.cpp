@@ -1,0 +1,169 @@
+#include "run.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "../engine.h"
+#include "../io/atomic_file.h"
+#include "../io/frame_file.h"
+#include "../io/vtk_writer.h"
+#include "../scene/scene.h"
+#include "../scene/scene_setup.h"
+#include "backend_choice.h"
+#include "kernel_report.h"
+
+namespace pd {
+
+namespace {
+
+std::string frame_name(const char* prefix, int64_t frame, const char* ext) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s%05lld%s", prefix, (long long)frame, ext);
+  return buf;
+}
+
+std::string format_duration(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "--:--";
+  const long s = std::lround(seconds);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  return buf;
+}
+
+// Start-up report: what the scene became.
+void print_setup(const Scene& scene, const SetupResult& setup, const RunOptions& opt) {
+  std::printf("scene      %s%s%s\n", scene.path.c_str(), scene.description.empty() ? "" : " - ",
+              scene.description.c_str());
+  std::printf("particles  %zu in %zu bodies (scale %g)\n", setup.input.particles.size(), scene.bodies.size(),
+              opt.scale);
+  for (const auto& m : setup.materials)
+    std::printf("material   '%s' on body '%s': lambda %.4g m, delta %.4g m, c %.4g N/m^6, strain limit %.4g, "
+                "dt_c %.3g s\n",
+                m.name.c_str(), m.body.c_str(), m.spacing, m.horizon, m.micromodulus, m.strain_limit, m.critical_dt);
+  std::printf("time step  dt %.4g s = %.2f dt_c (continuum estimate); %lld steps per frame\n", scene.dt,
+              scene.dt / setup.critical_dt, (long long)scene.steps_per_frame);
+}
+
+// A dt above the stable limit is a user mistake unless explicitly allowed.
+void check_time_step(const Scene& scene, const SetupResult& setup, bool allow) {
+  if (scene.dt <= setup.critical_dt || allow) return;
+  std::ostringstream msg;
+  msg << "dt = " << scene.dt << " s exceeds the stable time step " << setup.critical_dt
+      << " s of the stiffest material (allowed: dt <= " << setup.critical_dt
+      << "; pass --allow-unstable-dt to run anyway)";
+  throw SceneError(scene.path, "simulation.dt", msg.str());
+}
+
+RestData rest_data(const ParticleSet& ps) {
+  RestData r;
+  r.position = ps.rest;
+  r.volume.assign(ps.volume.begin(), ps.volume.end());
+  r.body = ps.body;
+  r.material.assign(ps.material.begin(), ps.material.end());
+  return r;
+}
+
+// Gathers one frame's per-particle data from the engine.
+FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame) {
+  ParticleState s;
+  engine.read_state(s);
+  FrameData f;
+  f.frame = frame;
+  f.step = engine.step();
+  f.time = engine.time();
+  f.position.resize(ps.size());
+  f.damage.resize(ps.size());
+  for (size_t i = 0; i < ps.size(); ++i) {
+    f.position[i] = ps.rest[i] + s.disp[i];
+    f.damage[i] = count[i] > 0 ? 1.0f - float(s.intact[i]) / float(count[i]) : 0.0f;
+  }
+  f.velocity = std::move(s.vel);
+  f.body = ps.body;
+  return f;
+}
+
+}  // namespace
+
+int run_command(const RunOptions& opt) {
+  Scene scene = load_scene(opt.scene);
+  if (opt.frames >= 0) scene.frames = opt.frames;
+  if (opt.steps_per_frame >= 1) scene.steps_per_frame = opt.steps_per_frame;
+  const SetupResult setup = setup_scene(scene, {opt.scale});
+  print_setup(scene, setup, opt);
+  check_time_step(scene, setup, opt.allow_unstable_dt);
+
+  std::string note;
+  const Backend backend = choose_backend(opt.backend, &note);
+  if (!note.empty()) std::printf("backend    %s\n", note.c_str());
+  const auto t_setup = std::chrono::steady_clock::now();
+  std::unique_ptr<Engine> engine = make_engine(backend, setup.input);
+  const FamilyStats& fam = engine->family_stats();
+  std::printf("device     %s [%s]\n", engine->device_name().c_str(), backend_name(backend));
+  std::printf("bonds      %lld (per particle min %d, mean %.1f, max %d); families built in %.2f s; %.1f MiB\n",
+              (long long)fam.bonds, fam.min, fam.mean, fam.max,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count(),
+              double(engine->memory_bytes()) / (1 << 20));
+
+  // Output folder: rest state once, then one set of files per frame.
+  const std::string out =
+      opt.out.empty() ? "out/" + std::filesystem::path(scene.path).stem().string() : opt.out;
+  ensure_directory(out);
+  if (scene.write_binary) write_rest_file(out + "/rest.pfr", rest_data(setup.input.particles));
+  PvdSeries series(out, "particles");
+  BondLists bonds;
+  engine->read_bonds(bonds);
+  const std::vector<int32_t>& count = bonds.count;
+  auto write_frame = [&](int64_t frame) {
+    const FrameData f = frame_data(*engine, setup.input.particles, count, frame);
+    if (scene.write_binary) write_frame_file(out + "/" + frame_name("frame_", frame, ".pfr"), f);
+    if (scene.write_vtk) {
+      const std::string name = frame_name("particles_", frame, ".vtu");
+      write_vtu(out + "/" + name, f);
+      series.add(f.time, name);
+    }
+  };
+  write_frame(0);
+  engine->stats().reset_times();
+
+  // Frame loop with a progress line; a non-finite state stops the run with the step.
+  const bool tty = isatty(fileno(stdout));
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int64_t frame = 1; frame <= scene.frames; ++frame) {
+    engine->advance(scene.steps_per_frame);
+    const int64_t bad = engine->first_non_finite();
+    if (bad >= 0) {
+      std::fprintf(stderr,
+                   "\nerror: numerical blow-up: particle %lld is not finite by step %lld (frame %lld, between steps "
+                   "%lld and %lld); dt = %.3g s is %.2f of the critical time step. Frames up to %lld are written "
+                   "in %s\n",
+                   (long long)bad, (long long)engine->step(), (long long)frame,
+                   (long long)(engine->step() - scene.steps_per_frame), (long long)engine->step(), scene.dt,
+                   scene.dt / setup.critical_dt, (long long)(frame - 1), out.c_str());
+      return kExitBlowUp;
+    }
+    write_frame(frame);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double steps_per_s = double(frame * scene.steps_per_frame) / elapsed;
+    const double eta = elapsed / double(frame) * double(scene.frames - frame);
+    const double broken = fam.bonds > 0 ? double(engine->broken_bonds()) / double(fam.bonds) : 0;
+    std::printf("%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%%s", tty ? "\r" : "",
+                (long long)frame, (long long)scene.frames, (long long)engine->step(), steps_per_s,
+                format_duration(eta).c_str(), 100 * broken, tty ? "   " : "\n");
+    std::fflush(stdout);
+  }
+  if (tty) std::printf("\n");
+
+  const int64_t steps = scene.frames * scene.steps_per_frame;
+  std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(backend));
+  print_kernel_table(std::cout, kernel_rows(engine->stats(), "pd/", fam.bonds, steps));
+  std::printf("output     %s (%lld frames)\n", out.c_str(), (long long)scene.frames + 1);
+  return kExitOk;
+}
+
+}  // namespace pd

@@ -1,0 +1,29 @@
+// `perifrac run SCENE`: load, set up, simulate frame by frame, write outputs.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace pd {
+
+struct RunOptions {
+  std::string scene;
+  std::string backend = "auto";
+  int64_t frames = -1;           // -1: the scene's
+  int64_t steps_per_frame = -1;  // -1: the scene's
+  std::string out;      // empty: out/<scene name>
+  double scale = 1.0;
+  bool allow_unstable_dt = false;
+};
+
+// Exit codes shared by the commands.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitUsage = 2,       // bad scene, option or input file
+  kExitBlowUp = 3,      // numerical blow-up detected
+  kExitRuntime = 4,     // device or I/O failure
+};
+
+int run_command(const RunOptions& options);
+
+}  // namespace pd

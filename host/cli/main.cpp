@@ -1,0 +1,77 @@
+// The perifrac command line: run a scene, benchmark the kernels, list devices.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "host/app/bench.h"
+#include "host/app/compare.h"
+#include "host/app/run.h"
+#include "host/engine.h"
+#include "host/io/atomic_file.h"
+#include "host/scene/scene.h"
+
+int main(int argc, char** argv) {
+  using namespace pd;
+  CLI::App app{"perifrac: peridynamic fracture simulation on GPU and CPU"};
+  app.set_version_flag("--version", std::string("perifrac ") + PERIFRAC_VERSION);
+  app.require_subcommand(1);
+
+  RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand("run", "simulate a scene and write per-frame output");
+  run_cmd->add_option("scene", run.scene, "scene file (TOML)")->required();
+  run_cmd->add_option("--backend", run.backend, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  run_cmd->add_option("--frames", run.frames, "number of frames (default: the scene's)")->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--steps-per-frame", run.steps_per_frame, "steps per frame (default: the scene's)")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--out", run.out, "output folder (default: out/<scene name>)");
+  run_cmd->add_option("--scale", run.scale, "particle-count factor, e.g. 0.05 for a small CPU run");
+  run_cmd->add_flag("--allow-unstable-dt", run.allow_unstable_dt, "run even if dt exceeds the stable time step");
+
+  BenchOptions bench;
+  CLI::App* bench_cmd = app.add_subcommand("bench", "time the step kernels (bond-updates/s, occupancy)");
+  bench_cmd->add_option("--scene", bench.scene, "scene file; default: a synthetic lattice cube");
+  bench_cmd->add_option("--scale", bench.scale, "scene particle-count factor");
+  bench_cmd->add_option("--lattice", bench.lattice, "lattice particles per side");
+  bench_cmd->add_option("--horizon", bench.horizon, "lattice delta / lambda");
+  bench_cmd->add_flag("--contact", bench.contact, "lattice: include collection + collisions");
+  bench_cmd->add_option("--backend", bench.backend, "auto | cpu | cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  bench_cmd->add_option("--steps", bench.steps, "timed steps");
+  bench_cmd->add_option("--warmup", bench.warmup, "untimed steps first");
+  bench_cmd->add_option("--out", bench.out, "results folder");
+
+  CompareOptions compare;
+  CLI::App* compare_cmd = app.add_subcommand("compare", "compare two output folders frame by frame");
+  compare_cmd->add_option("a", compare.a, "first output folder")->required();
+  compare_cmd->add_option("b", compare.b, "second output folder")->required();
+  compare_cmd->add_option("--position-tolerance", compare.position_tolerance, "relative L2 of displacements");
+  compare_cmd->add_option("--damage-tolerance", compare.damage_tolerance, "mean absolute damage difference");
+
+  CLI::App* info_cmd = app.add_subcommand("info", "show the backends this build and machine offer");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*run_cmd) return run_command(run);
+    if (*bench_cmd) return bench_command(bench);
+    if (*compare_cmd) return compare_command(compare);
+    if (*info_cmd) {
+      std::string why;
+      const bool gpu = cuda_device_available(&why);
+      std::printf("perifrac %s\ncpu   available\ncuda  %s\n", PERIFRAC_VERSION, gpu ? "available" : why.c_str());
+      return kExitOk;
+    }
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitUsage;
+  } catch (const IoError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitRuntime;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitRuntime;
+  }
+  return kExitOk;
+}

@@ -1,0 +1,74 @@
+// The simulation engine seen from the host: one interface, two backends that run the same
+// kernel bodies (cuda/engine_impl.h). Host code never touches device memory directly.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../cuda/kernel_stats.h"
+#include "particle_set.h"
+
+namespace pd {
+
+enum class Backend { kCpu, kCuda };
+
+const char* backend_name(Backend b);
+
+struct FamilyStats {
+  int64_t bonds = 0;  // stored bonds, each pair counted once per direction
+  int32_t min = 0, max = 0;
+  double mean = 0;
+  int64_t slots = 0;  // sliced-ELL storage, padding included
+};
+
+// Per-particle state copied back to the host.
+struct ParticleState {
+  std::vector<Vec3> disp, vel, force;
+  std::vector<int32_t> intact;  // unbroken bonds
+};
+
+// Families as stored (sliced ELL, see BondsView), copied back to the host.
+struct BondLists {
+  std::vector<int64_t> slice_offset;
+  std::vector<int32_t> count;
+  std::vector<int32_t> neighbor;
+  BondsView view() const {
+    BondsView v;
+    v.n = int32_t(count.size());
+    v.slice_offset = slice_offset.data();
+    v.count = count.data();
+    v.neighbor = const_cast<int32_t*>(neighbor.data());
+    return v;
+  }
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual Backend backend() const = 0;
+  virtual std::string device_name() const = 0;
+  virtual const FamilyStats& family_stats() const = 0;
+  // Advances `steps` velocity-Verlet steps of the fixed dt.
+  virtual void advance(int64_t steps) = 0;
+  virtual int64_t step() const = 0;
+  virtual double time() const = 0;
+  virtual void read_state(ParticleState& out) = 0;
+  virtual void read_bonds(BondLists& out) = 0;
+  virtual int64_t broken_bonds() = 0;
+  // Index of the first particle whose displacement, velocity or force is not finite; -1 if none.
+  virtual int64_t first_non_finite() = 0;
+  virtual KernelStats& stats() = 0;
+  // Bytes of backend memory held by the engine.
+  virtual size_t memory_bytes() const = 0;
+};
+
+std::unique_ptr<Engine> make_cpu_engine(const SimulationInput& in);
+// Throws std::runtime_error when CUDA is not compiled in or no device is usable.
+std::unique_ptr<Engine> make_cuda_engine(const SimulationInput& in);
+std::unique_ptr<Engine> make_engine(Backend b, const SimulationInput& in);
+
+// True when the build has CUDA and a device answers; otherwise `why` says what is missing.
+bool cuda_device_available(std::string* why = nullptr);
+
+}  // namespace pd

@@ -1,0 +1,17 @@
+// Linked instead of cuda/engine_cuda.cu when the build has no CUDA compiler.
+#include <stdexcept>
+
+#include "engine.h"
+
+namespace pd {
+
+bool cuda_device_available(std::string* why) {
+  if (why) *why = "this build has no CUDA support (configure with a CUDA compiler, preset 'cuda')";
+  return false;
+}
+
+std::unique_ptr<Engine> make_cuda_engine(const SimulationInput&) {
+  throw std::runtime_error("CUDA backend unavailable: this build has no CUDA support");
+}
+
+}  // namespace pd

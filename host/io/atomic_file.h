@@ -1,0 +1,36 @@
+// Crash-safe file output: a target file is either left as it was or replaced whole, never
+// half-written. Every output file of a run (frames, series index, summaries) goes through here.
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace pd {
+
+// An input/output failure. The message names the path and the reason, e.g.
+// "cannot write 'out/frame_00003.vtu': No space left on device".
+class IoError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Builds the IoError "cannot <verb> '<path>': <reason>".
+IoError io_error(std::string_view verb, const std::string& path, const std::string& reason);
+// Same, with the reason taken from an errno value.
+IoError io_error_errno(std::string_view verb, const std::string& path, int err);
+
+// Writes `path` atomically: `write` fills a temporary file in the same directory (its name holds
+// ".tmp"), which is checked, fsync'ed and renamed over `path`. On any failure (an OS error, the
+// stream left failed by `write`, or an exception thrown by `write`) the temporary is removed and
+// `path` is untouched; OS errors and failed streams throw IoError, other exceptions pass through.
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
+void write_file_atomic(const std::string& path, std::string_view bytes);
+
+// Creates `dir` and its missing parents; does nothing if it already is a directory. Throws
+// IoError when it cannot (e.g. a component of the path is a regular file).
+void ensure_directory(const std::string& dir);
+
+}  // namespace pd

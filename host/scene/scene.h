@@ -1,0 +1,100 @@
+// A scene as the user wrote it (SI units), after parsing and validation. The loader
+// (scene_loader.cpp) fills it from TOML; scene_setup.cpp turns it into particles and
+// kernel parameters. Every key is documented in docs/scene-reference.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pd {
+
+using Vec3d = std::array<double, 3>;
+
+// A user mistake in a scene: names the file, the key (dotted path, e.g. "bodies[0].spacing")
+// and what is allowed. what() is the one-line message printed to the user.
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string file, std::string key, const std::string& message);
+  const std::string& file() const { return file_; }
+  const std::string& key() const { return key_; }
+
+ private:
+  std::string file_, key_;
+};
+
+struct SceneMaterial {
+  std::string name;
+  std::string model = "bond_based";  // only "bond_based" so far
+  double density = 0;                // rho [kg/m^3], > 0
+  double bulk_modulus = 0;           // K [Pa], > 0
+  double horizon = 3;                // delta / lambda, >= 1
+  std::optional<double> strain_limit;     // explicit critical stretch tau, in (0, 1)
+  std::optional<double> fracture_energy;  // G0 [J/m^2] -> tau = sqrt(5 G0 / (9 K delta)); exactly one of the two
+  double strain_limit_scatter = 0.02;     // relative standard deviation of the normal scatter, in [0, 0.5]
+  double compression_alpha = 0.25;        // alpha of Levine eq. 5, >= 0
+  bool partial_volumes = true;            // volume fraction of bonds near the horizon edge
+};
+
+struct SceneBody {
+  std::string name;
+  std::string shape = "box";  // "box" (regular grid of cubes of side `spacing`)
+  Vec3d center{0, 0, 0};      // [m]
+  Vec3d size{0, 0, 0};        // [m], each > 0
+  double spacing = 0;         // lambda [m], > 0
+  std::string material;       // name of a [materials.NAME] table
+  Vec3d velocity{0, 0, 0};    // initial velocity [m/s]
+};
+
+// Particles inside the axis-aligned box are held fixed.
+struct SceneAnchor {
+  Vec3d box_min{0, 0, 0}, box_max{0, 0, 0};
+};
+
+struct SceneProjectile {
+  Vec3d center{0, 0, 0};    // at t = 0 [m]
+  Vec3d velocity{0, 0, 0};  // constant [m/s]
+  double radius = 0;        // r [m], > 0
+  double strength = 0;      // K_S [Pa], >= 0
+};
+
+struct Scene {
+  std::string path;         // file it was read from
+  std::string description;  // one line
+
+  // [simulation]
+  double dt = 0x1p-23;      // time step [s], > 0
+  int64_t steps_per_frame = 500;  // >= 1
+  int64_t frames = 30;            // >= 1
+  uint64_t seed = 1;
+
+  // [world]
+  Vec3d gravity{0, -9.81, 0};
+  bool floor = false;
+  double floor_height = 0;
+  double restitution = 0.99;  // in [0, 1]
+
+  // [contact]
+  bool contact = true;
+  double contact_stiffness = 1e8;  // K_c [Pa], >= 0
+
+  std::vector<SceneMaterial> materials;  // [materials.NAME], at least one
+  std::vector<SceneBody> bodies;         // [[bodies]], at least one
+  std::vector<SceneAnchor> anchors;      // [[anchors]]
+  std::vector<SceneProjectile> projectiles;  // [[projectiles]], at most 4
+
+  // [output]
+  bool write_vtk = true;
+  bool write_binary = true;
+};
+
+// Reads and validates a scene file. Throws SceneError for every user mistake (unreadable
+// file, TOML syntax, unknown key, wrong type, value out of range, dangling material name).
+Scene load_scene(const std::string& path);
+// Same, from text (tests); `path` is used in messages only.
+Scene parse_scene(const std::string& text, const std::string& path);
+
+}  // namespace pd

@@ -1,0 +1,509 @@
+// Scene files: TOML parsed by toml++, then validated key by key into a pd::Scene. Every user
+// mistake becomes a SceneError "<file>: <key>: <what is wrong> (allowed: <what is allowed>)".
+// The keys are documented in docs/scene-reference.md.
+
+// toml++ 3.3 asserts on some malformed input that it goes on to report as a parse error (a
+// table header "[[[a]]", a control character in a key): an abort in debug builds and, with
+// NDEBUG, an optimiser assumption (__builtin_assume under clang) that the input is well formed.
+// Both are turned off here so that every input ends in a result or a toml::parse_error.
+#pragma push_macro("NDEBUG")
+#undef NDEBUG
+#define TOML_ASSERT(expr) static_cast<void>(0)
+#include <toml++/toml.h>
+#pragma pop_macro("NDEBUG")
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "../../cuda/views.h"
+#include "scene.h"
+
+namespace pd {
+
+// A syntax error passes "<file>:<line>:<column>" as `file` and an empty key.
+SceneError::SceneError(std::string file, std::string key, const std::string& message)
+    : std::runtime_error(file + (key.empty() ? "" : ": " + key) + ": " + message),
+      file_(std::move(file)),
+      key_(std::move(key)) {}
+
+namespace {
+
+using Keys = std::vector<std::string_view>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// ---- Message helpers ---------------------------------------------------------------------------
+
+// Replaces control characters (a quoted TOML key may hold a newline) so messages stay on one line.
+std::string one_line(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned char>(c));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string quoted(std::string_view s) {
+  return "\"" + one_line(s) + "\"";
+}
+
+// "a, b, c", each item optionally quoted.
+std::string join(const Keys& items, bool quote) {
+  std::string out;
+  for (std::string_view item : items) {
+    if (!out.empty()) out += ", ";
+    out += quote ? quoted(item) : std::string(item);
+  }
+  return out;
+}
+
+// Shortest decimal form that reads back as the same double ("0.5", "1e+08", "0.99999999").
+std::string number_text(double v) {
+  char buf[40];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::none:
+      return "nothing";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+  }
+  return "an unknown type";
+}
+
+[[noreturn]] void scene_error(const std::string& file, const std::string& key, const std::string& what,
+                              const std::string& allowed) {
+  throw SceneError(file, one_line(key), one_line(what) + " (allowed: " + one_line(allowed) + ")");
+}
+
+// The location takes the place of the file name: "<file>:<line>:<column>: TOML syntax error: ...".
+SceneError syntax_error(const std::string& path, int64_t line, int64_t column, std::string_view description) {
+  return SceneError(path + ":" + std::to_string(line) + ":" + std::to_string(column), "",
+                    "TOML syntax error: " + one_line(description));
+}
+
+// ---- Numbers -----------------------------------------------------------------------------------
+
+// Allowed range of a float key; describe() is the "allowed" part of its messages.
+struct Bounds {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+  std::string note;  // appended to describe(), e.g. the meaning of the bound
+
+  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
+  std::string describe() const {
+    std::string s;
+    if (lo == -kInf && hi == kInf) {
+      s = "a finite number";
+    } else if (hi == kInf) {
+      s = std::string("a number ") + (lo_open ? "> " : ">= ") + number_text(lo);
+    } else {
+      s = std::string("a number in ") + (lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) +
+          (hi_open ? ")" : "]");
+    }
+    return note.empty() ? s : s + ": " + note;
+  }
+};
+
+Bounds greater_than(double lo) {
+  return {lo, kInf, true, false, ""};
+}
+Bounds at_least(double lo) {
+  return {lo, kInf, false, false, ""};
+}
+Bounds in_closed(double lo, double hi) {
+  return {lo, hi, false, false, ""};
+}
+Bounds in_open(double lo, double hi) {
+  return {lo, hi, true, true, ""};
+}
+
+// An integer or float node as a finite double within `bounds`.
+double to_number(const toml::node& n, const std::string& file, const std::string& key, const Bounds& bounds) {
+  double v = 0;
+  if (const auto* i = n.as_integer()) {
+    v = static_cast<double>(i->get());
+  } else if (const auto* f = n.as_floating_point()) {
+    v = f->get();
+  } else {
+    scene_error(file, key, "expected a number, got " + type_name(n), bounds.describe());
+  }
+  if (!std::isfinite(v))
+    scene_error(file, key, number_text(v) + " is not a finite number", bounds.describe());
+  if (!bounds.contains(v)) scene_error(file, key, number_text(v) + " is out of range", bounds.describe());
+  return v;
+}
+
+// ---- Table reader ------------------------------------------------------------------------------
+
+enum class Presence { optional, required };
+
+// Typed access to one TOML table whose dotted path is `prefix`. The constructor rejects keys
+// not in `allowed`, so a misspelt key is reported as unknown rather than as missing. The
+// getters write `out` and return true when the key is present, leave `out` (the default) alone
+// and return false when it is absent, and throw when it is required and absent.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string prefix, const std::string& file, const Keys& allowed)
+      : table_(&table), prefix_(std::move(prefix)), file_(&file) {
+    for (auto&& [key, value] : table) {
+      if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end())
+        fail(key.str(), "unknown key", join(allowed, false));
+    }
+  }
+
+  const std::string& file() const { return *file_; }
+
+  // Dotted path of `key` in this table; the table's own path for an empty key.
+  std::string path(std::string_view key) const {
+    if (key.empty()) return prefix_;
+    return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+  }
+
+  [[noreturn]] void fail(std::string_view key, const std::string& what, const std::string& allowed) const {
+    scene_error(*file_, path(key), what, allowed);
+  }
+
+  bool number(std::string_view key, double& out, const Bounds& bounds = {},
+              Presence presence = Presence::optional) const {
+    const toml::node* n = find(key, presence, bounds.describe());
+    if (n) out = to_number(*n, *file_, path(key), bounds);
+    return n != nullptr;
+  }
+
+  bool integer(std::string_view key, int64_t& out, int64_t min) const {
+    const std::string allowed = "an integer >= " + std::to_string(min);
+    const toml::node* n = find(key, Presence::optional, allowed);
+    if (!n) return false;
+    const auto* i = n->as_integer();
+    if (!i) fail(key, "expected an integer, got " + type_name(*n), allowed);
+    if (i->get() < min) fail(key, std::to_string(i->get()) + " is out of range", allowed);
+    out = i->get();
+    return true;
+  }
+
+  bool boolean(std::string_view key, bool& out) const {
+    const toml::node* n = find(key, Presence::optional, "true or false");
+    if (!n) return false;
+    const auto* b = n->as_boolean();
+    if (!b) fail(key, "expected a boolean, got " + type_name(*n), "true or false");
+    out = b->get();
+    return true;
+  }
+
+  // A string; when `choices` is not empty it must be one of them.
+  bool string(std::string_view key, std::string& out, const Keys& choices = {},
+              Presence presence = Presence::optional) const {
+    const std::string allowed = choices.empty() ? "a string" : join(choices, true);
+    const toml::node* n = find(key, presence, allowed);
+    if (!n) return false;
+    const auto* s = n->as_string();
+    if (!s) fail(key, "expected a string, got " + type_name(*n), allowed);
+    if (!choices.empty() && std::find(choices.begin(), choices.end(), s->get()) == choices.end())
+      fail(key, "unsupported value " + quoted(s->get()), allowed);
+    out = s->get();
+    return true;
+  }
+
+  // An array of exactly 3 finite numbers.
+  bool vec3(std::string_view key, Vec3d& out, Presence presence = Presence::optional) const {
+    const std::string allowed = "an array of 3 finite numbers [x, y, z]";
+    const toml::node* n = find(key, presence, allowed);
+    if (!n) return false;
+    const auto* a = n->as_array();
+    if (!a) fail(key, "expected an array of 3 numbers, got " + type_name(*n), allowed);
+    if (a->size() != 3) fail(key, "expected 3 numbers, got " + std::to_string(a->size()), allowed);
+    for (size_t c = 0; c < 3; ++c)
+      out[c] = to_number(*a->get(c), *file_, path(key) + "[" + std::to_string(c) + "]", Bounds{});
+    return true;
+  }
+
+  // The sub-table `key` ([simulation], ...); an empty one when absent.
+  TableReader table(std::string_view key, const Keys& allowed) const {
+    return TableReader(sub_table(key), path(key), *file_, allowed);
+  }
+
+  // The entries of the sub-table `key`, each itself a table: [key.NAME] -> (NAME, reader).
+  std::vector<std::pair<std::string, TableReader>> named_tables(std::string_view key,
+                                                                const Keys& allowed) const {
+    std::vector<std::pair<std::string, TableReader>> out;
+    for (auto&& [name, value] : sub_table(key)) {
+      const std::string name_path = path(key) + "." + std::string(name.str());
+      if (!value.is_table())
+        scene_error(*file_, name_path, "expected a table, got " + type_name(value),
+                    "a [" + name_path + "] table");
+      out.emplace_back(std::string(name.str()), TableReader(*value.as_table(), name_path, *file_, allowed));
+    }
+    return out;
+  }
+
+  // The elements of the array of tables `key` ([[key]]); none when absent.
+  std::vector<TableReader> table_array(std::string_view key, const Keys& allowed) const {
+    const std::string kind = "[[" + path(key) + "]] tables";
+    const toml::node* n = table_->get(key);
+    if (!n) return {};
+    const auto* a = n->as_array();
+    if (!a) fail(key, "expected an array of tables, got " + type_name(*n), kind);
+    std::vector<TableReader> out;
+    for (size_t i = 0; i < a->size(); ++i) {
+      const std::string element_path = path(key) + "[" + std::to_string(i) + "]";
+      const toml::node& element = *a->get(i);
+      if (!element.is_table())
+        scene_error(*file_, element_path, "expected a table, got " + type_name(element), kind);
+      out.emplace_back(*element.as_table(), element_path, *file_, allowed);
+    }
+    return out;
+  }
+
+ private:
+  const toml::node* find(std::string_view key, Presence presence, const std::string& allowed) const {
+    const toml::node* n = table_->get(key);
+    if (!n && presence == Presence::required) fail(key, "missing required key", allowed);
+    return n;
+  }
+
+  const toml::table& sub_table(std::string_view key) const {
+    static const toml::table kEmpty;
+    const toml::node* n = table_->get(key);
+    if (!n) return kEmpty;
+    if (!n->is_table()) fail(key, "expected a table, got " + type_name(*n), "a [" + path(key) + "] table");
+    return *n->as_table();
+  }
+
+  const toml::table* table_;
+  std::string prefix_;
+  const std::string* file_;
+};
+
+// ---- Sections ----------------------------------------------------------------------------------
+
+const Keys kTopKeys = {"description", "simulation", "world",       "contact", "materials",
+                       "bodies",      "anchors",    "projectiles", "output"};
+const Keys kSimulationKeys = {"dt", "steps_per_frame", "frames", "seed"};
+const Keys kWorldKeys = {"gravity", "floor", "floor_height", "restitution"};
+const Keys kContactKeys = {"enabled", "stiffness"};
+const Keys kMaterialKeys = {"model",          "density",         "bulk_modulus",         "horizon",
+                            "strain_limit",   "fracture_energy", "strain_limit_scatter", "compression_alpha",
+                            "partial_volumes"};
+const Keys kBodyKeys = {"name", "shape", "center", "size", "spacing", "material", "velocity"};
+const Keys kAnchorKeys = {"box_min", "box_max"};
+const Keys kProjectileKeys = {"center", "velocity", "radius", "strength"};
+const Keys kOutputKeys = {"vtk", "binary"};
+
+const char* const kAxisNames[3] = {"x", "y", "z"};
+constexpr double kMaxHorizon = 12;  // delta / lambda; beyond this the bond families explode
+
+SceneMaterial parse_material(const std::string& name, const TableReader& r) {
+  SceneMaterial m;
+  m.name = name;
+  r.string("model", m.model, {"bond_based"});
+  r.number("density", m.density, greater_than(0), Presence::required);
+  r.number("bulk_modulus", m.bulk_modulus, greater_than(0), Presence::required);
+  Bounds horizon = in_closed(1, kMaxHorizon);
+  horizon.note = "the horizon delta in multiples of the spacing lambda, so delta >= lambda";
+  r.number("horizon", m.horizon, horizon);
+
+  // Strength: exactly one of an explicit strain limit and a fracture energy.
+  double value = 0;
+  if (r.number("strain_limit", value, in_open(0, 1))) m.strain_limit = value;
+  if (r.number("fracture_energy", value, greater_than(0))) m.fracture_energy = value;
+  const std::string one_of = "exactly one of strain_limit in (0, 1) and fracture_energy > 0";
+  if (m.strain_limit && m.fracture_energy)
+    r.fail("", "both strain_limit and fracture_energy are given", one_of);
+  if (!m.strain_limit && !m.fracture_energy)
+    r.fail("", "neither strain_limit nor fracture_energy is given", one_of);
+
+  r.number("strain_limit_scatter", m.strain_limit_scatter, in_closed(0, 0.5));
+  r.number("compression_alpha", m.compression_alpha, at_least(0));
+  r.boolean("partial_volumes", m.partial_volumes);
+  return m;
+}
+
+SceneBody parse_body(size_t index, const TableReader& r, const std::vector<SceneMaterial>& materials) {
+  SceneBody b;
+  b.name = "body" + std::to_string(index);
+  r.string("name", b.name);
+  r.string("shape", b.shape, {"box"});
+  r.vec3("center", b.center);
+  r.vec3("velocity", b.velocity);
+  r.vec3("size", b.size, Presence::required);
+  r.number("spacing", b.spacing, greater_than(0), Presence::required);
+
+  // The material must name a [materials.NAME] table.
+  r.string("material", b.material, {}, Presence::required);
+  Keys names;
+  for (const SceneMaterial& m : materials) names.push_back(m.name);
+  if (std::find(names.begin(), names.end(), b.material) == names.end())
+    r.fail("material", "no material named " + quoted(b.material), join(names, true));
+
+  // Particle grid: round(size / spacing) per axis (host/geometry/box_grid.cpp). Every axis
+  // needs at least one particle, and the body's particle count must fit an int32 index.
+  double count = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (!(b.size[a] > 0))
+      r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(b.size[a]) + " is not > 0",
+             "sizes > 0");
+    const double per_axis = std::round(b.size[a] / b.spacing);
+    if (per_axis < 1)
+      r.fail("size",
+             std::string(kAxisNames[a]) + " size " + number_text(b.size[a]) +
+                 " is less than half the spacing " + number_text(b.spacing) +
+                 ", which would give zero particles along that axis",
+             "sizes >= spacing / 2");
+    count *= per_axis;
+  }
+  const double max_count = std::numeric_limits<int32_t>::max();
+  if (count > max_count)
+    r.fail("spacing", "the body would have " + number_text(count) + " particles",
+           "at most " + number_text(max_count) + " particles per body");
+  return b;
+}
+
+SceneAnchor parse_anchor(const TableReader& r) {
+  SceneAnchor a;
+  r.vec3("box_min", a.box_min, Presence::required);
+  r.vec3("box_max", a.box_max, Presence::required);
+  for (int c = 0; c < 3; ++c) {
+    if (a.box_max[c] < a.box_min[c])
+      r.fail("box_max",
+             std::string(kAxisNames[c]) + " (" + number_text(a.box_max[c]) + ") is below box_min's (" +
+                 number_text(a.box_min[c]) + ")",
+             "each component >= box_min's");
+  }
+  return a;
+}
+
+SceneProjectile parse_projectile(const TableReader& r) {
+  SceneProjectile p;
+  r.vec3("center", p.center, Presence::required);
+  r.vec3("velocity", p.velocity);
+  r.number("radius", p.radius, greater_than(0), Presence::required);
+  r.number("strength", p.strength, at_least(0), Presence::required);
+  return p;
+}
+
+Scene parse_root(const toml::table& root, const std::string& path) {
+  Scene scene;
+  scene.path = path;
+  const TableReader top(root, "", path, kTopKeys);
+
+  // description: one line of free text.
+  top.string("description", scene.description);
+  if (scene.description.find_first_of("\r\n") != std::string::npos)
+    top.fail("description", "contains a line break", "a one-line string");
+
+  // [simulation]
+  const TableReader sim = top.table("simulation", kSimulationKeys);
+  sim.number("dt", scene.dt, greater_than(0));
+  sim.integer("steps_per_frame", scene.steps_per_frame, 1);
+  sim.integer("frames", scene.frames, 1);
+  int64_t seed = 0;
+  if (sim.integer("seed", seed, 0)) scene.seed = static_cast<uint64_t>(seed);
+
+  // [world]
+  const TableReader world = top.table("world", kWorldKeys);
+  world.vec3("gravity", scene.gravity);
+  world.boolean("floor", scene.floor);
+  world.number("floor_height", scene.floor_height);
+  world.number("restitution", scene.restitution, in_closed(0, 1));
+
+  // [contact]
+  const TableReader contact = top.table("contact", kContactKeys);
+  contact.boolean("enabled", scene.contact);
+  contact.number("stiffness", scene.contact_stiffness, at_least(0));
+
+  // [materials.NAME], at least one.
+  for (const auto& [name, reader] : top.named_tables("materials", kMaterialKeys))
+    scene.materials.push_back(parse_material(name, reader));
+  if (scene.materials.empty())
+    top.fail("materials", "no material is defined", "at least one [materials.NAME] table");
+
+  // [[bodies]], at least one; they refer to the materials.
+  const auto bodies = top.table_array("bodies", kBodyKeys);
+  for (size_t i = 0; i < bodies.size(); ++i)
+    scene.bodies.push_back(parse_body(i, bodies[i], scene.materials));
+  if (scene.bodies.empty()) top.fail("bodies", "no body is defined", "at least one [[bodies]] table");
+
+  // [[anchors]]
+  for (const TableReader& r : top.table_array("anchors", kAnchorKeys))
+    scene.anchors.push_back(parse_anchor(r));
+
+  // [[projectiles]], at most kMaxProjectiles (the kernels hold them in a fixed array).
+  const auto projectiles = top.table_array("projectiles", kProjectileKeys);
+  if (projectiles.size() > static_cast<size_t>(kMaxProjectiles))
+    top.fail("projectiles", std::to_string(projectiles.size()) + " projectiles",
+             "at most " + std::to_string(kMaxProjectiles));
+  for (const TableReader& r : projectiles) scene.projectiles.push_back(parse_projectile(r));
+
+  // [output]
+  const TableReader output = top.table("output", kOutputKeys);
+  output.boolean("vtk", scene.write_vtk);
+  output.boolean("binary", scene.write_binary);
+  return scene;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw syntax_error(path, e.source().begin.line, e.source().begin.column, e.description());
+  }
+  return parse_root(root, path);
+}
+
+Scene load_scene(const std::string& path) {
+  // Read the whole file; fopen/fread set errno for the message (ENOENT, EACCES, EISDIR, ...).
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  auto cannot_read = [&] {
+    return SceneError(path, "", "cannot read scene file: " + std::string(std::strerror(errno)));
+  };
+  if (!file) throw cannot_read();
+  std::string text;
+  char buf[65536];
+  size_t got = 0;
+  while ((got = std::fread(buf, 1, sizeof buf, file.get())) > 0) text.append(buf, got);
+  if (std::ferror(file.get())) throw cannot_read();
+  return parse_scene(text, path);
+}
+
+}  // namespace pd

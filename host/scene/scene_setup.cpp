@@ -1,0 +1,117 @@
+#include "scene_setup.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "../geometry/box_grid.h"
+#include "../material.h"
+#include "../random.h"
+
+namespace pd {
+
+namespace {
+
+Vec3 to_vec3(const Vec3d& v) { return {real(v[0]), real(v[1]), real(v[2])}; }
+
+const SceneMaterial& find_material(const Scene& scene, const std::string& name) {
+  for (const auto& m : scene.materials)
+    if (m.name == name) return m;
+  throw SceneError(scene.path, "bodies.material", "no material named '" + name + "'");
+}
+
+bool inside(const SceneAnchor& a, Vec3 x) {
+  return x.x >= a.box_min[0] && x.x <= a.box_max[0] && x.y >= a.box_min[1] && x.y <= a.box_max[1] &&
+         x.z >= a.box_min[2] && x.z <= a.box_max[2];
+}
+
+// Kernel constants of one body's material at the body's spacing.
+Material derive_material(const SceneMaterial& sm, double spacing, MaterialSummary& summary) {
+  const double delta = sm.horizon * spacing;
+  Material m;
+  m.micromodulus = real(pmb_micromodulus(sm.bulk_modulus, delta));
+  m.horizon = real(delta);
+  m.spacing = real(spacing);
+  m.compression_alpha = real(sm.compression_alpha);
+  m.partial_volumes = sm.partial_volumes ? 1 : 0;
+  summary.spacing = spacing;
+  summary.horizon = delta;
+  summary.micromodulus = m.micromodulus;
+  summary.strain_limit = sm.strain_limit ? *sm.strain_limit
+                                         : pmb_critical_stretch(*sm.fracture_energy, sm.bulk_modulus, delta);
+  summary.critical_dt = pmb_critical_time_step(sm.density, sm.bulk_modulus, delta);
+  return m;
+}
+
+// Per-particle strain limit: normal scatter of relative deviation sigma, truncated at 3 sigma
+// and kept above 5% of the mean so no bond starts out broken.
+real scattered_limit(double tau, double sigma, Random& rng) {
+  const double z = std::fmax(-3.0, std::fmin(3.0, rng.normal()));
+  return real(tau * std::fmax(0.05, 1.0 + sigma * z));
+}
+
+}  // namespace
+
+SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
+  if (!(options.scale > 0) || !std::isfinite(options.scale) || options.scale > 1e3)
+    throw SceneError(scene.path, "--scale", "must be a number in (0, 1000], got " + std::to_string(options.scale));
+  SetupResult result;
+  SimulationInput& in = result.input;
+  ParticleSet& ps = in.particles;
+  Random rng(scene.seed);
+  const double spacing_factor = 1.0 / std::cbrt(options.scale);
+
+  // Bodies: one material table entry per body (a material's horizon depends on the spacing).
+  int64_t total = 0;
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    const SceneBody& body = scene.bodies[b];
+    const std::string key = "bodies[" + std::to_string(b) + "]";
+    if (in.materials.count >= kMaxMaterials)
+      throw SceneError(scene.path, key, "too many bodies (allowed: at most " + std::to_string(kMaxMaterials) + ")");
+    const double spacing = body.spacing * spacing_factor;
+    const auto n = box_grid_counts(body.size, spacing);
+    total += n[0] * n[1] * n[2];
+    if (total > std::numeric_limits<int32_t>::max() / 2)
+      throw SceneError(scene.path, key + ".spacing",
+                       "the scene would have " + std::to_string(total) + " particles (allowed: at most 1073741823)");
+
+    const SceneMaterial& sm = find_material(scene, body.material);
+    MaterialSummary summary;
+    summary.name = sm.name;
+    summary.body = body.name;
+    const uint16_t mat = uint16_t(in.materials.count);
+    in.materials.m[in.materials.count++] = derive_material(sm, spacing, summary);
+    result.critical_dt = b == 0 ? summary.critical_dt : std::fmin(result.critical_dt, summary.critical_dt);
+    result.materials.push_back(summary);
+    result.body_names.push_back(body.name);
+
+    // Particles: grid cubes; mass and volume from the cube; anchors by rest position.
+    const real volume = real(spacing * spacing * spacing);
+    const real mass = real(sm.density * spacing * spacing * spacing);
+    for (const Vec3& x : box_grid_points(body.center, body.size, spacing)) {
+      uint8_t flags = 0;
+      for (const auto& a : scene.anchors)
+        if (inside(a, x)) flags |= kAnchored;
+      ps.add(x, to_vec3(body.velocity), volume, mass,
+             scattered_limit(summary.strain_limit, sm.strain_limit_scatter, rng), mat, int32_t(b), flags);
+    }
+  }
+
+  // Step parameters.
+  StepParams& sp = in.step;
+  sp.dt = real(scene.dt);
+  sp.gravity = to_vec3(scene.gravity);
+  sp.floor_enabled = scene.floor ? 1 : 0;
+  sp.floor_height = real(scene.floor_height);
+  sp.restitution = real(scene.restitution);
+  sp.contact_stiffness = real(scene.contact_stiffness);
+  sp.n_projectiles = int32_t(scene.projectiles.size());
+  for (size_t k = 0; k < scene.projectiles.size() && k < size_t(kMaxProjectiles); ++k) {
+    const auto& p = scene.projectiles[k];
+    sp.projectile[k] = {to_vec3(p.center), to_vec3(p.velocity), real(p.radius), real(p.strength)};
+  }
+  in.contact = scene.contact;
+  return result;
+}
+
+}  // namespace pd

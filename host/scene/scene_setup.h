@@ -1,0 +1,36 @@
+// Turns a validated scene into particles and kernel parameters for an engine.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "../particle_set.h"
+#include "scene.h"
+
+namespace pd {
+
+struct SetupOptions {
+  // Multiplies every body's particle count (approximately): spacing is divided by
+  // cbrt(scale). Lets a CPU run a small version of a GPU scene.
+  double scale = 1.0;
+};
+
+// What the setup derived, for the start-up report.
+struct MaterialSummary {
+  std::string name;
+  std::string body;
+  double spacing = 0, horizon = 0, micromodulus = 0, strain_limit = 0, critical_dt = 0;
+};
+
+struct SetupResult {
+  SimulationInput input;
+  std::vector<MaterialSummary> materials;  // one per material table entry
+  std::vector<std::string> body_names;
+  double critical_dt = 0;  // smallest over the materials
+};
+
+// Throws SceneError for problems that only show once sizes are known (too many particles,
+// too many material/spacing combinations, a scale out of range).
+SetupResult setup_scene(const Scene& scene, const SetupOptions& options);
+
+}  // namespace pd

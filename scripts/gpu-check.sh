@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Everything a GPU change needs, in one call on a GPU machine: build (cuda preset), the
+# gpu-labelled tests, the CPU suite of the same build, a CPU-vs-GPU equivalence check of a
+# scene through the command line, compute-sanitizer (memcheck, racecheck) on a small scene,
+# and the benchmarks. Prints a short table last. Logs and results go to $OUT (default
+# out/gpu-check). Header-only dependencies missing there travel in .deps (scripts/stage-deps.sh).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$PATH:/usr/local/cuda/bin"
+OUT=${OUT:-out/gpu-check}
+mkdir -p "$OUT"
+bin=build/cuda/perifrac
+scene=scenes/glass_plate_projectile.toml
+rows=()
+
+# step NAME COMMAND...: runs the command with its output in $OUT/NAME.log, records pass/fail and time.
+step() {
+  local name=$1; shift
+  local t0=$SECONDS
+  if "$@" >"$OUT/$name.log" 2>&1; then status=pass; else status=FAIL; fi
+  rows+=("$(printf '%-22s %-5s %5ds  %s' "$name" "$status" $((SECONDS - t0)) "$(tail -n 1 "$OUT/$name.log" | cut -c1-90)")")
+  echo "== $name: $status"
+}
+
+step build bash -c "cmake --preset cuda >/dev/null && cmake --build --preset cuda -j \$(nproc)"
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader >"$OUT/device.txt" 2>&1
+step gpu-tests build/cuda/tests/perifrac_gpu_tests
+step cpu-tests build/cuda/tests/perifrac_tests
+step equiv-cpu "$bin" run "$scene" --backend cpu --scale 0.05 --frames 3 --out "$OUT/equiv-cpu"
+step equiv-gpu "$bin" run "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu"
+step equiv-compare "$bin" compare "$OUT/equiv-cpu" "$OUT/equiv-gpu"
+for tool in memcheck racecheck; do
+  step "sanitizer-$tool" compute-sanitizer --tool "$tool" --error-exitcode 9 \
+    "$bin" run "$scene" --backend cuda --scale 0.01 --frames 2 --steps-per-frame 10 --out "$OUT/sanitizer"
+done
+step bench-glass "$bin" bench --scene "$scene" --backend cuda --steps 2000 --warmup 200 --out "$OUT/bench"
+step bench-lattice "$bin" bench --lattice 100 --backend cuda --steps 500 --warmup 50 --out "$OUT/bench"
+step glass-full "$bin" run "$scene" --backend cuda --out "$OUT/glass-full"
+
+echo
+echo "gpu-check on $(cat "$OUT/device.txt"), $(date -u +%Y-%m-%dT%H:%M:%SZ), git $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+printf '%s\n' "${rows[@]}"
+grep -h "equivalence" "$OUT/gpu-tests.log" || true
+for row in "${rows[@]}"; do [[ "$row" == *" FAIL "* ]] && exit 1; done
+exit 0

@@ -1,0 +1,80 @@
+// Kernel 5 body: Levine eq. 7 projectile force, gravity, floor.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cuda/kernels/bodyforces.h"
+
+namespace pd {
+namespace {
+
+TEST(BodyForces, ProjectilePeaksAtTheRadius) {
+  const real r = real(0.02), ks = real(1e7);
+  EXPECT_NEAR(projectile_magnitude(r, r, ks), ks * r * r, 1e-5 * ks * r * r);
+  // The peak: no sampled distance exceeds the value at r.
+  for (int k = 0; k <= 1000; ++k) {
+    const real d = real(0.75) * r + real(0.75) * r * real(k) / real(1000);
+    EXPECT_LE(projectile_magnitude(d, r, ks), ks * r * r * real(1 + 1e-5));
+  }
+}
+
+TEST(BodyForces, ProjectileFormulaValue) {
+  const double r = 0.02, ks = 3e6, d = 0.027;
+  const double g = 16 * (d - 0.75 * r) * (d - 1.5 * r) * (d - 1.5 * r);
+  EXPECT_NEAR(projectile_magnitude(real(d), real(r), real(ks)), ks * std::pow(g, 2.0 / 3.0),
+              1e-5 * ks * r * r);
+}
+
+TEST(BodyForces, ProjectileZeroOutsideItsShell) {
+  const real r = real(0.02), ks = real(1e7);
+  EXPECT_EQ(projectile_magnitude(real(0.74) * r, r, ks), 0);
+  EXPECT_EQ(projectile_magnitude(real(1.51) * r, r, ks), 0);
+  EXPECT_EQ(projectile_magnitude(real(0), r, ks), 0);
+  // Continuous at both ends of the shell.
+  EXPECT_NEAR(projectile_magnitude(real(0.750001) * r, r, ks), 0, 1e-3 * ks * r * r);
+  EXPECT_NEAR(projectile_magnitude(real(1.4999) * r, r, ks), 0, 1e-3 * ks * r * r);
+}
+
+TEST(BodyForces, ProjectileDirectionIsHalfwayBetweenMotionAndRepulsion) {
+  Projectile pr;
+  pr.center0 = {0, 0, 0};
+  pr.velocity = {0, real(-10), 0};
+  pr.radius = real(1);
+  pr.strength = real(1);
+  const Vec3 f = projectile_force({real(1), 0, 0}, pr, 0);  // repulsion +x, motion -y
+  EXPECT_NEAR(f.x, -f.y, 1e-6);
+  EXPECT_GT(f.x, 0);
+  EXPECT_NEAR(length(f), 1.0, 1e-5);
+  // The centre moves with the projectile velocity.
+  const Vec3 later = projectile_force({real(1), real(-0.5), 0}, pr, real(0.05));
+  EXPECT_NEAR(later.x, f.x, 1e-5);
+}
+
+TEST(BodyForces, GravityAndFloorReflection) {
+  Vec3 rest{0, real(-0.001), 0}, disp{0, 0, 0}, vel{0, real(-2), 0}, force{real(1), 0, 0};
+  real inv_mass = real(0.5);
+  uint8_t flags = 0;
+  ParticlesView p;
+  p.n = 1;
+  p.rest = &rest;
+  p.disp = &disp;
+  p.vel = &vel;
+  p.force = &force;
+  p.inv_mass = &inv_mass;
+  p.flags = &flags;
+  StepParams sp;
+  sp.gravity = {0, real(-9.81), 0};
+  sp.floor_enabled = 1;
+  sp.floor_height = 0;
+  sp.restitution = real(0.99);
+  body_forces(0, p, sp);
+  EXPECT_FLOAT_EQ(force.x, 1);
+  EXPECT_FLOAT_EQ(force.y, real(2 * -9.81));
+  EXPECT_FLOAT_EQ(vel.y, real(1.98));
+  // Moving up already: not reflected again.
+  body_forces(0, p, sp);
+  EXPECT_FLOAT_EQ(vel.y, real(1.98));
+}
+
+}  // namespace
+}  // namespace pd

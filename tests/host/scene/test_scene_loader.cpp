@@ -1,0 +1,368 @@
+// Scene loader: a complete scene parses, defaults apply, and every user mistake gives a
+// one-line SceneError naming the file and the dotted key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "host/scene/scene.h"
+
+namespace pd {
+namespace {
+
+const std::string kFile = "test_scene.toml";
+
+// Every key set to a value other than its default.
+const std::string kComplete = R"(
+description = "glass pane hit by two balls"
+
+[simulation]
+dt = 1e-7
+steps_per_frame = 200
+frames = 12
+seed = 42
+
+[world]
+gravity = [0, -9.8, 0.5]
+floor = true
+floor_height = -0.25
+restitution = 0.5
+
+[contact]
+enabled = false
+stiffness = 2.5e9
+
+[materials.glass]
+model = "bond_based"
+density = 2440
+bulk_modulus = 4.3e10
+horizon = 3.5
+strain_limit = 0.0008
+strain_limit_scatter = 0.1
+compression_alpha = 0.3
+partial_volumes = false
+
+[materials.rubber]
+density = 1100
+bulk_modulus = 2e9
+fracture_energy = 1500
+
+[[bodies]]
+name = "pane"
+shape = "box"
+center = [0, 0.1, -0.2]
+size = [1.0, 0.01, 0.5]
+spacing = 0.005
+material = "glass"
+velocity = [1, 2, 3]
+
+[[bodies]]
+size = [0.1, 0.1, 0.1]
+spacing = 0.01
+material = "rubber"
+
+[[anchors]]
+box_min = [-1, -1, -1]
+box_max = [-0.4, 1, 1]
+
+[[projectiles]]
+center = [0, 0.5, 0]
+velocity = [0, -20, 0]
+radius = 0.05
+strength = 1e7
+
+[[projectiles]]
+center = [0.2, 0.5, 0]
+radius = 0.02
+strength = 0
+
+[output]
+vtk = false
+binary = false
+)";
+
+// The smallest valid scene: one material, one body.
+const std::string kMaterial = R"(
+[materials.glass]
+density = 2440
+bulk_modulus = 4.3e10
+strain_limit = 0.001
+)";
+const std::string kBody = R"(
+[[bodies]]
+size = [0.1, 0.1, 0.1]
+spacing = 0.01
+material = "glass"
+)";
+const std::string kMinimal = kMaterial + kBody;
+
+// Parses `text` expecting a SceneError; returns its message.
+std::string error_of(const std::string& text) {
+  try {
+    parse_scene(text, kFile);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no SceneError for:\n" << text;
+  return {};
+}
+
+// The message names the file and the dotted key, and stays on one line.
+void expect_error(const std::string& text, const std::string& key, const std::string& fragment = "") {
+  const std::string message = error_of(text);
+  EXPECT_EQ(message.rfind(kFile + ": " + key + ": ", 0), 0u) << message;
+  EXPECT_NE(message.find("(allowed: "), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  if (!fragment.empty()) EXPECT_NE(message.find(fragment), std::string::npos) << message;
+}
+
+TEST(SceneLoader, CompleteSceneParses) {
+  const Scene s = parse_scene(kComplete, kFile);
+  EXPECT_EQ(s.path, kFile);
+  EXPECT_EQ(s.description, "glass pane hit by two balls");
+  EXPECT_DOUBLE_EQ(s.dt, 1e-7);
+  EXPECT_EQ(s.steps_per_frame, 200);
+  EXPECT_EQ(s.frames, 12);
+  EXPECT_EQ(s.seed, 42u);
+  EXPECT_EQ(s.gravity, (Vec3d{0, -9.8, 0.5}));
+  EXPECT_TRUE(s.floor);
+  EXPECT_DOUBLE_EQ(s.floor_height, -0.25);
+  EXPECT_DOUBLE_EQ(s.restitution, 0.5);
+  EXPECT_FALSE(s.contact);
+  EXPECT_DOUBLE_EQ(s.contact_stiffness, 2.5e9);
+  EXPECT_FALSE(s.write_vtk);
+  EXPECT_FALSE(s.write_binary);
+
+  ASSERT_EQ(s.materials.size(), 2u);
+  const SceneMaterial& glass = s.materials[0].name == "glass" ? s.materials[0] : s.materials[1];
+  const SceneMaterial& rubber = s.materials[0].name == "glass" ? s.materials[1] : s.materials[0];
+  EXPECT_EQ(glass.name, "glass");
+  EXPECT_EQ(glass.model, "bond_based");
+  EXPECT_DOUBLE_EQ(glass.density, 2440);
+  EXPECT_DOUBLE_EQ(glass.bulk_modulus, 4.3e10);
+  EXPECT_DOUBLE_EQ(glass.horizon, 3.5);
+  ASSERT_TRUE(glass.strain_limit.has_value());
+  EXPECT_DOUBLE_EQ(*glass.strain_limit, 0.0008);
+  EXPECT_FALSE(glass.fracture_energy.has_value());
+  EXPECT_DOUBLE_EQ(glass.strain_limit_scatter, 0.1);
+  EXPECT_DOUBLE_EQ(glass.compression_alpha, 0.3);
+  EXPECT_FALSE(glass.partial_volumes);
+  EXPECT_EQ(rubber.name, "rubber");
+  EXPECT_FALSE(rubber.strain_limit.has_value());
+  ASSERT_TRUE(rubber.fracture_energy.has_value());
+  EXPECT_DOUBLE_EQ(*rubber.fracture_energy, 1500);
+
+  ASSERT_EQ(s.bodies.size(), 2u);
+  const SceneBody& pane = s.bodies[0];
+  EXPECT_EQ(pane.name, "pane");
+  EXPECT_EQ(pane.shape, "box");
+  EXPECT_EQ(pane.center, (Vec3d{0, 0.1, -0.2}));
+  EXPECT_EQ(pane.size, (Vec3d{1.0, 0.01, 0.5}));
+  EXPECT_DOUBLE_EQ(pane.spacing, 0.005);
+  EXPECT_EQ(pane.material, "glass");
+  EXPECT_EQ(pane.velocity, (Vec3d{1, 2, 3}));
+  EXPECT_EQ(s.bodies[1].name, "body1");
+  EXPECT_EQ(s.bodies[1].material, "rubber");
+
+  ASSERT_EQ(s.anchors.size(), 1u);
+  EXPECT_EQ(s.anchors[0].box_min, (Vec3d{-1, -1, -1}));
+  EXPECT_EQ(s.anchors[0].box_max, (Vec3d{-0.4, 1, 1}));
+
+  ASSERT_EQ(s.projectiles.size(), 2u);
+  EXPECT_EQ(s.projectiles[0].center, (Vec3d{0, 0.5, 0}));
+  EXPECT_EQ(s.projectiles[0].velocity, (Vec3d{0, -20, 0}));
+  EXPECT_DOUBLE_EQ(s.projectiles[0].radius, 0.05);
+  EXPECT_DOUBLE_EQ(s.projectiles[0].strength, 1e7);
+  EXPECT_EQ(s.projectiles[1].velocity, (Vec3d{0, 0, 0}));
+  EXPECT_DOUBLE_EQ(s.projectiles[1].strength, 0);
+}
+
+TEST(SceneLoader, DefaultsApplyWhenKeysAreAbsent) {
+  const Scene s = parse_scene(kMinimal, kFile);
+  const Scene defaults;
+  EXPECT_EQ(s.description, "");
+  EXPECT_EQ(s.dt, defaults.dt);
+  EXPECT_EQ(s.steps_per_frame, defaults.steps_per_frame);
+  EXPECT_EQ(s.frames, defaults.frames);
+  EXPECT_EQ(s.seed, defaults.seed);
+  EXPECT_EQ(s.gravity, defaults.gravity);
+  EXPECT_EQ(s.floor, defaults.floor);
+  EXPECT_EQ(s.floor_height, defaults.floor_height);
+  EXPECT_EQ(s.restitution, defaults.restitution);
+  EXPECT_EQ(s.contact, defaults.contact);
+  EXPECT_EQ(s.contact_stiffness, defaults.contact_stiffness);
+  EXPECT_EQ(s.write_vtk, defaults.write_vtk);
+  EXPECT_EQ(s.write_binary, defaults.write_binary);
+  EXPECT_TRUE(s.anchors.empty());
+  EXPECT_TRUE(s.projectiles.empty());
+
+  const SceneMaterial dm;
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].model, dm.model);
+  EXPECT_EQ(s.materials[0].horizon, dm.horizon);
+  EXPECT_EQ(s.materials[0].strain_limit_scatter, dm.strain_limit_scatter);
+  EXPECT_EQ(s.materials[0].compression_alpha, dm.compression_alpha);
+  EXPECT_EQ(s.materials[0].partial_volumes, dm.partial_volumes);
+
+  const SceneBody db;
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_EQ(s.bodies[0].name, "body0");
+  EXPECT_EQ(s.bodies[0].shape, db.shape);
+  EXPECT_EQ(s.bodies[0].center, db.center);
+  EXPECT_EQ(s.bodies[0].velocity, db.velocity);
+}
+
+TEST(SceneLoader, IntegersAreAcceptedForFloats) {
+  const Scene s = parse_scene("[simulation]\ndt = 1\n[world]\ngravity = [0, -10, 0]\n" + kMinimal, kFile);
+  EXPECT_EQ(s.dt, 1.0);
+  EXPECT_EQ(s.gravity, (Vec3d{0, -10, 0}));
+}
+
+TEST(SceneLoader, MissingRequiredKey) {
+  expect_error(R"(
+[materials.glass]
+bulk_modulus = 4.3e10
+strain_limit = 0.001
+)" + kBody,
+               "materials.glass.density", "missing required key");
+  expect_error(kMaterial + "[[bodies]]\nsize = [1, 1, 1]\nmaterial = \"glass\"\n", "bodies[0].spacing",
+               "missing required key");
+  expect_error(kMinimal + "[[anchors]]\nbox_min = [0, 0, 0]\n", "anchors[0].box_max", "missing required key");
+  expect_error(kMinimal + "[[projectiles]]\ncenter = [0, 0, 0]\nstrength = 1\n", "projectiles[0].radius",
+               "missing required key");
+  expect_error(kBody, "materials", "no material");
+  expect_error(kMaterial, "bodies", "no body");
+}
+
+TEST(SceneLoader, UnknownKey) {
+  expect_error("colour = \"red\"\n" + kMinimal, "colour", "unknown key");
+  expect_error("[simulation]\nsteps = 3\n" + kMinimal, "simulation.steps", "allowed: dt, steps_per_frame");
+  expect_error(kMaterial + "densty = 3\n" + kBody, "materials.glass.densty", "unknown key");
+  expect_error(kMinimal + "colour = 1\n", "bodies[0].colour", "unknown key");
+  expect_error(kMinimal + "[[anchors]]\nbox_min = [0, 0, 0]\nbox_max = [1, 1, 1]\nmargin = 1\n",
+               "anchors[0].margin", "unknown key");
+  expect_error(kMinimal + "[[projectiles]]\ncenter = [0, 0, 0]\nradius = 1\nstrength = 1\nmass = 3\n",
+               "projectiles[0].mass", "unknown key");
+  expect_error(kMinimal + "[output]\npng = true\n", "output.png", "unknown key");
+}
+
+TEST(SceneLoader, WrongType) {
+  expect_error("[simulation]\ndt = \"fast\"\n" + kMinimal, "simulation.dt",
+               "expected a number, got a string");
+  expect_error("[simulation]\nframes = 2.5\n" + kMinimal, "simulation.frames", "expected an integer");
+  expect_error("[world]\nfloor = 1\n" + kMinimal, "world.floor", "expected a boolean");
+  expect_error("description = 3\n" + kMinimal, "description", "expected a string");
+  expect_error("simulation = 3\n" + kMinimal, "simulation", "expected a table");
+  expect_error("materials = 3\n" + kBody, "materials", "expected a table");
+  expect_error("[materials]\nglass = 3\n" + kBody, "materials.glass", "expected a table");
+  expect_error("bodies = 3\n" + kMaterial, "bodies", "expected an array of tables");
+  expect_error("bodies = [1]\n" + kMaterial, "bodies[0]", "expected a table");
+  expect_error(kMaterial + "[[bodies]]\nsize = [1, 1, 1]\nspacing = 0.1\nmaterial = 7\n",
+               "bodies[0].material", "expected a string");
+  expect_error("[world]\ngravity = [0, \"down\", 0]\n" + kMinimal, "world.gravity[1]", "expected a number");
+}
+
+TEST(SceneLoader, OutOfRangeValues) {
+  expect_error("[materials.glass]\ndensity = -2440\nbulk_modulus = 4.3e10\nstrain_limit = 0.001\n" + kBody,
+               "materials.glass.density", "out of range");
+  // horizon < 1 means delta < lambda: no bonds at all.
+  expect_error(kMaterial + "horizon = 0.9\n" + kBody, "materials.glass.horizon", "out of range");
+  expect_error(kMaterial + "horizon = 13\n" + kBody, "materials.glass.horizon", "out of range");
+  expect_error(kMaterial + "strain_limit_scatter = 0.6\n" + kBody, "materials.glass.strain_limit_scatter");
+  expect_error("[simulation]\ndt = 0\n" + kMinimal, "simulation.dt", "out of range");
+  expect_error("[simulation]\nframes = 0\n" + kMinimal, "simulation.frames", "out of range");
+  expect_error("[simulation]\nseed = -1\n" + kMinimal, "simulation.seed", "out of range");
+  expect_error("[world]\nrestitution = 1.5\n" + kMinimal, "world.restitution", "out of range");
+  expect_error(kMinimal + "[[anchors]]\nbox_min = [0, 0, 0]\nbox_max = [1, -1, 1]\n", "anchors[0].box_max",
+               "below box_min");
+}
+
+TEST(SceneLoader, BodyWithZeroParticlesAlongAnAxis) {
+  // 0.004 / 0.01 rounds to 0 particles along y.
+  expect_error(kMaterial + "[[bodies]]\nsize = [1, 0.004, 1]\nspacing = 0.01\nmaterial = \"glass\"\n",
+               "bodies[0].size", "zero particles");
+  // Exactly half a spacing still gives one particle.
+  EXPECT_NO_THROW(parse_scene(
+      kMaterial + "[[bodies]]\nsize = [1, 0.005, 1]\nspacing = 0.01\nmaterial = \"glass\"\n", kFile));
+}
+
+TEST(SceneLoader, BodyWithTooManyParticles) {
+  expect_error(kMaterial + "[[bodies]]\nsize = [1, 1, 1]\nspacing = 1e-4\nmaterial = \"glass\"\n",
+               "bodies[0].spacing", "particles");
+}
+
+TEST(SceneLoader, StrainLimitAndFractureEnergyExactlyOne) {
+  expect_error(kMaterial + "fracture_energy = 3.8\n" + kBody, "materials.glass", "both");
+  expect_error("[materials.glass]\ndensity = 2440\nbulk_modulus = 4.3e10\n" + kBody, "materials.glass",
+               "neither");
+  expect_error("[materials.glass]\ndensity = 2440\nbulk_modulus = 4.3e10\nstrain_limit = 1\n" + kBody,
+               "materials.glass.strain_limit", "out of range");
+}
+
+TEST(SceneLoader, UnknownMaterialName) {
+  expect_error(kMaterial + "[[bodies]]\nsize = [1, 1, 1]\nspacing = 0.1\nmaterial = \"steel\"\n",
+               "bodies[0].material", "allowed: \"glass\"");
+}
+
+TEST(SceneLoader, TooManyProjectiles) {
+  std::string text = kMinimal;
+  for (int i = 0; i < 5; ++i) text += "[[projectiles]]\ncenter = [0, 0, 0]\nradius = 0.1\nstrength = 1\n";
+  expect_error(text, "projectiles", "at most 4");
+}
+
+TEST(SceneLoader, VectorOfTwoNumbers) {
+  expect_error(kMaterial + "[[bodies]]\nsize = [1, 1]\nspacing = 0.1\nmaterial = \"glass\"\n",
+               "bodies[0].size", "expected 3 numbers, got 2");
+}
+
+TEST(SceneLoader, NonFiniteNumbers) {
+  expect_error("[world]\nfloor_height = nan\n" + kMinimal, "world.floor_height", "not a finite number");
+  expect_error("[world]\ngravity = [0, -inf, 0]\n" + kMinimal, "world.gravity[1]", "not a finite number");
+  expect_error("[simulation]\ndt = +inf\n" + kMinimal, "simulation.dt", "not a finite number");
+}
+
+TEST(SceneLoader, UnsupportedModelAndShape) {
+  expect_error(kMaterial + "model = \"state_based\"\n" + kBody, "materials.glass.model", "\"bond_based\"");
+  expect_error(kMinimal + "shape = \"sphere\"\n", "bodies[0].shape", "\"box\"");
+}
+
+TEST(SceneLoader, TomlSyntaxErrorNamesTheLine) {
+  const std::string message = error_of("[simulation]\ndt = 1e-7\nframes = = 3\n");
+  EXPECT_EQ(message.rfind(kFile + ":3:", 0), 0u) << message;
+  EXPECT_NE(message.find("TOML syntax error"), std::string::npos) << message;
+}
+
+TEST(SceneLoader, MissingFile) {
+  const std::string path = "/nonexistent/perifrac/scene.toml";
+  try {
+    load_scene(path);
+    FAIL() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(std::string(e.what()), path + ": cannot read scene file: No such file or directory");
+  }
+}
+
+TEST(SceneLoader, ControlCharactersInKeysStayOnOneLine) {
+  const std::string message = error_of("\"a\\nb\" = 1\n" + kMinimal);
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(SceneLoader, RepositoryScenesParse) {
+  const std::filesystem::path dir = std::filesystem::path(PERIFRAC_SOURCE_DIR) / "scenes";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no scenes/ folder";
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    try {
+      const Scene s = load_scene(entry.path().string());
+      EXPECT_FALSE(s.bodies.empty());
+    } catch (const SceneError& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pd

@@ -1,0 +1,173 @@
+// The engine on the CPU-reference backend: families, conservation, breaking, determinism.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+#include "cuda/kernels/family.h"
+#include "host/engine.h"
+#include "tests/support/fixtures.h"
+
+namespace pd {
+namespace {
+
+using testing::lattice_block;
+
+// Family of each particle as a sorted list, from the sliced-ELL storage.
+std::vector<std::vector<int32_t>> families(Engine& e) {
+  BondLists b;
+  e.read_bonds(b);
+  const BondsView v = b.view();
+  std::vector<std::vector<int32_t>> out(b.count.size());
+  for (int32_t i = 0; i < v.n; ++i) {
+    for (int32_t k = 0; k < v.count[i]; ++k) out[i].push_back(bond_partner(v.neighbor[v.slot(i, k)]));
+    std::sort(out[i].begin(), out[i].end());
+  }
+  return out;
+}
+
+// O(N^2) reference: same body, distance at most delta (with the same slack).
+std::vector<std::vector<int32_t>> brute_force_families(const SimulationInput& in) {
+  const auto& ps = in.particles;
+  std::vector<std::vector<int32_t>> out(ps.size());
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const double delta = double(in.materials.m[ps.material[i]].horizon) * (1 + kHorizonSlack);
+    for (size_t j = 0; j < ps.size(); ++j) {
+      if (i == j || ps.body[i] != ps.body[j]) continue;
+      const double dx = double(ps.rest[j].x) - ps.rest[i].x, dy = double(ps.rest[j].y) - ps.rest[i].y,
+                   dz = double(ps.rest[j].z) - ps.rest[i].z;
+      if (dx * dx + dy * dy + dz * dz <= delta * delta) out[i].push_back(int32_t(j));
+    }
+  }
+  return out;
+}
+
+TEST(EngineFamilies, LatticeInteriorHas122Neighbours) {
+  const auto in = lattice_block(9, 9, 9, 1e-3);
+  auto e = make_cpu_engine(in);
+  const auto fam = families(*e);
+  EXPECT_EQ(fam[4 + 9 * (4 + 9 * 4)].size(), 122u);  // centre particle, delta = 3 lambda
+  EXPECT_EQ(e->family_stats().max, 122);
+  EXPECT_EQ(fam, brute_force_families(in));
+}
+
+TEST(EngineFamilies, RandomPointsMatchBruteForce) {
+  auto in = lattice_block(10, 8, 7, 1e-3, 1e-3, 0.9, 11);
+  // A second body overlapping the first: no bonds between bodies.
+  for (size_t i = 0; i < in.particles.size(); i += 3) in.particles.body[i] = 1;
+  auto e = make_cpu_engine(in);
+  EXPECT_EQ(families(*e), brute_force_families(in));
+  const FamilyStats& s = e->family_stats();
+  EXPECT_GT(s.min, 0);
+  EXPECT_LE(s.bonds, s.slots);
+}
+
+// Total momentum of a block with random velocities, contact on, no external force.
+TEST(EngineConservation, MomentumIsConservedWithoutExternalForces) {
+  auto in = lattice_block(8, 6, 5, 1e-3, 5e-4, 0.2);
+  Random rng(3);
+  for (auto& v : in.particles.velocity) v = {real(rng.normal()), real(rng.normal()), real(rng.normal())};
+  in.contact = true;
+  in.step.contact_stiffness = real(1e8);
+  auto momentum = [&](const std::vector<Vec3>& vel, double& scale) {
+    double p[3] = {0, 0, 0};
+    scale = 0;
+    for (size_t i = 0; i < vel.size(); ++i) {
+      const double m = in.particles.mass[i];
+      p[0] += m * vel[i].x;
+      p[1] += m * vel[i].y;
+      p[2] += m * vel[i].z;
+      scale += m * length(vel[i]);
+    }
+    return std::array<double, 3>{p[0], p[1], p[2]};
+  };
+  auto e = make_cpu_engine(in);
+  double scale0 = 0, scale1 = 0;
+  const auto p0 = momentum(in.particles.velocity, scale0);
+  e->advance(300);
+  ParticleState s;
+  e->read_state(s);
+  const auto p1 = momentum(s.vel, scale1);
+  EXPECT_GT(e->broken_bonds(), 0);  // random velocities of 1 m/s break glass bonds
+  const double tol = 64 * std::numeric_limits<real>::epsilon() * scale0;
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(p1[a], p0[a], tol) << "axis " << a;
+}
+
+// Every broken bond is broken from both ends.
+TEST(EngineBreaking, BondsBreakSymmetrically) {
+  auto in = lattice_block(12, 4, 4, 1e-3, 2e-4);
+  // Pull the two halves apart.
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    in.particles.velocity[i] = {real(in.particles.rest[i].x < 6e-3 ? -2 : 2), 0, 0};
+  auto e = make_cpu_engine(in);
+  e->advance(200);
+  BondLists b;
+  e->read_bonds(b);
+  const BondsView v = b.view();
+  std::set<std::pair<int32_t, int32_t>> broken;
+  int64_t total = 0;
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int32_t nb = v.neighbor[v.slot(i, k)];
+      total += 1;
+      if (!bond_intact(nb)) broken.insert({i, bond_partner(nb)});
+    }
+  ASSERT_GT(broken.size(), 0u);
+  for (const auto& [i, j] : broken) EXPECT_TRUE(broken.count({j, i})) << i << "-" << j;
+  EXPECT_EQ(int64_t(broken.size()), e->broken_bonds());
+  EXPECT_LT(int64_t(broken.size()), total);
+}
+
+TEST(EngineBreaking, NoBondBreaksAtRest) {
+  auto in = lattice_block(6, 6, 6, 1e-3, 1e-4);
+  auto e = make_cpu_engine(in);
+  e->advance(100);
+  EXPECT_EQ(e->broken_bonds(), 0);
+  ParticleState s;
+  e->read_state(s);
+  for (const Vec3& u : s.disp) EXPECT_LT(length(u), 1e-12);
+}
+
+TEST(EngineDeterminism, TwoRunsAreBitIdentical) {
+  auto in = lattice_block(8, 8, 4, 1e-3, 3e-4, 0.3);
+  Random rng(5);
+  for (auto& v : in.particles.velocity) v = {real(rng.normal()), real(rng.normal()), real(rng.normal())};
+  in.contact = true;
+  in.step.contact_stiffness = real(1e8);
+  ParticleState a, b;
+  for (ParticleState* s : {&a, &b}) {
+    auto e = make_cpu_engine(in);
+    e->advance(150);
+    e->read_state(*s);
+  }
+  ASSERT_EQ(a.disp.size(), b.disp.size());
+  for (size_t i = 0; i < a.disp.size(); ++i) {
+    EXPECT_EQ(a.disp[i].x, b.disp[i].x);
+    EXPECT_EQ(a.disp[i].y, b.disp[i].y);
+    EXPECT_EQ(a.disp[i].z, b.disp[i].z);
+  }
+}
+
+TEST(EngineAnchors, AnchoredParticlesStayPut) {
+  auto in = lattice_block(6, 6, 6, 1e-3);
+  in.step.gravity = {0, real(-9.81), 0};
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    if (in.particles.rest[i].y < 0.5e-3) in.particles.flags[i] |= kAnchored;
+  auto e = make_cpu_engine(in);
+  e->advance(200);
+  ParticleState s;
+  e->read_state(s);
+  for (size_t i = 0; i < s.disp.size(); ++i) {
+    if (in.particles.flags[i] & kAnchored) {
+      EXPECT_EQ(length(s.disp[i]), 0);
+      EXPECT_EQ(length(s.vel[i]), 0);
+    } else if (in.particles.rest[i].y > 4.5e-3) {
+      EXPECT_LT(s.disp[i].y, 0);  // the free top sags under gravity
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pd
