@@ -22,12 +22,6 @@ namespace pd {
 
 namespace {
 
-std::string frame_name(const char* prefix, int64_t frame, const char* ext) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%s%05lld%s", prefix, (long long)frame, ext);
-  return buf;
-}
-
 std::string format_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "--:--";
   const long s = std::lround(seconds);
@@ -114,16 +108,16 @@ int run_command(const RunOptions& opt) {
   const std::string out =
       opt.out.empty() ? "out/" + std::filesystem::path(scene.path).stem().string() : opt.out;
   ensure_directory(out);
-  if (scene.write_binary) write_rest_file(out + "/rest.pfr", rest_data(setup.input.particles));
+  if (scene.write_binary) write_rest_file(out + "/" + kRestFileName, rest_data(setup.input.particles));
   PvdSeries series(out, "particles");
   BondLists bonds;
   engine->read_bonds(bonds);
   const std::vector<int32_t>& count = bonds.count;
   auto write_frame = [&](int64_t frame) {
     const FrameData f = frame_data(*engine, setup.input.particles, count, frame);
-    if (scene.write_binary) write_frame_file(out + "/" + frame_name("frame_", frame, ".pfr"), f);
+    if (scene.write_binary) write_frame_file(out + "/" + frame_file_name(frame, "pfr"), f);
     if (scene.write_vtk) {
-      const std::string name = frame_name("particles_", frame, ".vtu");
+      const std::string name = frame_file_name(frame, "vtu");
       write_vtu(out + "/" + name, f);
       series.add(f.time, name);
     }

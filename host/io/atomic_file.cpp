@@ -44,6 +44,7 @@ class FdStreambuf : public std::streambuf {
 
   // Small writes are buffered; writes at least as large as the buffer go straight to the file.
   std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (n <= 0) return 0;  // empty arrays may come with a null pointer
     if (n > epptr() - pptr()) {
       if (!flush_buffer()) return 0;
       if (n >= epptr() - pptr()) return write_all(s, size_t(n)) ? n : 0;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace pd {
 
@@ -28,6 +29,12 @@ IoError io_error_errno(std::string_view verb, const std::string& path, int err);
 // `path` is untouched; OS errors and failed streams throw IoError, other exceptions pass through.
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 void write_file_atomic(const std::string& path, std::string_view bytes);
+
+// The raw bytes of a vector's elements (host byte order), e.g. to write them out.
+template <class T>
+std::string_view bytes_of(const std::vector<T>& v) {
+  return {reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T)};
+}
 
 // Creates `dir` and its missing parents; does nothing if it already is a directory. Throws
 // IoError when it cannot (e.g. a component of the path is a regular file).

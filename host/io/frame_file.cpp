@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <ostream>
 #include <string_view>
 #include <variant>
@@ -37,11 +38,6 @@ struct ArrayOut {
   uint32_t components;
   std::string_view bytes;
 };
-
-template <class T>
-std::string_view bytes_of(const std::vector<T>& v) {
-  return {reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T)};
-}
 
 template <class T>
 void put(std::ostream& out, T value) {
@@ -77,16 +73,14 @@ void write_pfr(const std::string& path, const PfrHeader& h, const std::vector<Ar
 // trusted (or allocated) before it is checked against the file length.
 class PfrReader {
  public:
-  explicit PfrReader(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "rb")) {
+  explicit PfrReader(const std::string& path)
+      : path_(path), file_(std::fopen(path.c_str(), "rb"), &std::fclose) {
     if (!file_) throw io_error_errno("read", path_, errno);
     struct stat st;
-    if (::fstat(fileno(file_), &st) != 0) fail_errno();
+    if (::fstat(fileno(file_.get()), &st) != 0) fail_errno();
     if (!S_ISREG(st.st_mode)) fail("not a regular file");
     remaining_ = uint64_t(st.st_size);
   }
-  PfrReader(const PfrReader&) = delete;
-  PfrReader& operator=(const PfrReader&) = delete;
-  ~PfrReader() { std::fclose(file_); }
 
   uint64_t remaining() const { return remaining_; }
 
@@ -94,8 +88,8 @@ class PfrReader {
   void read(void* dst, uint64_t n, const std::string& what) {
     require(n, what);
     if (n == 0) return;
-    if (std::fread(dst, 1, n, file_) != n) {
-      if (std::ferror(file_)) fail_errno();
+    if (std::fread(dst, 1, n, file_.get()) != n) {
+      if (std::ferror(file_.get())) fail_errno();
       fail("file shrank while reading");
     }
     remaining_ -= n;
@@ -110,7 +104,7 @@ class PfrReader {
 
   void skip(uint64_t n, const std::string& what) {
     require(n, what);
-    if (::fseeko(file_, off_t(n), SEEK_CUR) != 0) fail_errno();
+    if (::fseeko(file_.get(), off_t(n), SEEK_CUR) != 0) fail_errno();
     remaining_ -= n;
   }
 
@@ -127,7 +121,7 @@ class PfrReader {
 
  private:
   std::string path_;
-  std::FILE* file_;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
   uint64_t remaining_ = 0;
 };
 

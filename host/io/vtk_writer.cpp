@@ -29,11 +29,6 @@ struct Section {
   std::vector<AppendedArray> arrays;
 };
 
-template <class T>
-std::string_view bytes_of(const std::vector<T>& v) {
-  return {reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T)};
-}
-
 // Shortest text that reads back as the same double.
 std::string format_double(double v) {
   char buf[32];

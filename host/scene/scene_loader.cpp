@@ -189,8 +189,6 @@ class TableReader {
     }
   }
 
-  const std::string& file() const { return *file_; }
-
   // Dotted path of `key` in this table; the table's own path for an empty key.
   std::string path(std::string_view key) const {
     if (key.empty()) return prefix_;

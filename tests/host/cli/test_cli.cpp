@@ -1,0 +1,145 @@
+// The perifrac binary as a user runs it: clear one-line errors and exit codes for bad input,
+// blow-up detection, and a small scene that runs to completion.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+struct Result {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Result run_perifrac(const std::string& args) {
+  Result r;
+  const std::string cmd = std::string(PERIFRAC_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  while (size_t n = std::fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::path(::testing::TempDir()) /
+           ("perifrac_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  // A small valid scene with `extra` appended and `replace` substitutions applied.
+  std::string scene(const std::string& body_lines, const std::string& extra = "") {
+    const std::string path = (dir_ / "scene.toml").string();
+    std::ofstream(path) << "[simulation]\nsteps_per_frame = 20\nframes = 2\n"
+                        << "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+                        << "[[bodies]]\nmaterial = \"glass\"\n"
+                        << body_lines << extra;
+    return path;
+  }
+  std::string out() const { return (dir_ / "out").string(); }
+  std::filesystem::path dir_;
+};
+
+const char* kGoodBody = "size = [0.02, 0.01, 0.01]\nspacing = 0.002\n";
+
+TEST_F(Cli, SmallSceneRunsAndWritesFrames) {
+  const Result r = run_perifrac("run " + scene(kGoodBody) + " --backend cpu --out " + out());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("bonds"), std::string::npos);
+  EXPECT_NE(r.output.find("pd/springforces"), std::string::npos);
+  for (const char* f : {"rest.pfr", "frame_00002.pfr", "frame_00002.vtu", "particles.pvd"})
+    EXPECT_TRUE(std::filesystem::exists(out() + "/" + f)) << f;
+}
+
+// Each user mistake: exit code 2 and one line naming the file and the key.
+void expect_scene_error(const Result& r, const std::string& key) {
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("error: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("scene.toml"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(key), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, MissingKey) {
+  expect_scene_error(run_perifrac("run " + scene("size = [0.02, 0.01, 0.01]\n") + " --backend cpu --out " + out()),
+                     "spacing");
+}
+
+TEST_F(Cli, UnknownKey) {
+  expect_scene_error(run_perifrac("run " + scene(kGoodBody, "[world]\ngravty = [0, 0, 0]\n") + " --out " + out()),
+                     "gravty");
+}
+
+TEST_F(Cli, NegativeDensity) {
+  const std::string path = scene(kGoodBody);
+  std::string text;
+  {
+    std::ifstream in(path);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  text.replace(text.find("density = 2200.0"), 16, "density = -5.0");
+  std::ofstream(path) << text;
+  expect_scene_error(run_perifrac("run " + path + " --out " + out()), "density");
+}
+
+TEST_F(Cli, HorizonBelowSpacing) {
+  expect_scene_error(
+      run_perifrac("run " + scene(kGoodBody, "[materials.soft]\ndensity = 1.0\nbulk_modulus = 1.0\n"
+                                             "strain_limit = 0.1\nhorizon = 0.5\n") +
+                   " --out " + out()),
+      "horizon");
+}
+
+TEST_F(Cli, ZeroParticles) {
+  expect_scene_error(run_perifrac("run " + scene("size = [0.02, 0.0001, 0.01]\nspacing = 0.002\n") + " --out " + out()),
+                     "size");
+}
+
+TEST_F(Cli, UnstableTimeStepIsRefused) {
+  const std::string text = kGoodBody;
+  const std::string path = (dir_ / "scene.toml").string();
+  std::ofstream(path) << "[simulation]\ndt = 1e-4\nframes = 1\nsteps_per_frame = 5\n"
+                      << "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+                      << "[[bodies]]\nmaterial = \"glass\"\n"
+                      << text;
+  const Result u = run_perifrac("run " + path + " --out " + out());
+  expect_scene_error(u, "simulation.dt");
+  EXPECT_NE(u.output.find("--allow-unstable-dt"), std::string::npos);
+}
+
+TEST_F(Cli, MissingSceneFile) {
+  const Result r = run_perifrac("run " + (dir_ / "nope.toml").string() + " --out " + out());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("nope.toml"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, BadOptionValues) {
+  EXPECT_NE(run_perifrac("run " + scene(kGoodBody) + " --backend gpu").exit_code, 0);
+  const Result r = run_perifrac("run " + scene(kGoodBody) + " --scale -1 --out " + out());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--scale"), std::string::npos) << r.output;
+}
+
+// Overflow to infinity (a huge dt, allowed explicitly) is caught at the end of the frame,
+// with the step and the frames written so far kept.
+TEST_F(Cli, BlowUpIsDetectedWithTheStep) {
+  const std::string path = (dir_ / "scene.toml").string();
+  std::ofstream(path) << "[simulation]\ndt = 1.0\nframes = 2\nsteps_per_frame = 20\n"
+                      << "[world]\ngravity = [0.0, -1e38, 0.0]\n"
+                      << "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+                      << "[[bodies]]\nmaterial = \"glass\"\n"
+                      << kGoodBody;
+  const Result r = run_perifrac("run " + path + " --allow-unstable-dt --out " + out());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("numerical blow-up"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("step 20"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(out() + "/frame_00000.pfr"));
+}
+
+}  // namespace
