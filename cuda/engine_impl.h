@@ -25,11 +25,16 @@ class EngineImpl final : public Engine {
   EngineImpl(const SimulationInput& in, std::string device)
       : exec_(&stats_), device_(std::move(device)), materials_(in.materials), step_params_(in.step),
         contact_(in.contact) {
+    for (int m = 0; m < materials_.count; ++m) {
+      state_based_ = state_based_ || materials_.m[m].model == kStateBased;
+      plastic_ = plastic_ || (materials_.m[m].model == kStateBased && materials_.m[m].plastic);
+    }
     const ParticleSet& ps = in.particles;
     n_ = int32_t(ps.size());
     if (n_ <= 0) throw std::runtime_error("the scene has no particles");
     upload_particles(ps);
     build_families();
+    if (state_based_) allocate_state();
     if (contact_) allocate_contact_hash();
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.floor_enabled ||
                    step_params_.gravity.x != 0 || step_params_.gravity.y != 0 || step_params_.gravity.z != 0;
@@ -112,6 +117,9 @@ class EngineImpl final : public Engine {
     p.strain_limit = strain_limit_.data();
     p.strain_min = strain_min_.data();
     p.intact = intact_.data();
+    p.weighted_volume = weighted_volume_.data();
+    p.dilatation = dilatation_.data();
+    p.damage = damage_.data();
     return p;
   }
 
@@ -121,6 +129,8 @@ class EngineImpl final : public Engine {
     b.slice_offset = slice_offset_.data();
     b.count = count_.data();
     b.neighbor = neighbor_.data();
+    b.plastic = plastic_ext_.data();
+    b.reverse = reverse_.data();
     return b;
   }
 
@@ -186,7 +196,7 @@ class EngineImpl final : public Engine {
 
   void build_families() {
     real horizon = 0;
-    for (int m = 0; m < materials_.count; ++m) horizon = std::max(horizon, materials_.m[m].horizon);
+    for (int m = 0; m < materials_.count; ++m) horizon = std::max(horizon, materials_.m[m].family_radius());
     allocate_hash(real(horizon * (1.0 + 2 * kHorizonSlack)));
     const ParticlesView p = particles();
     launch_reset_bins(exec_, "family/reset", hash_view(true));
@@ -217,6 +227,24 @@ class EngineImpl final : public Engine {
     intact_.upload(counts);
   }
 
+  // State-based arrays: weighted volumes (once), dilatation and damage (per step), and for
+  // plasticity the per-bond plastic extension and reverse bond positions.
+  void allocate_state() {
+    if (family_.max > 65535) throw std::runtime_error("a family has more than 65535 bonds");
+    weighted_volume_ = make<real>(n_);
+    dilatation_ = make<real>(n_);
+    dilatation_.zero();
+    damage_ = make<real>(n_);
+    damage_.zero();
+    launch_weighted_volume(exec_, particles(), bonds(), materials_, weighted_volume_.data());
+    if (!plastic_) return;
+    plastic_ext_ = make<real>(neighbor_.size());
+    plastic_ext_.zero();
+    reverse_ = make<uint16_t>(neighbor_.size());
+    reverse_.zero();
+    launch_reverse_bonds(exec_, bonds(), reverse_.data());
+  }
+
   // Collision cells of side max(lambda)/2, the largest contact distance.
   void allocate_contact_hash() {
     real spacing = 0;
@@ -227,14 +255,17 @@ class EngineImpl final : public Engine {
   // Kernels 1-5: the forces at the current positions.
   void compute_forces() {
     const ParticlesView p = particles();
-    launch_init(exec_, p, hash_view(true), materials_);
+    const BondsView b = bonds();
+    if (state_based_)
+      launch_init<true>(exec_, p, b, hash_view(true), materials_);
+    else
+      launch_init<false>(exec_, p, b, hash_view(true), materials_);
+    if (plastic_) launch_plasticity(exec_, p, b, materials_);
     if (contact_) {
       launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true));
       launch_collisions(exec_, p, hash_view(true), materials_, step_params_.contact_stiffness);
-      launch_springforces<true>(exec_, p, bonds(), materials_);
-    } else {
-      launch_springforces<false>(exec_, p, bonds(), materials_);
     }
+    launch_springforces(exec_, p, b, materials_, contact_, state_based_, plastic_);
     if (body_forces_) launch_bodyforces(exec_, p, step_params_);
   }
 
@@ -244,6 +275,8 @@ class EngineImpl final : public Engine {
   MaterialTable materials_;
   StepParams step_params_;
   bool contact_ = false;
+  bool state_based_ = false;
+  bool plastic_ = false;
   bool body_forces_ = false;
   int32_t n_ = 0;
   int64_t step_ = 0;
@@ -259,6 +292,8 @@ class EngineImpl final : public Engine {
 
   DeviceArray<int64_t, Exec> slice_offset_;
   DeviceArray<int32_t, Exec> count_, neighbor_;
+  DeviceArray<real, Exec> weighted_volume_, dilatation_, damage_, plastic_ext_;
+  DeviceArray<uint16_t, Exec> reverse_;
 
   uint32_t bins_ = 0;
   real inv_cell_ = 0;

@@ -8,18 +8,26 @@
 #include "kernels/family.h"
 #include "kernels/init.h"
 #include "kernels/integrate.h"
+#include "kernels/plasticity.h"
 #include "kernels/springforces.h"
+#include "kernels/springforces_state.h"
 
 namespace pd {
 
 // Kernel 1. Threads past the particle count only reset bins (and vice versa).
-template <class Exec>
-void launch_init(Exec& ex, ParticlesView p, HashView h, MaterialTable mt) {
+template <bool kStateBased, class Exec>
+void launch_init(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt) {
   const int64_t n = p.n > int64_t(h.bins) ? p.n : int64_t(h.bins);
   ex.parallel_for("pd/init", n, [=] PD_HD(int64_t i) {
-    if (i < p.n) init_particle(int32_t(i), p, mt);
+    if (i < p.n) init_particle<kStateBased>(int32_t(i), p, b, mt);
     if (i < int64_t(h.bins)) reset_bin(uint32_t(i), h);
   });
+}
+
+// Plastic state-based materials: the return mapping, after `init` computed theta.
+template <class Exec>
+void launch_plasticity(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+  ex.parallel_for("pd/plasticity", p.n, [=] PD_HD(int64_t i) { plastic_update(int32_t(i), p, b, mt); });
 }
 
 template <class Exec>
@@ -46,11 +54,31 @@ void launch_collisions(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, 
                   [=] PD_HD(int64_t i) { collision_forces(int32_t(i), p, h, mt, stiffness); });
 }
 
-// Kernel 4. kAccumulate adds to the force `collisions` wrote.
-template <bool kAccumulate, class Exec>
-void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
-  ex.parallel_for("pd/springforces", p.n,
-                  [=] PD_HD(int64_t i) { spring_forces<kAccumulate>(int32_t(i), p, b, mt); });
+// Kernel 4, one instantiation per feature set so a scene pays only for what it uses.
+// kAccumulate adds to the force `collisions` wrote.
+template <bool kAccumulate, bool kStateBased, bool kPlastic, class Exec>
+void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+  ex.parallel_for("pd/springforces", p.n, [=] PD_HD(int64_t i) {
+    if constexpr (kStateBased)
+      state_forces<kAccumulate, kPlastic>(int32_t(i), p, b, mt);
+    else
+      spring_forces<kAccumulate>(int32_t(i), p, b, mt);
+  });
+}
+
+template <class Exec>
+void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, bool accumulate,
+                         bool state_based, bool plastic) {
+  if (!state_based) {
+    if (accumulate) return launch_springforces_variant<true, false, false>(ex, p, b, mt);
+    return launch_springforces_variant<false, false, false>(ex, p, b, mt);
+  }
+  if (plastic) {
+    if (accumulate) return launch_springforces_variant<true, true, true>(ex, p, b, mt);
+    return launch_springforces_variant<false, true, true>(ex, p, b, mt);
+  }
+  if (accumulate) return launch_springforces_variant<true, true, false>(ex, p, b, mt);
+  return launch_springforces_variant<false, true, false>(ex, p, b, mt);
 }
 
 // Kernel 5.
@@ -85,6 +113,18 @@ void launch_slice_length(Exec& ex, int32_t n, const int32_t* count, int64_t* len
 template <class Exec>
 void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, BondsView b) {
   ex.parallel_for("family/fill", p.n, [=] PD_HD(int64_t i) { fill_family(int32_t(i), p, h, mt, b); });
+}
+
+// State-based set-up: weighted volumes, and the reverse bond positions for plasticity.
+template <class Exec>
+void launch_weighted_volume(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, real* mw) {
+  ex.parallel_for("family/weighted_volume", p.n,
+                  [=] PD_HD(int64_t i) { weighted_volume(int32_t(i), p, b, mt, mw); });
+}
+
+template <class Exec>
+void launch_reverse_bonds(Exec& ex, BondsView b, uint16_t* reverse) {
+  ex.parallel_for("family/reverse", b.n, [=] PD_HD(int64_t i) { reverse_bond(int32_t(i), b, reverse); });
 }
 
 // Reductions read once per frame.

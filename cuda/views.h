@@ -29,6 +29,10 @@ struct ParticlesView {
   real* strain_limit = nullptr;        // effective limit tau'_i (eq. 5), set by `init`
   real* strain_min = nullptr;          // minimum bond strain of the last force pass
   int32_t* intact = nullptr;           // unbroken bonds, written by `springforces`
+  // State-based materials only (null otherwise):
+  const real* weighted_volume = nullptr;  // m_i = sum_j omega |xi|^2 beta V_j over the initial family
+  real* dilatation = nullptr;             // theta_i, set by `init`
+  real* damage = nullptr;                 // phi_i = 1 - intact/initial bonds of the last step, set by `init`
 };
 
 // Bond families in sliced-ELL layout: particles are grouped in slices of kSliceWidth;
@@ -41,6 +45,9 @@ struct BondsView {
   const int64_t* slice_offset = nullptr;  // n_slices + 1 entries
   const int32_t* count = nullptr;         // bonds per particle at the start
   int32_t* neighbor = nullptr;            // partner index, or ~partner once broken
+  // Plastic state-based materials only (null otherwise):
+  real* plastic = nullptr;            // e^p of this end's state on the bond [m]
+  const uint16_t* reverse = nullptr;  // position k of the same bond in the partner's family
 
   PD_HD int64_t slot(int32_t i, int32_t k) const {
     return slice_offset[i / kSliceWidth] + int64_t(k) * kSliceWidth + (i % kSliceWidth);
@@ -78,13 +85,33 @@ PD_HD inline uint32_t cell_bin(Cell c, uint32_t bins) {
   return h & (bins - 1u);
 }
 
-// Bond-based (PMB) material constants, derived on the host (host/material.cpp).
+enum MaterialModel : uint8_t {
+  kBondBased = 0,   // prototype microelastic brittle (PMB) springs, Poisson ratio 1/4
+  kStateBased = 1,  // ordinary state-based linear peridynamic solid (Chen et al. sec. 4)
+};
+
+// Material constants seen by the kernels, derived on the host (host/material.cpp).
 struct Material {
-  real micromodulus = 0;       // c = 18K / (pi delta^4)  [N/m^6]
+  uint8_t model = kBondBased;
   real horizon = 0;            // delta [m]
   real spacing = 0;            // lambda [m]
-  real compression_alpha = 0;  // alpha of eq. 5
-  uint8_t partial_volumes = 1; // scale bonds near the horizon edge by their volume fraction
+  real compression_alpha = 0;  // alpha of Levine eq. 5
+  // Partial volumes: a neighbour whose cube overlaps the horizon sphere counts with the
+  // overlapped fraction, so families reach delta + lambda/2; otherwise families end at delta.
+  uint8_t partial_volumes = 1;
+  PD_HD real family_radius() const { return partial_volumes ? horizon + real(0.5) * spacing : horizon; }
+  // Bond-based:
+  real micromodulus = 0;       // c = 18K / (pi delta^4)  [N/m^6]
+  // State-based:
+  real bulk_modulus = 0;       // K [Pa]
+  real shear_modulus = 0;      // mu [Pa]
+  real damage_alpha = 0;       // alpha of Chen eq. 18
+  uint8_t chen_fracture = 1;   // 1: Chen eq. 18 from both ends; 0: stretch > max(tau_i, tau_j)
+  uint8_t plastic = 0;
+  real yield_psi0 = 0;         // Mitchell's yield constant psi_0 (Chen eq. 12)
+  real plastic_limit = 0;      // Chen's gamma as a stretch: |e^p| <= plastic_limit |xi| (eq. 15)
+  uint8_t anisotropic = 0;
+  real aniso[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // G of Chen eq. 16, row major
 };
 
 constexpr int kMaxMaterials = 16;

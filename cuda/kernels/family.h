@@ -1,5 +1,6 @@
 // Family (bond list) construction on either backend: every pair of particles of the same
-// body whose reference distance is at most the horizon delta of particle i. Two passes over
+// body whose reference distance is at most the family radius of particle i (delta, or
+// delta + lambda/2 with partial volumes). Two passes over
 // a spatial hash of reference positions with cells of side >= delta: count, then fill.
 // Neighbours are visited in a fixed order (cell by cell, bin entries by particle id), so
 // families are identical on CPU and GPU.
@@ -17,7 +18,7 @@ template <class Visit>
 PD_HD inline void for_each_family_member(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt,
                                          Visit visit) {
   const Vec3 xi = p.rest[i];
-  const double delta = double(mt.m[p.material[i]].horizon) * (1.0 + kHorizonSlack);
+  const double delta = double(mt.m[p.material[i]].family_radius()) * (1.0 + kHorizonSlack);
   const int32_t body = p.body[i];
   auto pos = [&](int32_t j) { return p.rest[j]; };
   for_each_nearby(xi, h, pos, [&](int32_t j) {
@@ -45,6 +46,18 @@ PD_HD inline void slice_length(int32_t s, int32_t n, const int32_t* count, int64
 PD_HD inline void fill_family(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt, BondsView b) {
   int32_t k = 0;
   for_each_family_member(i, p, h, mt, [&](int32_t j) { b.neighbor[b.slot(i, k++)] = j; });
+}
+
+// Position of bond (i, k) in the partner's family, for reading the partner's per-bond state.
+PD_HD inline void reverse_bond(int32_t i, BondsView b, uint16_t* reverse) {
+  for (int32_t k = 0; k < b.count[i]; ++k) {
+    const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
+    for (int32_t q = 0; q < b.count[j]; ++q)
+      if (bond_partner(b.neighbor[b.slot(j, q)]) == i) {
+        reverse[b.slot(i, k)] = uint16_t(q);
+        break;
+      }
+  }
 }
 
 }  // namespace pd

@@ -1,8 +1,10 @@
-// Kernel 1, `init`: load the strain limits for this step (Levine eq. 5) and empty the
-// collision hash bins.
+// Kernel 1, `init`: load the strain limits for this step (Levine eq. 5), empty the collision
+// hash bins, and for state-based materials compute the damage phi_i and the dilatation
+// theta_i at the new positions (Chen eqs. 5, 18), which `springforces` reads from both ends.
 #pragma once
 
 #include "../views.h"
+#include "state_based.h"
 
 namespace pd {
 
@@ -11,9 +13,15 @@ PD_HD inline real effective_strain_limit(real tau0, real alpha, real strain_min)
   return tau0 - alpha * (strain_min < real(0) ? strain_min : real(0));
 }
 
-PD_HD inline void init_particle(int32_t i, ParticlesView p, const MaterialTable& mt) {
-  const real alpha = mt.m[p.material[i]].compression_alpha;
-  p.strain_limit[i] = effective_strain_limit(p.strain_limit0[i], alpha, p.strain_min[i]);
+template <bool kStateBased>
+PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+  const Material& m = mt.m[p.material[i]];
+  p.strain_limit[i] = effective_strain_limit(p.strain_limit0[i], m.compression_alpha, p.strain_min[i]);
+  if constexpr (kStateBased) {
+    const int32_t count = b.count[i];
+    p.damage[i] = count > 0 ? real(1) - real(p.intact[i]) / real(count) : real(0);
+    p.dilatation[i] = dilatation(i, p, b, m);
+  }
 }
 
 PD_HD inline void reset_bin(uint32_t b, HashView h) {

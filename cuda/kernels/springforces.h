@@ -4,24 +4,9 @@
 // record the minimum stretch for eq. 5; accumulate f_i = sum_j c s V_i V_j beta_ij y/|y|.
 #pragma once
 
-#include "../views.h"
+#include "bond.h"
 
 namespace pd {
-
-// Fraction of a neighbour's volume inside the horizon (LAMMPS peri/pmb rule): 1 up to
-// delta - lambda/2, then falling linearly to 1/2 at delta.
-PD_HD inline real volume_fraction(real r0, const Material& m) {
-  if (!m.partial_volumes) return real(1);
-  const real half = real(0.5) * m.spacing;
-  if (r0 <= m.horizon - half) return real(1);
-  return (m.horizon + half - r0) / m.spacing;
-}
-
-// |y| - |xi| without cancellation: (|y|^2 - |xi|^2) / (|y| + |xi|) with
-// |y|^2 - |xi|^2 = 2 xi.eta + eta.eta. Identical bits from both ends of a bond.
-PD_HD inline real bond_elongation(Vec3 xi, Vec3 eta, real r0, real r) {
-  return (real(2) * dot(xi, eta) + dot(eta, eta)) / (r + r0);
-}
 
 template <bool kAccumulate>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {

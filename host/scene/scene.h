@@ -26,17 +26,34 @@ class SceneError : public std::runtime_error {
   std::string file_, key_;
 };
 
+// Deviatoric plasticity of a state-based material (Chen et al. eqs. 10-15).
+struct ScenePlastic {
+  double psi0 = 0;   // yield constant psi_0, given directly or from yield_stress: 25 sigma_Y^2 / (8 pi delta^5)
+  std::optional<double> yield_stress;  // sigma_Y [Pa]; exactly one of yield_stress and psi0
+  double limit = 0;  // Chen's gamma as a stretch: |e^p| <= limit |xi|; 0 = no limit
+};
+
+// Anisotropy matrix G of the influence function omega = delta / |G xi| (Chen eq. 16).
+struct SceneAnisotropy {
+  std::array<double, 9> matrix{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row major
+};
+
 struct SceneMaterial {
   std::string name;
-  std::string model = "bond_based";  // only "bond_based" so far
+  std::string model = "bond_based";  // "bond_based" | "state_based"
   double density = 0;                // rho [kg/m^3], > 0
   double bulk_modulus = 0;           // K [Pa], > 0
+  double shear_modulus = 0;          // mu [Pa], > 0; state_based only
+  std::string fracture = "chen";     // state_based: "chen" (eq. 18) or "stretch" (Levine's max rule)
+  double damage_alpha = 0;           // alpha of Chen eq. 18, >= 0
+  std::optional<ScenePlastic> plastic;        // state_based only
+  std::optional<SceneAnisotropy> anisotropy;  // state_based only
   double horizon = 3;                // delta / lambda, >= 1
   std::optional<double> strain_limit;     // explicit critical stretch tau, in (0, 1)
   std::optional<double> fracture_energy;  // G0 [J/m^2] -> tau = sqrt(5 G0 / (9 K delta)); exactly one of the two
   double strain_limit_scatter = 0.02;     // relative standard deviation of the normal scatter, in [0, 0.5]
   double compression_alpha = 0.25;        // alpha of Levine eq. 5, >= 0
-  bool partial_volumes = true;            // volume fraction of bonds near the horizon edge
+  std::optional<bool> partial_volumes;    // default: true for state_based, false for bond_based
 };
 
 struct SceneBody {

@@ -253,6 +253,21 @@ class TableReader {
     return true;
   }
 
+  bool has(std::string_view key) const { return table_->get(key) != nullptr; }
+
+  // An array of `n` finite numbers.
+  template <size_t N>
+  bool numbers(std::string_view key, std::array<double, N>& out, const std::string& allowed) const {
+    const toml::node* n = find(key, Presence::optional, allowed);
+    if (!n) return false;
+    const auto* a = n->as_array();
+    if (!a) fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + type_name(*n), allowed);
+    if (a->size() != N) fail(key, "expected " + std::to_string(N) + " numbers, got " + std::to_string(a->size()), allowed);
+    for (size_t c = 0; c < N; ++c)
+      out[c] = to_number(*a->get(c), *file_, path(key) + "[" + std::to_string(c) + "]", Bounds{});
+    return true;
+  }
+
   // The sub-table `key` ([simulation], ...); an empty one when absent.
   TableReader table(std::string_view key, const Keys& allowed) const {
     return TableReader(sub_table(key), path(key), *file_, allowed);
@@ -317,9 +332,14 @@ const Keys kTopKeys = {"description", "simulation", "world",       "contact", "m
 const Keys kSimulationKeys = {"dt", "steps_per_frame", "frames", "seed"};
 const Keys kWorldKeys = {"gravity", "floor", "floor_height", "restitution"};
 const Keys kContactKeys = {"enabled", "stiffness"};
-const Keys kMaterialKeys = {"model",          "density",         "bulk_modulus",         "horizon",
-                            "strain_limit",   "fracture_energy", "strain_limit_scatter", "compression_alpha",
-                            "partial_volumes"};
+const Keys kMaterialKeys = {"model",           "density",           "bulk_modulus",    "shear_modulus",
+                            "youngs_modulus",  "poisson_ratio",     "horizon",         "strain_limit",
+                            "fracture_energy", "strain_limit_scatter", "compression_alpha", "partial_volumes",
+                            "fracture",        "damage_alpha",      "plastic",         "anisotropy"};
+const Keys kStateBasedOnlyKeys = {"shear_modulus", "youngs_modulus", "poisson_ratio", "fracture",
+                                  "damage_alpha",  "plastic",        "anisotropy"};
+const Keys kPlasticKeys = {"yield_stress", "psi0", "limit"};
+const Keys kAnisotropyKeys = {"direction", "ratio", "matrix"};
 const Keys kBodyKeys = {"name", "shape", "center", "size", "spacing", "material", "velocity"};
 const Keys kAnchorKeys = {"box_min", "box_max"};
 const Keys kProjectileKeys = {"center", "velocity", "radius", "strength"};
@@ -328,12 +348,75 @@ const Keys kOutputKeys = {"vtk", "binary"};
 const char* const kAxisNames[3] = {"x", "y", "z"};
 constexpr double kMaxHorizon = 12;  // delta / lambda; beyond this the bond families explode
 
+// Elastic constants: bond_based takes the bulk modulus (its Poisson ratio is 1/4);
+// state_based takes either (bulk_modulus, shear_modulus) or (youngs_modulus, poisson_ratio).
+void parse_elastic_constants(const TableReader& r, SceneMaterial& m) {
+  if (m.model == "bond_based") {
+    for (const auto& key : kStateBasedOnlyKeys)
+      if (r.has(key)) r.fail(key, "only for model = \"state_based\"", "for bond_based: bulk_modulus (nu is 1/4)");
+    r.number("bulk_modulus", m.bulk_modulus, greater_than(0), Presence::required);
+    return;
+  }
+  const std::string pairs = "either bulk_modulus and shear_modulus, or youngs_modulus and poisson_ratio";
+  const bool km = r.has("bulk_modulus") || r.has("shear_modulus");
+  const bool enu = r.has("youngs_modulus") || r.has("poisson_ratio");
+  if (km == enu) r.fail("", km ? "both kinds of elastic constants are given" : "no elastic constants are given", pairs);
+  if (km) {
+    r.number("bulk_modulus", m.bulk_modulus, greater_than(0), Presence::required);
+    r.number("shear_modulus", m.shear_modulus, greater_than(0), Presence::required);
+    return;
+  }
+  double e = 0, nu = 0;
+  r.number("youngs_modulus", e, greater_than(0), Presence::required);
+  r.number("poisson_ratio", nu, in_open(-1, 0.5), Presence::required);
+  m.bulk_modulus = e / (3 * (1 - 2 * nu));
+  m.shear_modulus = e / (2 * (1 + nu));
+}
+
+ScenePlastic parse_plastic(const TableReader& r) {
+  ScenePlastic p;
+  double value = 0;
+  const std::string one_of = "exactly one of yield_stress > 0 [Pa] and psi0 > 0";
+  const bool stress = r.number("yield_stress", value, greater_than(0));
+  if (stress) p.yield_stress = value;
+  const bool psi = r.number("psi0", p.psi0, greater_than(0));
+  if (stress == psi) r.fail("", stress ? "both yield_stress and psi0 are given" : "neither yield_stress nor psi0 is given", one_of);
+  r.number("limit", p.limit, at_least(0));
+  return p;
+}
+
+// G from a direction and a ratio (bonds along the direction weigh `ratio` times more:
+// G = I + (1/ratio - 1) d d^T), or a full matrix.
+SceneAnisotropy parse_anisotropy(const TableReader& r) {
+  SceneAnisotropy a;
+  const std::string one_of = "either direction and ratio, or matrix (9 numbers, row major)";
+  const bool dir = r.has("direction") || r.has("ratio");
+  if (dir == r.has("matrix")) r.fail("", dir ? "both direction/ratio and matrix are given" : "no anisotropy is given", one_of);
+  if (!dir) {
+    r.numbers("matrix", a.matrix, "an array of 9 numbers, G row major, non-singular");
+    const auto& g = a.matrix;
+    const double det = g[0] * (g[4] * g[8] - g[5] * g[7]) - g[1] * (g[3] * g[8] - g[5] * g[6]) + g[2] * (g[3] * g[7] - g[4] * g[6]);
+    if (!(std::fabs(det) > 1e-12)) r.fail("matrix", "G is singular", "a non-singular 3x3 matrix");
+    return a;
+  }
+  Vec3d d{};
+  double ratio = 1;
+  r.vec3("direction", d, Presence::required);
+  r.number("ratio", ratio, greater_than(0), Presence::required);
+  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(len > 0)) r.fail("direction", "the direction is the zero vector", "a non-zero [x, y, z]");
+  for (double& c : d) c /= len;
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) a.matrix[3 * row + col] = (row == col ? 1.0 : 0.0) + (1 / ratio - 1) * d[row] * d[col];
+  return a;
+}
+
 SceneMaterial parse_material(const std::string& name, const TableReader& r) {
   SceneMaterial m;
   m.name = name;
-  r.string("model", m.model, {"bond_based"});
+  r.string("model", m.model, {"bond_based", "state_based"});
   r.number("density", m.density, greater_than(0), Presence::required);
-  r.number("bulk_modulus", m.bulk_modulus, greater_than(0), Presence::required);
+  parse_elastic_constants(r, m);
   Bounds horizon = in_closed(1, kMaxHorizon);
   horizon.note = "the horizon delta in multiples of the spacing lambda, so delta >= lambda";
   r.number("horizon", m.horizon, horizon);
@@ -350,7 +433,14 @@ SceneMaterial parse_material(const std::string& name, const TableReader& r) {
 
   r.number("strain_limit_scatter", m.strain_limit_scatter, in_closed(0, 0.5));
   r.number("compression_alpha", m.compression_alpha, at_least(0));
-  r.boolean("partial_volumes", m.partial_volumes);
+  bool partial = false;
+  if (r.boolean("partial_volumes", partial)) m.partial_volumes = partial;
+
+  // State-based extras: fracture criterion, plasticity, anisotropy.
+  r.string("fracture", m.fracture, {"chen", "stretch"});
+  r.number("damage_alpha", m.damage_alpha, at_least(0));
+  if (r.has("plastic")) m.plastic = parse_plastic(r.table("plastic", kPlasticKeys));
+  if (r.has("anisotropy")) m.anisotropy = parse_anisotropy(r.table("anisotropy", kAnisotropyKeys));
   return m;
 }
 

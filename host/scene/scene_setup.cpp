@@ -17,7 +17,7 @@ Vec3 to_vec3(const Vec3d& v) { return {real(v[0]), real(v[1]), real(v[2])}; }
 const SceneMaterial& find_material(const Scene& scene, const std::string& name) {
   for (const auto& m : scene.materials)
     if (m.name == name) return m;
-  throw SceneError(scene.path, "bodies.material", "no material named '" + name + "'");
+  throw std::logic_error("material '" + name + "' was not checked by the scene loader");
 }
 
 bool inside(const SceneAnchor& a, Vec3 x) {
@@ -28,18 +28,40 @@ bool inside(const SceneAnchor& a, Vec3 x) {
 // Kernel constants of one body's material at the body's spacing.
 Material derive_material(const SceneMaterial& sm, double spacing, MaterialSummary& summary) {
   const double delta = sm.horizon * spacing;
+  const bool state = sm.model == "state_based";
   Material m;
-  m.micromodulus = real(pmb_micromodulus(sm.bulk_modulus, delta));
+  m.model = state ? kStateBased : kBondBased;
   m.horizon = real(delta);
   m.spacing = real(spacing);
   m.compression_alpha = real(sm.compression_alpha);
-  m.partial_volumes = sm.partial_volumes ? 1 : 0;
+  m.partial_volumes = sm.partial_volumes.value_or(state) ? 1 : 0;
   summary.spacing = spacing;
   summary.horizon = delta;
-  summary.micromodulus = m.micromodulus;
+  if (!state) {
+    m.micromodulus = real(pmb_micromodulus(sm.bulk_modulus, delta));
+    summary.micromodulus = m.micromodulus;
+    summary.strain_limit = sm.strain_limit ? *sm.strain_limit
+                                           : pmb_critical_stretch(*sm.fracture_energy, sm.bulk_modulus, delta);
+    summary.critical_dt = pmb_critical_time_step(sm.density, sm.bulk_modulus, delta);
+    return m;
+  }
+  m.bulk_modulus = real(sm.bulk_modulus);
+  m.shear_modulus = real(sm.shear_modulus);
+  m.damage_alpha = real(sm.damage_alpha);
+  m.chen_fracture = sm.fracture == "chen" ? 1 : 0;
+  if (sm.plastic) {
+    m.plastic = 1;
+    m.yield_psi0 = real(sm.plastic->yield_stress ? yield_psi0(*sm.plastic->yield_stress, delta) : sm.plastic->psi0);
+    m.plastic_limit = real(sm.plastic->limit);
+  }
+  if (sm.anisotropy) {
+    m.anisotropic = 1;
+    for (int k = 0; k < 9; ++k) m.aniso[k] = real(sm.anisotropy->matrix[k]);
+  }
   summary.strain_limit = sm.strain_limit ? *sm.strain_limit
-                                         : pmb_critical_stretch(*sm.fracture_energy, sm.bulk_modulus, delta);
-  summary.critical_dt = pmb_critical_time_step(sm.density, sm.bulk_modulus, delta);
+                                         : lps_critical_stretch(*sm.fracture_energy, sm.bulk_modulus,
+                                                                sm.shear_modulus, delta);
+  summary.critical_dt = lps_critical_time_step(sm.density, sm.bulk_modulus, sm.shear_modulus, delta);
   return m;
 }
 
@@ -76,6 +98,11 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
                        "the scene would have " + std::to_string(total) + " particles (allowed: at most 1073741823)");
 
     const SceneMaterial& sm = find_material(scene, body.material);
+    if (b > 0 && sm.model != find_material(scene, scene.bodies[0].material).model)
+      throw SceneError(scene.path, key + ".material",
+                       "material '" + sm.name + "' is " + sm.model + " but the first body's is " +
+                           find_material(scene, scene.bodies[0].material).model +
+                           " (allowed: one material model per scene)");
     MaterialSummary summary;
     summary.name = sm.name;
     summary.body = body.name;

@@ -33,7 +33,7 @@ std::vector<std::vector<int32_t>> brute_force_families(const SimulationInput& in
   const auto& ps = in.particles;
   std::vector<std::vector<int32_t>> out(ps.size());
   for (size_t i = 0; i < ps.size(); ++i) {
-    const double delta = double(in.materials.m[ps.material[i]].horizon) * (1 + kHorizonSlack);
+    const double delta = double(in.materials.m[ps.material[i]].family_radius()) * (1 + kHorizonSlack);
     for (size_t j = 0; j < ps.size(); ++j) {
       if (i == j || ps.body[i] != ps.body[j]) continue;
       const double dx = double(ps.rest[j].x) - ps.rest[i].x, dy = double(ps.rest[j].y) - ps.rest[i].y,
@@ -44,13 +44,19 @@ std::vector<std::vector<int32_t>> brute_force_families(const SimulationInput& in
   return out;
 }
 
-TEST(EngineFamilies, LatticeInteriorHas122Neighbours) {
-  const auto in = lattice_block(9, 9, 9, 1e-3);
-  auto e = make_cpu_engine(in);
-  const auto fam = families(*e);
-  EXPECT_EQ(fam[4 + 9 * (4 + 9 * 4)].size(), 122u);  // centre particle, delta = 3 lambda
-  EXPECT_EQ(e->family_stats().max, 122);
-  EXPECT_EQ(fam, brute_force_families(in));
+// delta = 3 lambda: 122 neighbours within delta; 178 whose cubes overlap the horizon sphere
+// (distance <= delta + lambda/2) with partial volumes.
+TEST(EngineFamilies, LatticeInteriorNeighbourCounts) {
+  for (bool partial : {false, true}) {
+    auto in = lattice_block(9, 9, 9, 1e-3);
+    in.materials.m[0].partial_volumes = partial;
+    auto e = make_cpu_engine(in);
+    const auto fam = families(*e);
+    const size_t expected = partial ? 178 : 122;
+    EXPECT_EQ(fam[4 + 9 * (4 + 9 * 4)].size(), expected);  // centre particle
+    EXPECT_EQ(e->family_stats().max, int32_t(expected));
+    EXPECT_EQ(fam, brute_force_families(in));
+  }
 }
 
 TEST(EngineFamilies, RandomPointsMatchBruteForce) {

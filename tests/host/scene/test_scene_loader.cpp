@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "host/scene/scene.h"
@@ -147,7 +149,7 @@ TEST(SceneLoader, CompleteSceneParses) {
   EXPECT_FALSE(glass.fracture_energy.has_value());
   EXPECT_DOUBLE_EQ(glass.strain_limit_scatter, 0.1);
   EXPECT_DOUBLE_EQ(glass.compression_alpha, 0.3);
-  EXPECT_FALSE(glass.partial_volumes);
+  EXPECT_EQ(glass.partial_volumes, std::optional<bool>(false));
   EXPECT_EQ(rubber.name, "rubber");
   EXPECT_FALSE(rubber.strain_limit.has_value());
   ASSERT_TRUE(rubber.fracture_energy.has_value());
@@ -203,7 +205,7 @@ TEST(SceneLoader, DefaultsApplyWhenKeysAreAbsent) {
   EXPECT_EQ(s.materials[0].horizon, dm.horizon);
   EXPECT_EQ(s.materials[0].strain_limit_scatter, dm.strain_limit_scatter);
   EXPECT_EQ(s.materials[0].compression_alpha, dm.compression_alpha);
-  EXPECT_EQ(s.materials[0].partial_volumes, dm.partial_volumes);
+  EXPECT_FALSE(s.materials[0].partial_volumes.has_value());
 
   const SceneBody db;
   ASSERT_EQ(s.bodies.size(), 1u);
@@ -323,7 +325,7 @@ TEST(SceneLoader, NonFiniteNumbers) {
 }
 
 TEST(SceneLoader, UnsupportedModelAndShape) {
-  expect_error(kMaterial + "model = \"state_based\"\n" + kBody, "materials.glass.model", "\"bond_based\"");
+  expect_error(kMaterial + "model = \"viscous\"\n" + kBody, "materials.glass.model", "\"state_based\"");
   expect_error(kMinimal + "shape = \"sphere\"\n", "bodies[0].shape", "\"box\"");
 }
 
@@ -331,6 +333,9 @@ TEST(SceneLoader, TomlSyntaxErrorNamesTheLine) {
   const std::string message = error_of("[simulation]\ndt = 1e-7\nframes = = 3\n");
   EXPECT_EQ(message.rfind(kFile + ":3:", 0), 0u) << message;
   EXPECT_NE(message.find("TOML syntax error"), std::string::npos) << message;
+  // toml++ 3.3 asserts on this header before reporting it; the loader turns the assertion off.
+  const std::string header = error_of(kMinimal + "[[[projectiles]]\n");
+  EXPECT_EQ(header.rfind(kFile + ":11:3: TOML syntax error", 0), 0u) << header;
 }
 
 TEST(SceneLoader, MissingFile) {
@@ -349,6 +354,26 @@ TEST(SceneLoader, ControlCharactersInKeysStayOnOneLine) {
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
+TEST(SceneLoader, ReferenceDocExampleParses) {
+  std::ifstream doc(std::string(PERIFRAC_SOURCE_DIR) + "/docs/scene-reference.md");
+  ASSERT_TRUE(doc) << "docs/scene-reference.md not found";
+  std::stringstream text;
+  text << doc.rdbuf();
+  const std::string md = text.str();
+  const std::string fence = "```toml\n";
+  const size_t begin = md.find(fence);
+  ASSERT_NE(begin, std::string::npos) << "no ```toml block";
+  const size_t end = md.find("```", begin + fence.size());
+  ASSERT_NE(end, std::string::npos);
+  const std::string example = md.substr(begin + fence.size(), end - begin - fence.size());
+  try {
+    const Scene s = parse_scene(example, "scene-reference.md");
+    EXPECT_EQ(s.bodies.size(), 1u);
+  } catch (const SceneError& e) {
+    ADD_FAILURE() << e.what();
+  }
+}
+
 TEST(SceneLoader, RepositoryScenesParse) {
   const std::filesystem::path dir = std::filesystem::path(PERIFRAC_SOURCE_DIR) / "scenes";
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no scenes/ folder";
@@ -362,6 +387,69 @@ TEST(SceneLoader, RepositoryScenesParse) {
       ADD_FAILURE() << e.what();
     }
   }
+}
+
+// ---- State-based materials ---------------------------------------------------------------------
+
+const std::string kSteel = R"(
+[materials.steel]
+model = "state_based"
+density = 7850
+strain_limit = 0.01
+)";
+const std::string kSteelBody = R"(
+[[bodies]]
+size = [0.1, 0.1, 0.1]
+spacing = 0.01
+material = "steel"
+)";
+
+TEST(SceneLoader, StateBasedFromYoungsModulusAndPoissonRatio) {
+  const Scene s = parse_scene(kSteel + "youngs_modulus = 200e9\npoisson_ratio = 0.3\n" + kSteelBody, kFile);
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_NEAR(s.materials[0].bulk_modulus, 200e9 / (3 * 0.4), 1);
+  EXPECT_NEAR(s.materials[0].shear_modulus, 200e9 / 2.6, 1);
+  EXPECT_EQ(s.materials[0].fracture, "chen");
+  EXPECT_FALSE(s.materials[0].plastic);
+}
+
+TEST(SceneLoader, StateBasedElasticConstantsExactlyOnePair) {
+  expect_error(kSteel + kSteelBody, "materials.steel", "youngs_modulus and poisson_ratio");
+  expect_error(kSteel + "bulk_modulus = 1e9\nshear_modulus = 1e9\nyoungs_modulus = 1e9\n" + kSteelBody,
+               "materials.steel", "either");
+  expect_error(kSteel + "bulk_modulus = 1e9\n" + kSteelBody, "materials.steel.shear_modulus");
+  expect_error(kSteel + "youngs_modulus = 1e9\npoisson_ratio = 0.5\n" + kSteelBody, "materials.steel.poisson_ratio");
+  // Bond-based materials have nu = 1/4 and take no shear modulus.
+  expect_error(kMaterial + "shear_modulus = 1e9\n" + kBody, "materials.glass.shear_modulus", "bulk_modulus");
+}
+
+TEST(SceneLoader, PlasticBlock) {
+  const std::string elastic = kSteel + "bulk_modulus = 160e9\nshear_modulus = 80e9\n";
+  const Scene s = parse_scene(elastic + "[materials.steel.plastic]\nyield_stress = 250e6\nlimit = 0.1\n" + kSteelBody, kFile);
+  ASSERT_TRUE(s.materials[0].plastic);
+  EXPECT_EQ(*s.materials[0].plastic->yield_stress, 250e6);
+  EXPECT_EQ(s.materials[0].plastic->limit, 0.1);
+  expect_error(elastic + "[materials.steel.plastic]\nlimit = 0.1\n" + kSteelBody, "materials.steel.plastic", "psi0");
+  expect_error(elastic + "[materials.steel.plastic]\npsi0 = 1\nyield_stress = 1\n" + kSteelBody,
+               "materials.steel.plastic", "exactly one");
+  expect_error(elastic + "[materials.steel.plastic]\npsi0 = 1\nhardening = 2\n" + kSteelBody,
+               "materials.steel.plastic.hardening", "yield_stress");
+}
+
+TEST(SceneLoader, AnisotropyBlock) {
+  const std::string elastic = kSteel + "bulk_modulus = 160e9\nshear_modulus = 80e9\n";
+  const Scene s =
+      parse_scene(elastic + "[materials.steel.anisotropy]\ndirection = [0, 0, 2]\nratio = 4\n" + kSteelBody, kFile);
+  ASSERT_TRUE(s.materials[0].anisotropy);
+  const auto& g = s.materials[0].anisotropy->matrix;
+  EXPECT_DOUBLE_EQ(g[0], 1);
+  EXPECT_DOUBLE_EQ(g[4], 1);
+  EXPECT_DOUBLE_EQ(g[8], 0.25);  // |G xi| = |xi| / 4 along z: bonds along z weigh 4 times more
+  EXPECT_DOUBLE_EQ(g[2], 0);
+  expect_error(elastic + "[materials.steel.anisotropy]\nmatrix = [1, 0, 0, 0, 1, 0, 0, 0, 0]\n" + kSteelBody,
+               "materials.steel.anisotropy.matrix", "non-singular");
+  expect_error(elastic + "[materials.steel.anisotropy]\ndirection = [0, 0, 0]\nratio = 2\n" + kSteelBody,
+               "materials.steel.anisotropy.direction");
 }
 
 }  // namespace

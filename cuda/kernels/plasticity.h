@@ -1,0 +1,52 @@
+// Kernel `plasticity` (plastic state-based materials only): deviatoric return mapping of
+// Mitchell 2011 as used by Chen et al. (eqs. 10-15). Trial deviatoric force state
+//   t^d_j = (15 mu / m_i) omega (e^d_j - e^p_j),  e^d = e - theta_i |xi| / 3,
+// yield function f = |t^d|^2 / 2 - psi_0 with |t^d|^2 = sum_j (t^d_j)^2 beta V_j; when f > 0
+// the trial state is scaled onto the yield surface, e^p_j = e^d_j - s (e^d_j - e^p_j) with
+// s = sqrt(2 psi_0) / |t^d|, and Chen's limit caps |e^p_j| <= gamma |xi_j| (eq. 15).
+// Each particle updates only its own end's history, so there is no race with its partners.
+#pragma once
+
+#include <cmath>
+
+#include "state_based.h"
+
+namespace pd {
+
+PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+  const Material& m = mt.m[p.material[i]];
+  if (!m.plastic) return;
+  const real theta = p.dilatation[i];
+  const real alpha = real(15) * m.shear_modulus / p.weighted_volume[i];
+  const int32_t count = b.count[i];
+
+  // Trial norm over the intact family.
+  real norm2 = 0;
+  for (int32_t k = 0; k < count; ++k) {
+    const int64_t slot = b.slot(i, k);
+    const int32_t j = b.neighbor[slot];
+    if (!bond_intact(j)) continue;
+    const BondGeometry g = bond_geometry(p, i, j);
+    const real td = alpha * influence(g.xi, g.r0, m) * (g.e - theta * g.r0 / real(3) - b.plastic[slot]);
+    norm2 += td * td * volume_fraction(g.r0, m) * p.volume[j];
+  }
+  if (norm2 <= real(2) * m.yield_psi0) return;
+
+  // Project onto the yield surface and cap the plastic extension.
+  const real scale = std::sqrt(real(2) * m.yield_psi0 / norm2);
+  for (int32_t k = 0; k < count; ++k) {
+    const int64_t slot = b.slot(i, k);
+    const int32_t j = b.neighbor[slot];
+    if (!bond_intact(j)) continue;
+    const BondGeometry g = bond_geometry(p, i, j);
+    const real ed = g.e - theta * g.r0 / real(3);
+    real ep = ed - scale * (ed - b.plastic[slot]);
+    if (m.plastic_limit > real(0)) {
+      const real cap = m.plastic_limit * g.r0;
+      ep = ep > cap ? cap : (ep < -cap ? -cap : ep);
+    }
+    b.plastic[slot] = ep;
+  }
+}
+
+}  // namespace pd

@@ -1,0 +1,51 @@
+// Kernel 4, `springforces`, for state-based materials (Chen et al. eqs. 1-18). For each
+// intact bond: the force states of both ends, t_ij (theta_i, m_i, e^p_ij) and t_ji (theta_j,
+// m_j, e^p_ji), so f_i = V_i sum_j (t_ij + t_ji) beta V_j y/|y|; breaking by Chen's
+// criterion (eq. 18) evaluated for both ends: the bond is removed when both ends' s^omega
+// exceed their limits, which both threads decide from the same numbers (or, with the
+// stretch criterion, when e/|xi| > max(tau_i, tau_j) as for bond-based materials).
+#pragma once
+
+#include "state_based.h"
+
+namespace pd {
+
+template <bool kAccumulate, bool kPlastic>
+PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+  const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
+  const real theta_i = p.dilatation[i], mw_i = p.weighted_volume[i], phi_i = p.damage[i];
+  const real tau_i = p.strain_limit[i];
+  const int32_t count = b.count[i];
+  Vec3 f{0, 0, 0};
+  real smin = real(0);
+  int32_t intact = 0;
+  for (int32_t k = 0; k < count; ++k) {
+    const int64_t slot = b.slot(i, k);
+    const int32_t j = b.neighbor[slot];
+    if (!bond_intact(j)) continue;
+    const BondGeometry g = bond_geometry(p, i, j);
+    const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
+    const real ep_ji = kPlastic ? b.plastic[b.slot(j, b.reverse[slot])] : real(0);
+    const real s = g.e / g.r0;
+    const real tau_j = p.strain_limit[j];
+    const bool breaks = m.chen_fracture ? chen_stretch(g.e, ep_ij, phi_i, m) > tau_i &&
+                                              chen_stretch(g.e, ep_ji, p.damage[j], m) > tau_j
+                                        : s > (tau_i > tau_j ? tau_i : tau_j);
+    if (breaks) {
+      b.neighbor[slot] = ~j;
+      continue;
+    }
+    smin = (intact == 0 || s < smin) ? s : smin;
+    ++intact;
+    const real omega = influence(g.xi, g.r0, m);
+    const real t = force_state(omega, g.r0, g.e, theta_i, mw_i, ep_ij, m) +
+                   force_state(omega, g.r0, g.e, p.dilatation[j], p.weighted_volume[j], ep_ji, m);
+    if (g.r > real(0)) f += (t * volume_fraction(g.r0, m) * p.volume[j] / g.r) * g.y;
+  }
+  f = p.volume[i] * f;
+  p.force[i] = kAccumulate ? p.force[i] + f : f;
+  p.strain_min[i] = smin;
+  p.intact[i] = intact;
+}
+
+}  // namespace pd

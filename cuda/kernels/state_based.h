@@ -1,0 +1,83 @@
+// Ordinary state-based linear peridynamic solid (Silling et al. 2007, "LPS"; Chen et al.
+// sec. 4), shared by `init`, `plasticity` and `springforces`.
+//
+// Scalar force state of particle i on bond xi (e = |y| - |xi| the extension):
+//   t = omega [ (3 K theta_i / m_i) |xi| + (15 mu / m_i) (e - theta_i |xi| / 3 - e^p) ]
+//   theta_i = (3 / m_i) sum_j omega |xi| e beta V_j,  m_i = sum_j omega |xi|^2 beta V_j
+// with omega = delta / |G xi| (Chen eqs. 4, 16) and beta the partial-volume fraction.
+// The deviatoric term equals Chen's 1/2 A_dev with b = 15 mu / (2 pi delta^5) when m takes
+// its continuum value pi delta^5 (Chen eq. 9); m is summed over the discrete family instead,
+// which makes theta exact for any homogeneous deformation of a symmetric family.
+// Force on i: f_i = V_i sum_j (t_ij + t_ji) beta V_j y/|y|  (Chen eq. 1).
+#pragma once
+
+#include <cmath>
+
+#include "../views.h"
+#include "bond.h"
+
+namespace pd {
+
+// omega = delta / |G xi|; the same from both ends of a bond (|G(-xi)| = |G xi|).
+PD_HD inline real influence(Vec3 xi, real r0, const Material& m) {
+  if (!m.anisotropic) return m.horizon / r0;
+  const real* g = m.aniso;
+  const Vec3 gx{g[0] * xi.x + g[1] * xi.y + g[2] * xi.z, g[3] * xi.x + g[4] * xi.y + g[5] * xi.z,
+                g[6] * xi.x + g[7] * xi.y + g[8] * xi.z};
+  return m.horizon / length(gx);
+}
+
+// Geometry of one bond at the current positions.
+struct BondGeometry {
+  Vec3 xi, y;
+  real r0, r, e;  // reference length, current length, extension
+};
+
+PD_HD inline BondGeometry bond_geometry(const ParticlesView& p, int32_t i, int32_t j) {
+  BondGeometry g;
+  g.xi = p.rest[j] - p.rest[i];
+  const Vec3 eta = p.disp[j] - p.disp[i];
+  g.y = g.xi + eta;
+  g.r0 = length(g.xi);
+  g.r = length(g.y);
+  g.e = bond_elongation(g.xi, eta, g.r0, g.r);
+  return g;
+}
+
+PD_HD inline real force_state(real omega, real r0, real e, real theta, real mw, real ep, const Material& m) {
+  const real dil = real(3) * m.bulk_modulus * theta / mw * r0;
+  const real dev = real(15) * m.shear_modulus / mw * (e - theta * r0 / real(3) - ep);
+  return omega * (dil + dev);
+}
+
+// Chen eq. 18: s^omega = (1 + alpha phi) (e - e^p) / delta.
+PD_HD inline real chen_stretch(real e, real ep, real damage, const Material& m) {
+  return (real(1) + m.damage_alpha * damage) * (e - ep) / m.horizon;
+}
+
+// m_i over the initial family (all bonds intact), once at set-up.
+PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt, real* mw) {
+  const Material& m = mt.m[p.material[i]];
+  real sum = 0;
+  for (int32_t k = 0; k < b.count[i]; ++k) {
+    const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
+    const Vec3 xi = p.rest[j] - p.rest[i];
+    const real r0 = length(xi);
+    sum += influence(xi, r0, m) * r0 * r0 * volume_fraction(r0, m) * p.volume[j];
+  }
+  mw[i] = sum;
+}
+
+// theta_i over the intact bonds.
+PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
+  real sum = 0;
+  for (int32_t k = 0; k < b.count[i]; ++k) {
+    const int32_t j = b.neighbor[b.slot(i, k)];
+    if (!bond_intact(j)) continue;
+    const BondGeometry g = bond_geometry(p, i, j);
+    sum += influence(g.xi, g.r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * p.volume[j];
+  }
+  return real(3) * sum / p.weighted_volume[i];
+}
+
+}  // namespace pd

@@ -1,0 +1,150 @@
+// Cube and tetrahedron intersection against analytic cases.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "host/random.h"
+#include "render/primitives.h"
+
+namespace pd {
+namespace {
+
+Ray ray(Vec3 o, Vec3 d, real tmin = 0, real tmax = INFINITY) { return make_ray(o, normalize(d), tmin, tmax); }
+
+void expect_vec(Vec3 a, Vec3 b, real tol = real(1e-6)) {
+  EXPECT_NEAR(a.x, b.x, tol);
+  EXPECT_NEAR(a.y, b.y, tol);
+  EXPECT_NEAR(a.z, b.z, tol);
+}
+
+const Vec3 kOrigin{0, 0, 0};
+
+TEST(CubeIntersection, EntryFaceFromEachSide) {
+  SurfaceHit h;
+  ASSERT_TRUE(intersect_cube(ray({-5, real(0.2), real(0.3)}, {1, 0, 0}), kOrigin, 1, &h));
+  EXPECT_EQ(h.t, 4);
+  expect_vec(h.normal, {-1, 0, 0});
+  ASSERT_TRUE(intersect_cube(ray({real(0.5), 5, real(-0.25)}, {0, -1, 0}), kOrigin, 1, &h));
+  EXPECT_EQ(h.t, 4);
+  expect_vec(h.normal, {0, 1, 0});
+  ASSERT_TRUE(intersect_cube(ray({0, 0, 7}, {0, 0, -1}), {0, 0, 2}, real(0.5), &h));
+  EXPECT_EQ(h.t, real(4.5));
+  expect_vec(h.normal, {0, 0, 1});
+}
+
+TEST(CubeIntersection, ObliqueRayEntersThroughTheNearerFace) {
+  // Slope 0.2 from (-3, 0.5, 0): reaches the face x = -1 at y = 0.9, inside it.
+  const Vec3 d = normalize({1, real(0.2), 0});
+  SurfaceHit h;
+  ASSERT_TRUE(intersect_cube(make_ray({-3, real(0.5), 0}, d, 0, INFINITY), kOrigin, 1, &h));
+  EXPECT_NEAR(h.t, 2 / d.x, 1e-5);
+  expect_vec(h.normal, {-1, 0, 0});
+  // Slope 0.6: already at y = 1.7 when x = -1, and y = 1 was crossed at x < -1: passes above.
+  EXPECT_FALSE(intersect_cube(ray({-3, real(0.5), 0}, {1, real(0.6), 0}), kOrigin, 1, &h));
+  // From above at 45 degrees onto the top face: enters at y = 1 where x = -0.5.
+  ASSERT_TRUE(intersect_cube(ray({real(-1.5), 2, 0}, {1, -1, 0}), kOrigin, 1, &h));
+  EXPECT_NEAR(h.t, std::sqrt(real(2)), 1e-5);
+  expect_vec(h.normal, {0, 1, 0});
+}
+
+TEST(CubeIntersection, RayStartingInsideHitsTheExitFace) {
+  SurfaceHit h;
+  ASSERT_TRUE(intersect_cube(ray({real(0.25), 0, 0}, {1, 0, 0}), kOrigin, 1, &h));
+  EXPECT_EQ(h.t, real(0.75));
+  expect_vec(h.normal, {1, 0, 0});
+  ASSERT_TRUE(intersect_cube(ray({0, real(-0.5), real(0.1)}, {0, -1, 0}), kOrigin, 1, &h));
+  EXPECT_EQ(h.t, real(0.5));
+  expect_vec(h.normal, {0, -1, 0});
+}
+
+TEST(CubeIntersection, MissesBehindBeyondTmaxAndBesides) {
+  SurfaceHit h;
+  EXPECT_FALSE(intersect_cube(ray({5, 0, 0}, {1, 0, 0}), kOrigin, 1, &h));          // behind
+  EXPECT_FALSE(intersect_cube(ray({-5, 0, 0}, {1, 0, 0}, 0, 3), kOrigin, 1, &h));   // beyond tmax
+  EXPECT_TRUE(intersect_cube(ray({-5, 0, 0}, {1, 0, 0}, 0, 4), kOrigin, 1, &h));    // tmax inclusive
+  // tmin is exclusive: starting the interval at the entry point reports the exit.
+  ASSERT_TRUE(intersect_cube(ray({-5, 0, 0}, {1, 0, 0}, 4, 10), kOrigin, 1, &h));
+  EXPECT_EQ(h.t, 6);
+  expect_vec(h.normal, {1, 0, 0});
+  EXPECT_FALSE(intersect_cube(ray({-5, 2, 0}, {1, 0, 0}), kOrigin, 1, &h));         // passes beside
+}
+
+TEST(CubeIntersection, RaysInAFacePlaneFollowTheHalfOpenRule) {
+  SurfaceHit h;
+  // In the plane of the lower y face: inside the slab [lo, hi), hit.
+  ASSERT_TRUE(intersect_cube(ray({-5, -1, 0}, {1, 0, 0}), kOrigin, 1, &h));
+  EXPECT_EQ(h.t, 4);
+  // In the plane of the upper y face: outside, miss.
+  EXPECT_FALSE(intersect_cube(ray({-5, 1, 0}, {1, 0, 0}), kOrigin, 1, &h));
+}
+
+const Vec3 kTet[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+TEST(TetIntersection, EntryThroughAnAxisFaceAndTheSlantedFace) {
+  SurfaceHit h;
+  ASSERT_TRUE(intersect_tet(ray({real(0.1), real(0.1), -1}, {0, 0, 1}), kTet, &h));
+  EXPECT_NEAR(h.t, 1, 1e-6);
+  expect_vec(h.normal, {0, 0, -1});
+  // From (1,1,1) towards the origin: enters x + y + z = 1 at (1/3, 1/3, 1/3).
+  ASSERT_TRUE(intersect_tet(ray({1, 1, 1}, {-1, -1, -1}), kTet, &h));
+  EXPECT_NEAR(h.t, 2 / std::sqrt(real(3)), 1e-6);
+  const real s = 1 / std::sqrt(real(3));
+  expect_vec(h.normal, {s, s, s});
+}
+
+TEST(TetIntersection, RayStartingInsideHitsTheExitFace) {
+  SurfaceHit h;
+  ASSERT_TRUE(intersect_tet(ray({real(0.1), real(0.1), real(0.1)}, {0, 0, 1}), kTet, &h));
+  EXPECT_NEAR(h.t, real(0.7), 1e-6);
+  const real s = 1 / std::sqrt(real(3));
+  expect_vec(h.normal, {s, s, s});
+  ASSERT_TRUE(intersect_tet(ray({real(0.2), real(0.1), real(0.1)}, {-1, 0, 0}), kTet, &h));
+  EXPECT_NEAR(h.t, real(0.2), 1e-6);
+  expect_vec(h.normal, {-1, 0, 0});
+}
+
+TEST(TetIntersection, MissesAndVertexOrderDoesNotMatter) {
+  SurfaceHit h;
+  EXPECT_FALSE(intersect_tet(ray({2, 2, -1}, {0, 0, 1}), kTet, &h));
+  EXPECT_FALSE(intersect_tet(ray({real(0.1), real(0.1), 2}, {0, 0, 1}), kTet, &h));  // behind
+  // Mirrored orientation (two vertices swapped) gives the same hit.
+  const Vec3 swapped[4] = {kTet[1], kTet[0], kTet[2], kTet[3]};
+  SurfaceHit a, b;
+  const Ray r = ray({real(0.3), real(-2), real(0.2)}, {real(0.05), 1, real(0.1)});
+  ASSERT_TRUE(intersect_tet(r, kTet, &a));
+  ASSERT_TRUE(intersect_tet(r, swapped, &b));
+  EXPECT_EQ(a.t, b.t);
+  expect_vec(a.normal, {0, -1, 0});
+  expect_vec(b.normal, a.normal);
+}
+
+// Random rays: a reported hit lies on the surface, and the normal's face is the one crossed.
+TEST(PrimitiveIntersection, RandomHitsLieOnTheSurface) {
+  Random rng(3);
+  auto u = [&](double a, double b) { return real(a + (b - a) * rng.uniform()); };
+  int hits = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Ray r = ray({u(-3, 3), u(-3, 3), u(-3, 3)}, {u(-1, 1), u(-1, 1), u(-1, 1)});
+    SurfaceHit h;
+    if (intersect_cube(r, {real(0.1), real(-0.2), real(0.3)}, real(0.8), &h)) {
+      ++hits;
+      const Vec3 p = r.o + h.t * r.d - Vec3{real(0.1), real(-0.2), real(0.3)};
+      const real linf = rmax(std::fabs(p.x), rmax(std::fabs(p.y), std::fabs(p.z)));
+      EXPECT_NEAR(linf, real(0.8), 1e-5);
+      EXPECT_NEAR(dot(p, h.normal), real(0.8), 1e-5);  // on the face the normal names
+    }
+    if (intersect_tet(r, kTet, &h)) {
+      ++hits;
+      const Vec3 p = r.o + h.t * r.d;
+      // On the plane of the face named by the normal, inside the tet's closure.
+      const real offset = h.normal.x + h.normal.y + h.normal.z > real(0.5) ? 1 / std::sqrt(real(3)) : 0;
+      EXPECT_NEAR(dot(p, h.normal), offset, 1e-5);
+      EXPECT_GE(rmin(p.x, rmin(p.y, p.z)), -1e-5);
+      EXPECT_LE(p.x + p.y + p.z, 1 + 1e-5);
+    }
+  }
+  EXPECT_GT(hits, 150);
+}
+
+}  // namespace
+}  // namespace pd
