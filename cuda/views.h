@@ -9,7 +9,7 @@ namespace pd {
 
 // Per-particle flag bits.
 enum ParticleFlag : uint8_t {
-  kAnchored = 1u << 0,  // held fixed: zero velocity, displacement never changes
+  kAnchored = 1u << 0,  // prescribed motion: moves with its initial velocity whatever the forces
 };
 
 // Particle state, structure of arrays. Current position = rest + disp; bond vectors are

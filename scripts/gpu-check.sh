@@ -29,12 +29,21 @@ step cpu-tests build/cuda/tests/perifrac_tests
 step equiv-cpu "$bin" run "$scene" --backend cpu --scale 0.05 --frames 3 --out "$OUT/equiv-cpu"
 step equiv-gpu "$bin" run "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu"
 step equiv-compare "$bin" compare "$OUT/equiv-cpu" "$OUT/equiv-gpu"
+# compute-sanitizer on a small scene of each material model, and on the renderer.
 for tool in memcheck racecheck; do
   step "sanitizer-$tool" compute-sanitizer --tool "$tool" --error-exitcode 9 \
     "$bin" run "$scene" --backend cuda --scale 0.01 --frames 2 --steps-per-frame 10 --out "$OUT/sanitizer"
+  step "sanitizer-$tool-plastic" compute-sanitizer --tool "$tool" --error-exitcode 9 \
+    "$bin" run scenes/chen_four_walls.toml --backend cuda --scale 0.005 --frames 1 --steps-per-frame 10 \
+    --out "$OUT/sanitizer-plastic"
+  step "sanitizer-$tool-render" compute-sanitizer --tool "$tool" --error-exitcode 9 \
+    "$bin" render "$OUT/sanitizer" --backend cuda --width 64 --height 48 --spp 1
 done
 step bench-glass "$bin" bench --scene "$scene" --backend cuda --steps 2000 --warmup 200 --out "$OUT/bench"
-step bench-lattice "$bin" bench --lattice 100 --backend cuda --steps 500 --warmup 50 --out "$OUT/bench"
+for model in bond_based state_based plastic; do
+  step "bench-lattice-$model" "$bin" bench --lattice 100 --model "$model" --backend cuda --steps 300 --warmup 30 \
+    --out "$OUT/bench"
+done
 step glass-full "$bin" run "$scene" --backend cuda --out "$OUT/glass-full"
 
 echo

@@ -39,7 +39,7 @@ PD_HD inline void body_forces(int32_t i, ParticlesView p, const StepParams& sp) 
   Vec3 f = p.force[i] + mass * sp.gravity;
   for (int32_t k = 0; k < sp.n_projectiles; ++k) f += projectile_force(x, sp.projectile[k], sp.time);
   p.force[i] = f;
-  if (sp.floor_enabled && x.y < sp.floor_height && p.vel[i].y < real(0)) {
+  if (sp.floor_enabled && x.y < sp.floor_height && p.vel[i].y < real(0) && !(p.flags[i] & kAnchored)) {
     p.vel[i].y = -sp.restitution * p.vel[i].y;
   }
 }

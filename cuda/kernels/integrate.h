@@ -1,4 +1,5 @@
-// Kernels 6 and 7: the two halves of velocity Verlet. Anchored particles never move.
+// Kernels 6 and 7: the two halves of velocity Verlet. Anchored particles keep their
+// prescribed velocity (zero for a fixed anchor) whatever the forces.
 //   position update: v += dt/2 f/m; u += dt v
 //   velocity update: v += dt/2 f/m   (with the forces of the new positions)
 #pragma once
@@ -8,17 +9,17 @@
 namespace pd {
 
 PD_HD inline void position_update(int32_t i, ParticlesView p, real dt) {
-  if (p.flags[i] & kAnchored) return;
+  if (p.flags[i] & kAnchored) {
+    p.disp[i] += dt * p.vel[i];
+    return;
+  }
   const Vec3 v = p.vel[i] + (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
   p.vel[i] = v;
   p.disp[i] += dt * v;
 }
 
 PD_HD inline void velocity_update(int32_t i, ParticlesView p, real dt) {
-  if (p.flags[i] & kAnchored) {
-    p.vel[i] = {0, 0, 0};
-    return;
-  }
+  if (p.flags[i] & kAnchored) return;
   p.vel[i] += (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
 }
 

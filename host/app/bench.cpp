@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
@@ -19,17 +20,32 @@ namespace pd {
 
 namespace {
 
-// A glass cube of n^3 simple-cubic particles, 1 mm apart, that stays elastic under
-// random velocities of 1e-3 m/s (so the break test runs but no bond breaks).
+// A glass-like cube of n^3 simple-cubic particles, 1 mm apart, that stays elastic under
+// random velocities of 1e-3 m/s (so the break test runs but no bond breaks). The plastic
+// variant yields at a stress low enough that the return mapping is exercised.
 SimulationInput lattice_input(const BenchOptions& opt) {
   SimulationInput in;
   const double lambda = 1e-3, delta = opt.horizon * lambda;
   in.materials.count = 1;
   Material& m = in.materials.m[0];
-  m.micromodulus = real(pmb_micromodulus(32.81e9, delta));
   m.horizon = real(delta);
   m.spacing = real(lambda);
   m.compression_alpha = real(0.25);
+  if (opt.model == "bond_based") {
+    m.partial_volumes = 0;
+    m.micromodulus = real(pmb_micromodulus(32.81e9, delta));
+  } else if (opt.model == "state_based" || opt.model == "plastic") {
+    m.model = kStateBased;
+    m.bulk_modulus = real(72e9 / (3 * (1 - 2 * 0.22)));
+    m.shear_modulus = real(72e9 / (2 * 1.22));
+    if (opt.model == "plastic") {
+      m.plastic = 1;
+      m.yield_psi0 = real(yield_psi0(1e3, delta));
+      m.plastic_limit = real(0.05);
+    }
+  } else {
+    throw std::invalid_argument("bench: --model must be bond_based, state_based or plastic, got '" + opt.model + "'");
+  }
   const int64_t n = opt.lattice;
   in.particles.reserve(size_t(n * n * n));
   uint64_t state = 1;
@@ -57,6 +73,7 @@ std::string utc_now(const char* fmt) {
 }
 
 std::string git_revision() {
+  if (const char* env = std::getenv("PERIFRAC_GIT_REV")) return env;
   std::string rev;
   if (FILE* p = popen("git rev-parse --short HEAD 2>/dev/null", "r")) {
     char buf[64];
@@ -89,8 +106,8 @@ int bench_command(const BenchOptions& opt) {
     workload = std::filesystem::path(opt.scene).stem().string();
   } else {
     input = lattice_input(opt);
-    workload = "lattice" + std::to_string(opt.lattice) + "_h" + std::to_string(int(opt.horizon)) +
-               (opt.contact ? "_contact" : "");
+    workload = "lattice" + std::to_string(opt.lattice) + "_h" + std::to_string(int(opt.horizon)) + "_" +
+               opt.model + (opt.contact ? "_contact" : "");
   }
   std::string note;
   const Backend backend = choose_backend(opt.backend, &note);

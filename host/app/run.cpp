@@ -36,10 +36,18 @@ void print_setup(const Scene& scene, const SetupResult& setup, const RunOptions&
               scene.description.c_str());
   std::printf("particles  %zu in %zu bodies (scale %g)\n", setup.input.particles.size(), scene.bodies.size(),
               opt.scale);
-  for (const auto& m : setup.materials)
-    std::printf("material   '%s' on body '%s': lambda %.4g m, delta %.4g m, c %.4g N/m^6, strain limit %.4g, "
-                "dt_c %.3g s\n",
-                m.name.c_str(), m.body.c_str(), m.spacing, m.horizon, m.micromodulus, m.strain_limit, m.critical_dt);
+  for (size_t k = 0; k < setup.materials.size(); ++k) {
+    const MaterialSummary& m = setup.materials[k];
+    const Material& km = setup.input.materials.m[k];
+    char model[160];
+    if (km.model == kStateBased)
+      std::snprintf(model, sizeof model, "state-based K %.4g Pa, mu %.4g Pa%s%s", double(km.bulk_modulus),
+                    double(km.shear_modulus), km.plastic ? ", plastic" : "", km.anisotropic ? ", anisotropic" : "");
+    else
+      std::snprintf(model, sizeof model, "bond-based c %.4g N/m^6", m.micromodulus);
+    std::printf("material   '%s' on body '%s': %s; lambda %.4g m, delta %.4g m, strain limit %.4g, dt_c %.3g s\n",
+                m.name.c_str(), m.body.c_str(), model, m.spacing, m.horizon, m.strain_limit, m.critical_dt);
+  }
   std::printf("time step  dt %.4g s = %.2f dt_c (continuum estimate); %lld steps per frame\n", scene.dt,
               scene.dt / setup.critical_dt, (long long)scene.steps_per_frame);
 }

@@ -9,6 +9,7 @@
 #include "host/engine.h"
 #include "host/io/atomic_file.h"
 #include "host/scene/scene.h"
+#include "render/render_frames.h"
 
 int main(int argc, char** argv) {
   using namespace pd;
@@ -34,11 +35,23 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--lattice", bench.lattice, "lattice particles per side");
   bench_cmd->add_option("--horizon", bench.horizon, "lattice delta / lambda");
   bench_cmd->add_flag("--contact", bench.contact, "lattice: include collection + collisions");
+  bench_cmd->add_option("--model", bench.model, "lattice material: bond_based | state_based | plastic")
+      ->check(CLI::IsMember({"bond_based", "state_based", "plastic"}));
   bench_cmd->add_option("--backend", bench.backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   bench_cmd->add_option("--steps", bench.steps, "timed steps");
   bench_cmd->add_option("--warmup", bench.warmup, "untimed steps first");
   bench_cmd->add_option("--out", bench.out, "results folder");
+
+  RenderOptions render;
+  CLI::App* render_cmd = app.add_subcommand("render", "render a run's frames to PNG (DIR/render/)");
+  render_cmd->add_option("dir", render.dir, "output folder of `perifrac run`")->required();
+  render_cmd->add_option("--out", render.out, "image folder (default: DIR/render)");
+  render_cmd->add_option("--backend", render.backend, "auto | cpu | cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  render_cmd->add_option("--width", render.width, "image width")->check(CLI::Range(16, 16384));
+  render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(16, 16384));
+  render_cmd->add_option("--spp", render.spp, "samples per pixel")->check(CLI::Range(1, 1024));
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand("compare", "compare two output folders frame by frame");
@@ -54,6 +67,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run_command(run);
     if (*bench_cmd) return bench_command(bench);
     if (*compare_cmd) return compare_command(compare);
+    if (*render_cmd) return render_frames(render);
     if (*info_cmd) {
       std::string why;
       const bool gpu = cuda_device_available(&why);

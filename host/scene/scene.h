@@ -66,9 +66,11 @@ struct SceneBody {
   Vec3d velocity{0, 0, 0};    // initial velocity [m/s]
 };
 
-// Particles inside the axis-aligned box are held fixed.
+// Particles inside the axis-aligned box move with a prescribed constant velocity (held fixed
+// by default), whatever the forces on them: grips, clamps, frames.
 struct SceneAnchor {
   Vec3d box_min{0, 0, 0}, box_max{0, 0, 0};
+  Vec3d velocity{0, 0, 0};  // [m/s]
 };
 
 struct SceneProjectile {

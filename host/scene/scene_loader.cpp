@@ -341,7 +341,7 @@ const Keys kStateBasedOnlyKeys = {"shear_modulus", "youngs_modulus", "poisson_ra
 const Keys kPlasticKeys = {"yield_stress", "psi0", "limit"};
 const Keys kAnisotropyKeys = {"direction", "ratio", "matrix"};
 const Keys kBodyKeys = {"name", "shape", "center", "size", "spacing", "material", "velocity"};
-const Keys kAnchorKeys = {"box_min", "box_max"};
+const Keys kAnchorKeys = {"box_min", "box_max", "velocity"};
 const Keys kProjectileKeys = {"center", "velocity", "radius", "strength"};
 const Keys kOutputKeys = {"vtk", "binary"};
 
@@ -488,6 +488,7 @@ SceneAnchor parse_anchor(const TableReader& r) {
   SceneAnchor a;
   r.vec3("box_min", a.box_min, Presence::required);
   r.vec3("box_max", a.box_max, Presence::required);
+  r.vec3("velocity", a.velocity);
   for (int c = 0; c < 3; ++c) {
     if (a.box_max[c] < a.box_min[c])
       r.fail("box_max",

@@ -117,9 +117,13 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     const real mass = real(sm.density * spacing * spacing * spacing);
     for (const Vec3& x : box_grid_points(body.center, body.size, spacing)) {
       uint8_t flags = 0;
+      Vec3 v = to_vec3(body.velocity);
       for (const auto& a : scene.anchors)
-        if (inside(a, x)) flags |= kAnchored;
-      ps.add(x, to_vec3(body.velocity), volume, mass,
+        if (inside(a, x)) {
+          flags |= kAnchored;
+          v = to_vec3(a.velocity);
+        }
+      ps.add(x, v, volume, mass,
              scattered_limit(summary.strain_limit, sm.strain_limit_scatter, rng), mat, int32_t(b), flags);
     }
   }

@@ -101,6 +101,46 @@ TEST(EngineConservation, MomentumIsConservedWithoutExternalForces) {
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(p1[a], p0[a], tol) << "axis " << a;
 }
 
+// The same with the state-based plastic material, damage-weighted fracture on.
+TEST(EngineConservation, MomentumIsConservedWithPlasticityAndDamage) {
+  auto in = testing::state_block(8, 6, 5, 1e-3, 5e-4, true, 0.2);
+  Random rng(4);
+  for (auto& v : in.particles.velocity) v = {real(3 * rng.normal()), real(3 * rng.normal()), real(3 * rng.normal())};
+  in.contact = true;
+  in.step.contact_stiffness = real(1e8);
+  double p0[3] = {0, 0, 0}, scale = 0;
+  for (size_t i = 0; i < in.particles.size(); ++i) {
+    const double m = in.particles.mass[i];
+    p0[0] += m * in.particles.velocity[i].x;
+    p0[1] += m * in.particles.velocity[i].y;
+    p0[2] += m * in.particles.velocity[i].z;
+    scale += m * length(in.particles.velocity[i]);
+  }
+  auto e = make_cpu_engine(in);
+  e->advance(300);
+  ParticleState s;
+  e->read_state(s);
+  EXPECT_GT(e->broken_bonds(), 0);
+  double p1[3] = {0, 0, 0};
+  for (size_t i = 0; i < s.vel.size(); ++i) {
+    p1[0] += in.particles.mass[i] * s.vel[i].x;
+    p1[1] += in.particles.mass[i] * s.vel[i].y;
+    p1[2] += in.particles.mass[i] * s.vel[i].z;
+  }
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(p1[a], p0[a], 64 * std::numeric_limits<real>::epsilon() * scale);
+}
+
+TEST(EngineBreaking, NoStateBasedBondBreaksAtRest) {
+  for (bool plastic : {false, true}) {
+    auto e = make_cpu_engine(testing::state_block(6, 6, 6, 1e-3, 1e-5, plastic));
+    e->advance(100);
+    EXPECT_EQ(e->broken_bonds(), 0);
+    ParticleState s;
+    e->read_state(s);
+    for (const Vec3& u : s.disp) EXPECT_LT(length(u), 1e-12);
+  }
+}
+
 // Every broken bond is broken from both ends.
 TEST(EngineBreaking, BondsBreakSymmetrically) {
   auto in = lattice_block(12, 4, 4, 1e-3, 2e-4);
@@ -154,6 +194,27 @@ TEST(EngineDeterminism, TwoRunsAreBitIdentical) {
     EXPECT_EQ(a.disp[i].y, b.disp[i].y);
     EXPECT_EQ(a.disp[i].z, b.disp[i].z);
   }
+}
+
+// A moving grip: anchored particles follow their prescribed velocity exactly.
+TEST(EngineAnchors, MovingAnchorsFollowTheirVelocity) {
+  auto in = lattice_block(10, 4, 4, 1e-3, 1.0);
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    if (in.particles.rest[i].x > 8.5e-3) {
+      in.particles.flags[i] |= kAnchored;
+      in.particles.velocity[i] = {real(0.5), 0, 0};
+    }
+  auto e = make_cpu_engine(in);
+  e->advance(400);
+  ParticleState s;
+  e->read_state(s);
+  const double travelled = 400 * double(in.step.dt) * 0.5;
+  for (size_t i = 0; i < s.disp.size(); ++i)
+    if (in.particles.flags[i] & kAnchored) {
+      EXPECT_NEAR(s.disp[i].x, travelled, 1e-5 * travelled);
+      EXPECT_EQ(s.vel[i].x, real(0.5));
+    }
+  EXPECT_GT(s.disp[0].x, 0);  // the free end is pulled along through the bonds
 }
 
 TEST(EngineAnchors, AnchoredParticlesStayPut) {

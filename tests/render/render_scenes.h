@@ -21,7 +21,9 @@ inline Hit brute_force_hit(const PrimitivesView& p, const Ray& ray) {
   return best;
 }
 
-inline real uniform(Random& rng, double a, double b) { return real(a + (b - a) * rng.uniform()); }
+inline real uniform(Random& rng, double a, double b) {
+  return real(a + (b - a) * rng.uniform());
+}
 
 inline Vec3 uniform_point(Random& rng, double a, double b) {
   return {uniform(rng, a, b), uniform(rng, a, b), uniform(rng, a, b)};

@@ -23,8 +23,8 @@ namespace {
 namespace fs = std::filesystem;
 
 uint32_t big_endian32(const std::string& s, size_t at) {
-  return uint32_t(uint8_t(s[at])) << 24 | uint32_t(uint8_t(s[at + 1])) << 16 | uint32_t(uint8_t(s[at + 2])) << 8 |
-         uint32_t(uint8_t(s[at + 3]));
+  return uint32_t(uint8_t(s[at])) << 24 | uint32_t(uint8_t(s[at + 1])) << 16 |
+         uint32_t(uint8_t(s[at + 2])) << 8 | uint32_t(uint8_t(s[at + 3]));
 }
 
 ImageRGB8 test_image(int w, int h) {
@@ -56,8 +56,8 @@ TEST(Png, HasSignatureAndHeaderAndDecodesBack) {
   EXPECT_EQ(uint8_t(png[24]), 8);        // bit depth
   EXPECT_EQ(uint8_t(png[25]), 2);        // colour type: RGB
   int w = 0, h = 0, comp = 0;
-  uint8_t* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(png.data()), int(png.size()), &w, &h,
-                                          &comp, 3);
+  uint8_t* pixels =
+      stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(png.data()), int(png.size()), &w, &h, &comp, 3);
   ASSERT_NE(pixels, nullptr);
   EXPECT_EQ(w, 5);
   EXPECT_EQ(h, 3);

@@ -14,8 +14,12 @@ namespace {
 using testing::random_direction;
 using testing::uniform_point;
 
-real lo_of(const Box& b, int a) { return axis_of(b.lo, a); }
-real hi_of(const Box& b, int a) { return axis_of(b.hi, a); }
+real lo_of(const Box& b, int a) {
+  return axis_of(b.lo, a);
+}
+real hi_of(const Box& b, int a) {
+  return axis_of(b.hi, a);
+}
 Box with_axis(Box b, bool upper, int a, real v) {
   Vec3& p = upper ? b.hi : b.lo;
   (a == 0 ? p.x : (a == 1 ? p.y : p.z)) = v;

@@ -9,7 +9,9 @@
 namespace pd {
 namespace {
 
-Ray ray(Vec3 o, Vec3 d, real tmin = 0, real tmax = INFINITY) { return make_ray(o, normalize(d), tmin, tmax); }
+Ray ray(Vec3 o, Vec3 d, real tmin = 0, real tmax = INFINITY) {
+  return make_ray(o, normalize(d), tmin, tmax);
+}
 
 void expect_vec(Vec3 a, Vec3 b, real tol = real(1e-6)) {
   EXPECT_NEAR(a.x, b.x, tol);
@@ -59,14 +61,14 @@ TEST(CubeIntersection, RayStartingInsideHitsTheExitFace) {
 
 TEST(CubeIntersection, MissesBehindBeyondTmaxAndBesides) {
   SurfaceHit h;
-  EXPECT_FALSE(intersect_cube(ray({5, 0, 0}, {1, 0, 0}), kOrigin, 1, &h));          // behind
-  EXPECT_FALSE(intersect_cube(ray({-5, 0, 0}, {1, 0, 0}, 0, 3), kOrigin, 1, &h));   // beyond tmax
-  EXPECT_TRUE(intersect_cube(ray({-5, 0, 0}, {1, 0, 0}, 0, 4), kOrigin, 1, &h));    // tmax inclusive
+  EXPECT_FALSE(intersect_cube(ray({5, 0, 0}, {1, 0, 0}), kOrigin, 1, &h));         // behind
+  EXPECT_FALSE(intersect_cube(ray({-5, 0, 0}, {1, 0, 0}, 0, 3), kOrigin, 1, &h));  // beyond tmax
+  EXPECT_TRUE(intersect_cube(ray({-5, 0, 0}, {1, 0, 0}, 0, 4), kOrigin, 1, &h));   // tmax inclusive
   // tmin is exclusive: starting the interval at the entry point reports the exit.
   ASSERT_TRUE(intersect_cube(ray({-5, 0, 0}, {1, 0, 0}, 4, 10), kOrigin, 1, &h));
   EXPECT_EQ(h.t, 6);
   expect_vec(h.normal, {1, 0, 0});
-  EXPECT_FALSE(intersect_cube(ray({-5, 2, 0}, {1, 0, 0}), kOrigin, 1, &h));         // passes beside
+  EXPECT_FALSE(intersect_cube(ray({-5, 2, 0}, {1, 0, 0}), kOrigin, 1, &h));  // passes beside
 }
 
 TEST(CubeIntersection, RaysInAFacePlaneFollowTheHalfOpenRule) {

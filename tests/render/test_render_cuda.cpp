@@ -20,7 +20,8 @@ TEST(CudaRenderer, MatchesTheCpuRenderer) {
   // Cubes and tets over a lattice block, floor, sun and sky: every shading path.
   PrimitiveSet prims = testing::random_scene(9, 400, 400);
   const PrimitiveSet block = testing::lattice_scene(20, 6, 20, real(0.1));
-  for (int32_t i = 0; i < block.size(); ++i) prims.add_cube(block.cube_center[i] - Vec3{1, real(1.6), 1}, block.cube_half[i]);
+  for (int32_t i = 0; i < block.size(); ++i)
+    prims.add_cube(block.cube_center[i] - Vec3{1, real(1.6), 1}, block.cube_half[i]);
   std::vector<Vec3> albedo;
   Random rng(4);
   for (int32_t i = 0; i < prims.size(); ++i) albedo.push_back(testing::uniform_point(rng, 0.1, 0.9));
@@ -38,7 +39,8 @@ TEST(CudaRenderer, MatchesTheCpuRenderer) {
   // Fused multiply-adds on the device move some values by an ulp: allow a level of rounding
   // everywhere and a different primitive at a few silhouette pixels.
   int far_off = 0;
-  for (size_t i = 0; i < cpu.rgb.size(); ++i) far_off += std::abs(int(cpu.rgb[i]) - int(gpu.image.rgb[i])) > 2;
+  for (size_t i = 0; i < cpu.rgb.size(); ++i)
+    far_off += std::abs(int(cpu.rgb[i]) - int(gpu.image.rgb[i])) > 2;
   EXPECT_LE(far_off, int(cpu.rgb.size() / 500)) << far_off << " channel values differ by more than 2";
   EXPECT_GT(gpu.seconds, 0);
 }

@@ -21,8 +21,8 @@ class RenderFramesTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / ("perifrac_render_" + std::string(info->name()) + "_" +
-                                             std::to_string(getpid()));
+    dir_ = fs::path(::testing::TempDir()) /
+           ("perifrac_render_" + std::string(info->name()) + "_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     const real lambda = real(0.01);

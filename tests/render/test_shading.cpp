@@ -25,7 +25,8 @@ TEST(SphericalHarmonics, ConstantEnvironmentHasOnlyTheDcTerm) {
   }
   // Irradiance pi c from every direction.
   Random rng(1);
-  for (int i = 0; i < 50; ++i) EXPECT_NEAR(sh9_irradiance(L, testing::random_direction(rng)).x, kPiD * c, 1e-5);
+  for (int i = 0; i < 50; ++i)
+    EXPECT_NEAR(sh9_irradiance(L, testing::random_direction(rng)).x, kPiD * c, 1e-5);
 }
 
 TEST(SphericalHarmonics, LinearEnvironmentGivesTheCosineConvolution) {
@@ -138,9 +139,12 @@ TEST(Shading, DiffuseCubeUnderConstantSkyRendersUniformly) {
     const uint8_t v = b.rgb[i];
     EXPECT_EQ(b.rgb[i + 1], v);
     EXPECT_EQ(b.rgb[i + 2], v);
-    if (v == cube) ++cube_pixels;
-    else if (v == sky) ++sky_pixels;
-    else ADD_FAILURE() << "pixel " << i / 3 << " has value " << int(v);
+    if (v == cube)
+      ++cube_pixels;
+    else if (v == sky)
+      ++sky_pixels;
+    else
+      ADD_FAILURE() << "pixel " << i / 3 << " has value " << int(v);
   }
   EXPECT_GT(cube_pixels, 100);
   EXPECT_GT(sky_pixels, 100);

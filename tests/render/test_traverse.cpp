@@ -15,7 +15,9 @@ using testing::random_direction;
 using testing::uniform;
 using testing::uniform_point;
 
-void set_axis(Vec3& v, int a, real value) { (a == 0 ? v.x : (a == 1 ? v.y : v.z)) = value; }
+void set_axis(Vec3& v, int a, real value) {
+  (a == 0 ? v.x : (a == 1 ? v.y : v.z)) = value;
+}
 
 // The split planes of a tree (axis, position), to aim rays at.
 std::vector<std::pair<int, float>> split_planes(const KdTree& t) {
@@ -33,10 +35,13 @@ std::vector<Ray> awkward_rays(const PrimitiveSet& scene, const KdTree& tree, uin
   const Box& b = tree.bounds;
   auto point = [&] {
     const Vec3 u = uniform_point(rng, -0.2, 1.2);
-    return Vec3{b.lo.x + u.x * (b.hi.x - b.lo.x), b.lo.y + u.y * (b.hi.y - b.lo.y), b.lo.z + u.z * (b.hi.z - b.lo.z)};
+    return Vec3{b.lo.x + u.x * (b.hi.x - b.lo.x), b.lo.y + u.y * (b.hi.y - b.lo.y),
+                b.lo.z + u.z * (b.hi.z - b.lo.z)};
   };
   std::vector<Ray> rays;
-  auto add = [&](Vec3 o, Vec3 d, real tmin = 0, real tmax = INFINITY) { rays.push_back(make_ray(o, d, tmin, tmax)); };
+  auto add = [&](Vec3 o, Vec3 d, real tmin = 0, real tmax = INFINITY) {
+    rays.push_back(make_ray(o, d, tmin, tmax));
+  };
   const PrimitivesView v = scene.view();
   for (int k = 0; k < per_kind; ++k) {
     // General rays, some with a finite interval.
@@ -78,8 +83,9 @@ void compare_stack(const KdTree& tree, const PrimitivesView& v, const std::vecto
   for (size_t i = 0; i < rays.size(); ++i) {
     const Hit h = traverse_short_stack<K>(tree.view(), v, rays[i], &stats);
     const Hit& e = expected[i];
-    const bool same = h.prim == e.prim && (e.prim < 0 || (h.t == e.t && h.normal.x == e.normal.x &&
-                                                          h.normal.y == e.normal.y && h.normal.z == e.normal.z));
+    const bool same =
+        h.prim == e.prim && (e.prim < 0 || (h.t == e.t && h.normal.x == e.normal.x &&
+                                            h.normal.y == e.normal.y && h.normal.z == e.normal.z));
     if (!same && ++m->count <= 5) {
       const Ray& r = rays[i];
       ADD_FAILURE() << "K=" << K << " ray " << i << " o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=("

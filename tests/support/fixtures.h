@@ -40,6 +40,27 @@ inline SimulationInput lattice_block(int nx, int ny, int nz, double lambda, doub
   return in;
 }
 
+// The same block with a state-based material (E = 70 GPa, nu = 0.3), optionally plastic
+// (sigma_Y = 200 MPa, limit 0.05) and damage-weighted (Chen alpha = 1).
+inline SimulationInput state_block(int nx, int ny, int nz, double lambda, double tau, bool plastic,
+                                   double jitter = 0, uint64_t seed = 7) {
+  SimulationInput in = lattice_block(nx, ny, nz, lambda, tau, jitter, seed);
+  Material& m = in.materials.m[0];
+  m = Material();
+  m.model = kStateBased;
+  m.horizon = real(3 * lambda);
+  m.spacing = real(lambda);
+  m.bulk_modulus = real(70e9 / (3 * 0.4));
+  m.shear_modulus = real(70e9 / 2.6);
+  m.damage_alpha = 1;
+  if (plastic) {
+    m.plastic = 1;
+    m.yield_psi0 = real(yield_psi0(200e6, 3 * lambda));
+    m.plastic_limit = real(0.05);
+  }
+  return in;
+}
+
 inline double total_mass(const SimulationInput& in) {
   double m = 0;
   for (real v : in.particles.mass) m += v;

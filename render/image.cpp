@@ -1,0 +1,36 @@
+#include "image.h"
+
+#include <stdexcept>
+
+#include "../host/io/atomic_file.h"
+
+// The one stb_image_write implementation of the project, with internal linkage.
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include <stb/stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace pd {
+
+std::string encode_png(const ImageRGB8& image) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.rgb.size() != 3 * size_t(image.width) * size_t(image.height))
+    throw std::invalid_argument("encode_png: the pixel buffer does not match the image size");
+  std::string bytes;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &bytes, image.width, image.height, 3, image.rgb.data(),
+                              3 * image.width))
+    throw std::runtime_error("encode_png: the PNG encoder failed");
+  return bytes;
+}
+
+void write_png(const std::string& path, const ImageRGB8& image) {
+  write_file_atomic(path, encode_png(image));
+}
+
+}  // namespace pd

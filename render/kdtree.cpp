@@ -1,0 +1,225 @@
+#include "kdtree.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace pd {
+
+namespace {
+
+constexpr uint32_t kMaxEncoded = 1u << 30;  // 30 bits for child indices and counts
+
+// One end of a primitive's box along an axis.
+struct Edge {
+  float t;
+  uint32_t code;  // primitive << 1 | 1 for the lower (start) end, | 0 for the upper (end) end
+
+  uint32_t prim() const { return code >> 1; }
+  bool is_start() const { return code & 1u; }
+};
+
+// Position order; at equal positions end edges first, so a sweep sees boxes that end at a
+// plane before those that start there. Primitive ids break the remaining ties.
+bool edge_less(const Edge& a, const Edge& b) {
+  if (a.t != b.t) return a.t < b.t;
+  if (a.is_start() != b.is_start()) return b.is_start();
+  return a.code < b.code;
+}
+
+// The primitives of a node as three edge lists, each sorted along its axis.
+struct EdgeLists {
+  std::vector<Edge> axis[3];
+  int64_t prims() const { return int64_t(axis[0].size() / 2); }
+};
+
+real lo_of(const Box& b, int a) {
+  return axis_of(b.lo, a);
+}
+real hi_of(const Box& b, int a) {
+  return axis_of(b.hi, a);
+}
+void set_axis(Vec3& v, int a, real value) {
+  (a == 0 ? v.x : (a == 1 ? v.y : v.z)) = value;
+}
+
+// Which children a box goes to under split s: bit 0 below, bit 1 above (see kdtree.h).
+uint8_t sides_of(const Box& b, int a, float s) {
+  const real lo = lo_of(b, a), hi = hi_of(b, a);
+  return uint8_t((lo < s || hi <= s) ? 1 : 0) | uint8_t(hi > s ? 2 : 0);
+}
+
+struct Split {
+  int axis = -1;
+  float position = 0;
+  double cost = INFINITY;
+};
+
+class KdBuilder {
+ public:
+  KdBuilder(const std::vector<Box>& boxes, const KdBuildOptions& options, KdTree* tree)
+      : boxes_(boxes), options_(options), tree_(tree), sides_(boxes.size(), 0) {}
+
+  // Builds the subtree for `edges` (consumed) inside `bounds`; its root is appended to the
+  // node array, its below subtree follows and its above subtree comes after that.
+  void build(EdgeLists& edges, const Box& bounds, int depth, int bad_refines) {
+    const uint32_t index = append_node();
+    const int64_t n = edges.prims();
+    if (n <= std::max(options_.max_leaf_prims, 1) || depth >= tree_->stats.depth_limit)
+      return make_leaf(index, edges, depth);
+
+    // Choose the split; give up (leaf) as pbrt-v3 does when it does not pay off.
+    Split s;
+    if (options_.split == KdBuildOptions::Split::kSah) {
+      s = best_sah_split(edges, bounds);
+      const double leaf_cost = options_.intersect_cost * double(n);
+      if (s.cost > leaf_cost) ++bad_refines;
+      if (s.axis < 0 || (s.cost > 4 * leaf_cost && n < 16) || bad_refines == 3)
+        return make_leaf(index, edges, depth);
+    } else {
+      s = median_split(edges, bounds);
+      if (s.axis < 0) return make_leaf(index, edges, depth);
+    }
+
+    // Partition: every axis list is filtered in order, so children inherit sorted lists.
+    for (const Edge& e : edges.axis[0])
+      if (e.is_start()) sides_[e.prim()] = sides_of(boxes_[e.prim()], s.axis, s.position);
+    EdgeLists below, above;
+    for (int k = 0; k < 3; ++k) {
+      for (const Edge& e : edges.axis[k]) {
+        const uint8_t side = sides_[e.prim()];
+        if (side & 1) below.axis[k].push_back(e);
+        if (side & 2) above.axis[k].push_back(e);
+      }
+      std::vector<Edge>().swap(edges.axis[k]);
+    }
+
+    // Recurse: below child right after this node, then the above child.
+    Box below_bounds = bounds, above_bounds = bounds;
+    set_axis(below_bounds.hi, s.axis, s.position);
+    set_axis(above_bounds.lo, s.axis, s.position);
+    build(below, below_bounds, depth + 1, bad_refines);
+    tree_->nodes[index] = KdNode::interior(s.axis, s.position, uint32_t(tree_->nodes.size()));
+    build(above, above_bounds, depth + 1, bad_refines);
+  }
+
+ private:
+  uint32_t append_node() {
+    if (tree_->nodes.size() >= kMaxEncoded) throw std::length_error("kd-tree: more than 2^30 nodes");
+    tree_->nodes.push_back(KdNode::leaf(0, 0));
+    return uint32_t(tree_->nodes.size() - 1);
+  }
+
+  void make_leaf(uint32_t index, const EdgeLists& edges, int depth) {
+    const size_t first = tree_->prim_index.size();
+    for (const Edge& e : edges.axis[0])
+      if (e.is_start()) tree_->prim_index.push_back(e.prim());
+    const size_t count = tree_->prim_index.size() - first;
+    if (tree_->prim_index.size() >= kMaxEncoded)
+      throw std::length_error("kd-tree: more than 2^30 references");
+    tree_->nodes[index] = KdNode::leaf(uint32_t(first), uint32_t(count));
+    KdTreeStats& st = tree_->stats;
+    ++st.leaves;
+    if (count == 0) ++st.empty_leaves;
+    st.depth = std::max(st.depth, depth);
+  }
+
+  // pbrt-v3's SAH sweep over each axis's sorted edges. Edges at one position are taken
+  // together, so the counts match the splitting rule: below = boxes with lo < t, above =
+  // boxes with hi > t.
+  Split best_sah_split(const EdgeLists& edges, const Box& bounds) const {
+    Split best;
+    const Vec3 ext = bounds.hi - bounds.lo;
+    const double dx = ext.x, dy = ext.y, dz = ext.z;
+    const double area = 2 * (dx * dy + dy * dz + dz * dx);
+    if (!(area > 0)) return best;
+    const int64_t n = edges.prims();
+    for (int a = 0; a < 3; ++a) {
+      const double d[3] = {dx, dy, dz};
+      const double o0 = d[(a + 1) % 3], o1 = d[(a + 2) % 3];
+      const double lo = lo_of(bounds, a), hi = hi_of(bounds, a);
+      const std::vector<Edge>& e = edges.axis[a];
+      int64_t below = 0, above = n;
+      for (size_t i = 0; i < e.size();) {
+        const float t = e[i].t;
+        int64_t starts = 0, ends = 0;
+        size_t j = i;
+        for (; j < e.size() && e[j].t == t; ++j) ++(e[j].is_start() ? starts : ends);
+        above -= ends;
+        if (t > lo && t < hi) {
+          const double p_below = 2 * (o0 * o1 + (t - lo) * (o0 + o1)) / area;
+          const double p_above = 2 * (o0 * o1 + (hi - t) * (o0 + o1)) / area;
+          const double bonus = (below == 0 || above == 0) ? options_.empty_bonus : 0;
+          const double cost =
+              options_.traversal_cost +
+              options_.intersect_cost * (1 - bonus) * (p_below * double(below) + p_above * double(above));
+          if (cost < best.cost) best = {a, t, cost};
+        }
+        below += starts;
+        i = j;
+      }
+    }
+    return best;
+  }
+
+  // Baseline: the median of box centres along the node's longest axis.
+  Split median_split(const EdgeLists& edges, const Box& bounds) const {
+    const Vec3 ext = bounds.hi - bounds.lo;
+    const int a = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+    std::vector<real> centre;
+    for (const Edge& e : edges.axis[0])
+      if (e.is_start())
+        centre.push_back(real(0.5) * (lo_of(boxes_[e.prim()], a) + hi_of(boxes_[e.prim()], a)));
+    auto mid = centre.begin() + centre.size() / 2;
+    std::nth_element(centre.begin(), mid, centre.end());
+    const float s = float(*mid);
+    Split split;
+    if (s > lo_of(bounds, a) && s < hi_of(bounds, a)) split = {a, s, 0};
+    return split;
+  }
+
+  const std::vector<Box>& boxes_;
+  const KdBuildOptions& options_;
+  KdTree* tree_;
+  std::vector<uint8_t> sides_;  // per primitive, valid during one partition
+};
+
+}  // namespace
+
+KdTree build_kdtree(const std::vector<Box>& boxes, const KdBuildOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (boxes.size() >= kMaxEncoded) throw std::length_error("kd-tree: more than 2^30 primitives");
+  const int64_t n = int64_t(boxes.size());
+  KdTree tree;
+
+  // Root bounds and depth limit.
+  if (n > 0) {
+    tree.bounds = boxes[0];
+    for (const Box& b : boxes) tree.bounds = {vmin(tree.bounds.lo, b.lo), vmax(tree.bounds.hi, b.hi)};
+  }
+  const int automatic = int(std::lround(8 + 1.3 * std::log2(double(std::max<int64_t>(n, 1)))));
+  tree.stats.depth_limit = std::min(options.max_depth < 0 ? automatic : options.max_depth, kKdMaxDepth);
+
+  // Edge lists of the root, sorted once per axis.
+  EdgeLists edges;
+#pragma omp parallel for schedule(static, 1)
+  for (int a = 0; a < 3; ++a) {
+    std::vector<Edge>& e = edges.axis[a];
+    e.resize(2 * size_t(n));
+    for (int64_t i = 0; i < n; ++i) {
+      e[2 * i] = {float(lo_of(boxes[i], a)), uint32_t(i) << 1 | 1u};
+      e[2 * i + 1] = {float(hi_of(boxes[i], a)), uint32_t(i) << 1};
+    }
+    std::sort(e.begin(), e.end(), edge_less);
+  }
+
+  KdBuilder(boxes, options, &tree).build(edges, tree.bounds, 0, 0);
+  tree.stats.nodes = int64_t(tree.nodes.size());
+  tree.stats.prim_refs = int64_t(tree.prim_index.size());
+  tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return tree;
+}
+
+}  // namespace pd

@@ -1,0 +1,112 @@
+// The raytracer's solid primitives, one per particle: axis-aligned cubes and tetrahedra.
+// Storage is structure-of-arrays (PrimitivesView: plain pointers passed by value to kernels);
+// primitive i is of kind[i] and its data is entry slot[i] of that kind's arrays.
+//
+// Every intersection reports the first crossing of the primitive's surface with t in
+// (tmin, tmax] together with the outward unit normal of the crossed face: the entry face for
+// a ray starting outside, the exit face for a ray starting inside (dot(normal, d) > 0 then).
+// The hit parameter is computed independently of tmax, so the same ray gives the same t
+// bit for bit wherever it is tested (the kd-tree tests rely on that).
+#pragma once
+
+#include "geometry.h"
+
+namespace pd {
+
+enum PrimKind : uint8_t { kPrimCube = 0, kPrimTet = 1 };
+
+struct PrimitivesView {
+  int32_t n = 0;
+  const uint8_t* kind = nullptr;  // PrimKind
+  const int32_t* slot = nullptr;  // index into the arrays of that kind
+  const Vec3* cube_center = nullptr;
+  const real* cube_half = nullptr;   // half the side length
+  const Vec3* tet_vertex = nullptr;  // 4 consecutive vertices per tetrahedron
+};
+
+struct SurfaceHit {
+  real t;
+  Vec3 normal;  // outward unit normal of the face crossed
+};
+
+// Picks the entry crossing t0 when it lies in (tmin, tmax], else the exit crossing t1 when the
+// ray starts inside; the caller has checked t0 <= t1.
+PD_HD inline bool first_crossing(const Ray& r, real t0, real t1, bool* exiting, real* t) {
+  if (t0 > r.tmin) {
+    *exiting = false;
+    *t = t0;
+    return t0 <= r.tmax;
+  }
+  *exiting = true;
+  *t = t1;
+  return t1 > r.tmin && t1 <= r.tmax;
+}
+
+// Cube of centre c and half side h: slab test. The box is c - h .. c + h per axis, the same
+// expressions primitive_bounds uses, so faces coincide exactly with kd-tree split planes.
+PD_HD inline bool intersect_cube(const Ray& r, Vec3 c, real h, SurfaceHit* hit) {
+  real t0, t1;
+  int entry_axis, exit_axis;
+  const Vec3 lo{c.x - h, c.y - h, c.z - h}, hi{c.x + h, c.y + h, c.z + h};
+  if (!line_box_interval(r, lo, hi, &t0, &t1, &entry_axis, &exit_axis)) return false;
+  bool exiting;
+  if (!first_crossing(r, t0, t1, &exiting, &hit->t)) return false;
+  // Outward normal: against d on the entry face, along d on the exit face.
+  const int axis = exiting ? exit_axis : entry_axis;
+  const real s = (axis_of(r.d, axis) > 0) == exiting ? real(1) : real(-1);
+  hit->normal = {axis == 0 ? s : real(0), axis == 1 ? s : real(0), axis == 2 ? s : real(0)};
+  return true;
+}
+
+// Tetrahedron v[0..3] (either orientation): clips the ray against the four face planes.
+// Faces are oriented outward; a ray parallel to a face plane must lie strictly inside it.
+PD_HD inline bool intersect_tet(const Ray& r, const Vec3* v, SurfaceHit* hit) {
+  real t0 = -INFINITY, t1 = INFINITY;
+  Vec3 n0{0, 0, 0}, n1{0, 0, 0};
+  for (int f = 0; f < 4; ++f) {
+    // Face f is opposite vertex f.
+    const Vec3 a = v[(f + 1) & 3], b = v[(f + 2) & 3], c = v[(f + 3) & 3];
+    Vec3 n = cross(b - a, c - a);
+    if (dot(n, v[f] - a) > 0) n = -n;
+    const real denom = dot(n, r.d);
+    const real dist = dot(n, a) - dot(n, r.o);  // > 0 when the origin is inside this face
+    if (denom == 0) {
+      if (dist <= 0) return false;
+      continue;
+    }
+    const real t = dist / denom;
+    if (denom < 0) {
+      if (t > t0) {
+        t0 = t;
+        n0 = n;
+      }
+    } else if (t < t1) {
+      t1 = t;
+      n1 = n;
+    }
+  }
+  if (!(t0 <= t1)) return false;
+  bool exiting;
+  if (!first_crossing(r, t0, t1, &exiting, &hit->t)) return false;
+  hit->normal = normalize(exiting ? n1 : n0);
+  return true;
+}
+
+PD_HD inline bool intersect_primitive(const PrimitivesView& p, int32_t i, const Ray& r, SurfaceHit* hit) {
+  const int32_t s = p.slot[i];
+  if (p.kind[i] == kPrimCube) return intersect_cube(r, p.cube_center[s], p.cube_half[s], hit);
+  return intersect_tet(r, p.tet_vertex + 4 * int64_t(s), hit);
+}
+
+PD_HD inline Box primitive_bounds(const PrimitivesView& p, int32_t i) {
+  const int32_t s = p.slot[i];
+  if (p.kind[i] == kPrimCube) {
+    const Vec3 c = p.cube_center[s];
+    const real h = p.cube_half[s];
+    return {{c.x - h, c.y - h, c.z - h}, {c.x + h, c.y + h, c.z + h}};
+  }
+  const Vec3* v = p.tet_vertex + 4 * int64_t(s);
+  return {vmin(vmin(v[0], v[1]), vmin(v[2], v[3])), vmax(vmax(v[0], v[1]), vmax(v[2], v[3]))};
+}
+
+}  // namespace pd

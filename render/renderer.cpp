@@ -1,0 +1,43 @@
+// Backend choice and the host-side preparation shared by both renderers.
+#include "renderer.h"
+
+#include <stdexcept>
+#include <utility>
+
+namespace pd {
+
+RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo, const KdBuildOptions& options) {
+  if (albedo.size() != prims.kind.size())
+    throw std::invalid_argument("render scene: " + std::to_string(albedo.size()) + " albedos for " +
+                                std::to_string(prims.size()) + " primitives");
+  RenderScene scene;
+  scene.tree = build_kdtree(prims.bounds(), options);
+  scene.prims = std::move(prims);
+  scene.albedo = std::move(albedo);
+  return scene;
+}
+
+ShadingParams make_shading_params(const RenderSettings& s) {
+  ShadingParams p;
+  p.sky = s.sky;
+  p.sun = normalize(s.sky.sun_direction);
+  p.sky_sh = sky_sh9(s.sky);
+  p.specular = s.specular;
+  p.shininess = s.shininess;
+  p.floor = s.floor ? 1 : 0;
+  p.floor_y = s.floor_y;
+  p.plank_width = s.plank_width;
+  p.fade_distance = s.fade_distance;
+  return p;
+}
+
+std::unique_ptr<Renderer> make_renderer(bool gpu) {
+  if (!gpu) return make_cpu_renderer();
+#if defined(PERIFRAC_HAS_CUDA)
+  return make_cuda_renderer();
+#else
+  throw std::runtime_error("CUDA renderer unavailable: this build has no CUDA support");
+#endif
+}
+
+}  // namespace pd

@@ -1,0 +1,66 @@
+// The raytracer seen from the host: one interface, a CPU (OpenMP) and a CUDA backend running the
+// same per-pixel kernel (renderer_impl.h). A scene is a set of primitives with one albedo each
+// and a kd-tree built over them on the host; render_frame uploads it, traces one primary ray per
+// sample and returns the 8-bit sRGB image.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "image.h"
+#include "kdtree.h"
+#include "primitive_set.h"
+#include "shading.h"
+
+namespace pd {
+
+struct RenderScene {
+  PrimitiveSet prims;
+  std::vector<Vec3> albedo;  // linear RGB, one per primitive
+  KdTree tree;
+};
+
+// Builds the kd-tree; throws std::invalid_argument unless there is one albedo per primitive.
+RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo,
+                              const KdBuildOptions& options = {});
+
+struct RenderSettings {
+  int width = 1280, height = 720;
+  int spp = 1;  // samples (primary rays) per pixel, fixed stratified pattern (camera.h)
+  Sky sky;
+  real specular = real(0.04), shininess = 60;  // Blinn-Phong
+  bool floor = true;
+  real floor_y = 0;
+  real plank_width = real(0.1);    // wood texture scale [m]
+  real fade_distance = real(100);  // floor fade into the horizon [m]
+  real exposure = real(0.85);      // linear scale before the sRGB encoding
+};
+
+// The kernel's shading parameters for `s` (projects the sky to SH).
+ShadingParams make_shading_params(const RenderSettings& s);
+
+struct RenderResult {
+  ImageRGB8 image;
+  double seconds = 0;  // kernel time (upload and download excluded)
+  int64_t rays = 0;    // primary rays traced
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  virtual std::string device_name() const = 0;
+  // Throws std::invalid_argument for bad settings (image size, spp, camera).
+  virtual RenderResult render_frame(const RenderScene& scene, const Camera& camera,
+                                    const RenderSettings& settings) = 0;
+};
+
+// gpu = false: the CPU renderer. gpu = true: the CUDA renderer; throws std::runtime_error when
+// CUDA is not compiled in or no device is usable.
+std::unique_ptr<Renderer> make_renderer(bool gpu);
+// The backends behind make_renderer; make_cuda_renderer exists in CUDA builds only.
+std::unique_ptr<Renderer> make_cpu_renderer();
+std::unique_ptr<Renderer> make_cuda_renderer();
+
+}  // namespace pd

@@ -1,0 +1,144 @@
+// The renderer for one backend: uploads a scene, runs the per-pixel kernel through the
+// backend's parallel_for and downloads the image. Included by render/renderer_cpu.cpp
+// (CpuExec) and render/renderer_cuda.cu (CudaExec); the kernel body is one PD_HD source.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "../cuda/device_array.h"
+#include "../cuda/kernel_stats.h"
+#include "renderer.h"
+#include "traverse.h"
+
+namespace pd {
+
+constexpr int kRenderStackSize = 4;  // short-stack entries per ray
+// Pixels are handed out in tiles of one warp (8 x 4), so neighbouring threads trace
+// neighbouring rays. Tile order is a fixed permutation of the image, so that the equal
+// contiguous thread ranges of a static CPU schedule each get a spread of easy and hard tiles.
+constexpr int kTileWidth = 8, kTileHeight = 4, kTilePixels = kTileWidth * kTileHeight;
+
+struct PixelKernelParams {
+  KdTreeView tree;
+  PrimitivesView prims;
+  const Vec3* albedo = nullptr;
+  CameraFrame camera;
+  int32_t spp = 1;
+  real exposure = 1;
+  ShadingParams shading;
+  int32_t tiles_x = 0;
+  int64_t tiles = 0;
+  int64_t tile_step = 1;  // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
+};
+
+// Radiance arriving along a primary ray: the nearest primitive or the floor, else the sky.
+PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, const Ray& ray) {
+  const Hit hit = traverse_short_stack<kRenderStackSize>(p.tree, p.prims, ray);
+  const ShadingParams& s = p.shading;
+  if (s.floor && ray.d.y != 0) {
+    const real t = (s.floor_y - ray.o.y) / ray.d.y;
+    if (t > ray.tmin && (hit.prim < 0 || t < hit.t)) return shade_floor(s, ray.o + t * ray.d, ray.d, t);
+  }
+  if (hit.prim < 0) return sky_radiance(s.sky, s.sun, ray.d);
+  // Shade the side facing the eye (an eye inside a primitive sees the exit face).
+  const Vec3 n = dot(hit.normal, ray.d) > 0 ? -hit.normal : hit.normal;
+  return shade_opaque(s, n, -ray.d, p.albedo[hit.prim]);
+}
+
+// Thread i: averages the pixel's samples and stores it as sRGB.
+PD_HD inline void render_pixel(const PixelKernelParams& p, int64_t i, uint8_t* rgb) {
+  const int64_t tile = (i / kTilePixels) * p.tile_step % p.tiles;
+  const int32_t lane = int32_t(i % kTilePixels);
+  const int32_t x = int32_t(tile % p.tiles_x) * kTileWidth + lane % kTileWidth;
+  const int32_t y = int32_t(tile / p.tiles_x) * kTileHeight + lane / kTileWidth;
+  if (x >= p.camera.width || y >= p.camera.height) return;
+  Vec3 sum{0, 0, 0};
+  for (int k = 0; k < p.spp; ++k) {
+    real u, v;
+    pixel_sample(k, p.spp, &u, &v);
+    sum += trace_primary(p, camera_ray(p.camera, real(x) + u, real(y) + v));
+  }
+  const real scale = p.exposure / real(p.spp);
+  uint8_t* out = rgb + 3 * (int64_t(y) * p.camera.width + x);
+  out[0] = linear_to_srgb8(scale * sum.x);
+  out[1] = linear_to_srgb8(scale * sum.y);
+  out[2] = linear_to_srgb8(scale * sum.z);
+}
+
+template <class Exec>
+void launch_render_pixels(Exec& ex, const PixelKernelParams& p, uint8_t* rgb) {
+  ex.parallel_for("render/pixels", p.tiles * kTilePixels, [=] PD_HD(int64_t i) { render_pixel(p, i, rgb); });
+}
+
+template <class Exec>
+class RendererImpl final : public Renderer {
+ public:
+  explicit RendererImpl(std::string device) : exec_(&stats_), device_(std::move(device)) {}
+
+  std::string device_name() const override { return device_; }
+
+  RenderResult render_frame(const RenderScene& scene, const Camera& camera,
+                            const RenderSettings& s) override {
+    if (s.spp < 1) throw std::invalid_argument("render: samples per pixel must be at least 1");
+    const PrimitiveSet& ps = scene.prims;
+    if (scene.albedo.size() != ps.kind.size())
+      throw std::invalid_argument("render: the scene needs one albedo per primitive");
+
+    // Upload the scene.
+    auto kind = upload(ps.kind);
+    auto slot = upload(ps.slot);
+    auto cube_center = upload(ps.cube_center);
+    auto cube_half = upload(ps.cube_half);
+    auto tet_vertex = upload(ps.tet_vertex);
+    auto albedo = upload(scene.albedo);
+    auto nodes = upload(scene.tree.nodes);
+    auto prim_index = upload(scene.tree.prim_index);
+
+    // Kernel parameters.
+    PixelKernelParams p;
+    p.camera = camera_frame(camera, s.width, s.height);
+    p.prims = {ps.size(), kind.data(), slot.data(), cube_center.data(), cube_half.data(), tet_vertex.data()};
+    p.tree = {nodes.data(), prim_index.data(), scene.tree.bounds};
+    p.albedo = albedo.data();
+    p.spp = s.spp;
+    p.exposure = s.exposure;
+    p.shading = make_shading_params(s);
+    p.tiles_x = (s.width + kTileWidth - 1) / kTileWidth;
+    p.tiles = int64_t(p.tiles_x) * ((s.height + kTileHeight - 1) / kTileHeight);
+    p.tile_step = std::max<int64_t>(1, std::llround(0.618 * double(p.tiles)));
+    while (std::gcd(p.tile_step, p.tiles) != 1) ++p.tile_step;
+
+    // Render and read back.
+    DeviceArray<uint8_t, Exec> image(&exec_, 3 * size_t(s.width) * size_t(s.height));
+    const auto t0 = std::chrono::steady_clock::now();
+    launch_render_pixels(exec_, p, image.data());
+    exec_.flush_stats();  // waits for the device and reports kernel errors
+    RenderResult r;
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.rays = int64_t(s.width) * s.height * s.spp;
+    r.image.width = s.width;
+    r.image.height = s.height;
+    image.download(r.image.rgb);
+    return r;
+  }
+
+ private:
+  template <class T>
+  DeviceArray<T, Exec> upload(const std::vector<T>& host) {
+    DeviceArray<T, Exec> a(&exec_, host.size());
+    if (!host.empty()) a.upload(host);  // an empty vector may have no data pointer
+    return a;
+  }
+
+  KernelStats stats_;
+  Exec exec_;
+  std::string device_;
+};
+
+}  // namespace pd
