@@ -56,13 +56,18 @@ void launch_collisions(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, 
 
 // Kernel 4, one instantiation per feature set so a scene pays only for what it uses.
 // kAccumulate adds to the force `collisions` wrote.
+template <bool kAccumulate, bool kStateBased, bool kPlastic>
+PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b, const MaterialTable& mt) {
+  if constexpr (kStateBased)
+    state_forces<kAccumulate, kPlastic>(i, p, b, mt);
+  else
+    spring_forces<kAccumulate>(i, p, b, mt);
+}
+
 template <bool kAccumulate, bool kStateBased, bool kPlastic, class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   ex.parallel_for("pd/springforces", p.n, [=] PD_HD(int64_t i) {
-    if constexpr (kStateBased)
-      state_forces<kAccumulate, kPlastic>(int32_t(i), p, b, mt);
-    else
-      spring_forces<kAccumulate>(int32_t(i), p, b, mt);
+    springforces_body<kAccumulate, kStateBased, kPlastic>(int32_t(i), p, b, mt);
   });
 }
 
