@@ -7,7 +7,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$PATH:/usr/local/cuda/bin"
-OUT=${OUT:-out/gpu-check}
+OUT=${OUT:-out}/gpu-check
 mkdir -p "$OUT"
 bin=build/cuda/perifrac
 scene=scenes/glass_plate_projectile.toml
@@ -29,6 +29,10 @@ step cpu-tests build/cuda/tests/perifrac_tests
 step equiv-cpu "$bin" run "$scene" --backend cpu --scale 0.05 --frames 3 --out "$OUT/equiv-cpu"
 step equiv-gpu "$bin" run "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu"
 step equiv-compare "$bin" compare "$OUT/equiv-cpu" "$OUT/equiv-gpu"
+walls=scenes/chen_four_walls.toml
+step equiv-walls-cpu "$bin" run "$walls" --backend cpu --scale 0.02 --frames 4 --out "$OUT/equiv-walls-cpu"
+step equiv-walls-gpu "$bin" run "$walls" --backend cuda --scale 0.02 --frames 4 --out "$OUT/equiv-walls-gpu"
+step equiv-walls-compare "$bin" compare "$OUT/equiv-walls-cpu" "$OUT/equiv-walls-gpu"
 # compute-sanitizer on a small scene of each material model, and on the renderer.
 for tool in memcheck racecheck; do
   step "sanitizer-$tool" compute-sanitizer --tool "$tool" --error-exitcode 9 \

@@ -86,32 +86,46 @@ TEST(GpuEquivalence, GlassPlateSmallScale) {
   EXPECT_GT(jaccard, 0.98);
 }
 
-// State-based plastic block with random velocities: the same kernel bodies on both backends.
-TEST(GpuEquivalence, StateBasedPlasticBlock) {
+// State-based plastic bar pulled apart by grips at 5 m/s each: plastic flow, then fracture
+// near the grips. (A block whose every particle flies off at random is chaotic: a one-ulp
+// change of one velocity on the CPU alone moves it by 30% within 400 steps, so it cannot
+// compare backends. This bar stays within 3e-7 of itself under the same perturbation.)
+TEST(GpuEquivalence, StateBasedPlasticBarPulledApart) {
   REQUIRE_GPU();
-  auto in = testing::state_block(20, 16, 12, 1e-3, 2e-4, true, 0.2);
-  Random rng(12);
-  for (auto& v : in.particles.velocity) v = {real(rng.normal()), real(rng.normal()), real(rng.normal())};
-  in.contact = true;
-  in.step.contact_stiffness = real(1e8);
+  auto in = testing::state_block(24, 8, 8, 1e-3, 5e-3, true);
+  for (size_t i = 0; i < in.particles.size(); ++i) {
+    const real x = in.particles.rest[i].x;
+    if (x < real(2.5e-3) || x > real(20.5e-3)) {
+      in.particles.flags[i] |= kAnchored;
+      in.particles.velocity[i] = {real(x < real(2.5e-3) ? -5 : 5), 0, 0};
+    }
+  }
   auto cpu = make_cpu_engine(in);
-  auto gpu = make_cuda_engine(in);
-  cpu->advance(400);
-  gpu->advance(400);
-  ParticleState a, b;
+  ParticleState a, b, c;
+  cpu->advance(800);
   cpu->read_state(a);
-  gpu->read_state(b);
-  const double rel = relative_l2(b.disp, a.disp);
-  const auto ba = broken_set(*cpu), bb = broken_set(*gpu);
-  size_t common = 0;
-  for (const auto& p : ba) common += bb.count(p);
-  const double jaccard = double(common) / double(ba.size() + bb.size() - common);
-  std::printf("[ equivalence ] state-based plastic, %zu particles, 400 steps: displacement rel L2 %.3e, broken bonds "
-              "cpu %zu gpu %zu, Jaccard %.5f\n",
-              in.particles.size(), rel, ba.size(), bb.size(), jaccard);
-  ASSERT_GT(ba.size(), 100u);
-  EXPECT_LT(rel, 1e-3);
-  EXPECT_GT(jaccard, 0.98);
+  for (ParticleState* s : {&b, &c}) {
+    auto gpu = make_cuda_engine(in);
+    gpu->advance(800);
+    gpu->read_state(*s);
+    if (s == &b) {
+      const auto ba = broken_set(*cpu), bb = broken_set(*gpu);
+      size_t common = 0;
+      for (const auto& p : ba) common += bb.count(p);
+      const double jaccard = double(common) / double(ba.size() + bb.size() - common);
+      std::printf("[ equivalence ] state-based plastic bar, %zu particles, 800 steps: displacement rel L2 %.3e, "
+                  "broken bonds cpu %zu gpu %zu, Jaccard %.5f\n",
+                  in.particles.size(), relative_l2(b.disp, a.disp), ba.size(), bb.size(), jaccard);
+      ASSERT_GT(ba.size(), 1000u) << "the bar should have started to break";
+      EXPECT_GT(jaccard, 0.98);
+    }
+  }
+  EXPECT_LT(relative_l2(b.disp, a.disp), 1e-3);
+  // Two GPU runs of the plastic model are bit-identical.
+  for (size_t i = 0; i < b.disp.size(); ++i) {
+    ASSERT_EQ(b.disp[i].x, c.disp[i].x) << i;
+    ASSERT_EQ(b.disp[i].y, c.disp[i].y) << i;
+  }
 }
 
 TEST(GpuConservation, MomentumAndDeterminism) {
