@@ -63,7 +63,10 @@ class EngineImpl final : public Engine {
   }
 
   void read_state(ParticleState& out) override {
-    disp_.download(out.disp);
+    std::vector<Vec4> disp;
+    disp_.download(disp);
+    out.disp.resize(disp.size());
+    for (size_t i = 0; i < disp.size(); ++i) out.disp[i] = xyz(disp[i]);
     vel_.download(out.vel);
     force_.download(out.force);
     intact_.download(out.intact);
@@ -108,18 +111,14 @@ class EngineImpl final : public Engine {
     p.disp = disp_.data();
     p.vel = vel_.data();
     p.force = force_.data();
-    p.volume = volume_.data();
     p.inv_mass = inv_mass_.data();
     p.material = material_.data();
     p.body = body_.data();
     p.flags = flags_.data();
     p.strain_limit0 = strain_limit0_.data();
-    p.strain_limit = strain_limit_.data();
     p.strain_min = strain_min_.data();
     p.intact = intact_.data();
-    p.weighted_volume = weighted_volume_.data();
-    p.dilatation = dilatation_.data();
-    p.damage = damage_.data();
+    p.state = state_.data();
     return p;
   }
 
@@ -146,13 +145,16 @@ class EngineImpl final : public Engine {
   }
 
   void upload_particles(const ParticleSet& ps) {
-    rest_ = make_from(ps.rest);
-    disp_ = make<Vec3>(n_);
-    disp_.zero();
+    std::vector<Vec4> rest(n_), disp(n_);
+    for (int32_t i = 0; i < n_; ++i) {
+      rest[i] = with_w(ps.rest[i], ps.volume[i]);
+      disp[i] = {0, 0, 0, ps.strain_limit0[i]};
+    }
+    rest_ = make_from(rest);
+    disp_ = make_from(disp);
     vel_ = make_from(ps.velocity);
     force_ = make<Vec3>(n_);
     force_.zero();
-    volume_ = make_from(ps.volume);
     std::vector<real> inv_mass(ps.mass.size());
     for (size_t i = 0; i < inv_mass.size(); ++i) inv_mass[i] = real(1) / ps.mass[i];
     inv_mass_ = make_from(inv_mass);
@@ -160,7 +162,6 @@ class EngineImpl final : public Engine {
     body_ = make_from(ps.body);
     flags_ = make_from(ps.flags);
     strain_limit0_ = make_from(ps.strain_limit0);
-    strain_limit_ = make_from(ps.strain_limit0);
     strain_min_ = make<real>(n_);
     strain_min_.zero();
     intact_ = make<int32_t>(n_);
@@ -227,16 +228,13 @@ class EngineImpl final : public Engine {
     intact_.upload(counts);
   }
 
-  // State-based arrays: weighted volumes (once), dilatation and damage (per step), and for
-  // plasticity the per-bond plastic extension and reverse bond positions.
+  // State-based arrays: the (theta, m, phi) records, m computed once, and for plasticity
+  // the per-bond plastic extension and reverse bond positions.
   void allocate_state() {
     if (family_.max > 65535) throw std::runtime_error("a family has more than 65535 bonds");
-    weighted_volume_ = make<real>(n_);
-    dilatation_ = make<real>(n_);
-    dilatation_.zero();
-    damage_ = make<real>(n_);
-    damage_.zero();
-    launch_weighted_volume(exec_, particles(), bonds(), materials_, weighted_volume_.data());
+    state_ = make<Vec4>(n_);
+    state_.zero();
+    launch_weighted_volume(exec_, particles(), bonds(), materials_);
     if (!plastic_) return;
     plastic_ext_ = make<real>(neighbor_.size());
     plastic_ext_.zero();
@@ -245,11 +243,11 @@ class EngineImpl final : public Engine {
     launch_reverse_bonds(exec_, bonds(), reverse_.data());
   }
 
-  // Collision cells of side max(lambda)/2, the largest contact distance.
+  // Collision cells of side max(lambda), twice the largest contact distance.
   void allocate_contact_hash() {
     real spacing = 0;
     for (int m = 0; m < materials_.count; ++m) spacing = std::max(spacing, materials_.m[m].spacing);
-    allocate_hash(real(0.5) * spacing);
+    allocate_hash(spacing);
   }
 
   // Kernels 1-5: the forces at the current positions.
@@ -284,15 +282,16 @@ class EngineImpl final : public Engine {
   size_t allocated_ = 0;
   FamilyStats family_;
 
-  DeviceArray<Vec3, Exec> rest_, disp_, vel_, force_;
-  DeviceArray<real, Exec> volume_, inv_mass_, strain_limit0_, strain_limit_, strain_min_;
+  DeviceArray<Vec4, Exec> rest_, disp_, state_;
+  DeviceArray<Vec3, Exec> vel_, force_;
+  DeviceArray<real, Exec> inv_mass_, strain_limit0_, strain_min_;
   DeviceArray<uint16_t, Exec> material_;
   DeviceArray<int32_t, Exec> body_, intact_;
   DeviceArray<uint8_t, Exec> flags_;
 
   DeviceArray<int64_t, Exec> slice_offset_;
   DeviceArray<int32_t, Exec> count_, neighbor_;
-  DeviceArray<real, Exec> weighted_volume_, dilatation_, damage_, plastic_ext_;
+  DeviceArray<real, Exec> plastic_ext_;
   DeviceArray<uint16_t, Exec> reverse_;
 
   uint32_t bins_ = 0;

@@ -40,7 +40,7 @@ void launch_reset_bins(Exec& ex, const char* name, HashView h) {
 template <bool kCurrent, class Exec>
 void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView unsorted, HashView sorted) {
   ex.parallel_for(name, p.n, [=] PD_HD(int64_t i) {
-    const Vec3 x = kCurrent ? p.rest[i] + p.disp[i] : p.rest[i];
+    const Vec3 x = kCurrent ? p.position(int32_t(i)) : xyz(p.rest[i]);
     hash_particle(int32_t(i), x, unsorted);
   });
   ex.sort_by_key("pd/collection_sort", unsorted.key, unsorted.sorted, sorted.key, sorted.sorted, p.n, sorted.bins);
@@ -122,9 +122,8 @@ void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt,
 
 // State-based set-up: weighted volumes, and the reverse bond positions for plasticity.
 template <class Exec>
-void launch_weighted_volume(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, real* mw) {
-  ex.parallel_for("family/weighted_volume", p.n,
-                  [=] PD_HD(int64_t i) { weighted_volume(int32_t(i), p, b, mt, mw); });
+void launch_weighted_volume(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+  ex.parallel_for("family/weighted_volume", p.n, [=] PD_HD(int64_t i) { weighted_volume(int32_t(i), p, b, mt); });
 }
 
 template <class Exec>
@@ -142,7 +141,7 @@ int64_t reduce_broken_bonds(Exec& ex, BondsView b, const int32_t* intact) {
 template <class Exec>
 int64_t reduce_non_finite(Exec& ex, ParticlesView p) {
   return ex.template reduce_sum<int64_t>("stats/finite", p.n, [=] PD_HD(int64_t i) {
-    return int64_t(!(is_finite(p.disp[i]) && is_finite(p.vel[i]) && is_finite(p.force[i])));
+    return int64_t(!(is_finite(xyz(p.disp[i])) && is_finite(p.vel[i]) && is_finite(p.force[i])));
   });
 }
 

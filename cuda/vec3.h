@@ -33,4 +33,13 @@ PD_HD inline real length_squared(Vec3 a) { return dot(a, a); }
 PD_HD inline real length(Vec3 a) { return std::sqrt(dot(a, a)); }
 PD_HD inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 
+// Four values stored together so a gather is one vector load (16 bytes in float, 32 in
+// double): a Vec3 plus one scalar that is read at the same time.
+struct alignas(4 * sizeof(real)) Vec4 {
+  real x, y, z, w;
+};
+
+PD_HD inline Vec3 xyz(Vec4 a) { return {a.x, a.y, a.z}; }
+PD_HD inline Vec4 with_w(Vec3 a, real w) { return {a.x, a.y, a.z, w}; }
+
 }  // namespace pd

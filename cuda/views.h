@@ -12,27 +12,31 @@ enum ParticleFlag : uint8_t {
   kAnchored = 1u << 0,  // prescribed motion: moves with its initial velocity whatever the forces
 };
 
-// Particle state, structure of arrays. Current position = rest + disp; bond vectors are
-// formed from displacements (xi + (u_j - u_i)) to keep float32 round-off out of small strains.
+// Particle state, structure of arrays. What a bond reads of its partner is packed into
+// 16-byte records, one vector load each: (X, V) and (u, tau'), plus (theta, m, phi) for
+// state-based materials. Current position = X + u; bond vectors are formed from
+// displacements (xi + (u_j - u_i)) to keep float32 round-off out of small strains.
 struct ParticlesView {
   int32_t n = 0;
-  const Vec3* rest = nullptr;       // reference position X
-  Vec3* disp = nullptr;             // displacement u
-  Vec3* vel = nullptr;              // velocity v
-  Vec3* force = nullptr;            // total force on the particle [N]
-  const real* volume = nullptr;     // V [m^3]
-  const real* inv_mass = nullptr;   // 1/m [1/kg]
+  const Vec4* rest = nullptr;          // xyz: reference position X [m]; w: volume V [m^3]
+  Vec4* disp = nullptr;                // xyz: displacement u [m]; w: effective strain limit tau' (eq. 5), set by `init`
+  Vec3* vel = nullptr;                 // velocity v
+  Vec3* force = nullptr;               // total force on the particle [N]
+  const real* inv_mass = nullptr;      // 1/m [1/kg]
   const uint16_t* material = nullptr;  // index into MaterialTable
   const int32_t* body = nullptr;       // bodies do not bond to each other
   const uint8_t* flags = nullptr;      // ParticleFlag bits
   const real* strain_limit0 = nullptr; // scattered base strain limit tau_i
-  real* strain_limit = nullptr;        // effective limit tau'_i (eq. 5), set by `init`
   real* strain_min = nullptr;          // minimum bond strain of the last force pass
   int32_t* intact = nullptr;           // unbroken bonds, written by `springforces`
-  // State-based materials only (null otherwise):
-  const real* weighted_volume = nullptr;  // m_i = sum_j omega |xi|^2 beta V_j over the initial family
-  real* dilatation = nullptr;             // theta_i, set by `init`
-  real* damage = nullptr;                 // phi_i = 1 - intact/initial bonds of the last step, set by `init`
+  // State-based materials only (null otherwise): x theta_i (dilatation, set by `init`),
+  // y m_i = sum_j omega |xi|^2 beta V_j over the initial family, z phi_i = 1 - intact/initial
+  // bonds of the last step (damage, set by `init`).
+  Vec4* state = nullptr;
+
+  PD_HD Vec3 position(int32_t i) const { return xyz(rest[i]) + xyz(disp[i]); }
+  PD_HD real volume(int32_t i) const { return rest[i].w; }
+  PD_HD real strain_limit(int32_t i) const { return disp[i].w; }
 };
 
 // Bond families in sliced-ELL layout: particles are grouped in slices of kSliceWidth;

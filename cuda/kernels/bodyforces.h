@@ -34,7 +34,7 @@ PD_HD inline Vec3 projectile_force(Vec3 x, const Projectile& pr, real time) {
 }
 
 PD_HD inline void body_forces(int32_t i, ParticlesView p, const StepParams& sp) {
-  const Vec3 x = p.rest[i] + p.disp[i];
+  const Vec3 x = p.position(i);
   const real mass = real(1) / p.inv_mass[i];
   Vec3 f = p.force[i] + mass * sp.gravity;
   for (int32_t k = 0; k < sp.n_projectiles; ++k) f += projectile_force(x, sp.projectile[k], sp.time);

@@ -17,10 +17,10 @@ constexpr double kHorizonSlack = 1e-6;
 template <class Visit>
 PD_HD inline void for_each_family_member(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt,
                                          Visit visit) {
-  const Vec3 xi = p.rest[i];
+  const Vec3 xi = xyz(p.rest[i]);
   const double delta = double(mt.m[p.material[i]].family_radius()) * (1.0 + kHorizonSlack);
   const int32_t body = p.body[i];
-  auto pos = [&](int32_t j) { return p.rest[j]; };
+  auto pos = [&](int32_t j) { return xyz(p.rest[j]); };
   for_each_nearby(xi, h, pos, [&](int32_t j) {
     if (j == i || p.body[j] != body) return;
     const double dx = double(p.rest[j].x) - xi.x, dy = double(p.rest[j].y) - xi.y,

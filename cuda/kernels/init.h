@@ -16,11 +16,13 @@ PD_HD inline real effective_strain_limit(real tau0, real alpha, real strain_min)
 template <bool kStateBased>
 PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
-  p.strain_limit[i] = effective_strain_limit(p.strain_limit0[i], m.compression_alpha, p.strain_min[i]);
+  p.disp[i].w = effective_strain_limit(p.strain_limit0[i], m.compression_alpha, p.strain_min[i]);
   if constexpr (kStateBased) {
     const int32_t count = b.count[i];
-    p.damage[i] = count > 0 ? real(1) - real(p.intact[i]) / real(count) : real(0);
-    p.dilatation[i] = dilatation(i, p, b, m);
+    Vec4 s = p.state[i];
+    s.x = dilatation(i, p, b, m);
+    s.z = count > 0 ? real(1) - real(p.intact[i]) / real(count) : real(0);
+    p.state[i] = s;
   }
 }
 

@@ -9,13 +9,16 @@
 namespace pd {
 
 PD_HD inline void position_update(int32_t i, ParticlesView p, real dt) {
-  if (p.flags[i] & kAnchored) {
-    p.disp[i] += dt * p.vel[i];
-    return;
+  Vec4 u = p.disp[i];
+  Vec3 v = p.vel[i];
+  if (!(p.flags[i] & kAnchored)) {
+    v += (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
+    p.vel[i] = v;
   }
-  const Vec3 v = p.vel[i] + (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
-  p.vel[i] = v;
-  p.disp[i] += dt * v;
+  u.x += dt * v.x;
+  u.y += dt * v.y;
+  u.z += dt * v.z;
+  p.disp[i] = u;
 }
 
 PD_HD inline void velocity_update(int32_t i, ParticlesView p, real dt) {

@@ -11,9 +11,9 @@ namespace pd {
 template <bool kAccumulate>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
-  const Vec3 rest_i = p.rest[i];
-  const Vec3 disp_i = p.disp[i];
-  const real tau_i = p.strain_limit[i];
+  const Vec4 rest_i = p.rest[i];
+  const Vec4 disp_i = p.disp[i];
+  const real tau_i = disp_i.w;
   const int32_t count = b.count[i];
   Vec3 f{0, 0, 0};
   real smin = real(0);
@@ -22,22 +22,24 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
     const int64_t slot = b.slot(i, k);
     const int32_t j = b.neighbor[slot];
     if (!bond_intact(j)) continue;
-    const Vec3 xi = p.rest[j] - rest_i;
-    const Vec3 eta = p.disp[j] - disp_i;
+    const Vec4 rest_j = p.rest[j];
+    const Vec4 disp_j = p.disp[j];
+    const Vec3 xi = xyz(rest_j) - xyz(rest_i);
+    const Vec3 eta = xyz(disp_j) - xyz(disp_i);
     const Vec3 y = xi + eta;
     const real r0 = length(xi);
     const real r = length(y);
     const real s = bond_elongation(xi, eta, r0, r) / r0;
-    const real tau_j = p.strain_limit[j];
+    const real tau_j = disp_j.w;
     if (s > (tau_i > tau_j ? tau_i : tau_j)) {
       b.neighbor[slot] = ~j;
       continue;
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
-    if (r > real(0)) f += (m.micromodulus * s * p.volume[j] * volume_fraction(r0, m) / r) * y;
+    if (r > real(0)) f += (m.micromodulus * s * rest_j.w * volume_fraction(r0, m) / r) * y;
   }
-  f = p.volume[i] * f;
+  f = rest_i.w * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;
   p.strain_min[i] = smin;
   p.intact[i] = intact;

@@ -13,8 +13,9 @@ namespace pd {
 template <bool kAccumulate, bool kPlastic>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
-  const real theta_i = p.dilatation[i], mw_i = p.weighted_volume[i], phi_i = p.damage[i];
-  const real tau_i = p.strain_limit[i];
+  const Vec4 rest_i = p.rest[i], disp_i = p.disp[i], state_i = p.state[i];
+  const real theta_i = state_i.x, mw_i = state_i.y, phi_i = state_i.z;
+  const real tau_i = disp_i.w;
   const int32_t count = b.count[i];
   Vec3 f{0, 0, 0};
   real smin = real(0);
@@ -23,13 +24,14 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const int64_t slot = b.slot(i, k);
     const int32_t j = b.neighbor[slot];
     if (!bond_intact(j)) continue;
-    const BondGeometry g = bond_geometry(p, i, j);
+    const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
+    const Vec4 state_j = p.state[j];
     const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
     const real ep_ji = kPlastic ? b.plastic[b.slot(j, b.reverse[slot])] : real(0);
     const real s = g.e / g.r0;
-    const real tau_j = p.strain_limit[j];
+    const real tau_j = g.tau_j;
     const bool breaks = m.chen_fracture ? chen_stretch(g.e, ep_ij, phi_i, m) > tau_i &&
-                                              chen_stretch(g.e, ep_ji, p.damage[j], m) > tau_j
+                                              chen_stretch(g.e, ep_ji, state_j.z, m) > tau_j
                                         : s > (tau_i > tau_j ? tau_i : tau_j);
     if (breaks) {
       b.neighbor[slot] = ~j;
@@ -39,10 +41,10 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     ++intact;
     const real omega = influence(g.xi, g.r0, m);
     const real t = force_state(omega, g.r0, g.e, theta_i, mw_i, ep_ij, m) +
-                   force_state(omega, g.r0, g.e, p.dilatation[j], p.weighted_volume[j], ep_ji, m);
-    if (g.r > real(0)) f += (t * volume_fraction(g.r0, m) * p.volume[j] / g.r) * g.y;
+                   force_state(omega, g.r0, g.e, state_j.x, state_j.y, ep_ji, m);
+    if (g.r > real(0)) f += (t * volume_fraction(g.r0, m) * g.volume_j / g.r) * g.y;
   }
-  f = p.volume[i] * f;
+  f = rest_i.w * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;
   p.strain_min[i] = smin;
   p.intact[i] = intact;

@@ -27,21 +27,28 @@ PD_HD inline real influence(Vec3 xi, real r0, const Material& m) {
   return m.horizon / length(gx);
 }
 
-// Geometry of one bond at the current positions.
+// Geometry of one bond at the current positions, with what the partner's records carry.
 struct BondGeometry {
   Vec3 xi, y;
-  real r0, r, e;  // reference length, current length, extension
+  real r0, r, e;        // reference length, current length, extension
+  real volume_j, tau_j;  // the partner's volume and effective strain limit
 };
 
-PD_HD inline BondGeometry bond_geometry(const ParticlesView& p, int32_t i, int32_t j) {
+PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j) {
   BondGeometry g;
-  g.xi = p.rest[j] - p.rest[i];
-  const Vec3 eta = p.disp[j] - p.disp[i];
+  g.xi = xyz(rest_j) - xyz(rest_i);
+  const Vec3 eta = xyz(disp_j) - xyz(disp_i);
   g.y = g.xi + eta;
   g.r0 = length(g.xi);
   g.r = length(g.y);
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
+  g.volume_j = rest_j.w;
+  g.tau_j = disp_j.w;
   return g;
+}
+
+PD_HD inline BondGeometry bond_geometry(const ParticlesView& p, int32_t i, int32_t j) {
+  return bond_geometry(p.rest[i], p.disp[i], p.rest[j], p.disp[j]);
 }
 
 PD_HD inline real force_state(real omega, real r0, real e, real theta, real mw, real ep, const Material& m) {
@@ -55,29 +62,30 @@ PD_HD inline real chen_stretch(real e, real ep, real damage, const Material& m) 
   return (real(1) + m.damage_alpha * damage) * (e - ep) / m.horizon;
 }
 
-// m_i over the initial family (all bonds intact), once at set-up.
-PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt, real* mw) {
+// m_i over the initial family (all bonds intact), once at set-up, into state[i].y.
+PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   real sum = 0;
   for (int32_t k = 0; k < b.count[i]; ++k) {
     const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
-    const Vec3 xi = p.rest[j] - p.rest[i];
+    const Vec3 xi = xyz(p.rest[j]) - xyz(p.rest[i]);
     const real r0 = length(xi);
-    sum += influence(xi, r0, m) * r0 * r0 * volume_fraction(r0, m) * p.volume[j];
+    sum += influence(xi, r0, m) * r0 * r0 * volume_fraction(r0, m) * p.volume(j);
   }
-  mw[i] = sum;
+  p.state[i].y = sum;
 }
 
 // theta_i over the intact bonds.
 PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
+  const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   real sum = 0;
   for (int32_t k = 0; k < b.count[i]; ++k) {
     const int32_t j = b.neighbor[b.slot(i, k)];
     if (!bond_intact(j)) continue;
-    const BondGeometry g = bond_geometry(p, i, j);
-    sum += influence(g.xi, g.r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * p.volume[j];
+    const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
+    sum += influence(g.xi, g.r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * g.volume_j;
   }
-  return real(3) * sum / p.weighted_volume[i];
+  return real(3) * sum / p.state[i].y;
 }
 
 }  // namespace pd

@@ -51,7 +51,8 @@ TEST(BodyForces, ProjectileDirectionIsHalfwayBetweenMotionAndRepulsion) {
 }
 
 TEST(BodyForces, GravityAndFloorReflection) {
-  Vec3 rest{0, real(-0.001), 0}, disp{0, 0, 0}, vel{0, real(-2), 0}, force{real(1), 0, 0};
+  Vec4 rest{0, real(-0.001), 0, 1}, disp{0, 0, 0, 1};
+  Vec3 vel{0, real(-2), 0}, force{real(1), 0, 0};
   real inv_mass = real(0.5);
   uint8_t flags = 0;
   ParticlesView p;

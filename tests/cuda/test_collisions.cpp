@@ -1,7 +1,12 @@
 // Kernel 3 body: Levine eq. 6 quadratic repulsion.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <set>
+#include <vector>
+
 #include "cuda/kernels/collisions.h"
+#include "host/random.h"
 
 namespace pd {
 namespace {
@@ -19,6 +24,38 @@ TEST(Collisions, NoForceAtOrBeyondTheContactDistance) {
   EXPECT_EQ(contact_force({real(1e-3), 0, 0}, {0, 0, 0}, real(1e-3), real(1e8)).x, 0);
   EXPECT_EQ(contact_force({real(2e-3), 0, 0}, {0, 0, 0}, real(1e-3), real(1e8)).x, 0);
   EXPECT_EQ(contact_force({0, 0, 0}, {0, 0, 0}, real(1e-3), real(1e8)).x, 0);  // coincident: no direction
+}
+
+// The 8-cell search finds every point within half a cell side, like the 27-cell one.
+TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
+  Random rng(17);
+  std::vector<Vec3> pts(3000);
+  for (auto& p : pts) p = {real(rng.uniform() * 2 - 1), real(rng.uniform() * 2 - 1), real(rng.uniform() * 2 - 1)};
+  const real cell = real(0.1);
+  // Hash by sorting (bin, id), as the engine does.
+  HashView h;
+  h.bins = 1 << 12;
+  h.inv_cell = real(1) / cell;
+  std::vector<uint32_t> key(pts.size());
+  std::vector<int32_t> sorted(pts.size()), start(h.bins, -1), end(h.bins, -1);
+  for (size_t i = 0; i < pts.size(); ++i) key[i] = cell_bin(cell_of(pts[i], h.inv_cell), h.bins);
+  for (size_t i = 0; i < pts.size(); ++i) sorted[i] = int32_t(i);
+  std::stable_sort(sorted.begin(), sorted.end(), [&](int32_t a, int32_t b) { return key[a] < key[b]; });
+  std::vector<uint32_t> sorted_key(pts.size());
+  for (size_t s = 0; s < pts.size(); ++s) sorted_key[s] = key[sorted[s]];
+  h.key = sorted_key.data();
+  h.sorted = sorted.data();
+  h.bin_start = start.data();
+  h.bin_end = end.data();
+  for (int32_t s = 0; s < int32_t(pts.size()); ++s) mark_bin_bounds(s, int32_t(pts.size()), h);
+  auto pos = [&](int32_t j) { return pts[j]; };
+  for (size_t i = 0; i < pts.size(); i += 7) {
+    std::set<int32_t> half, brute;
+    for_each_within_half_cell(pts[i], h, pos, [&](int32_t j) { half.insert(j); });
+    for (size_t j = 0; j < pts.size(); ++j)
+      if (length(pts[j] - pts[i]) < real(0.5) * cell) brute.insert(int32_t(j));
+    for (int32_t j : brute) EXPECT_TRUE(half.count(j)) << i << " misses " << j;
+  }
 }
 
 }  // namespace

@@ -11,8 +11,9 @@ namespace {
 
 // Two particles bonded to each other, in sliced-ELL storage (one slice).
 struct Pair {
-  std::vector<Vec3> rest, disp, vel, force;
-  std::vector<real> volume{real(2e-9), real(3e-9)}, inv_mass{1, 1}, tau0, tau, smin{0, 0};
+  std::vector<Vec4> rest, disp;
+  std::vector<Vec3> vel, force;
+  std::vector<real> inv_mass{1, 1}, tau0, smin{0, 0};
   std::vector<uint16_t> material{0, 0};
   std::vector<int32_t> body{0, 0}, intact{0, 0}, count{1, 1}, neighbor;
   std::vector<uint8_t> flags{0, 0};
@@ -20,10 +21,10 @@ struct Pair {
   MaterialTable mt;
 
   Pair(Vec3 xj, Vec3 uj, real limit) {
-    rest = {{0, 0, 0}, xj};
-    disp = {{0, 0, 0}, uj};
+    rest = {{0, 0, 0, real(2e-9)}, with_w(xj, real(3e-9))};
+    disp = {{0, 0, 0, limit}, with_w(uj, limit)};
     vel = force = {{0, 0, 0}, {0, 0, 0}};
-    tau0 = tau = {limit, limit};
+    tau0 = {limit, limit};
     neighbor.assign(kSliceWidth, 0);
     neighbor[0] = 1;
     neighbor[1] = 0;
@@ -40,13 +41,11 @@ struct Pair {
     p.disp = disp.data();
     p.vel = vel.data();
     p.force = force.data();
-    p.volume = volume.data();
     p.inv_mass = inv_mass.data();
     p.material = material.data();
     p.body = body.data();
     p.flags = flags.data();
     p.strain_limit0 = tau0.data();
-    p.strain_limit = tau.data();
     p.strain_min = smin.data();
     p.intact = intact.data();
     return p;
@@ -94,7 +93,7 @@ TEST(SpringForces, ElongationHasNoCancellation) {
 
 TEST(SpringForces, BondPastItsLimitBreaksFromBothEnds) {
   Pair pair({real(0.005), 0, 0}, {real(1e-5), 0, 0}, real(1e-3));  // stretch 2e-3 > 1e-3
-  pair.tau[1] = real(1.5e-3);                                      // max(tau_i, tau_j) still below
+  pair.disp[1].w = real(1.5e-3);                                   // max(tau_i, tau_j) still below
   pair.run();
   EXPECT_LT(pair.neighbor[0], 0);
   EXPECT_LT(pair.neighbor[1], 0);
@@ -106,7 +105,7 @@ TEST(SpringForces, BondPastItsLimitBreaksFromBothEnds) {
 
 TEST(SpringForces, BondHoldsBelowTheLargerLimit) {
   Pair pair({real(0.005), 0, 0}, {real(1e-5), 0, 0}, real(1e-3));
-  pair.tau[1] = real(2.5e-3);  // the larger of the two limits decides
+  pair.disp[1].w = real(2.5e-3);  // the larger of the two limits decides
   pair.run();
   EXPECT_GE(pair.neighbor[0], 0);
   EXPECT_GE(pair.neighbor[1], 0);

@@ -17,8 +17,8 @@ using Mat3 = std::array<std::array<double, 3>, 3>;
 
 struct InteriorParticle {
   Material m;
-  std::vector<Vec3> rest, disp;
-  std::vector<real> volume, mw, theta, damage, tau, smin, inv_mass;
+  std::vector<Vec4> rest, disp, state;  // state: (theta, m, phi)
+  std::vector<real> tau, smin, inv_mass;
   std::vector<Vec3> vel, force;
   std::vector<uint16_t> material;
   std::vector<int32_t> body, intact, count, neighbor;
@@ -32,22 +32,21 @@ struct InteriorParticle {
     m.spacing = 1;
     m.horizon = real(ratio);
     const double radius = m.family_radius();
-    rest.push_back({0, 0, 0});
+    rest.push_back({0, 0, 0, 1});
     const int r = int(std::ceil(radius));
     for (int z = -r; z <= r; ++z)
       for (int y = -r; y <= r; ++y)
         for (int x = -r; x <= r; ++x) {
           const double d2 = double(x) * x + double(y) * y + double(z) * z;
-          if (d2 > 0 && d2 <= radius * radius * (1 + 1e-9)) rest.push_back({real(x), real(y), real(z)});
+          if (d2 > 0 && d2 <= radius * radius * (1 + 1e-9)) rest.push_back({real(x), real(y), real(z), 1});
         }
     const size_t n = rest.size();
-    disp.assign(n, {0, 0, 0});
-    vel = force = disp;
-    volume.assign(n, 1);
+    disp.assign(n, {0, 0, 0, real(1e30)});  // w: strain limit, never reached
+    state.assign(n, {0, 0, 0, 0});
+    vel = force = std::vector<Vec3>(n, Vec3{0, 0, 0});
     inv_mass.assign(n, 1);
-    mw.assign(n, 0);
-    theta = damage = smin = mw;
-    tau.assign(n, 1e30f);
+    smin.assign(n, 0);
+    tau.assign(n, real(1e30));
     material.assign(n, 0);
     body.assign(n, 0);
     flags.assign(n, 0);
@@ -64,8 +63,8 @@ struct InteriorParticle {
     for (int32_t k = 0; k + 1 < int32_t(n); ++k) neighbor[size_t(k) * kSliceWidth] = k + 1;
     table.count = 1;
     table.m[0] = m;
-    weighted_volume(0, view(), bonds(), table, mw.data());
-    for (auto& v : mw) v = mw[0];
+    weighted_volume(0, view(), bonds(), table);
+    for (auto& s : state) s.y = state[0].y;
   }
 
   MaterialTable table;
@@ -77,18 +76,14 @@ struct InteriorParticle {
     p.disp = disp.data();
     p.vel = vel.data();
     p.force = force.data();
-    p.volume = volume.data();
     p.inv_mass = inv_mass.data();
     p.material = material.data();
     p.body = body.data();
     p.flags = flags.data();
     p.strain_limit0 = tau.data();
-    p.strain_limit = tau.data();
     p.strain_min = smin.data();
     p.intact = intact.data();
-    p.weighted_volume = mw.data();
-    p.dilatation = theta.data();
-    p.damage = damage.data();
+    p.state = state.data();
     return p;
   }
   BondsView bonds() {
@@ -101,17 +96,18 @@ struct InteriorParticle {
     return b;
   }
   int32_t family_size() const { return count[0]; }
+  double theta() const { return state[0].x; }
 
   // u = F X, then theta (the same everywhere) and the plastic return mapping at particle 0.
   void deform(const Mat3& grad) {
     for (size_t i = 0; i < rest.size(); ++i) {
-      const Vec3 x = rest[i];
+      const Vec4 x = rest[i];
       disp[i] = {real(grad[0][0] * x.x + grad[0][1] * x.y + grad[0][2] * x.z),
                  real(grad[1][0] * x.x + grad[1][1] * x.y + grad[1][2] * x.z),
-                 real(grad[2][0] * x.x + grad[2][1] * x.y + grad[2][2] * x.z)};
+                 real(grad[2][0] * x.x + grad[2][1] * x.y + grad[2][2] * x.z), disp[i].w};
     }
     const real th = dilatation(0, view(), bonds(), m);
-    for (auto& t : theta) t = th;
+    for (auto& s : state) s.x = th;
     plastic_update(0, view(), bonds(), table);
   }
 
@@ -122,7 +118,7 @@ struct InteriorParticle {
     for (int32_t k = 0; k < count[0]; ++k) {
       const int64_t slot = b.slot(0, k);
       const BondGeometry g = bond_geometry(view(), 0, neighbor[slot]);
-      const double t = force_state(influence(g.xi, g.r0, m), g.r0, g.e, theta[0], mw[0], plastic[slot], m);
+      const double t = force_state(influence(g.xi, g.r0, m), g.r0, g.e, state[0].x, state[0].y, plastic[slot], m);
       const double w = t * volume_fraction(g.r0, m) / g.r;
       const double y[3] = {g.y.x, g.y.y, g.y.z}, xi[3] = {g.xi.x, g.xi.y, g.xi.z};
       for (int a = 0; a < 3; ++a)

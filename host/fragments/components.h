@@ -1,0 +1,67 @@
+// Connected components of the unbroken element adjacency: the fragments of a frame. A pair of
+// adjacent particles stays connected while their bond is intact in both families (a bond broken
+// in either direction separates them). Bonds never heal, so components only ever split.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "../engine.h"
+#include "adjacency.h"
+
+namespace pd {
+
+// Particles grouped by component. A component's id is the smallest particle index in it, so ids
+// are deterministic and a fragment keeps its id until it splits (then the part holding that
+// particle keeps it). Components are numbered c = 0 .. count()-1 in increasing id.
+struct Components {
+  std::vector<int32_t> id;       // per particle: id of its component
+  std::vector<int32_t> index;    // per particle: number c of its component
+  std::vector<int32_t> start;    // count() + 1 entries
+  std::vector<int32_t> members;  // component c: members[start[c] .. start[c + 1]), ascending
+
+  size_t count() const { return start.empty() ? 0 : start.size() - 1; }
+  int32_t size(size_t c) const { return start[c + 1] - start[c]; }
+  int32_t component_id(size_t c) const { return members[size_t(start[c])]; }
+};
+
+// Groups particles by per-particle ids (any values in [0, n), e.g. a frame file's `component`
+// array); components are numbered in order of first appearance. Throws std::invalid_argument
+// for an id outside [0, n).
+Components components_from_ids(std::vector<int32_t> id);
+
+// Finds components every frame for one family layout.
+class ComponentFinder {
+ public:
+  // Binds each adjacent pair to its bond slot in both families. Throws std::invalid_argument
+  // when the sizes differ or a pair is not a family bond in both directions.
+  ComponentFinder(const ElementAdjacency& adjacency, const BondLists& bonds);
+
+  // Components of `bonds` (the same families, as the engine holds them now).
+  Components find(const BondLists& bonds) const;
+
+  size_t particles() const { return n_; }
+  size_t pairs() const { return a_.size(); }
+
+ private:
+  size_t n_ = 0;
+  size_t slots_ = 0;
+  std::vector<int32_t> a_, b_;            // adjacent pairs, a < b
+  std::vector<int64_t> slot_a_, slot_b_;  // bond slot of the pair in a's and b's family
+};
+
+// Component count and sizes for the frame log: histogram[b] counts the components of
+// 2^b .. 2^(b+1)-1 particles.
+struct ComponentStats {
+  size_t count = 0;
+  int32_t largest = 0;
+  std::vector<int64_t> histogram;
+};
+
+ComponentStats component_stats(const Components& c);
+
+// One log field, e.g. "fragments 37 (1:21 2-3:9 4-7:4 65536-131071:1)".
+std::string format_component_stats(const ComponentStats& s);
+
+}  // namespace pd
