@@ -34,6 +34,19 @@
   } while (0)
 #endif
 
+// Unrolling of the per-bond loops on the GPU, so loads of several bonds are in flight at once
+// (bench/NOTES.md has the measurements behind the default).
+#if !defined(PERIFRAC_BOND_UNROLL)
+#define PERIFRAC_BOND_UNROLL 4
+#endif
+#define PD_PRAGMA(x) _Pragma(#x)
+#if defined(__CUDA_ARCH__)
+#define PD_UNROLL(n) PD_PRAGMA(unroll n)
+#else
+#define PD_UNROLL(n)
+#endif
+#define PD_BOND_LOOP PD_UNROLL(PERIFRAC_BOND_UNROLL)
+
 namespace pd {
 
 // Simulation scalar: float by default, double with -DPERIFRAC_DOUBLE=ON (reference runs).

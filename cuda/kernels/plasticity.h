@@ -23,6 +23,7 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
 
   // Trial norm over the intact family.
   real norm2 = 0;
+  PD_BOND_LOOP
   for (int32_t k = 0; k < count; ++k) {
     const int64_t slot = b.slot(i, k);
     const int32_t j = b.neighbor[slot];
@@ -35,6 +36,7 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
 
   // Project onto the yield surface and cap the plastic extension.
   const real scale = std::sqrt(real(2) * m.yield_psi0 / norm2);
+  PD_BOND_LOOP
   for (int32_t k = 0; k < count; ++k) {
     const int64_t slot = b.slot(i, k);
     const int32_t j = b.neighbor[slot];

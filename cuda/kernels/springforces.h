@@ -18,6 +18,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   Vec3 f{0, 0, 0};
   real smin = real(0);
   int32_t intact = 0;
+  PD_BOND_LOOP
   for (int32_t k = 0; k < count; ++k) {
     const int64_t slot = b.slot(i, k);
     const int32_t j = b.neighbor[slot];

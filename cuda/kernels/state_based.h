@@ -79,6 +79,7 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
 PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   real sum = 0;
+  PD_BOND_LOOP
   for (int32_t k = 0; k < b.count[i]; ++k) {
     const int32_t j = b.neighbor[b.slot(i, k)];
     if (!bond_intact(j)) continue;
