@@ -33,6 +33,27 @@ PD_HD inline real length_squared(Vec3 a) { return dot(a, a); }
 PD_HD inline real length(Vec3 a) { return std::sqrt(dot(a, a)); }
 PD_HD inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 
+// Per-bond arithmetic on the GPU uses the hardware reciprocal square root and the fast
+// division (a few ulp; bench/NOTES.md: the IEEE sequences made the bond loops compute-bound).
+// The CPU and double builds compute exactly. Both ends of a bond run the same instructions on
+// the same numbers, so symmetric decisions stay symmetric.
+PD_HD inline float fast_rsqrt(float x) {
+#if defined(__CUDA_ARCH__)
+  return rsqrtf(x);
+#else
+  return 1.0f / std::sqrt(x);
+#endif
+}
+PD_HD inline double fast_rsqrt(double x) { return 1.0 / std::sqrt(x); }
+PD_HD inline float fast_divide(float a, float b) {
+#if defined(__CUDA_ARCH__)
+  return __fdividef(a, b);
+#else
+  return a / b;
+#endif
+}
+PD_HD inline double fast_divide(double a, double b) { return a / b; }
+
 // Four values stored together so a gather is one vector load (16 bytes in float, 32 in
 // double): a Vec3 plus one scalar that is read at the same time.
 struct alignas(4 * sizeof(real)) Vec4 {

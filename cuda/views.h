@@ -30,8 +30,8 @@ struct ParticlesView {
   real* strain_min = nullptr;          // minimum bond strain of the last force pass
   int32_t* intact = nullptr;           // unbroken bonds, written by `springforces`
   // State-based materials only (null otherwise): x theta_i (dilatation, set by `init`),
-  // y m_i = sum_j omega |xi|^2 beta V_j over the initial family, z phi_i = 1 - intact/initial
-  // bonds of the last step (damage, set by `init`).
+  // y 1/m_i with m_i = sum_j omega |xi|^2 beta V_j over the initial family, z phi_i =
+  // 1 - intact/initial bonds of the last step (damage, set by `init`).
   Vec4* state = nullptr;
 
   PD_HD Vec3 position(int32_t i) const { return xyz(rest[i]) + xyz(disp[i]); }

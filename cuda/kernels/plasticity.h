@@ -18,7 +18,7 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
   if (!m.plastic) return;
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i], si = p.state[i];
   const real theta = si.x;
-  const real alpha = real(15) * m.shear_modulus / si.y;
+  const real alpha = real(15) * m.shear_modulus * si.y;
   const int32_t count = b.count[i];
 
   // Trial norm over the intact family.
@@ -29,7 +29,7 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
     const int32_t j = b.neighbor[slot];
     if (!bond_intact(j)) continue;
     const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
-    const real td = alpha * influence(g.xi, g.r0, m) * (g.e - theta * g.r0 / real(3) - b.plastic[slot]);
+    const real td = alpha * influence(g.xi, g.inv_r0, m) * (g.e - theta * g.r0 * real(1.0 / 3.0) - b.plastic[slot]);
     norm2 += td * td * volume_fraction(g.r0, m) * g.volume_j;
   }
   if (norm2 <= real(2) * m.yield_psi0) return;
@@ -42,7 +42,7 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
     const int32_t j = b.neighbor[slot];
     if (!bond_intact(j)) continue;
     const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
-    const real ed = g.e - theta * g.r0 / real(3);
+    const real ed = g.e - theta * g.r0 * real(1.0 / 3.0);
     real ep = ed - scale * (ed - b.plastic[slot]);
     if (m.plastic_limit > real(0)) {
       const real cap = m.plastic_limit * g.r0;

@@ -28,9 +28,8 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
     const Vec3 xi = xyz(rest_j) - xyz(rest_i);
     const Vec3 eta = xyz(disp_j) - xyz(disp_i);
     const Vec3 y = xi + eta;
-    const real r0 = length(xi);
-    const real r = length(y);
-    const real s = bond_elongation(xi, eta, r0, r) / r0;
+    const BondLengths l = bond_lengths(xi, y);
+    const real s = bond_elongation(xi, eta, l.r0, l.r) * l.inv_r0;
     const real tau_j = disp_j.w;
     if (s > (tau_i > tau_j ? tau_i : tau_j)) {
       b.neighbor[slot] = ~j;
@@ -38,7 +37,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
-    if (r > real(0)) f += (m.micromodulus * s * rest_j.w * volume_fraction(r0, m) / r) * y;
+    f += (m.micromodulus * s * rest_j.w * volume_fraction(l.r0, m) * l.inv_r) * y;
   }
   f = rest_i.w * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;

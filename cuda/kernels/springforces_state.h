@@ -29,7 +29,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const Vec4 state_j = p.state[j];
     const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
     const real ep_ji = kPlastic ? b.plastic[b.slot(j, b.reverse[slot])] : real(0);
-    const real s = g.e / g.r0;
+    const real s = g.e * g.inv_r0;
     const real tau_j = g.tau_j;
     const bool breaks = m.chen_fracture ? chen_stretch(g.e, ep_ij, phi_i, m) > tau_i &&
                                               chen_stretch(g.e, ep_ji, state_j.z, m) > tau_j
@@ -40,10 +40,10 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
-    const real omega = influence(g.xi, g.r0, m);
+    const real omega = influence(g.xi, g.inv_r0, m);
     const real t = force_state(omega, g.r0, g.e, theta_i, mw_i, ep_ij, m) +
                    force_state(omega, g.r0, g.e, state_j.x, state_j.y, ep_ji, m);
-    if (g.r > real(0)) f += (t * volume_fraction(g.r0, m) * g.volume_j / g.r) * g.y;
+    f += (t * volume_fraction(g.r0, m) * g.volume_j * g.inv_r) * g.y;
   }
   f = rest_i.w * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;

@@ -19,19 +19,19 @@
 namespace pd {
 
 // omega = delta / |G xi|; the same from both ends of a bond (|G(-xi)| = |G xi|).
-PD_HD inline real influence(Vec3 xi, real r0, const Material& m) {
-  if (!m.anisotropic) return m.horizon / r0;
+PD_HD inline real influence(Vec3 xi, real inv_r0, const Material& m) {
+  if (!m.anisotropic) return m.horizon * inv_r0;
   const real* g = m.aniso;
   const Vec3 gx{g[0] * xi.x + g[1] * xi.y + g[2] * xi.z, g[3] * xi.x + g[4] * xi.y + g[5] * xi.z,
                 g[6] * xi.x + g[7] * xi.y + g[8] * xi.z};
-  return m.horizon / length(gx);
+  return m.horizon * fast_rsqrt(dot(gx, gx));
 }
 
 // Geometry of one bond at the current positions, with what the partner's records carry.
 struct BondGeometry {
   Vec3 xi, y;
-  real r0, r, e;        // reference length, current length, extension
-  real volume_j, tau_j;  // the partner's volume and effective strain limit
+  real r0, inv_r0, r, inv_r, e;  // reference and current lengths (and reciprocals), extension
+  real volume_j, tau_j;          // the partner's volume and effective strain limit
 };
 
 PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j) {
@@ -39,8 +39,11 @@ PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, V
   g.xi = xyz(rest_j) - xyz(rest_i);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
   g.y = g.xi + eta;
-  g.r0 = length(g.xi);
-  g.r = length(g.y);
+  const BondLengths l = bond_lengths(g.xi, g.y);
+  g.r0 = l.r0;
+  g.inv_r0 = l.inv_r0;
+  g.r = l.r;
+  g.inv_r = l.inv_r;
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
   g.volume_j = rest_j.w;
   g.tau_j = disp_j.w;
@@ -51,18 +54,19 @@ PD_HD inline BondGeometry bond_geometry(const ParticlesView& p, int32_t i, int32
   return bond_geometry(p.rest[i], p.disp[i], p.rest[j], p.disp[j]);
 }
 
-PD_HD inline real force_state(real omega, real r0, real e, real theta, real mw, real ep, const Material& m) {
-  const real dil = real(3) * m.bulk_modulus * theta / mw * r0;
-  const real dev = real(15) * m.shear_modulus / mw * (e - theta * r0 / real(3) - ep);
-  return omega * (dil + dev);
+// `inv_mw` is 1/m of the particle whose state this is.
+PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_mw, real ep, const Material& m) {
+  const real dil = real(3) * m.bulk_modulus * theta * r0;
+  const real dev = real(15) * m.shear_modulus * (e - theta * r0 * real(1.0 / 3.0) - ep);
+  return omega * inv_mw * (dil + dev);
 }
 
 // Chen eq. 18: s^omega = (1 + alpha phi) (e - e^p) / delta.
 PD_HD inline real chen_stretch(real e, real ep, real damage, const Material& m) {
-  return (real(1) + m.damage_alpha * damage) * (e - ep) / m.horizon;
+  return (real(1) + m.damage_alpha * damage) * (e - ep) * (real(1) / m.horizon);
 }
 
-// m_i over the initial family (all bonds intact), once at set-up, into state[i].y.
+// m_i over the initial family (all bonds intact), once at set-up; state[i].y holds 1/m_i.
 PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   real sum = 0;
@@ -70,9 +74,9 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
     const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
     const Vec3 xi = xyz(p.rest[j]) - xyz(p.rest[i]);
     const real r0 = length(xi);
-    sum += influence(xi, r0, m) * r0 * r0 * volume_fraction(r0, m) * p.volume(j);
+    sum += influence(xi, real(1) / r0, m) * r0 * r0 * volume_fraction(r0, m) * p.volume(j);
   }
-  p.state[i].y = sum;
+  p.state[i].y = real(1) / sum;
 }
 
 // theta_i over the intact bonds.
@@ -84,9 +88,9 @@ PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView&
     const int32_t j = b.neighbor[b.slot(i, k)];
     if (!bond_intact(j)) continue;
     const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
-    sum += influence(g.xi, g.r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * g.volume_j;
+    sum += influence(g.xi, g.inv_r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * g.volume_j;
   }
-  return real(3) * sum / p.state[i].y;
+  return real(3) * sum * p.state[i].y;
 }
 
 }  // namespace pd
