@@ -37,7 +37,7 @@
 // Unrolling of the per-bond loops on the GPU, so loads of several bonds are in flight at once
 // (bench/NOTES.md has the measurements behind the default).
 #if !defined(PERIFRAC_BOND_UNROLL)
-#define PERIFRAC_BOND_UNROLL 4
+#define PERIFRAC_BOND_UNROLL 1
 #endif
 #define PD_PRAGMA(x) _Pragma(#x)
 #if defined(__CUDA_ARCH__)
