@@ -80,6 +80,10 @@ class EngineImpl final : public Engine {
 
   int64_t broken_bonds() override { return reduce_broken_bonds(exec_, bonds(), intact_.data()); }
 
+  Energy energy() override {
+    return reduce_energy(exec_, particles(), bonds(), hash_view(true), materials_, step_params_, contact_);
+  }
+
   int64_t first_non_finite() override {
     if (reduce_non_finite(exec_, particles()) == 0) return -1;
     ParticleState s;
@@ -118,6 +122,7 @@ class EngineImpl final : public Engine {
     p.strain_limit0 = strain_limit0_.data();
     p.strain_min = strain_min_.data();
     p.intact = intact_.data();
+    p.ledger = ledger_.data();
     p.state = state_.data();
     return p;
   }
@@ -165,6 +170,8 @@ class EngineImpl final : public Engine {
     strain_min_ = make<real>(n_);
     strain_min_.zero();
     intact_ = make<int32_t>(n_);
+    ledger_ = make<Ledger>(n_);
+    ledger_.zero();
   }
 
   // Hash buffers sized for n particles with cells of side `cell`.
@@ -287,6 +294,7 @@ class EngineImpl final : public Engine {
   DeviceArray<real, Exec> inv_mass_, strain_limit0_, strain_min_;
   DeviceArray<uint16_t, Exec> material_;
   DeviceArray<int32_t, Exec> body_, intact_;
+  DeviceArray<Ledger, Exec> ledger_;
   DeviceArray<uint8_t, Exec> flags_;
 
   DeviceArray<int64_t, Exec> slice_offset_;

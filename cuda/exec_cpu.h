@@ -2,6 +2,8 @@
 // the GPU runs. Memory is plain host memory.
 #pragma once
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -27,13 +29,21 @@ class CpuExec {
     record(name, t0);
   }
 
-  // Sum of f(i) over [0, n); deterministic for a fixed thread count.
+  // Sum of f(i) over [0, n) for any type with +: per-thread partial sums over static
+  // chunks, added in thread order, so the result is deterministic for a thread count.
   template <class T, class F>
   T reduce_sum(const char* name, int64_t n, F f) {
     const auto t0 = std::chrono::steady_clock::now();
+    std::vector<T> partial(static_cast<size_t>(omp_get_max_threads()));
+#pragma omp parallel
+    {
+      T local{};
+#pragma omp for schedule(static)
+      for (int64_t i = 0; i < n; ++i) local = local + f(i);
+      partial[size_t(omp_get_thread_num())] = local;
+    }
     T total{};
-#pragma omp parallel for schedule(static) reduction(+ : total)
-    for (int64_t i = 0; i < n; ++i) total += f(i);
+    for (const T& t : partial) total = total + t;
     record(name, t0);
     return total;
   }

@@ -5,6 +5,7 @@
 #include "kernels/bodyforces.h"
 #include "kernels/collection.h"
 #include "kernels/collisions.h"
+#include "kernels/energy.h"
 #include "kernels/family.h"
 #include "kernels/init.h"
 #include "kernels/integrate.h"
@@ -136,6 +137,13 @@ template <class Exec>
 int64_t reduce_broken_bonds(Exec& ex, BondsView b, const int32_t* intact) {
   return ex.template reduce_sum<int64_t>("stats/broken", b.n,
                                          [=] PD_HD(int64_t i) { return int64_t(b.count[i] - intact[i]); });
+}
+
+template <class Exec>
+Energy reduce_energy(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt, StepParams sp,
+                     bool contact) {
+  return ex.template reduce_sum<Energy>(
+      "stats/energy", p.n, [=] PD_HD(int64_t i) { return particle_energy(int32_t(i), p, b, h, mt, sp, contact); });
 }
 
 template <class Exec>

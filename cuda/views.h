@@ -12,6 +12,14 @@ enum ParticleFlag : uint8_t {
   kAnchored = 1u << 0,  // prescribed motion: moves with its initial velocity whatever the forces
 };
 
+// Energy that entered or left a particle's books outside its potential and kinetic energy:
+// work done on it by projectiles, moving anchors and the floor's restitution, and the elastic
+// energy of its bonds at the moment they broke (its end's share). Accumulated in double.
+struct Ledger {
+  double work = 0;
+  double released = 0;
+};
+
 // Particle state, structure of arrays. What a bond reads of its partner is packed into
 // 16-byte records, one vector load each: (X, V) and (u, tau'), plus (theta, m, phi) for
 // state-based materials. Current position = X + u; bond vectors are formed from
@@ -29,6 +37,7 @@ struct ParticlesView {
   const real* strain_limit0 = nullptr; // scattered base strain limit tau_i
   real* strain_min = nullptr;          // minimum bond strain of the last force pass
   int32_t* intact = nullptr;           // unbroken bonds, written by `springforces`
+  Ledger* ledger = nullptr;            // energy accounting (see Ledger)
   // State-based materials only (null otherwise): x theta_i (dilatation, set by `init`),
   // y 1/m_i with m_i = sum_j omega |xi|^2 beta V_j over the initial family, z phi_i =
   // 1 - intact/initial bonds of the last step (damage, set by `init`).

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../cuda/kernel_stats.h"
+#include "../cuda/kernels/energy.h"
 #include "particle_set.h"
 
 namespace pd {
@@ -56,6 +57,8 @@ class Engine {
   virtual void read_state(ParticleState& out) = 0;
   virtual void read_bonds(BondLists& out) = 0;
   virtual int64_t broken_bonds() = 0;
+  // Energy terms at the current state, and the work and released energy since the start.
+  virtual Energy energy() = 0;
   // Index of the first particle whose displacement, velocity or force is not finite; -1 if none.
   virtual int64_t first_non_finite() = 0;
   virtual KernelStats& stats() = 0;

@@ -51,7 +51,7 @@ done
 step glass-full "$bin" run "$scene" --backend cuda --out "$OUT/glass-full"
 
 echo
-echo "gpu-check on $(cat "$OUT/device.txt"), $(date -u +%Y-%m-%dT%H:%M:%SZ), git $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+echo "gpu-check on $(cat "$OUT/device.txt"), $(date -u +%Y-%m-%dT%H:%M:%SZ), git ${PERIFRAC_GIT_REV:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)}"
 printf '%s\n' "${rows[@]}"
 grep -h "equivalence" "$OUT/gpu-tests.log" || true
 for row in "${rows[@]}"; do [[ "$row" == *" FAIL "* ]] && exit 1; done

@@ -1,24 +1,51 @@
 #!/usr/bin/env bash
-# Installs what perifrac needs (Debian/Ubuntu packages) and builds it. Safe to run again:
-# installed packages are skipped and the build is incremental.
-#   scripts/setup.sh            build the preset that fits this machine (cuda with a GPU, else cpu)
-#   PERIFRAC_PRESET=cpu-asan scripts/setup.sh   build a named preset from CMakePresets.json
+# Installs what perifrac needs and builds it. Safe to run again: what is present is skipped
+# and the build is incremental.
+#   scripts/setup.sh                          build the preset that fits this machine (cuda with a GPU, else cpu)
+#   PERIFRAC_PRESET=cpu-asan scripts/setup.sh build a named preset from CMakePresets.json
+# Needs: a C++17 compiler, CMake >= 3.24, Ninja, and the headers of GoogleTest, Eigen, toml++,
+# CLI11 and stb. Missing ones are installed with apt-get (Debian/Ubuntu package names below);
+# header-only ones may instead be staged in .deps/include (scripts/stage-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(build-essential cmake ninja-build pkg-config libgtest-dev libeigen3-dev libtomlplusplus-dev
-          libcli11-dev libstb-dev libnanoflann-dev)
+# What the build needs, and the package that provides it: "kind:name:package".
+needs=(
+  "cmd:g++:build-essential" "cmd:cmake:cmake" "cmd:ninja:ninja-build" "cmd:pkg-config:pkg-config"
+  "hdr:gtest/gtest.h:libgtest-dev" "hdr:eigen3/Eigen/Dense:libeigen3-dev" "hdr:toml++/toml.h:libtomlplusplus-dev"
+  "hdr:CLI/CLI.hpp:libcli11-dev" "hdr:stb/stb_image_write.h:libstb-dev"
+)
+# Optional: tetrahedral particles run the TetGen program (AGPL, kept as a separate program).
+optional=("cmd:tetgen:tetgen")
+have() {
+  local kind=$1 name=$2
+  if [ "$kind" = cmd ]; then command -v "$name" >/dev/null 2>&1; return; fi
+  [ -e "/usr/include/$name" ] || [ -e "/usr/local/include/$name" ] || [ -e ".deps/include/$name" ]
+}
 missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+for need in "${needs[@]}"; do
+  IFS=: read -r kind name package <<<"$need"
+  have "$kind" "$name" || missing+=("$package")
 done
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing ${missing[*]}"
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  if ! { $sudo apt-get update -qq &&
+         DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null; }; then
+    echo "setup: could not install ${missing[*]} with apt-get; install them (Debian/Ubuntu package names) and run again" >&2
+    exit 1
+  fi
 fi
+
+for need in "${optional[@]}"; do
+  IFS=: read -r kind name package <<<"$need"
+  have "$kind" "$name" && continue
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "$package" >/dev/null 2>&1 ||
+    echo "setup: optional $package not installed: scenes that need it will say so"
+done
 
 # Preset: CUDA only where a GPU answers (a CUDA build without a device would only skip).
 if [ -z "${PERIFRAC_PRESET:-}" ]; then
@@ -31,4 +58,4 @@ fi
 echo "setup: building preset '$PERIFRAC_PRESET'"
 cmake --preset "$PERIFRAC_PRESET" >/dev/null
 cmake --build --preset "$PERIFRAC_PRESET" -j "$(nproc)"
-echo "$PERIFRAC_PRESET" > "build/.last-preset"
+echo "$PERIFRAC_PRESET" >"build/.last-preset"

@@ -33,15 +33,22 @@ PD_HD inline Vec3 projectile_force(Vec3 x, const Projectile& pr, real time) {
   return (mag / len) * dir;
 }
 
+// The ledger records the work of the projectiles over the step (force times the half-step
+// velocity times dt) and the kinetic energy the floor's restitution takes away.
 PD_HD inline void body_forces(int32_t i, ParticlesView p, const StepParams& sp) {
   const Vec3 x = p.position(i);
   const real mass = real(1) / p.inv_mass[i];
   Vec3 f = p.force[i] + mass * sp.gravity;
-  for (int32_t k = 0; k < sp.n_projectiles; ++k) f += projectile_force(x, sp.projectile[k], sp.time);
-  p.force[i] = f;
-  if (sp.floor_enabled && x.y < sp.floor_height && p.vel[i].y < real(0) && !(p.flags[i] & kAnchored)) {
-    p.vel[i].y = -sp.restitution * p.vel[i].y;
+  Vec3 fp{0, 0, 0};
+  for (int32_t k = 0; k < sp.n_projectiles; ++k) fp += projectile_force(x, sp.projectile[k], sp.time);
+  p.force[i] = f + fp;
+  const Vec3 v = p.vel[i];
+  double work = double(sp.dt) * double(dot(fp, v));
+  if (sp.floor_enabled && x.y < sp.floor_height && v.y < real(0) && !(p.flags[i] & kAnchored)) {
+    p.vel[i].y = -sp.restitution * v.y;
+    work -= 0.5 * double(mass) * double(v.y) * double(v.y) * (1.0 - double(sp.restitution) * sp.restitution);
   }
+  if (work != 0) p.ledger[i].work += work;
 }
 
 }  // namespace pd

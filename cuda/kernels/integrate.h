@@ -21,8 +21,13 @@ PD_HD inline void position_update(int32_t i, ParticlesView p, real dt) {
   p.disp[i] = u;
 }
 
+// An anchor holds its particle against the force on it: it does work -f.v dt on the body.
 PD_HD inline void velocity_update(int32_t i, ParticlesView p, real dt) {
-  if (p.flags[i] & kAnchored) return;
+  if (p.flags[i] & kAnchored) {
+    const Vec3 v = p.vel[i];
+    if (v.x != 0 || v.y != 0 || v.z != 0) p.ledger[i].work -= double(dt) * double(dot(p.force[i], v));
+    return;
+  }
   p.vel[i] += (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
 }
 

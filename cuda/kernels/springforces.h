@@ -8,6 +8,12 @@
 
 namespace pd {
 
+// One end's share of a PMB bond's elastic energy: the micropotential c s^2 |xi| / 2 per unit
+// volume squared, halved between the two ends: c s^2 |xi| beta V_i V_j / 4.
+PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real vol_j, const Material& m) {
+  return real(0.25) * m.micromodulus * s * s * r0 * volume_fraction(r0, m) * vol_i * vol_j;
+}
+
 template <bool kAccumulate>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
@@ -33,6 +39,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
     const real tau_j = disp_j.w;
     if (s > (tau_i > tau_j ? tau_i : tau_j)) {
       b.neighbor[slot] = ~j;
+      p.ledger[i].released += double(pmb_bond_energy(s, l.r0, rest_i.w, rest_j.w, m));
       continue;
     }
     smin = (intact == 0 || s < smin) ? s : smin;

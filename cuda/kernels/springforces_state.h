@@ -14,7 +14,7 @@ template <bool kAccumulate, bool kPlastic>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i], state_i = p.state[i];
-  const real theta_i = state_i.x, mw_i = state_i.y, phi_i = state_i.z;
+  const real theta_i = state_i.x, inv_mw_i = state_i.y, phi_i = state_i.z;
   const real tau_i = disp_i.w;
   const int32_t count = b.count[i];
   Vec3 f{0, 0, 0};
@@ -36,12 +36,13 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
                                         : s > (tau_i > tau_j ? tau_i : tau_j);
     if (breaks) {
       b.neighbor[slot] = ~j;
+      p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, rest_i.w, m));
       continue;
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
     const real omega = influence(g.xi, g.inv_r0, m);
-    const real t = force_state(omega, g.r0, g.e, theta_i, mw_i, ep_ij, m) +
+    const real t = force_state(omega, g.r0, g.e, theta_i, inv_mw_i, ep_ij, m) +
                    force_state(omega, g.r0, g.e, state_j.x, state_j.y, ep_ji, m);
     f += (t * volume_fraction(g.r0, m) * g.volume_j * g.inv_r) * g.y;
   }

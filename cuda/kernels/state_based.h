@@ -61,6 +61,15 @@ PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_
   return omega * inv_mw * (dil + dev);
 }
 
+// The deviatoric elastic energy of particle i's state on one bond (LPS energy density
+// W_i = K theta_i^2 / 2 + (15 mu / (2 m_i)) sum_j omega (e^d - e^p)^2 beta V_j, times V_i).
+PD_HD inline real lps_bond_energy(const BondGeometry& g, real theta, real inv_mw, real ep, real vol_i,
+                                  const Material& m) {
+  const real ed = g.e - theta * g.r0 * real(1.0 / 3.0) - ep;
+  return real(7.5) * m.shear_modulus * inv_mw * influence(g.xi, g.inv_r0, m) * ed * ed *
+         volume_fraction(g.r0, m) * g.volume_j * vol_i;
+}
+
 // Chen eq. 18: s^omega = (1 + alpha phi) (e - e^p) / delta.
 PD_HD inline real chen_stretch(real e, real ep, real damage, const Material& m) {
   return (real(1) + m.damage_alpha * damage) * (e - ep) * (real(1) / m.horizon);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "../engine.h"
+#include "../fragments/fragment_output.h"
 #include "../io/atomic_file.h"
 #include "../io/frame_file.h"
 #include "../io/vtk_writer.h"
@@ -60,6 +61,46 @@ void check_time_step(const Scene& scene, const SetupResult& setup, bool allow) {
       << " s of the stiffest material (allowed: dt <= " << setup.critical_dt
       << "; pass --allow-unstable-dt to run anyway)";
   throw SceneError(scene.path, "simulation.dt", msg.str());
+}
+
+// Per-frame energy log, rewritten atomically after every frame (energy.csv).
+class EnergyLog {
+ public:
+  explicit EnergyLog(std::string path) : path_(std::move(path)) {
+    text_ = "frame,step,time,kinetic,strain,contact,gravity,work,released,balance\n";
+  }
+  void add(int64_t frame, int64_t step, double time, const Energy& e) {
+    char line[320];
+    std::snprintf(line, sizeof line, "%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", (long long)frame,
+                  (long long)step, time, e.kinetic, e.strain, e.contact, e.gravity, e.work, e.released, e.balance());
+    text_ += line;
+    write_file_atomic(path_, text_);
+  }
+
+ private:
+  std::string path_, text_;
+};
+
+// The energy watchdog: the balance (mechanical energy + released - work) may drift by the
+// integrator's and the fracture's errors, a fraction of the energy in play; a blow-up
+// creates energy without bound. Returns how far past that bound the run is (> 1: blow-up).
+double energy_excess(const Energy& e0, const Energy& e) {
+  const double in_play = std::fabs(e0.kinetic) + std::fabs(e0.strain) + std::fabs(e0.contact) + std::fabs(e.kinetic) +
+                         std::fabs(e.strain) + std::fabs(e.contact) + std::fabs(e.work) + std::fabs(e.released) +
+                         std::fabs(e.gravity - e0.gravity);
+  const double growth = e.balance() - e0.balance();
+  return in_play > 0 ? growth / in_play : 0;
+}
+
+// The particle moving fastest: where a blow-up shows first.
+int64_t fastest_particle(Engine& engine) {
+  ParticleState s;
+  engine.read_state(s);
+  int64_t best = 0;
+  double speed = -1;
+  for (size_t i = 0; i < s.vel.size(); ++i)
+    if (double(length(s.vel[i])) > speed) speed = length(s.vel[best = int64_t(i)]);
+  return best;
 }
 
 RestData rest_data(const ParticleSet& ps) {
@@ -121,8 +162,12 @@ int run_command(const RunOptions& opt) {
   BondLists bonds;
   engine->read_bonds(bonds);
   const std::vector<int32_t>& count = bonds.count;
+  FragmentOutput fragments(setup.input, bonds, {out, opt.blend_frames, true});
+  std::string fragment_log;
   auto write_frame = [&](int64_t frame) {
-    const FrameData f = frame_data(*engine, setup.input.particles, count, frame);
+    FrameData f = frame_data(*engine, setup.input.particles, count, frame);
+    if (frame > 0) engine->read_bonds(bonds);
+    fragment_log = format_component_stats(fragments.process(f, bonds));
     if (scene.write_binary) write_frame_file(out + "/" + frame_file_name(frame, "pfr"), f);
     if (scene.write_vtk) {
       const std::string name = frame_file_name(frame, "vtu");
@@ -131,6 +176,9 @@ int run_command(const RunOptions& opt) {
     }
   };
   write_frame(0);
+  EnergyLog energy_log(out + "/energy.csv");
+  const Energy energy0 = engine->energy();
+  energy_log.add(0, 0, 0.0, energy0);
   engine->stats().reset_times();
 
   // Frame loop with a progress line; a non-finite state stops the run with the step.
@@ -149,14 +197,28 @@ int run_command(const RunOptions& opt) {
                    scene.dt / setup.critical_dt, (long long)(frame - 1), out.c_str());
       return kExitBlowUp;
     }
+    const Energy energy = engine->energy();
+    const double excess = energy_excess(energy0, energy);
+    if (excess > 1.0 || !std::isfinite(energy.balance())) {
+      std::fprintf(stderr,
+                   "\nerror: numerical blow-up: the energy grew by %.3g J (%.1f times the energy in play) by step %lld "
+                   "(frame %lld); particle %lld moves fastest. dt = %.3g s is %.2f of the critical time step%s. Frames "
+                   "up to %lld are written in %s\n",
+                   energy.balance() - energy0.balance(), excess, (long long)engine->step(), (long long)frame,
+                   (long long)fastest_particle(*engine), scene.dt, scene.dt / setup.critical_dt,
+                   scene.contact ? "; a high contact stiffness needs a smaller dt too" : "", (long long)(frame - 1),
+                   out.c_str());
+      return kExitBlowUp;
+    }
+    energy_log.add(frame, engine->step(), engine->time(), energy);
     write_frame(frame);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double steps_per_s = double(frame * scene.steps_per_frame) / elapsed;
     const double eta = elapsed / double(frame) * double(scene.frames - frame);
     const double broken = fam.bonds > 0 ? double(engine->broken_bonds()) / double(fam.bonds) : 0;
-    std::printf("%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%%s", tty ? "\r" : "",
-                (long long)frame, (long long)scene.frames, (long long)engine->step(), steps_per_s,
-                format_duration(eta).c_str(), 100 * broken, tty ? "   " : "\n");
+    std::printf("%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%  energy balance %+.2f%%  %s%s",
+                tty ? "\r" : "", (long long)frame, (long long)scene.frames, (long long)engine->step(), steps_per_s,
+                format_duration(eta).c_str(), 100 * broken, 100 * excess, fragment_log.c_str(), tty ? "   " : "\n");
     std::fflush(stdout);
   }
   if (tty) std::printf("\n");
@@ -164,7 +226,9 @@ int run_command(const RunOptions& opt) {
   const int64_t steps = scene.frames * scene.steps_per_frame;
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(backend));
   print_kernel_table(std::cout, kernel_rows(engine->stats(), "pd/", fam.bonds, steps));
-  std::printf("output     %s (%lld frames)\n", out.c_str(), (long long)scene.frames + 1);
+  fragments.write_meshes();
+  std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", out.c_str(),
+              (long long)scene.frames + 1, fragments.components().count());
   return kExitOk;
 }
 

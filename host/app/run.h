@@ -14,6 +14,7 @@ struct RunOptions {
   std::string out;      // empty: out/<scene name>
   double scale = 1.0;
   bool allow_unstable_dt = false;
+  int blend_frames = 0;  // fragment split blending (host/fragments/smoothing.h); 0: off
 };
 
 // Exit codes shared by the commands.

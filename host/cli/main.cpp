@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--out", run.out, "output folder (default: out/<scene name>)");
   run_cmd->add_option("--scale", run.scale, "particle-count factor, e.g. 0.05 for a small CPU run");
   run_cmd->add_flag("--allow-unstable-dt", run.allow_unstable_dt, "run even if dt exceeds the stable time step");
+  run_cmd->add_option("--blend-frames", run.blend_frames, "blend a split fragment's transform over N frames (0: off)")
+      ->check(CLI::NonNegativeNumber);
 
   BenchOptions bench;
   CLI::App* bench_cmd = app.add_subcommand("bench", "time the step kernels (bond-updates/s, occupancy)");

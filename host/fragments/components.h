@@ -38,10 +38,10 @@ class ComponentFinder {
   // when the sizes differ or a pair is not a family bond in both directions.
   ComponentFinder(const ElementAdjacency& adjacency, const BondLists& bonds);
 
-  // Components of `bonds` (the same families, as the engine holds them now).
-  Components find(const BondLists& bonds) const;
+  // Components of `bonds` (the same families, as the engine holds them now) into `out`, whose
+  // storage is reused from frame to frame like the finder's own scratch arrays.
+  void find(const BondLists& bonds, Components& out);
 
-  size_t particles() const { return n_; }
   size_t pairs() const { return a_.size(); }
 
  private:
@@ -49,6 +49,8 @@ class ComponentFinder {
   size_t slots_ = 0;
   std::vector<int32_t> a_, b_;            // adjacent pairs, a < b
   std::vector<int64_t> slot_a_, slot_b_;  // bond slot of the pair in a's and b's family
+  std::vector<uint8_t> intact_;           // scratch: pair still bonded
+  std::vector<int32_t> parent_;           // scratch: union-find forest
 };
 
 // Component count and sizes for the frame log: histogram[b] counts the components of

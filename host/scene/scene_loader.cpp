@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "../../cuda/views.h"
+#include "../geometry/shapes.h"
 #include "scene.h"
 
 namespace pd {
@@ -261,8 +262,10 @@ class TableReader {
     const toml::node* n = find(key, Presence::optional, allowed);
     if (!n) return false;
     const auto* a = n->as_array();
-    if (!a) fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + type_name(*n), allowed);
-    if (a->size() != N) fail(key, "expected " + std::to_string(N) + " numbers, got " + std::to_string(a->size()), allowed);
+    if (!a)
+      fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + type_name(*n), allowed);
+    if (a->size() != N)
+      fail(key, "expected " + std::to_string(N) + " numbers, got " + std::to_string(a->size()), allowed);
     for (size_t c = 0; c < N; ++c)
       out[c] = to_number(*a->get(c), *file_, path(key) + "[" + std::to_string(c) + "]", Bounds{});
     return true;
@@ -332,15 +335,43 @@ const Keys kTopKeys = {"description", "simulation", "world",       "contact", "m
 const Keys kSimulationKeys = {"dt", "steps_per_frame", "frames", "seed"};
 const Keys kWorldKeys = {"gravity", "floor", "floor_height", "restitution"};
 const Keys kContactKeys = {"enabled", "stiffness"};
-const Keys kMaterialKeys = {"model",           "density",           "bulk_modulus",    "shear_modulus",
-                            "youngs_modulus",  "poisson_ratio",     "horizon",         "strain_limit",
-                            "fracture_energy", "strain_limit_scatter", "compression_alpha", "partial_volumes",
-                            "fracture",        "damage_alpha",      "plastic",         "anisotropy"};
+const Keys kMaterialKeys = {"model",
+                            "density",
+                            "bulk_modulus",
+                            "shear_modulus",
+                            "youngs_modulus",
+                            "poisson_ratio",
+                            "horizon",
+                            "strain_limit",
+                            "fracture_energy",
+                            "strain_limit_scatter",
+                            "compression_alpha",
+                            "partial_volumes",
+                            "fracture",
+                            "damage_alpha",
+                            "plastic",
+                            "anisotropy"};
 const Keys kStateBasedOnlyKeys = {"shear_modulus", "youngs_modulus", "poisson_ratio", "fracture",
                                   "damage_alpha",  "plastic",        "anisotropy"};
 const Keys kPlasticKeys = {"yield_stress", "psi0", "limit"};
 const Keys kAnisotropyKeys = {"direction", "ratio", "matrix"};
-const Keys kBodyKeys = {"name", "shape", "center", "size", "spacing", "material", "velocity"};
+const Keys kBodyKeys = {
+    "name",         "shape",     "particles", "center",      "size",           "width",
+    "depth",        "thickness", "radius",    "height",      "tube_radius",    "wall",
+    "mesh",         "scale",     "repair",    "tet_quality", "tet_max_volume", "shell_thickness",
+    "shell_layers", "spacing",   "material",  "velocity"};
+const Keys kShapes = {"box", "plate", "sphere", "cylinder", "torus", "vase", "mesh"};
+const Keys kParticleKinds = {"grid", "tets", "shell", "voronoi"};
+// The dimension keys of each shape (in kShapes order).
+const Keys kShapeKeys[] = {{"size"},
+                           {"width", "depth", "thickness"},
+                           {"radius"},
+                           {"radius", "height"},
+                           {"radius", "tube_radius"},
+                           {"radius", "height", "wall"},
+                           {"mesh", "scale", "repair"}};
+const Keys kDimensionKeys = {"size",        "width", "depth", "thickness", "radius", "height",
+                             "tube_radius", "wall",  "mesh",  "scale",     "repair"};
 const Keys kAnchorKeys = {"box_min", "box_max", "velocity"};
 const Keys kProjectileKeys = {"center", "velocity", "radius", "strength"};
 const Keys kOutputKeys = {"vtk", "binary"};
@@ -353,14 +384,16 @@ constexpr double kMaxHorizon = 12;  // delta / lambda; beyond this the bond fami
 void parse_elastic_constants(const TableReader& r, SceneMaterial& m) {
   if (m.model == "bond_based") {
     for (const auto& key : kStateBasedOnlyKeys)
-      if (r.has(key)) r.fail(key, "only for model = \"state_based\"", "for bond_based: bulk_modulus (nu is 1/4)");
+      if (r.has(key))
+        r.fail(key, "only for model = \"state_based\"", "for bond_based: bulk_modulus (nu is 1/4)");
     r.number("bulk_modulus", m.bulk_modulus, greater_than(0), Presence::required);
     return;
   }
   const std::string pairs = "either bulk_modulus and shear_modulus, or youngs_modulus and poisson_ratio";
   const bool km = r.has("bulk_modulus") || r.has("shear_modulus");
   const bool enu = r.has("youngs_modulus") || r.has("poisson_ratio");
-  if (km == enu) r.fail("", km ? "both kinds of elastic constants are given" : "no elastic constants are given", pairs);
+  if (km == enu)
+    r.fail("", km ? "both kinds of elastic constants are given" : "no elastic constants are given", pairs);
   if (km) {
     r.number("bulk_modulus", m.bulk_modulus, greater_than(0), Presence::required);
     r.number("shear_modulus", m.shear_modulus, greater_than(0), Presence::required);
@@ -380,7 +413,9 @@ ScenePlastic parse_plastic(const TableReader& r) {
   const bool stress = r.number("yield_stress", value, greater_than(0));
   if (stress) p.yield_stress = value;
   const bool psi = r.number("psi0", p.psi0, greater_than(0));
-  if (stress == psi) r.fail("", stress ? "both yield_stress and psi0 are given" : "neither yield_stress nor psi0 is given", one_of);
+  if (stress == psi)
+    r.fail("", stress ? "both yield_stress and psi0 are given" : "neither yield_stress nor psi0 is given",
+           one_of);
   r.number("limit", p.limit, at_least(0));
   return p;
 }
@@ -391,11 +426,13 @@ SceneAnisotropy parse_anisotropy(const TableReader& r) {
   SceneAnisotropy a;
   const std::string one_of = "either direction and ratio, or matrix (9 numbers, row major)";
   const bool dir = r.has("direction") || r.has("ratio");
-  if (dir == r.has("matrix")) r.fail("", dir ? "both direction/ratio and matrix are given" : "no anisotropy is given", one_of);
+  if (dir == r.has("matrix"))
+    r.fail("", dir ? "both direction/ratio and matrix are given" : "no anisotropy is given", one_of);
   if (!dir) {
     r.numbers("matrix", a.matrix, "an array of 9 numbers, G row major, non-singular");
     const auto& g = a.matrix;
-    const double det = g[0] * (g[4] * g[8] - g[5] * g[7]) - g[1] * (g[3] * g[8] - g[5] * g[6]) + g[2] * (g[3] * g[7] - g[4] * g[6]);
+    const double det = g[0] * (g[4] * g[8] - g[5] * g[7]) - g[1] * (g[3] * g[8] - g[5] * g[6]) +
+                       g[2] * (g[3] * g[7] - g[4] * g[6]);
     if (!(std::fabs(det) > 1e-12)) r.fail("matrix", "G is singular", "a non-singular 3x3 matrix");
     return a;
   }
@@ -407,7 +444,8 @@ SceneAnisotropy parse_anisotropy(const TableReader& r) {
   if (!(len > 0)) r.fail("direction", "the direction is the zero vector", "a non-zero [x, y, z]");
   for (double& c : d) c /= len;
   for (int row = 0; row < 3; ++row)
-    for (int col = 0; col < 3; ++col) a.matrix[3 * row + col] = (row == col ? 1.0 : 0.0) + (1 / ratio - 1) * d[row] * d[col];
+    for (int col = 0; col < 3; ++col)
+      a.matrix[3 * row + col] = (row == col ? 1.0 : 0.0) + (1 / ratio - 1) * d[row] * d[col];
   return a;
 }
 
@@ -444,14 +482,95 @@ SceneMaterial parse_material(const std::string& name, const TableReader& r) {
   return m;
 }
 
-SceneBody parse_body(size_t index, const TableReader& r, const std::vector<SceneMaterial>& materials) {
+// Shape and its dimensions: the keys of the chosen shape are required (mesh: `mesh` only),
+// those of other shapes are errors.
+void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
+  r.string("shape", b.shape, kShapes);
+  r.string("particles", b.particles, kParticleKinds);
+  const size_t s = size_t(std::find(kShapes.begin(), kShapes.end(), b.shape) - kShapes.begin());
+  const Keys& own = kShapeKeys[s];
+  for (std::string_view key : kDimensionKeys)
+    if (r.has(key) && std::find(own.begin(), own.end(), key) == own.end())
+      r.fail(key, "not a dimension of shape = " + quoted(b.shape),
+             "for " + b.shape + ": " + join(own, false));
+  const Bounds positive = greater_than(0);
+  if (b.shape == "box") r.vec3("size", b.size, Presence::required);
+  if (b.shape == "plate") {
+    r.number("width", b.width, positive, Presence::required);
+    r.number("depth", b.depth, positive, Presence::required);
+    r.number("thickness", b.thickness, positive, Presence::required);
+    b.size = {b.width, b.thickness, b.depth};
+  }
+  if (b.shape == "sphere" || b.shape == "cylinder" || b.shape == "torus" || b.shape == "vase")
+    r.number("radius", b.radius, positive, Presence::required);
+  if (b.shape == "cylinder" || b.shape == "vase") r.number("height", b.height, positive, Presence::required);
+  if (b.shape == "torus") {
+    Bounds tube = in_open(0, b.radius);
+    tube.note = "less than radius, so the torus has a hole";
+    r.number("tube_radius", b.tube_radius, tube, Presence::required);
+  }
+  if (b.shape == "vase") {
+    // The wall must fit inside the rounded foot; a shell replaces the wall by its own thickness.
+    Bounds wall = in_open(0, vase_foot(b.radius, b.height));
+    wall.note = "less than the foot radius min(radius/4, height/10)";
+    if (b.particles == "shell") {
+      if (r.has("wall"))
+        r.fail("wall", "a shell's thickness is shell_thickness", "no wall with particles = \"shell\"");
+    } else {
+      r.number("wall", b.wall, wall, Presence::required);
+    }
+  }
+  if (b.shape == "mesh") {
+    r.string("mesh", b.mesh, {}, Presence::required);
+    if (b.mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
+    // Relative paths start from the scene file's folder.
+    const size_t slash = file.find_last_of('/');
+    b.mesh_path =
+        b.mesh[0] == '/' || slash == std::string::npos ? b.mesh : file.substr(0, slash + 1) + b.mesh;
+    r.number("scale", b.scale, positive);
+    r.string("repair", b.repair, {"none", "fill_holes"});
+  }
+}
+
+// TetGen and shell switches, only with the particles that use them.
+void parse_particle_switches(const TableReader& r, SceneBody& b) {
+  const bool tets = b.particles == "tets" || b.particles == "shell", shell = b.particles == "shell";
+  for (std::string_view key : {"tet_quality", "tet_max_volume"})
+    if (r.has(key) && !tets)
+      r.fail(key, "only for particles = \"tets\" or \"shell\"",
+             "no TetGen switch with particles = " + quoted(b.particles));
+  for (std::string_view key : {"shell_thickness", "shell_layers"})
+    if (r.has(key) && !shell)
+      r.fail(key, "only for particles = \"shell\"", "no shell key with particles = " + quoted(b.particles));
+  if (r.has("tet_quality")) {
+    const Bounds quality{0, 10, false, false,
+                         "0 (no quality refinement) or a radius-edge bound in [1.1, 10]"};
+    r.number("tet_quality", b.tet_quality, quality);
+    if (b.tet_quality != 0 && b.tet_quality < 1.1)
+      r.fail("tet_quality", number_text(b.tet_quality) + " is out of range", quality.describe());
+  }
+  double volume = 0;
+  if (r.number("tet_max_volume", volume, greater_than(0))) b.tet_max_volume = volume;
+  if (!shell) return;
+  Bounds thickness = greater_than(0);
+  if (b.shape == "vase") {
+    thickness = in_open(0, vase_foot(b.radius, b.height));
+    thickness.note = "less than the vase's foot radius min(radius/4, height/10)";
+  }
+  r.number("shell_thickness", b.shell_thickness, thickness, Presence::required);
+  if (r.integer("shell_layers", b.shell_layers, 2) && b.shell_layers > 64)
+    r.fail("shell_layers", std::to_string(b.shell_layers) + " is out of range", "an integer in [2, 64]");
+}
+
+SceneBody parse_body(size_t index, const TableReader& r, const std::vector<SceneMaterial>& materials,
+                     const std::string& file) {
   SceneBody b;
   b.name = "body" + std::to_string(index);
   r.string("name", b.name);
-  r.string("shape", b.shape, {"box"});
+  parse_shape(r, b, file);
+  parse_particle_switches(r, b);
   r.vec3("center", b.center);
   r.vec3("velocity", b.velocity);
-  r.vec3("size", b.size, Presence::required);
   r.number("spacing", b.spacing, greater_than(0), Presence::required);
 
   // The material must name a [materials.NAME] table.
@@ -461,8 +580,11 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
   if (std::find(names.begin(), names.end(), b.material) == names.end())
     r.fail("material", "no material named " + quoted(b.material), join(names, true));
 
-  // Particle grid: round(size / spacing) per axis (host/geometry/box_grid.cpp). Every axis
-  // needs at least one particle, and the body's particle count must fit an int32 index.
+  // A box or plate of grid particles: round(size / spacing) per axis (host/geometry/box_grid.cpp).
+  // Every axis needs at least one particle, and the body's particle count must fit an int32
+  // index. Other bodies are counted when their particles are made (scene_setup.cpp).
+  if ((b.shape != "box" && b.shape != "plate") || b.particles != "grid") return b;
+  const std::string size_key = b.shape == "box" ? "size" : "width, depth, thickness";
   double count = 1;
   for (int a = 0; a < 3; ++a) {
     if (!(b.size[a] > 0))
@@ -470,7 +592,10 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
              "sizes > 0");
     const double per_axis = std::round(b.size[a] / b.spacing);
     if (per_axis < 1)
-      r.fail("size",
+      r.fail(b.shape == "box" ? "size"
+                              : (a == 0   ? "width"
+                                 : a == 1 ? "thickness"
+                                          : "depth"),
              std::string(kAxisNames[a]) + " size " + number_text(b.size[a]) +
                  " is less than half the spacing " + number_text(b.spacing) +
                  ", which would give zero particles along that axis",
@@ -547,7 +672,7 @@ Scene parse_root(const toml::table& root, const std::string& path) {
   // [[bodies]], at least one; they refer to the materials.
   const auto bodies = top.table_array("bodies", kBodyKeys);
   for (size_t i = 0; i < bodies.size(); ++i)
-    scene.bodies.push_back(parse_body(i, bodies[i], scene.materials));
+    scene.bodies.push_back(parse_body(i, bodies[i], scene.materials, path));
   if (scene.bodies.empty()) top.fail("bodies", "no body is defined", "at least one [[bodies]] table");
 
   // [[anchors]]

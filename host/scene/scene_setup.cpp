@@ -1,10 +1,17 @@
 #include "scene_setup.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "../geometry/box_grid.h"
+#include "../geometry/grid_particles.h"
+#include "../geometry/mesh_check.h"
+#include "../geometry/mesh_io.h"
+#include "../geometry/shapes.h"
+#include "../geometry/tet_particles.h"
+#include "../geometry/voronoi_particles.h"
 #include "../material.h"
 #include "../random.h"
 
@@ -12,7 +19,9 @@ namespace pd {
 
 namespace {
 
-Vec3 to_vec3(const Vec3d& v) { return {real(v[0]), real(v[1]), real(v[2])}; }
+Vec3 to_vec3(const Vec3d& v) {
+  return {real(v[0]), real(v[1]), real(v[2])};
+}
 
 const SceneMaterial& find_material(const Scene& scene, const std::string& name) {
   for (const auto& m : scene.materials)
@@ -40,8 +49,9 @@ Material derive_material(const SceneMaterial& sm, double spacing, MaterialSummar
   if (!state) {
     m.micromodulus = real(pmb_micromodulus(sm.bulk_modulus, delta));
     summary.micromodulus = m.micromodulus;
-    summary.strain_limit = sm.strain_limit ? *sm.strain_limit
-                                           : pmb_critical_stretch(*sm.fracture_energy, sm.bulk_modulus, delta);
+    summary.strain_limit = sm.strain_limit
+                               ? *sm.strain_limit
+                               : pmb_critical_stretch(*sm.fracture_energy, sm.bulk_modulus, delta);
     summary.critical_dt = pmb_critical_time_step(sm.density, sm.bulk_modulus, delta);
     return m;
   }
@@ -51,18 +61,63 @@ Material derive_material(const SceneMaterial& sm, double spacing, MaterialSummar
   m.chen_fracture = sm.fracture == "chen" ? 1 : 0;
   if (sm.plastic) {
     m.plastic = 1;
-    m.yield_psi0 = real(sm.plastic->yield_stress ? yield_psi0(*sm.plastic->yield_stress, delta) : sm.plastic->psi0);
+    m.yield_psi0 =
+        real(sm.plastic->yield_stress ? yield_psi0(*sm.plastic->yield_stress, delta) : sm.plastic->psi0);
     m.plastic_limit = real(sm.plastic->limit);
   }
   if (sm.anisotropy) {
     m.anisotropic = 1;
     for (int k = 0; k < 9; ++k) m.aniso[k] = real(sm.anisotropy->matrix[k]);
   }
-  summary.strain_limit = sm.strain_limit ? *sm.strain_limit
-                                         : lps_critical_stretch(*sm.fracture_energy, sm.bulk_modulus,
-                                                                sm.shear_modulus, delta);
+  summary.strain_limit =
+      sm.strain_limit ? *sm.strain_limit
+                      : lps_critical_stretch(*sm.fracture_energy, sm.bulk_modulus, sm.shear_modulus, delta);
   summary.critical_dt = lps_critical_time_step(sm.density, sm.bulk_modulus, sm.shear_modulus, delta);
   return m;
+}
+
+// The solid of a body, placed with its bounding-box centre at `center`. Curved surfaces get
+// about one vertex per `edge`; mesh files are checked (and repaired as the scene asks).
+TriMesh body_solid(const SceneBody& body, double edge, const std::string& key) {
+  TriMesh mesh;
+  if (body.shape == "box") mesh = box_mesh(body.size);
+  if (body.shape == "plate") mesh = box_mesh({body.width, body.thickness, body.depth});
+  if (body.shape == "sphere") mesh = sphere_mesh(body.radius, edge);
+  if (body.shape == "cylinder") mesh = cylinder_mesh(body.radius, body.height, edge);
+  if (body.shape == "torus") mesh = torus_mesh(body.radius, body.tube_radius, edge);
+  if (body.shape == "vase")
+    mesh = body.particles == "shell" ? vase_sheet(body.radius, body.height, edge)
+                                     : vase_mesh(body.radius, body.height, body.wall, edge);
+  if (body.shape == "mesh") {
+    mesh = read_mesh(body.mesh_path);
+    const MeshReport report = check_solid(mesh, body.mesh_path, {body.repair == "fill_holes"});
+    for (const std::string& note : report.notes)
+      std::fprintf(stderr, "note: %s.mesh: %s: %s\n", key.c_str(), body.mesh_path.c_str(), note.c_str());
+    transform(mesh, body.scale, {0, 0, 0});
+    transform(mesh, 1, -1.0 * bounds(mesh).center());
+  }
+  transform(mesh, 1, body.center);
+  return mesh;
+}
+
+// Particles of one body at `spacing`: the box grid of box and plate bodies (the layout of
+// box_grid.h), else grid, tet, fattened-shell or Voronoi particles of the body's solid.
+ParticleGeometry body_particles(const SceneBody& body, double spacing, double spacing_factor, uint64_t seed,
+                                int64_t max_particles, const std::string& key) {
+  if ((body.shape == "box" || body.shape == "plate") && body.particles == "grid")
+    return box_grid_particles(body.center, body.size, spacing);
+  // Tets are about twice the spacing on a side (one tet per spacing^3 or so).
+  const bool tets = body.particles == "tets" || body.particles == "shell";
+  const TriMesh solid = body_solid(body, tets ? 2 * spacing : spacing, key);
+  const std::string name = body.shape == "mesh" ? body.mesh_path : key;
+  if (body.particles == "grid") return grid_particles(solid, spacing, max_particles, name);
+  if (body.particles == "voronoi") return voronoi_particles(solid, spacing, seed, max_particles, name);
+  TetgenOptions options;
+  options.quality = body.tet_quality;
+  const double cube = spacing_factor * spacing_factor * spacing_factor;
+  options.max_volume = body.tet_max_volume ? *body.tet_max_volume * cube : 2 * spacing * spacing * spacing;
+  if (body.particles == "tets") return tet_particles(solid, options, max_particles, name);
+  return shell_particles(solid, body.shell_thickness, int(body.shell_layers), options, max_particles, name);
 }
 
 // Per-particle strain limit: normal scatter of relative deviation sigma, truncated at 3 sigma
@@ -76,7 +131,8 @@ real scattered_limit(double tau, double sigma, Random& rng) {
 
 SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale) || options.scale > 1e3)
-    throw SceneError(scene.path, "--scale", "must be a number in (0, 1000], got " + std::to_string(options.scale));
+    throw SceneError(scene.path, "--scale",
+                     "must be a number in (0, 1000], got " + std::to_string(options.scale));
   SetupResult result;
   SimulationInput& in = result.input;
   ParticleSet& ps = in.particles;
@@ -89,13 +145,30 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     const SceneBody& body = scene.bodies[b];
     const std::string key = "bodies[" + std::to_string(b) + "]";
     if (in.materials.count >= kMaxMaterials)
-      throw SceneError(scene.path, key, "too many bodies (allowed: at most " + std::to_string(kMaxMaterials) + ")");
+      throw SceneError(scene.path, key,
+                       "too many bodies (allowed: at most " + std::to_string(kMaxMaterials) + ")");
     const double spacing = body.spacing * spacing_factor;
-    const auto n = box_grid_counts(body.size, spacing);
-    total += n[0] * n[1] * n[2];
-    if (total > std::numeric_limits<int32_t>::max() / 2)
-      throw SceneError(scene.path, key + ".spacing",
-                       "the scene would have " + std::to_string(total) + " particles (allowed: at most 1073741823)");
+    constexpr int64_t kMaxScene = std::numeric_limits<int32_t>::max() / 2;
+    if ((body.shape == "box" || body.shape == "plate") && body.particles == "grid") {
+      // Counted before the particles are made.
+      const auto n = box_grid_counts(body.size, spacing);
+      if (total + n[0] * n[1] * n[2] > kMaxScene)
+        throw SceneError(scene.path, key + ".spacing",
+                         "the scene would have " + std::to_string(total + n[0] * n[1] * n[2]) +
+                             " particles (allowed: at most 1073741823)");
+    }
+    ParticleGeometry geometry;
+    try {
+      geometry = body_particles(body, spacing, spacing_factor, scene.seed + b, kMaxScene - total, key);
+    } catch (const MeshError& e) {
+      const bool from_file = body.shape == "mesh" && e.path() == body.mesh_path;
+      throw SceneError(scene.path, key + (from_file ? ".mesh" : ".particles"), e.what());
+    }
+    total += int64_t(geometry.size());
+    if (total > kMaxScene)
+      throw SceneError(
+          scene.path, key + ".spacing",
+          "the scene would have " + std::to_string(total) + " particles (allowed: at most 1073741823)");
 
     const SceneMaterial& sm = find_material(scene, body.material);
     if (b > 0 && sm.model != find_material(scene, scene.bodies[0].material).model)
@@ -112,10 +185,9 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     result.materials.push_back(summary);
     result.body_names.push_back(body.name);
 
-    // Particles: grid cubes; mass and volume from the cube; anchors by rest position.
-    const real volume = real(spacing * spacing * spacing);
-    const real mass = real(sm.density * spacing * spacing * spacing);
-    for (const Vec3& x : box_grid_points(body.center, body.size, spacing)) {
+    // Particles: volume from the element, mass = density x volume; anchors by rest position.
+    for (size_t i = 0; i < geometry.size(); ++i) {
+      const Vec3 x = to_vec3(geometry.position[i]);
       uint8_t flags = 0;
       Vec3 v = to_vec3(body.velocity);
       for (const auto& a : scene.anchors)
@@ -123,7 +195,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
           flags |= kAnchored;
           v = to_vec3(a.velocity);
         }
-      ps.add(x, v, volume, mass,
+      ps.add(x, v, real(geometry.volume[i]), real(sm.density * geometry.volume[i]),
              scattered_limit(summary.strain_limit, sm.strain_limit_scatter, rng), mat, int32_t(b), flags);
     }
   }

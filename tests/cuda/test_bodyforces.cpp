@@ -55,6 +55,7 @@ TEST(BodyForces, GravityAndFloorReflection) {
   Vec3 vel{0, real(-2), 0}, force{real(1), 0, 0};
   real inv_mass = real(0.5);
   uint8_t flags = 0;
+  Ledger ledger;
   ParticlesView p;
   p.n = 1;
   p.rest = &rest;
@@ -63,6 +64,7 @@ TEST(BodyForces, GravityAndFloorReflection) {
   p.force = &force;
   p.inv_mass = &inv_mass;
   p.flags = &flags;
+  p.ledger = &ledger;
   StepParams sp;
   sp.gravity = {0, real(-9.81), 0};
   sp.floor_enabled = 1;

@@ -17,6 +17,7 @@ struct Pair {
   std::vector<uint16_t> material{0, 0};
   std::vector<int32_t> body{0, 0}, intact{0, 0}, count{1, 1}, neighbor;
   std::vector<uint8_t> flags{0, 0};
+  std::vector<Ledger> ledger{Ledger(), Ledger()};
   std::vector<int64_t> offset{0, kSliceWidth};
   MaterialTable mt;
 
@@ -47,6 +48,7 @@ struct Pair {
     p.flags = flags.data();
     p.strain_limit0 = tau0.data();
     p.strain_min = smin.data();
+    p.ledger = ledger.data();
     p.intact = intact.data();
     return p;
   }

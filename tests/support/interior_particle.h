@@ -23,6 +23,7 @@ struct InteriorParticle {
   std::vector<uint16_t> material;
   std::vector<int32_t> body, intact, count, neighbor;
   std::vector<uint8_t> flags;
+  std::vector<Ledger> ledger;
   std::vector<int64_t> offset;
   std::vector<real> plastic;
 
@@ -50,6 +51,7 @@ struct InteriorParticle {
     material.assign(n, 0);
     body.assign(n, 0);
     flags.assign(n, 0);
+    ledger.assign(n, Ledger());
     count.assign(n, 0);
     count[0] = int32_t(n - 1);
     intact = count;
@@ -84,6 +86,7 @@ struct InteriorParticle {
     p.strain_min = smin.data();
     p.intact = intact.data();
     p.state = state.data();
+    p.ledger = ledger.data();
     return p;
   }
   BondsView bonds() {

@@ -326,7 +326,7 @@ TEST(SceneLoader, NonFiniteNumbers) {
 
 TEST(SceneLoader, UnsupportedModelAndShape) {
   expect_error(kMaterial + "model = \"viscous\"\n" + kBody, "materials.glass.model", "\"state_based\"");
-  expect_error(kMinimal + "shape = \"sphere\"\n", "bodies[0].shape", "\"box\"");
+  expect_error(kMinimal + "shape = \"cone\"\n", "bodies[0].shape", "\"sphere\"");
 }
 
 TEST(SceneLoader, TomlSyntaxErrorNamesTheLine) {
@@ -418,18 +418,21 @@ TEST(SceneLoader, StateBasedElasticConstantsExactlyOnePair) {
   expect_error(kSteel + "bulk_modulus = 1e9\nshear_modulus = 1e9\nyoungs_modulus = 1e9\n" + kSteelBody,
                "materials.steel", "either");
   expect_error(kSteel + "bulk_modulus = 1e9\n" + kSteelBody, "materials.steel.shear_modulus");
-  expect_error(kSteel + "youngs_modulus = 1e9\npoisson_ratio = 0.5\n" + kSteelBody, "materials.steel.poisson_ratio");
+  expect_error(kSteel + "youngs_modulus = 1e9\npoisson_ratio = 0.5\n" + kSteelBody,
+               "materials.steel.poisson_ratio");
   // Bond-based materials have nu = 1/4 and take no shear modulus.
   expect_error(kMaterial + "shear_modulus = 1e9\n" + kBody, "materials.glass.shear_modulus", "bulk_modulus");
 }
 
 TEST(SceneLoader, PlasticBlock) {
   const std::string elastic = kSteel + "bulk_modulus = 160e9\nshear_modulus = 80e9\n";
-  const Scene s = parse_scene(elastic + "[materials.steel.plastic]\nyield_stress = 250e6\nlimit = 0.1\n" + kSteelBody, kFile);
+  const Scene s = parse_scene(
+      elastic + "[materials.steel.plastic]\nyield_stress = 250e6\nlimit = 0.1\n" + kSteelBody, kFile);
   ASSERT_TRUE(s.materials[0].plastic);
   EXPECT_EQ(*s.materials[0].plastic->yield_stress, 250e6);
   EXPECT_EQ(s.materials[0].plastic->limit, 0.1);
-  expect_error(elastic + "[materials.steel.plastic]\nlimit = 0.1\n" + kSteelBody, "materials.steel.plastic", "psi0");
+  expect_error(elastic + "[materials.steel.plastic]\nlimit = 0.1\n" + kSteelBody, "materials.steel.plastic",
+               "psi0");
   expect_error(elastic + "[materials.steel.plastic]\npsi0 = 1\nyield_stress = 1\n" + kSteelBody,
                "materials.steel.plastic", "exactly one");
   expect_error(elastic + "[materials.steel.plastic]\npsi0 = 1\nhardening = 2\n" + kSteelBody,
@@ -438,8 +441,8 @@ TEST(SceneLoader, PlasticBlock) {
 
 TEST(SceneLoader, AnisotropyBlock) {
   const std::string elastic = kSteel + "bulk_modulus = 160e9\nshear_modulus = 80e9\n";
-  const Scene s =
-      parse_scene(elastic + "[materials.steel.anisotropy]\ndirection = [0, 0, 2]\nratio = 4\n" + kSteelBody, kFile);
+  const Scene s = parse_scene(
+      elastic + "[materials.steel.anisotropy]\ndirection = [0, 0, 2]\nratio = 4\n" + kSteelBody, kFile);
   ASSERT_TRUE(s.materials[0].anisotropy);
   const auto& g = s.materials[0].anisotropy->matrix;
   EXPECT_DOUBLE_EQ(g[0], 1);
@@ -450,6 +453,73 @@ TEST(SceneLoader, AnisotropyBlock) {
                "materials.steel.anisotropy.matrix", "non-singular");
   expect_error(elastic + "[materials.steel.anisotropy]\ndirection = [0, 0, 0]\nratio = 2\n" + kSteelBody,
                "materials.steel.anisotropy.direction");
+}
+
+}  // namespace
+}  // namespace pd
+
+// ---- Body shapes and particle kinds ------------------------------------------------------------
+
+namespace pd {
+namespace {
+
+const std::string kShapeMaterial =
+    "[materials.glass]\ndensity = 2440\nbulk_modulus = 4.3e10\nstrain_limit = 0.001\n";
+
+std::string body(const std::string& keys) {
+  return kShapeMaterial + "[[bodies]]\nspacing = 0.01\nmaterial = \"glass\"\n" + keys;
+}
+
+TEST(SceneLoader, ShapesWithTheirDimensions) {
+  const Scene s = parse_scene(
+      body("shape = \"torus\"\nradius = 0.2\ntube_radius = 0.05\nparticles = \"voronoi\"\n") +
+          body("shape = \"vase\"\nradius = 0.1\nheight = 0.3\nwall = 0.005\nparticles = \"tets\"\n"
+               "tet_quality = 1.2\ntet_max_volume = 1e-6\n")
+              .substr(kShapeMaterial.size()) +
+          body("shape = \"mesh\"\nmesh = \"meshes/cow.obj\"\nscale = 2\nrepair = \"fill_holes\"\n")
+              .substr(kShapeMaterial.size()) +
+          body("shape = \"plate\"\nwidth = 0.5\ndepth = 0.4\nthickness = 0.01\n")
+              .substr(kShapeMaterial.size()),
+      "scenes/x.toml");
+  ASSERT_EQ(s.bodies.size(), 4u);
+  EXPECT_EQ(s.bodies[0].shape, "torus");
+  EXPECT_EQ(s.bodies[0].particles, "voronoi");
+  EXPECT_EQ(s.bodies[0].tube_radius, 0.05);
+  EXPECT_EQ(s.bodies[1].wall, 0.005);
+  EXPECT_EQ(s.bodies[1].tet_quality, 1.2);
+  EXPECT_EQ(s.bodies[1].tet_max_volume, std::optional<double>(1e-6));
+  EXPECT_EQ(s.bodies[2].mesh_path, "scenes/meshes/cow.obj");  // relative to the scene file
+  EXPECT_EQ(s.bodies[2].scale, 2);
+  EXPECT_EQ(s.bodies[2].repair, "fill_holes");
+  EXPECT_EQ(s.bodies[3].size, (Vec3d{0.5, 0.01, 0.4}));
+  EXPECT_EQ(s.bodies[3].particles, "grid");
+}
+
+TEST(SceneLoader, ShapeKeysAreValidated) {
+  expect_error(body("shape = \"sphere\"\n"), "bodies[0].radius", "missing required key");
+  expect_error(body("shape = \"sphere\"\nradius = 1\nheight = 2\n"), "bodies[0].height",
+               "not a dimension of shape");
+  expect_error(body("shape = \"torus\"\nradius = 1\ntube_radius = 1\n"), "bodies[0].tube_radius",
+               "less than radius");
+  expect_error(body("shape = \"vase\"\nradius = 0.1\nheight = 0.3\nwall = 0.03\n"), "bodies[0].wall",
+               "foot radius");
+  expect_error(body("shape = \"mesh\"\n"), "bodies[0].mesh", "missing required key");
+  expect_error(body("shape = \"mesh\"\nmesh = \"a.obj\"\nrepair = \"magic\"\n"), "bodies[0].repair",
+               "\"fill_holes\"");
+  expect_error(body("shape = \"mesh\"\nmesh = \"a.obj\"\nscale = 0\n"), "bodies[0].scale", "out of range");
+  expect_error(body("size = [1, 1, 1]\nparticles = \"sph\"\n"), "bodies[0].particles", "\"voronoi\"");
+  expect_error(body("size = [1, 1, 1]\ntet_quality = 1.2\n"), "bodies[0].tet_quality", "only for particles");
+  expect_error(body("size = [1, 1, 1]\nparticles = \"tets\"\ntet_quality = 1.0\n"), "bodies[0].tet_quality",
+               "[1.1, 10]");
+  expect_error(body("size = [1, 1, 1]\nparticles = \"shell\"\n"), "bodies[0].shell_thickness",
+               "missing required key");
+  expect_error(body("size = [1, 1, 1]\nparticles = \"tets\"\nshell_layers = 3\n"), "bodies[0].shell_layers",
+               "only for particles = \"shell\"");
+  expect_error(body("size = [1, 1, 1]\nparticles = \"shell\"\nshell_thickness = 0.1\nshell_layers = 1\n"),
+               "bodies[0].shell_layers", "out of range");
+  expect_error(body("shape = \"vase\"\nradius = 0.1\nheight = 0.3\nwall = 0.005\nparticles = \"shell\"\n"
+                    "shell_thickness = 0.005\n"),
+               "bodies[0].wall", "shell_thickness");
 }
 
 }  // namespace

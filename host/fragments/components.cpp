@@ -1,0 +1,153 @@
+#include "components.h"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+namespace pd {
+
+namespace {
+
+// Counting sort of the particles by component number into start/members, stable so members stay
+// ascending. Storage of `c` is reused; start is first the fill cursor, then shifted back.
+void group_members(Components& c, int32_t count) {
+  c.start.assign(size_t(count) + 1, 0);
+  for (int32_t k : c.index) ++c.start[size_t(k) + 1];
+  std::partial_sum(c.start.begin(), c.start.end(), c.start.begin());
+  c.members.resize(c.index.size());
+  for (size_t i = 0; i < c.index.size(); ++i) c.members[size_t(c.start[size_t(c.index[i])]++)] = int32_t(i);
+  for (size_t k = size_t(count); k > 0; --k) c.start[k] = c.start[k - 1];
+  c.start[0] = 0;
+}
+
+}  // namespace
+
+Components components_from_ids(std::vector<int32_t> id) {
+  const size_t n = id.size();
+  Components c;
+  // Component numbers in order of first appearance.
+  std::vector<int32_t> number(n, -1);
+  c.index.resize(n);
+  int32_t count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (id[i] < 0 || size_t(id[i]) >= n)
+      throw std::invalid_argument("component id " + std::to_string(id[i]) + " of particle " +
+                                  std::to_string(i) + " is outside [0, " + std::to_string(n) + ")");
+    int32_t& k = number[size_t(id[i])];
+    if (k < 0) k = count++;
+    c.index[i] = k;
+  }
+  c.id = std::move(id);
+  group_members(c, count);
+  return c;
+}
+
+ComponentFinder::ComponentFinder(const ElementAdjacency& adjacency, const BondLists& bonds)
+    : n_(bonds.count.size()), slots_(bonds.neighbor.size()) {
+  if (adjacency.size() != n_)
+    throw std::invalid_argument("element adjacency has " + std::to_string(adjacency.size()) +
+                                " particles, the families " + std::to_string(n_));
+  const BondsView v = bonds.view();
+  const auto& off = adjacency.offset;
+  const auto& nb = adjacency.neighbor;
+
+  // Slot of each directed adjacency entry in its particle's family (-1 until found).
+  std::vector<int64_t> entry_slot(nb.size(), -1);
+#pragma omp parallel for schedule(static)
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
+      for (int64_t e = off[size_t(i)]; e < off[size_t(i) + 1]; ++e)
+        if (nb[size_t(e)] == j) entry_slot[size_t(e)] = v.slot(i, k);
+    }
+  for (size_t i = 0; i < n_; ++i)
+    for (int64_t e = off[i]; e < off[i + 1]; ++e)
+      if (entry_slot[size_t(e)] < 0)
+        throw std::invalid_argument("adjacent particles " + std::to_string(i) + " and " +
+                                    std::to_string(nb[size_t(e)]) + " share no family bond");
+
+  // Undirected pairs a < b with both slots; the reverse entry is looked up in b's list.
+  for (size_t i = 0; i < n_; ++i)
+    for (int64_t e = off[i]; e < off[i + 1]; ++e) {
+      const int32_t j = nb[size_t(e)];
+      if (size_t(j) <= i) continue;
+      int64_t back = off[size_t(j)];
+      while (back < off[size_t(j) + 1] && size_t(nb[size_t(back)]) != i) ++back;
+      if (back == off[size_t(j) + 1])
+        throw std::invalid_argument("element adjacency is not symmetric: " + std::to_string(j) +
+                                    " is adjacent to " + std::to_string(i) + " but not the reverse");
+      a_.push_back(int32_t(i));
+      b_.push_back(j);
+      slot_a_.push_back(entry_slot[size_t(e)]);
+      slot_b_.push_back(entry_slot[size_t(back)]);
+    }
+}
+
+void ComponentFinder::find(const BondLists& bonds, Components& out) {
+  if (bonds.count.size() != n_ || bonds.neighbor.size() != slots_)
+    throw std::invalid_argument("ComponentFinder::find: the families differ from those it was built for");
+  const int32_t* nb = bonds.neighbor.data();
+
+  // Which pairs are still bonded from both ends (independent reads, in parallel).
+  const int64_t pairs = int64_t(a_.size());
+  intact_.resize(size_t(pairs));
+#pragma omp parallel for schedule(static)
+  for (int64_t p = 0; p < pairs; ++p)
+    intact_[size_t(p)] = bond_intact(nb[slot_a_[size_t(p)]]) && bond_intact(nb[slot_b_[size_t(p)]]);
+
+  // Union-find with path halving; the larger root is linked under the smaller, so every parent
+  // index is below its child and each root is the smallest particle of its set.
+  parent_.resize(n_);
+  std::iota(parent_.begin(), parent_.end(), 0);
+  auto root = [&](int32_t x) {
+    while (parent_[size_t(x)] != x) x = parent_[size_t(x)] = parent_[size_t(parent_[size_t(x)])];
+    return x;
+  };
+  for (int64_t p = 0; p < pairs; ++p) {
+    if (!intact_[size_t(p)]) continue;
+    const int32_t ra = root(a_[size_t(p)]), rb = root(b_[size_t(p)]);
+    if (ra < rb) parent_[size_t(rb)] = ra;
+    if (rb < ra) parent_[size_t(ra)] = rb;
+  }
+
+  // Ids and component numbers in one ascending pass: a parent's are final before its children
+  // are reached, and a component first appears at its root.
+  out.id.resize(n_);
+  out.index.resize(n_);
+  int32_t count = 0;
+  for (size_t i = 0; i < n_; ++i) {
+    const bool is_root = parent_[i] == int32_t(i);
+    out.id[i] = is_root ? int32_t(i) : out.id[size_t(parent_[i])];
+    out.index[i] = is_root ? count++ : out.index[size_t(parent_[i])];
+  }
+  group_members(out, count);
+}
+
+ComponentStats component_stats(const Components& c) {
+  ComponentStats s;
+  s.count = c.count();
+  for (size_t k = 0; k < c.count(); ++k) {
+    const int32_t size = c.size(k);
+    s.largest = std::max(s.largest, size);
+    size_t bin = 0;
+    while ((int64_t(2) << bin) <= size) ++bin;
+    if (s.histogram.size() <= bin) s.histogram.resize(bin + 1, 0);
+    ++s.histogram[bin];
+  }
+  return s;
+}
+
+std::string format_component_stats(const ComponentStats& s) {
+  std::string out = "fragments " + std::to_string(s.count) + " (";
+  bool first = true;
+  for (size_t b = 0; b < s.histogram.size(); ++b) {
+    if (s.histogram[b] == 0) continue;
+    const int64_t lo = int64_t(1) << b, hi = (int64_t(2) << b) - 1;
+    out += (first ? "" : " ") + std::to_string(lo) + (lo == hi ? "" : "-" + std::to_string(hi)) + ":" +
+           std::to_string(s.histogram[b]);
+    first = false;
+  }
+  return out + ")";
+}
+
+}  // namespace pd

@@ -1,0 +1,55 @@
+// The fragment outputs of a run in one object for the frame loop: per frame it finds the
+// components, fills FrameData::component, fits and smooths the fragment transforms and writes
+// fragments_NNNNN.pfg and points_NNNNN.ply; at the end it writes the rest-space piece surfaces
+// (fragments.obj). Grid bodies only: the element adjacency is derived from the families.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "../engine.h"
+#include "../io/frame.h"
+#include "../particle_set.h"
+#include "adjacency.h"
+#include "align.h"
+#include "components.h"
+#include "smoothing.h"
+
+namespace pd {
+
+struct FragmentOutputOptions {
+  std::string dir;       // output directory (must exist)
+  int blend_frames = 0;  // split blending (FragmentSmoother); 0: off
+  bool points = true;    // write points_NNNNN.ply
+};
+
+class FragmentOutput {
+ public:
+  // `bonds`: the families as built, before the first step.
+  FragmentOutput(const SimulationInput& input, const BondLists& bonds, FragmentOutputOptions options);
+
+  // Fragments of frame `f` from the engine's current `bonds`: sets f.component, writes the
+  // frame's files and returns the component statistics for the log. Throws IoError when a file
+  // cannot be written, std::invalid_argument when `f` or `bonds` do not match the run.
+  ComponentStats process(FrameData& f, const BondLists& bonds);
+
+  // Writes <dir>/<name>: the rest-space surfaces of the last processed frame's fragments (OBJ;
+  // the last frame's are the finest, as fragments only split). Throws std::logic_error before
+  // the first process(), IoError when the file cannot be written.
+  void write_meshes(const std::string& name = "fragments.obj") const;
+
+  const Components& components() const { return components_; }
+  const std::vector<Fragment>& fragments() const { return fragments_; }
+
+ private:
+  FragmentOutputOptions options_;
+  std::vector<Vec3> rest_;
+  std::vector<real> mass_, spacing_;
+  ElementAdjacency adjacency_;
+  ComponentFinder finder_;
+  FragmentSmoother smoother_;
+  Components components_;
+  std::vector<Fragment> fragments_;
+};
+
+}  // namespace pd

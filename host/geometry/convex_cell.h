@@ -1,0 +1,49 @@
+// A convex polytope cut by half-spaces, for Voronoi cells: starts as a box and keeps the side
+// n.x <= d of each plane it is clipped by. Crossings of an edge are computed once and shared by
+// its two faces, so the faces stay a closed, consistently oriented (outward) surface.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "vec3d.h"
+
+namespace pd {
+
+class ConvexCell {
+ public:
+  struct Face {
+    Vec3d normal;                  // outward unit normal
+    double offset;                 // the face's plane: normal . x = offset
+    int32_t id;                    // caller's label (a neighbour site, or a box side)
+    std::vector<int32_t> corners;  // counter-clockwise seen from outside
+  };
+
+  // The box [lo, hi]; its sides get ids -1 - (2 axis + (0 low, 1 high)).
+  ConvexCell(const Vec3d& lo, const Vec3d& hi);
+
+  // Keeps n.x <= d (n need not be unit length). Returns false when the plane does not cut.
+  bool clip(const Vec3d& n, double d, int32_t id);
+
+  // Largest distance from `p` to a corner.
+  double max_distance(const Vec3d& p) const;
+  // Volume by a fan of tetrahedra from `inner`, a point inside.
+  double volume(const Vec3d& inner) const;
+  void bounds(Vec3d& lo, Vec3d& hi) const;
+
+  const std::vector<Face>& faces() const { return faces_; }
+  const Vec3d& corner(int32_t v) const { return vertices_[size_t(v)]; }
+  bool empty() const { return faces_.empty(); }
+
+ private:
+  void update_live();
+
+  std::vector<Vec3d> vertices_;  // corners; those of removed parts stay unused
+  std::vector<Face> faces_;
+  std::vector<int32_t> live_;  // corners of the current faces, sorted
+  std::vector<double> side_;   // scratch: signed distances
+  std::vector<Face> kept_;     // scratch: the faces being rebuilt
+  std::vector<int32_t> scratch_corners_;
+};
+
+}  // namespace pd

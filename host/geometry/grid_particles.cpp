@@ -1,0 +1,95 @@
+#include "grid_particles.h"
+
+#include <cmath>
+
+#include "box_grid.h"
+#include "inside_test.h"
+
+namespace pd {
+
+namespace {
+
+// Particles of the occupied cells of an nx x ny x nz grid (`id` = particle or -1), with the
+// face pairs between occupied neighbours.
+void grid_adjacency(ParticleGeometry& g, const std::vector<int32_t>& id, const int64_t n[3]) {
+  std::vector<std::pair<int32_t, int32_t>> pairs;
+  pairs.reserve(3 * g.size());
+  auto at = [&](int64_t i, int64_t j, int64_t k) { return id[size_t((k * n[1] + j) * n[0] + i)]; };
+  for (int64_t k = 0; k < n[2]; ++k)
+    for (int64_t j = 0; j < n[1]; ++j)
+      for (int64_t i = 0; i < n[0]; ++i) {
+        const int32_t a = at(i, j, k);
+        if (a < 0) continue;
+        if (i + 1 < n[0] && at(i + 1, j, k) >= 0) pairs.emplace_back(a, at(i + 1, j, k));
+        if (j + 1 < n[1] && at(i, j + 1, k) >= 0) pairs.emplace_back(a, at(i, j + 1, k));
+        if (k + 1 < n[2] && at(i, j, k + 1) >= 0) pairs.emplace_back(a, at(i, j, k + 1));
+      }
+  g.adjacency = adjacency_from_pairs(g.size(), std::move(pairs));
+}
+
+}  // namespace
+
+void check_particle_budget(double volume, double particle_volume, int64_t max_particles,
+                           const std::string& name, const std::string& what) {
+  const double estimate = volume / particle_volume;
+  if (estimate > double(max_particles))
+    throw MeshError(name, "the solid (volume " + std::to_string(volume) + " m^3) would need about " +
+                              std::to_string(int64_t(estimate)) + " particles at " + what +
+                              " (allowed: at most " + std::to_string(max_particles) +
+                              " particles per body; use a larger spacing or a smaller mesh scale)");
+}
+
+ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t max_particles,
+                                const std::string& name) {
+  check_particle_budget(signed_volume(solid), spacing * spacing * spacing, max_particles, name,
+                        "spacing " + std::to_string(spacing) + " m");
+  const Box3d box = bounds(solid);
+  const Vec3d center = box.center();
+  int64_t n[3];
+  double origin[3];
+  for (int a = 0; a < 3; ++a) {
+    n[a] = int64_t(std::ceil(box.size()[a] / spacing)) + 1;
+    origin[a] = center[a] + (0.5 - 0.5 * double(n[a])) * spacing;
+  }
+  // One ray per (y, z) column: a centre is inside when an odd number of crossings lie beyond it.
+  const InsideTest inside(solid);
+  std::vector<int32_t> id(size_t(n[0] * n[1] * n[2]), -1);
+  ParticleGeometry g;
+  g.kind = ElementKind::cube;
+  g.cube_side = spacing;
+  std::vector<double> xs;
+  for (int64_t k = 0; k < n[2]; ++k)
+    for (int64_t j = 0; j < n[1]; ++j) {
+      const double y = origin[1] + double(j) * spacing, z = origin[2] + double(k) * spacing;
+      inside.crossings(y, z, xs);
+      size_t beyond = 0;  // crossings <= x so far
+      for (int64_t i = 0; i < n[0]; ++i) {
+        const double x = origin[0] + double(i) * spacing;
+        while (beyond < xs.size() && xs[beyond] <= x) ++beyond;
+        if ((xs.size() - beyond) % 2 == 0) continue;
+        id[size_t((k * n[1] + j) * n[0] + i)] = int32_t(g.position.size());
+        g.position.push_back({x, y, z});
+      }
+    }
+  g.volume.assign(g.size(), spacing * spacing * spacing);
+  grid_adjacency(g, id, n);
+  compute_lambda(g);
+  return g;
+}
+
+ParticleGeometry box_grid_particles(const Vec3d& center, const Vec3d& size, double spacing) {
+  const auto counts = box_grid_counts(size, spacing);
+  const int64_t n[3] = {counts[0], counts[1], counts[2]};
+  ParticleGeometry g;
+  g.kind = ElementKind::cube;
+  g.cube_side = spacing;
+  for (const Vec3& p : box_grid_points(center, size, spacing)) g.position.push_back({p.x, p.y, p.z});
+  g.volume.assign(g.size(), spacing * spacing * spacing);
+  std::vector<int32_t> id(g.size());
+  for (size_t i = 0; i < id.size(); ++i) id[i] = int32_t(i);  // x fastest, then y, z
+  grid_adjacency(g, id, n);
+  compute_lambda(g);
+  return g;
+}
+
+}  // namespace pd

@@ -1,0 +1,27 @@
+// Regular-grid particles (Levine sec. 4): cubes of side `spacing` whose centres lie inside the
+// solid, and grid-face adjacency (cubes sharing a face).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "particle_geometry.h"
+#include "tri_mesh.h"
+
+namespace pd {
+
+// Cubes centred on the grid centre + (k + 1/2 - n/2) spacing per axis, n = ceil(extent/spacing) + 1,
+// kept where the centre is inside `solid` (closed, outward; see check_solid). MeshError naming
+// `name` when about volume / spacing^3 > max_particles.
+ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t max_particles,
+                                const std::string& name);
+
+// The whole box of box_grid.h (round(size / spacing) cubes per axis), as a ParticleGeometry.
+ParticleGeometry box_grid_particles(const Vec3d& center, const Vec3d& size, double spacing);
+
+// MeshError when a solid of `volume` would need more than max_particles particles of volume
+// `particle_volume` (the budget check of every particle kind).
+void check_particle_budget(double volume, double particle_volume, int64_t max_particles,
+                           const std::string& name, const std::string& what);
+
+}  // namespace pd

@@ -1,0 +1,35 @@
+// Checks that a triangle mesh bounds a solid, and the repairs a scene may ask for. Every
+// refusal is a MeshError naming the file, what is wrong (with counts) and what is allowed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tri_mesh.h"
+
+namespace pd {
+
+struct MeshCheckOptions {
+  bool fill_holes = false;  // close simple boundary loops by a fan around their centroid
+};
+
+// What the check changed, one line each (e.g. "filled 5 holes (boundary loops)").
+struct MeshReport {
+  int holes = 0;            // boundary loops found (and filled when fill_holes)
+  bool flipped = false;     // the orientation was inverted and has been flipped
+  int welded_vertices = 0;  // vertices merged with an identical earlier one
+  std::vector<std::string> notes;
+};
+
+// In order: a non-empty mesh; finite coordinates; bit-identical vertices merged; no degenerate
+// triangle (a repeated corner or zero area); every edge shared by at most two triangles (else
+// non-manifold) with opposite directions (else inconsistent orientation); no boundary (an open
+// mesh is refused with its boundary-loop count unless fill_holes closes them); a non-zero volume,
+// outward (a negative signed volume is flipped and reported). `path` names the mesh in messages.
+MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOptions& options);
+
+// Boundary loops of a mesh (each as its vertex cycle, following the triangles' direction), for
+// reports and tests. Throws MeshError when a boundary vertex starts two loops (not simple).
+std::vector<std::vector<int32_t>> boundary_loops(const TriMesh& mesh, const std::string& path);
+
+}  // namespace pd

@@ -1,0 +1,42 @@
+// Extension dispatch and the shared file reader of the mesh formats.
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "mesh_io.h"
+
+namespace pd {
+
+namespace detail {
+
+std::string read_file_bytes(const std::string& path) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  auto cannot_read = [&] {
+    return MeshError(path, "cannot read mesh file: " + std::string(std::strerror(errno)));
+  };
+  if (!file) throw cannot_read();
+  std::string bytes;
+  char buf[1 << 16];
+  size_t got = 0;
+  while ((got = std::fread(buf, 1, sizeof buf, file.get())) > 0) bytes.append(buf, got);
+  if (std::ferror(file.get())) throw cannot_read();
+  if (bytes.empty()) throw MeshError(path, "the file is empty (allowed: a mesh with at least one triangle)");
+  return bytes;
+}
+
+}  // namespace detail
+
+TriMesh read_mesh(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == "obj") return read_obj(path);
+  if (ext == "ply") return read_ply(path);
+  if (ext == "stl") return read_stl(path);
+  throw MeshError(path, "unknown mesh format '." + ext + "' (allowed: .obj, .ply, .stl)");
+}
+
+}  // namespace pd

@@ -1,0 +1,30 @@
+// Surface mesh files: OBJ, PLY (ascii and binary little-endian) and STL (ascii and binary).
+// Readers throw MeshError naming the file, the line or element, and what is allowed; they only
+// parse: the checks of a usable solid (finite, non-degenerate, closed, ...) are in mesh_check.h.
+#pragma once
+
+#include <string>
+
+#include "tri_mesh.h"
+
+namespace pd {
+
+// Reads by extension (.obj, .ply, .stl, case-insensitive). Polygons are split into triangle fans.
+TriMesh read_mesh(const std::string& path);
+
+TriMesh read_obj(const std::string& path);
+TriMesh read_ply(const std::string& path);
+// STL stores each facet's own corners; identical corners are merged into one vertex.
+TriMesh read_stl(const std::string& path);
+
+// Writers (atomic: temporary file, then rename; IoError on failure).
+void write_obj(const TriMesh& mesh, const std::string& path);
+void write_ply(const TriMesh& mesh, const std::string& path, bool binary);
+void write_stl(const TriMesh& mesh, const std::string& path, bool binary);
+
+namespace detail {
+// The whole file as bytes; MeshError when it cannot be read.
+std::string read_file_bytes(const std::string& path);
+}  // namespace detail
+
+}  // namespace pd

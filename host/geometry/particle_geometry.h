@@ -1,0 +1,51 @@
+// Particles made from a solid, with the geometric elements they stand for (Levine sec. 4):
+// cubes of a regular grid, tetrahedra, or clipped Voronoi cells. The adjacency of elements
+// (shared cube faces, tet faces, Voronoi faces) is what the fragment stage walks.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tet_mesh.h"
+#include "vec3d.h"
+#include "voronoi_cells.h"
+
+namespace pd {
+
+// Symmetric adjacency in compressed sparse rows: the neighbours of i are
+// index[offset[i] .. offset[i + 1]), sorted, without i itself.
+struct Adjacency {
+  std::vector<int64_t> offset{0};
+  std::vector<int32_t> index;
+  size_t size() const { return offset.size() - 1; }
+  int64_t degree(size_t i) const { return offset[i + 1] - offset[i]; }
+};
+
+// From unordered pairs (each given once or twice, in either order): both directions, sorted, unique.
+Adjacency adjacency_from_pairs(size_t n, std::vector<std::pair<int32_t, int32_t>> pairs);
+
+enum class ElementKind { cube, tet, voronoi };
+
+struct ParticleGeometry {
+  ElementKind kind = ElementKind::cube;
+  std::vector<Vec3d> position;  // rest position: cube centre, tet barycentre, Voronoi site [m]
+  std::vector<double> volume;   // the element's volume (inside the solid) [m^3]
+  std::vector<double> mass;     // density * volume [kg], see set_density
+  std::vector<double> lambda;   // distance to the nearest other particle [m]
+  double min_distance = 0;      // Levine's lambda: the smallest of `lambda` [m]
+  Adjacency adjacency;          // elements sharing a face
+  double cube_side = 0;         // cubes: their edge length [m]
+  TetMesh tets;                 // tets: the tet mesh, one particle per tet in the same order
+  VoronoiCells cells;           // voronoi: the clipped cells and their surface triangles
+
+  size_t size() const { return position.size(); }
+  double total_volume() const;
+};
+
+// lambda and min_distance from the positions (a uniform-grid nearest-neighbour search).
+void compute_lambda(ParticleGeometry& g);
+
+// mass = density * volume.
+void set_density(ParticleGeometry& g, double density);
+
+}  // namespace pd

@@ -1,0 +1,100 @@
+#include "tet_particles.h"
+
+#include <cmath>
+#include <unordered_map>
+
+#include "grid_particles.h"
+
+namespace pd {
+
+ParticleGeometry tet_particles(TetMesh mesh) {
+  ParticleGeometry g;
+  g.kind = ElementKind::tet;
+  const size_t n = mesh.tets.size();
+  g.position.resize(n);
+  g.volume.resize(n);
+  std::vector<std::pair<int32_t, int32_t>> pairs;
+  pairs.reserve(2 * n);
+  for (size_t t = 0; t < n; ++t) {
+    g.position[t] = mesh.barycenter(t);
+    g.volume[t] = mesh.volume(t);
+    for (int32_t other : mesh.neighbors[t])
+      if (other >= 0) pairs.emplace_back(int32_t(t), other);
+  }
+  g.adjacency = adjacency_from_pairs(n, std::move(pairs));
+  g.tets = std::move(mesh);
+  compute_lambda(g);
+  return g;
+}
+
+ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& options, int64_t max_particles,
+                               const std::string& name) {
+  if (options.max_volume > 0)
+    check_particle_budget(signed_volume(solid), options.max_volume, max_particles, name,
+                          "tet volumes of at most " + std::to_string(options.max_volume) + " m^3");
+  TetMesh mesh = tetrahedralize(solid, options, name);
+  if (int64_t(mesh.tets.size()) > max_particles)
+    throw MeshError(name, "TetGen made " + std::to_string(mesh.tets.size()) + " tets (allowed: at most " +
+                              std::to_string(max_particles) + " particles per body; raise the volume bound)");
+  return tet_particles(std::move(mesh));
+}
+
+FattenedShell fattened_shell(const TriMesh& surface, double thickness, int layers) {
+  // Area-weighted vertex normals (outward for a closed, outward mesh), lengthened at creases
+  // (mitred) so a layer keeps its depth from every adjacent face: n / min over faces of n . n_f,
+  // capped at 3 for very sharp corners.
+  const size_t nv = surface.vertices.size();
+  std::vector<Vec3d> normal(nv, Vec3d{0, 0, 0});
+  std::vector<Vec3d> face_normal(surface.triangles.size());
+  for (size_t f = 0; f < surface.triangles.size(); ++f) {
+    const Triangle& t = surface.triangles[f];
+    const Vec3d n = cross(surface.vertices[t[1]] - surface.vertices[t[0]],
+                          surface.vertices[t[2]] - surface.vertices[t[0]]);
+    face_normal[f] = (1 / std::max(norm(n), 1e-300)) * n;
+    for (int32_t v : t) normal[v] = normal[v] + n;
+  }
+  for (Vec3d& n : normal) n = (1 / std::max(norm(n), 1e-300)) * n;
+  std::vector<double> mitre(nv, 1.0);
+  for (size_t f = 0; f < surface.triangles.size(); ++f)
+    for (int32_t v : surface.triangles[f])
+      mitre[v] = std::max(mitre[v], 1 / std::max(dot(normal[v], face_normal[f]), 1.0 / 3));
+  for (size_t v = 0; v < nv; ++v) normal[v] = mitre[v] * normal[v];
+  auto layer = [&](double depth) {
+    std::vector<Vec3d> points(surface.vertices.size());
+    for (size_t v = 0; v < points.size(); ++v) points[v] = surface.vertices[v] - depth * normal[v];
+    return points;
+  };
+
+  // Outer surface, inner surface reversed, and a strip along each boundary edge a -> b of the
+  // outer surface: triangles (b, a, a') and (b, a', b'), primes on the inner surface.
+  FattenedShell shell;
+  shell.solid = surface;
+  const int32_t base = int32_t(surface.vertices.size());
+  for (const Vec3d& p : layer(thickness)) shell.solid.vertices.push_back(p);
+  for (const Triangle& t : surface.triangles)
+    shell.solid.triangles.push_back({t[0] + base, t[2] + base, t[1] + base});
+  std::unordered_map<uint64_t, int> uses;
+  auto key = [](int32_t a, int32_t b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
+  for (const Triangle& t : surface.triangles)
+    for (int c = 0; c < 3; ++c) ++uses[key(std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3]))];
+  for (const Triangle& t : surface.triangles)
+    for (int c = 0; c < 3; ++c) {
+      const int32_t a = t[c], b = t[(c + 1) % 3];
+      if (uses[key(std::min(a, b), std::max(a, b))] != 1) continue;
+      shell.solid.triangles.push_back({b, a, a + base});
+      shell.solid.triangles.push_back({b, a + base, b + base});
+    }
+  // Layers strictly between the outer and inner surfaces.
+  for (int k = 1; k + 1 < layers; ++k)
+    for (const Vec3d& p : layer(thickness * k / (layers - 1))) shell.layer_points.push_back(p);
+  return shell;
+}
+
+ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,
+                                 int64_t max_particles, const std::string& name) {
+  FattenedShell shell = fattened_shell(surface, thickness, layers);
+  options.extra_points = std::move(shell.layer_points);
+  return tet_particles(shell.solid, options, max_particles, name);
+}
+
+}  // namespace pd

@@ -1,0 +1,36 @@
+// Tetrahedral particles (Levine sec. 4 "mesh-based geometry"; Chen sec. 5.2): one particle
+// per tet at its barycentre with the tet's volume, tets sharing a face adjacent. Also
+// Levine's fattened shell for thin objects: layers inward from a surface, tets between them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "particle_geometry.h"
+#include "tetgen.h"
+
+namespace pd {
+
+// Particles of an existing tet mesh (kept in the result).
+ParticleGeometry tet_particles(TetMesh mesh);
+
+// TetGen on the closed solid, then tet_particles. MeshError naming `name` when the volume bound
+// allows more than max_particles tets, or TetGen made more.
+ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& options, int64_t max_particles,
+                               const std::string& name);
+
+// The solid between a surface and its copy moved `thickness` inward along the vertex normals
+// (lengthened at creases so the depth holds from every adjacent face),
+// closed along the boundary loops of an open surface (a sheet), and the vertices of
+// `layers` - 2 evenly spaced layers between the two, which TetGen inserts as tet corners.
+struct FattenedShell {
+  TriMesh solid;
+  std::vector<Vec3d> layer_points;
+};
+FattenedShell fattened_shell(const TriMesh& surface, double thickness, int layers);
+
+// Tets of the fattened shell of `surface` (an open sheet such as vase_sheet(), or a closed mesh).
+ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,
+                                 int64_t max_particles, const std::string& name);
+
+}  // namespace pd

@@ -1,0 +1,193 @@
+#include "tetgen.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+extern char** environ;
+
+namespace pd {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A temporary folder removed on scope exit, or the caller's folder kept as it is.
+class WorkDir {
+ public:
+  explicit WorkDir(const std::string& given) : keep_(!given.empty()) {
+    if (keep_) {
+      path_ = given;
+      fs::create_directories(path_);
+      return;
+    }
+    std::string pattern = (fs::temp_directory_path() / "perifrac-tetgen-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder for tetgen");
+    path_ = pattern;
+  }
+  ~WorkDir() {
+    std::error_code ec;
+    if (!keep_) fs::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name) const { return (fs::path(path_) / name).string(); }
+
+ private:
+  bool keep_;
+  std::string path_;
+};
+
+void write_smesh(const TriMesh& mesh, const std::string& path) {
+  std::ofstream out(path);
+  char buf[128];
+  out << mesh.vertices.size() << " 3 0 0\n";
+  for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+    std::snprintf(buf, sizeof buf, "%zu %.17g %.17g %.17g\n", v, mesh.vertices[v][0], mesh.vertices[v][1],
+                  mesh.vertices[v][2]);
+    out << buf;
+  }
+  out << mesh.triangles.size() << " 0\n";
+  for (const Triangle& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  out << "0\n0\n";
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+void write_nodes(const std::vector<Vec3d>& points, const std::string& path) {
+  std::ofstream out(path);
+  char buf[128];
+  out << points.size() << " 3 0 0\n";
+  for (size_t v = 0; v < points.size(); ++v) {
+    std::snprintf(buf, sizeof buf, "%zu %.17g %.17g %.17g\n", v, points[v][0], points[v][1], points[v][2]);
+    out << buf;
+  }
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+// Runs argv with stdout and stderr to `log`; returns the exit status (-1 if it did not run).
+int run_program(const std::vector<std::string>& argv, const std::string& log) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The last non-empty lines of a log, joined on one line.
+std::string log_tail(const std::string& log) {
+  std::ifstream in(log);
+  std::string line, last;
+  std::vector<std::string> lines;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+  for (size_t k = lines.size() > 3 ? lines.size() - 3 : 0; k < lines.size(); ++k)
+    last += (last.empty() ? "" : " / ") + lines[k];
+  return last.empty() ? "no message" : last;
+}
+
+// Reads "count ..." then `count` rows of an index and `width` numbers.
+template <class Row>
+std::vector<Row> read_table(const std::string& path, int width, const std::string& name) {
+  std::ifstream in(path);
+  if (!in)
+    throw MeshError(
+        name, "tetgen wrote no " + fs::path(path).filename().string() + " (allowed: a tetgen that works)");
+  std::string line;
+  size_t count = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    count = std::strtoull(line.c_str(), nullptr, 10);
+    break;
+  }
+  std::vector<Row> rows(count);
+  for (size_t r = 0; r < count; ++r) {
+    long index = 0;
+    in >> index;
+    for (int k = 0; k < width; ++k) in >> rows[r][size_t(k)];
+    std::getline(in, line);  // attributes and markers
+  }
+  if (!in)
+    throw MeshError(name, "tetgen's " + fs::path(path).filename().string() +
+                              " is truncated (allowed: a tetgen that works)");
+  return rows;
+}
+
+}  // namespace
+
+std::string find_tetgen() {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    const std::string candidate = (dir.empty() ? "." : dir) + "/tetgen";
+    if (access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return {};
+}
+
+TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, const std::string& name) {
+  const std::string program = find_tetgen();
+  if (program.empty())
+    throw MeshError(name,
+                    "tetrahedral particles need the TetGen program, which is not on PATH "
+                    "(allowed: install it, e.g. 'apt-get install tetgen', or use particles = \"grid\" "
+                    "or \"voronoi\")");
+  const WorkDir dir(options.work_dir);
+  write_smesh(surface, dir.file("in.smesh"));
+
+  // Switches: PLC, quality, volume bound, inserted points, neighbours, faces, 0-based, quiet.
+  std::string switches = "-p";
+  char buf[64];
+  if (options.quality > 0) {
+    std::snprintf(buf, sizeof buf, "q%.6g", options.quality);
+    switches += buf;
+  }
+  if (options.max_volume > 0) {
+    std::snprintf(buf, sizeof buf, "a%.9g", options.max_volume);
+    switches += buf;
+  }
+  if (!options.extra_points.empty()) {
+    write_nodes(options.extra_points, dir.file("in.a.node"));
+    switches += "i";
+  }
+  switches += "nzQ";
+  const int status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"));
+  if (status != 0)
+    throw MeshError(name, "tetgen " + switches + " failed (exit status " + std::to_string(status) +
+                              "): " + log_tail(dir.file("tetgen.log")) +
+                              " (allowed: a closed mesh without self-intersections)");
+
+  TetMesh mesh;
+  mesh.vertices = read_table<Vec3d>(dir.file("in.1.node"), 3, name);
+  mesh.tets = read_table<std::array<int32_t, 4>>(dir.file("in.1.ele"), 4, name);
+  mesh.neighbors = read_table<std::array<int32_t, 4>>(dir.file("in.1.neigh"), 4, name);
+  mesh.boundary_faces = read_table<std::array<int32_t, 3>>(dir.file("in.1.face"), 3, name);
+  if (mesh.tets.empty() || mesh.neighbors.size() != mesh.tets.size())
+    throw MeshError(name, "tetgen produced no tetrahedra (allowed: a solid of non-zero volume)");
+  // Positive orientation; neighbour k stays opposite corner k.
+  for (size_t t = 0; t < mesh.tets.size(); ++t)
+    if (mesh.volume(t) < 0) {
+      std::swap(mesh.tets[t][0], mesh.tets[t][1]);
+      std::swap(mesh.neighbors[t][0], mesh.neighbors[t][1]);
+    }
+  return mesh;
+}
+
+}  // namespace pd

@@ -1,0 +1,71 @@
+// Helpers shared by the fragment tests: hand-made families in the engine's sliced-ELL layout,
+// bond breaking, and a scratch directory per test.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "host/engine.h"
+
+namespace pd::testing {
+
+// Families stored as the engine stores them (slices of kSliceWidth particles, bond k of particle i
+// at slice_offset[i / W] + k W + i % W), from one neighbour list per particle.
+inline BondLists bond_lists(const std::vector<std::vector<int32_t>>& family) {
+  const size_t n = family.size(), slices = (n + kSliceWidth - 1) / kSliceWidth;
+  BondLists b;
+  b.count.resize(n);
+  b.slice_offset.assign(slices + 1, 0);
+  for (size_t s = 0; s < slices; ++s) {
+    size_t width = 0;
+    for (size_t i = s * kSliceWidth; i < std::min(n, (s + 1) * kSliceWidth); ++i)
+      width = std::max(width, family[i].size());
+    b.slice_offset[s + 1] = b.slice_offset[s] + int64_t(width * kSliceWidth);
+  }
+  b.neighbor.assign(size_t(b.slice_offset.back()), 0);
+  const BondsView v = b.view();
+  for (size_t i = 0; i < n; ++i) {
+    b.count[i] = int32_t(family[i].size());
+    for (size_t k = 0; k < family[i].size(); ++k)
+      b.neighbor[size_t(v.slot(int32_t(i), int32_t(k)))] = family[i][k];
+  }
+  return b;
+}
+
+// Marks the bond to j in i's family broken (~j); returns false when i has no bond to j.
+inline bool break_bond(BondLists& b, int32_t i, int32_t j) {
+  const BondsView v = b.view();
+  for (int32_t k = 0; k < v.count[i]; ++k) {
+    int32_t& nb = b.neighbor[size_t(v.slot(i, k))];
+    if (nb == j) {
+      nb = ~j;
+      return true;
+    }
+  }
+  return false;
+}
+
+// A fresh, empty directory per test, removed afterwards.
+class ScratchDirTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ =
+        std::filesystem::path(::testing::TempDir()) / ("perifrac_" + std::string(info->test_suite_name()) +
+                                                       "_" + info->name() + "_" + std::to_string(getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  std::filesystem::path dir_;
+};
+
+}  // namespace pd::testing

@@ -1,0 +1,158 @@
+// Mesh checks: each broken mesh gets its own clear MeshError, repairs are reported, and the
+// Stanford bunny (an open scan) is refused with its hole count or repaired on request.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "geometry_fixtures.h"
+#include "host/geometry/mesh_check.h"
+#include "host/geometry/mesh_io.h"
+#include "host/geometry/shapes.h"
+
+namespace pd {
+namespace {
+
+const std::string kPath = "broken.obj";
+
+TriMesh tetrahedron() {
+  TriMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return m;
+}
+
+// check_solid on `mesh` must throw a MeshError with `fragment`, the path and an "allowed" part.
+void expect_refused(TriMesh mesh, const std::string& fragment, MeshCheckOptions options = {}) {
+  try {
+    check_solid(mesh, kPath, options);
+    ADD_FAILURE() << "no MeshError; expected: " << fragment;
+  } catch (const MeshError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(kPath + ": ", 0), 0u) << msg;
+    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(allowed: "), std::string::npos) << msg;
+  }
+}
+
+TEST(MeshCheck, AClosedMeshPasses) {
+  TriMesh m = tetrahedron();
+  const MeshReport r = check_solid(m, kPath, {});
+  EXPECT_FALSE(r.flipped);
+  EXPECT_EQ(r.holes, 0);
+  EXPECT_NEAR(signed_volume(m), 1.0 / 6, 1e-15);
+}
+
+TEST(MeshCheck, EmptyMesh) {
+  expect_refused(TriMesh{}, "empty");
+}
+
+TEST(MeshCheck, NonFiniteCoordinate) {
+  TriMesh m = tetrahedron();
+  m.vertices[2][1] = std::nan("");
+  expect_refused(m, "vertex 2 (0-based) has a coordinate that is not a finite number");
+}
+
+TEST(MeshCheck, DegenerateTriangles) {
+  TriMesh m = tetrahedron();
+  m.triangles.push_back({1, 1, 2});
+  expect_refused(m, "1 triangle is degenerate");
+  TriMesh flat = tetrahedron();
+  flat.vertices.push_back({0.5, 0.5, 0});  // on the edge 1-2: a zero-area sliver
+  flat.triangles.push_back({1, 4, 2});
+  expect_refused(flat, "triangle 4");
+}
+
+TEST(MeshCheck, NonManifoldEdge) {
+  // Three triangles on the edge 0-1.
+  TriMesh m = tetrahedron();
+  m.vertices.push_back({0.5, -1, 0.5});
+  m.triangles.push_back({0, 1, 4});
+  expect_refused(m, "shared by more than two triangles (non-manifold");
+}
+
+TEST(MeshCheck, InconsistentOrientation) {
+  TriMesh m = tetrahedron();
+  std::swap(m.triangles[3][1], m.triangles[3][2]);
+  expect_refused(m, "inconsistent orientation");
+}
+
+TEST(MeshCheck, OpenMeshReportsTheHoleCount) {
+  TriMesh box = box_mesh({1, 1, 1});
+  box.triangles.erase(box.triangles.begin(), box.triangles.begin() + 2);  // the -x face
+  expect_refused(box, "the mesh is open: 1 hole (boundary loops) with 4 boundary edges");
+  // A sphere with two caps removed: two holes.
+  TriMesh sphere = sphere_mesh(1, 0.3);
+  const size_t n = sphere.triangles.size();
+  const int segments = 21;  // segments_for(1, 0.3)
+  sphere.triangles.erase(sphere.triangles.end() - segments, sphere.triangles.end());
+  sphere.triangles.erase(sphere.triangles.begin(), sphere.triangles.begin() + segments);
+  ASSERT_EQ(sphere.triangles.size(), n - 2 * segments);
+  expect_refused(sphere, "2 holes");
+}
+
+TEST(MeshCheck, FillHolesClosesSimpleLoops) {
+  TriMesh sphere = sphere_mesh(1, 0.3);
+  const double closed_volume = signed_volume(sphere);
+  sphere.triangles.erase(sphere.triangles.begin(), sphere.triangles.begin() + 21);  // bottom cap fan
+  const MeshReport r = check_solid(sphere, kPath, {true});
+  EXPECT_EQ(r.holes, 1);
+  EXPECT_TRUE(boundary_loops(sphere, kPath).empty());
+  // The patch is flat where the pole's cone was: a small loss of volume.
+  EXPECT_NEAR(signed_volume(sphere), closed_volume, 2e-3 * closed_volume);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes.back().find("filled 1 hole"), std::string::npos);
+}
+
+TEST(MeshCheck, NonSimpleHoleIsRefused) {
+  // Two triangles touching at one vertex: the boundary passes vertex 0 twice.
+  TriMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  m.triangles = {{0, 1, 2}, {0, 3, 4}};
+  expect_refused(m, "lies on two holes at once", {true});
+}
+
+TEST(MeshCheck, InvertedOrientationIsFlipped) {
+  TriMesh m = torus_mesh(1, 0.3, 0.1);
+  const double volume = signed_volume(m);
+  flip_orientation(m);
+  const MeshReport r = check_solid(m, kPath, {});
+  EXPECT_TRUE(r.flipped);
+  EXPECT_NEAR(signed_volume(m), volume, 1e-12 * volume);
+  EXPECT_NE(r.notes.back().find("flipped"), std::string::npos);
+}
+
+TEST(MeshCheck, IdenticalVerticesAreMerged) {
+  // Each face with its own corners (as an OBJ with split seams): welded into a closed mesh.
+  const TriMesh box = box_mesh({1, 2, 3});
+  TriMesh split;
+  for (const Triangle& t : box.triangles) {
+    const int32_t base = int32_t(split.vertices.size());
+    for (int32_t c : t) split.vertices.push_back(box.vertices[c]);
+    split.triangles.push_back({base, base + 1, base + 2});
+  }
+  const MeshReport r = check_solid(split, kPath, {});
+  EXPECT_EQ(split.vertices.size(), 8u);
+  EXPECT_EQ(r.welded_vertices, 36 - 8);
+  EXPECT_NEAR(signed_volume(split), 6, 1e-12);
+}
+
+// The bunny decision: the raw scan is refused with its hole count unless the scene asks for
+// repair = "fill_holes", which closes its holes (all simple loops) by fan triangulation.
+TEST(MeshCheck, StanfordBunnyIsRefusedOrRepaired) {
+  PD_REQUIRE_SHARED_MESH(path, "stanford-bunny.obj");
+  TriMesh bunny = read_mesh(path);
+  try {
+    TriMesh copy = bunny;
+    check_solid(copy, path, {});
+    FAIL() << "the open bunny was accepted";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("the mesh is open: 5 holes"), std::string::npos) << e.what();
+  }
+  const MeshReport r = check_solid(bunny, path, {true});
+  EXPECT_EQ(r.holes, 5);
+  EXPECT_TRUE(boundary_loops(bunny, path).empty());
+  EXPECT_GT(signed_volume(bunny), 0);
+}
+
+}  // namespace
+}  // namespace pd

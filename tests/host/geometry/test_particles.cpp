@@ -1,0 +1,242 @@
+// Particles from solids: grid, tets (TetGen), Voronoi. Volume conservation, particles
+// inside the solid, Poisson-disk distance, tiling, symmetric adjacency, TetGen barycentres.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "geometry_fixtures.h"
+#include "host/geometry/grid_particles.h"
+#include "host/geometry/inside_test.h"
+#include "host/geometry/mesh_check.h"
+#include "host/geometry/mesh_io.h"
+#include "host/geometry/shapes.h"
+#include "host/geometry/tet_particles.h"
+#include "host/geometry/voronoi_particles.h"
+
+namespace pd {
+namespace {
+
+constexpr int64_t kBudget = 20'000'000;
+
+void expect_symmetric(const Adjacency& a) {
+  for (size_t i = 0; i < a.size(); ++i)
+    for (int64_t k = a.offset[i]; k < a.offset[i + 1]; ++k) {
+      const int32_t j = a.index[size_t(k)];
+      ASSERT_NE(size_t(j), i);
+      const auto* begin = a.index.data() + a.offset[size_t(j)];
+      const auto* end = a.index.data() + a.offset[size_t(j) + 1];
+      ASSERT_TRUE(std::binary_search(begin, end, int32_t(i))) << i << " -> " << j << " but not back";
+    }
+}
+
+void expect_inside(const TriMesh& solid, const ParticleGeometry& g) {
+  const InsideTest inside(solid);
+  size_t outside = 0;
+  for (const Vec3d& p : g.position) outside += !inside.inside(p);
+  EXPECT_EQ(outside, 0u);
+}
+
+// The spot mesh of the shared folder, checked and scaled to about 1 m.
+TriMesh spot_solid(const std::string& path) {
+  TriMesh m = read_mesh(path);
+  check_solid(m, path, {});
+  return m;
+}
+
+bool have_tetgen() {
+  return !find_tetgen().empty();
+}
+
+// ---- grid -------------------------------------------------------------------------------------
+
+TEST(GridParticles, SphereVolumeAndAdjacency) {
+  const double r = 1, h = 0.05;  // 20 cubes per radius
+  const TriMesh sphere = sphere_mesh(r, 0.02);
+  const ParticleGeometry g = grid_particles(sphere, h, kBudget, "sphere");
+  // Counting cubes by their centres: the error is the surface's cut cells, mostly cancelling.
+  EXPECT_NEAR(g.total_volume(), signed_volume(sphere), 0.01 * signed_volume(sphere));
+  expect_inside(sphere, g);
+  expect_symmetric(g.adjacency);
+  EXPECT_NEAR(g.min_distance, h, 1e-12);
+  for (double l : g.lambda) ASSERT_NEAR(l, h, 1e-12);
+  // An interior cube has 6 face neighbours.
+  size_t six = 0;
+  for (size_t i = 0; i < g.size(); ++i) six += g.adjacency.degree(i) == 6;
+  EXPECT_GT(six, g.size() * 8 / 10);
+}
+
+TEST(GridParticles, BoxGridKeepsTheBoxLayout) {
+  const ParticleGeometry g = box_grid_particles({0, 0, 0}, {0.1, 0.05, 0.03}, 0.01);
+  EXPECT_EQ(g.size(), 10u * 5 * 3);
+  EXPECT_NEAR(g.total_volume(), 0.1 * 0.05 * 0.03, 1e-12);
+  expect_symmetric(g.adjacency);
+  EXPECT_EQ(g.adjacency.degree(0), 3);  // a corner cube
+}
+
+TEST(GridParticles, SpotVolume) {
+  PD_REQUIRE_SHARED_MESH(path, "spot.obj");
+  const TriMesh spot = spot_solid(path);
+  const ParticleGeometry g = grid_particles(spot, 0.02, kBudget, path);
+  EXPECT_NEAR(g.total_volume(), signed_volume(spot), 0.02 * signed_volume(spot));
+  expect_inside(spot, g);
+  expect_symmetric(g.adjacency);
+}
+
+TEST(GridParticles, BudgetIsEnforced) {
+  try {
+    grid_particles(sphere_mesh(1, 0.1), 0.001, 1000000, "big.obj");
+    FAIL();
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("big.obj: the solid"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("at most 1000000 particles"), std::string::npos) << e.what();
+  }
+}
+
+// ---- tets -------------------------------------------------------------------------------------
+
+TEST(TetParticles, SphereVolumeIsExact) {
+  if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
+  const TriMesh sphere = sphere_mesh(1, 0.1);
+  TetgenOptions options;
+  options.max_volume = 0.001;
+  const ParticleGeometry g = tet_particles(sphere, options, kBudget, "sphere");
+  // TetGen fills the polyhedron exactly; its files print coordinates rounded, hence 1e-5.
+  EXPECT_NEAR(g.total_volume(), signed_volume(sphere), 1e-5 * signed_volume(sphere));
+  EXPECT_GT(g.size(), 4188u);
+  for (size_t t = 0; t < g.size(); ++t) ASSERT_LE(g.volume[t], 0.001 * (1 + 1e-9));
+  expect_inside(sphere, g);
+  expect_symmetric(g.adjacency);
+  // Every tet has 4 face neighbours but those on the surface.
+  size_t boundary = 0;
+  for (const auto& nb : g.tets.neighbors)
+    for (int32_t t : nb) boundary += t < 0;
+  EXPECT_EQ(boundary, g.tets.boundary_faces.size());
+}
+
+// Barycentres against TetGen's own files, read here independently.
+TEST(TetParticles, BarycentresMatchTetgenFiles) {
+  if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
+  test::ScratchDir dir("tetgen");
+  TetgenOptions options;
+  options.max_volume = 0.01;
+  options.work_dir = dir.file("work");
+  const ParticleGeometry g = tet_particles(torus_mesh(1, 0.3, 0.1), options, kBudget, "torus");
+  std::ifstream node(dir.file("work/in.1.node")), ele(dir.file("work/in.1.ele"));
+  size_t nv = 0, nt = 0, index = 0;
+  int dim = 0, a = 0, b = 0;
+  node >> nv >> dim >> a >> b;
+  std::vector<Vec3d> v(nv);
+  for (size_t k = 0; k < nv; ++k) node >> index >> v[k][0] >> v[k][1] >> v[k][2];
+  ele >> nt >> dim >> a;
+  ASSERT_EQ(nt, g.size());
+  for (size_t t = 0; t < nt; ++t) {
+    size_t c[4];
+    ele >> index >> c[0] >> c[1] >> c[2] >> c[3];
+    const Vec3d expected = 0.25 * (v[c[0]] + v[c[1]] + v[c[2]] + v[c[3]]);
+    for (int k = 0; k < 3; ++k) ASSERT_NEAR(g.position[t][k], expected[k], 1e-14);
+  }
+}
+
+TEST(TetParticles, SpotVolume) {
+  if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
+  PD_REQUIRE_SHARED_MESH(path, "spot.obj");
+  const TriMesh spot = spot_solid(path);
+  TetgenOptions options;
+  options.max_volume = 2e-5;
+  const ParticleGeometry g = tet_particles(spot, options, kBudget, path);
+  EXPECT_NEAR(g.total_volume(), signed_volume(spot), 1e-5 * signed_volume(spot));
+  expect_inside(spot, g);
+  expect_symmetric(g.adjacency);
+}
+
+TEST(TetParticles, FattenedShellOfTheVase) {
+  if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
+  const double thickness = 0.006;
+  const TriMesh sheet = vase_sheet(0.1, 0.3, 0.006);
+  const FattenedShell shell = fattened_shell(sheet, thickness, 4);
+  TriMesh solid = shell.solid;
+  check_solid(solid, "shell", {});  // closed and outward
+  EXPECT_EQ(shell.layer_points.size(), 2 * sheet.vertices.size());
+  TetgenOptions options;
+  const ParticleGeometry g = shell_particles(sheet, thickness, 4, options, kBudget, "vase");
+  // The wall: about (sheet area) x thickness, exactly the shell solid's volume.
+  EXPECT_NEAR(g.total_volume(), signed_volume(solid), 1e-5 * signed_volume(solid));
+  EXPECT_NEAR(g.total_volume(), surface_area(sheet) * thickness, 0.1 * surface_area(sheet) * thickness);
+  expect_inside(solid, g);
+  expect_symmetric(g.adjacency);
+}
+
+TEST(TetParticles, MissingTetgenIsAClearError) {
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  setenv("PATH", "/nonexistent", 1);
+  try {
+    tetrahedralize(box_mesh({1, 1, 1}), {}, "box");
+    ADD_FAILURE() << "no MeshError";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("apt-get install tetgen"), std::string::npos) << e.what();
+  }
+  setenv("PATH", saved.c_str(), 1);
+}
+
+TEST(TetParticles, TetgenFailureIsReported) {
+  if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
+  // Two boxes overlapping: the surfaces intersect each other.
+  TriMesh both = box_mesh({1, 1, 1});
+  TriMesh other = box_mesh({1, 1, 1});
+  transform(other, 1, {0.5, 0.3, 0.2});
+  append(both, other);
+  try {
+    tetrahedralize(both, {}, "overlap.obj");
+    ADD_FAILURE() << "no MeshError";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("overlap.obj: tetgen"), std::string::npos) << e.what();
+  }
+}
+
+// ---- Voronoi ----------------------------------------------------------------------------------
+
+TEST(VoronoiParticles, SphereTilesTheVolume) {
+  const double r = 0.1;
+  const TriMesh sphere = sphere_mesh(1, 0.05);
+  const ParticleGeometry g = voronoi_particles(sphere, r, 7, kBudget, "sphere");
+  ASSERT_GT(g.size(), 1000u);
+  // The clipped cells partition the polyhedron: their volumes add up to its volume.
+  EXPECT_NEAR(g.total_volume(), signed_volume(sphere), 1e-6 * signed_volume(sphere));
+  for (double v : g.volume) ASSERT_GT(v, 0);
+  expect_inside(sphere, g);
+  expect_symmetric(g.adjacency);
+  // Poisson-disk: no two sites closer than r; Levine's lambda is at least r.
+  EXPECT_GE(g.min_distance, r * (1 - 1e-12));
+  // Cells at the surface carry triangles (trimtopes), interior ones none.
+  size_t with_triangles = 0;
+  for (size_t i = 0; i < g.size(); ++i)
+    with_triangles += g.cells.triangle_offset[i + 1] > g.cells.triangle_offset[i];
+  EXPECT_GT(with_triangles, 0u);
+  EXPECT_LT(with_triangles, g.size());
+  EXPECT_EQ(g.cells.face_offset.size(), g.size() + 1);
+}
+
+TEST(VoronoiParticles, SpotTilesTheVolume) {
+  PD_REQUIRE_SHARED_MESH(path, "spot.obj");
+  const TriMesh spot = spot_solid(path);
+  const ParticleGeometry g = voronoi_particles(spot, 0.03, 1, kBudget, path);
+  EXPECT_NEAR(g.total_volume(), signed_volume(spot), 1e-6 * signed_volume(spot));
+  expect_inside(spot, g);
+  expect_symmetric(g.adjacency);
+  EXPECT_GE(g.min_distance, 0.03 * (1 - 1e-12));
+}
+
+TEST(VoronoiParticles, DeterministicForASeed) {
+  const TriMesh torus = torus_mesh(1, 0.3, 0.1);
+  const ParticleGeometry a = voronoi_particles(torus, 0.1, 5, kBudget, "t");
+  const ParticleGeometry b = voronoi_particles(torus, 0.1, 5, kBudget, "t");
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_EQ(a.volume, b.volume);
+}
+
+}  // namespace
+}  // namespace pd
