@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 
 # What the build needs, and the package that provides it: "kind:name:package".
 needs=(
-  "cmd:g++:build-essential" "cmd:cmake:cmake" "cmd:ninja:ninja-build" "cmd:pkg-config:pkg-config"
+  "cmd:g++:build-essential" "cmd:cmake:cmake" "cmd:ninja:ninja-build"
   "hdr:gtest/gtest.h:libgtest-dev" "hdr:eigen3/Eigen/Dense:libeigen3-dev" "hdr:toml++/toml.h:libtomlplusplus-dev"
   "hdr:CLI/CLI.hpp:libcli11-dev" "hdr:stb/stb_image_write.h:libstb-dev"
 )
