@@ -23,7 +23,10 @@ template <class Exec>
 class EngineImpl final : public Engine {
  public:
   EngineImpl(const SimulationInput& in, std::string device)
-      : exec_(&stats_), device_(std::move(device)), materials_(in.materials), step_params_(in.step),
+      : exec_(&stats_),
+        device_(std::move(device)),
+        materials_(in.materials),
+        step_params_(in.step),
         contact_(in.contact) {
     for (int m = 0; m < materials_.count; ++m) {
       state_based_ = state_based_ || materials_.m[m].model == kStateBased;

@@ -79,10 +79,18 @@ class CpuExec {
     if (!p) throw std::bad_alloc();
     return p;
   }
-  void release(void* p) { std::free(p); }
-  void upload(void* dst, const void* src, size_t bytes) { std::memcpy(dst, src, bytes); }
-  void download(void* dst, const void* src, size_t bytes) { std::memcpy(dst, src, bytes); }
-  void fill_bytes(void* dst, int value, size_t bytes) { std::memset(dst, value, bytes); }
+  void release(void* p) {
+    std::free(p);
+  }
+  void upload(void* dst, const void* src, size_t bytes) {
+    std::memcpy(dst, src, bytes);
+  }
+  void download(void* dst, const void* src, size_t bytes) {
+    std::memcpy(dst, src, bytes);
+  }
+  void fill_bytes(void* dst, int value, size_t bytes) {
+    std::memset(dst, value, bytes);
+  }
   void synchronize() {}
   void flush_stats() {}
 

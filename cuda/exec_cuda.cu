@@ -68,7 +68,8 @@ void CudaExec::end_timing(const char* name, cudaEvent_t start) {
 void CudaExec::flush_stats() {
   cudaError_t err = cudaDeviceSynchronize();
   if (err != cudaSuccess)
-    throw std::runtime_error(std::string("CUDA error after kernel '") + last_name_ + "': " + cudaGetErrorString(err));
+    throw std::runtime_error(std::string("CUDA error after kernel '") + last_name_ +
+                             "': " + cudaGetErrorString(err));
   for (auto& p : pending_) {
     float ms = 0;
     cuda_check(cudaEventElapsedTime(&ms, p.start, p.stop), "cudaEventElapsedTime");
@@ -99,7 +100,8 @@ void CudaExec::sort_by_key(const char* name, const uint32_t* key_in, const int32
   cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, key_in, key_out, val_in, val_out, n, 0, bits);
   void* temp = scratch(0, temp_bytes);
   cudaEvent_t start = begin_timing();
-  cuda_check(cub::DeviceRadixSort::SortPairs(temp, temp_bytes, key_in, key_out, val_in, val_out, n, 0, bits), name);
+  cuda_check(cub::DeviceRadixSort::SortPairs(temp, temp_bytes, key_in, key_out, val_in, val_out, n, 0, bits),
+             name);
   end_timing(name, start);
 }
 
@@ -127,7 +129,9 @@ void* CudaExec::allocate(size_t bytes) {
   }
   return p;
 }
-void CudaExec::release(void* p) { cudaFree(p); }
+void CudaExec::release(void* p) {
+  cudaFree(p);
+}
 void CudaExec::upload(void* dst, const void* src, size_t bytes) {
   cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyHostToDevice), "upload");
 }
@@ -137,6 +141,8 @@ void CudaExec::download(void* dst, const void* src, size_t bytes) {
 void CudaExec::fill_bytes(void* dst, int value, size_t bytes) {
   cuda_check(cudaMemset(dst, value, bytes), "fill");
 }
-void CudaExec::synchronize() { cuda_check(cudaDeviceSynchronize(), "synchronize"); }
+void CudaExec::synchronize() {
+  cuda_check(cudaDeviceSynchronize(), "synchronize");
+}
 
 }  // namespace pd

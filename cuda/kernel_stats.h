@@ -8,7 +8,7 @@
 namespace pd {
 
 struct KernelStat {
-  double seconds = 0;     // summed execution time
+  double seconds = 0;  // summed execution time
   int64_t launches = 0;
   int registers = -1;     // per thread (GPU only)
   double occupancy = -1;  // theoretical, active warps / max warps per SM (GPU only)

@@ -44,8 +44,10 @@ void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView uns
     const Vec3 x = kCurrent ? p.position(int32_t(i)) : xyz(p.rest[i]);
     hash_particle(int32_t(i), x, unsorted);
   });
-  ex.sort_by_key("pd/collection_sort", unsorted.key, unsorted.sorted, sorted.key, sorted.sorted, p.n, sorted.bins);
-  ex.parallel_for("pd/collection_bins", p.n, [=] PD_HD(int64_t s) { mark_bin_bounds(int32_t(s), p.n, sorted); });
+  ex.sort_by_key("pd/collection_sort", unsorted.key, unsorted.sorted, sorted.key, sorted.sorted, p.n,
+                 sorted.bins);
+  ex.parallel_for("pd/collection_bins", p.n,
+                  [=] PD_HD(int64_t s) { mark_bin_bounds(int32_t(s), p.n, sorted); });
 }
 
 // Kernel 3.
@@ -58,7 +60,8 @@ void launch_collisions(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, 
 // Kernel 4, one instantiation per feature set so a scene pays only for what it uses.
 // kAccumulate adds to the force `collisions` wrote.
 template <bool kAccumulate, bool kStateBased, bool kPlastic>
-PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b, const MaterialTable& mt) {
+PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
+                                    const MaterialTable& mt) {
   if constexpr (kStateBased)
     state_forces<kAccumulate, kPlastic>(i, p, b, mt);
   else
@@ -113,7 +116,8 @@ void launch_count_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt
 template <class Exec>
 void launch_slice_length(Exec& ex, int32_t n, const int32_t* count, int64_t* length) {
   const int64_t slices = (int64_t(n) + kSliceWidth - 1) / kSliceWidth;
-  ex.parallel_for("family/slices", slices, [=] PD_HD(int64_t s) { slice_length(int32_t(s), n, count, length); });
+  ex.parallel_for("family/slices", slices,
+                  [=] PD_HD(int64_t s) { slice_length(int32_t(s), n, count, length); });
 }
 
 template <class Exec>
@@ -124,7 +128,8 @@ void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt,
 // State-based set-up: weighted volumes, and the reverse bond positions for plasticity.
 template <class Exec>
 void launch_weighted_volume(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
-  ex.parallel_for("family/weighted_volume", p.n, [=] PD_HD(int64_t i) { weighted_volume(int32_t(i), p, b, mt); });
+  ex.parallel_for("family/weighted_volume", p.n,
+                  [=] PD_HD(int64_t i) { weighted_volume(int32_t(i), p, b, mt); });
 }
 
 template <class Exec>
@@ -142,8 +147,9 @@ int64_t reduce_broken_bonds(Exec& ex, BondsView b, const int32_t* intact) {
 template <class Exec>
 Energy reduce_energy(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt, StepParams sp,
                      bool contact) {
-  return ex.template reduce_sum<Energy>(
-      "stats/energy", p.n, [=] PD_HD(int64_t i) { return particle_energy(int32_t(i), p, b, h, mt, sp, contact); });
+  return ex.template reduce_sum<Energy>("stats/energy", p.n, [=] PD_HD(int64_t i) {
+    return particle_energy(int32_t(i), p, b, h, mt, sp, contact);
+  });
 }
 
 template <class Exec>

@@ -20,13 +20,13 @@
 
 // Debug bounds checks (Warp style): on in Debug builds, free in Release.
 #if defined(PERIFRAC_BOUNDS_CHECKS)
-#define PD_CHECK_INDEX(i, n)                                                                  \
-  do {                                                                                        \
-    if ((i) < 0 || (i) >= (n)) {                                                              \
-      printf("perifrac: index %lld out of [0, %lld) at %s:%d\n", (long long)(i), (long long)(n), \
-             __FILE__, __LINE__);                                                             \
-      PD_TRAP();                                                                              \
-    }                                                                                         \
+#define PD_CHECK_INDEX(i, n)                                                                               \
+  do {                                                                                                     \
+    if ((i) < 0 || (i) >= (n)) {                                                                           \
+      printf("perifrac: index %lld out of [0, %lld) at %s:%d\n", (long long)(i), (long long)(n), __FILE__, \
+             __LINE__);                                                                                    \
+      PD_TRAP();                                                                                           \
+    }                                                                                                      \
   } while (0)
 #else
 #define PD_CHECK_INDEX(i, n) \

@@ -11,11 +11,21 @@ struct Vec3 {
   real x, y, z;
 };
 
-PD_HD inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-PD_HD inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-PD_HD inline Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
-PD_HD inline Vec3 operator*(real s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
-PD_HD inline Vec3 operator*(Vec3 a, real s) { return {s * a.x, s * a.y, s * a.z}; }
+PD_HD inline Vec3 operator+(Vec3 a, Vec3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+PD_HD inline Vec3 operator-(Vec3 a, Vec3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+PD_HD inline Vec3 operator-(Vec3 a) {
+  return {-a.x, -a.y, -a.z};
+}
+PD_HD inline Vec3 operator*(real s, Vec3 a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+PD_HD inline Vec3 operator*(Vec3 a, real s) {
+  return {s * a.x, s * a.y, s * a.z};
+}
 PD_HD inline Vec3& operator+=(Vec3& a, Vec3 b) {
   a.x += b.x;
   a.y += b.y;
@@ -28,10 +38,18 @@ PD_HD inline Vec3& operator-=(Vec3& a, Vec3 b) {
   a.z -= b.z;
   return a;
 }
-PD_HD inline real dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-PD_HD inline real length_squared(Vec3 a) { return dot(a, a); }
-PD_HD inline real length(Vec3 a) { return std::sqrt(dot(a, a)); }
-PD_HD inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+PD_HD inline real dot(Vec3 a, Vec3 b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+PD_HD inline real length_squared(Vec3 a) {
+  return dot(a, a);
+}
+PD_HD inline real length(Vec3 a) {
+  return std::sqrt(dot(a, a));
+}
+PD_HD inline bool is_finite(Vec3 a) {
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
 
 // Per-bond arithmetic on the GPU uses the hardware reciprocal square root and the fast
 // division (a few ulp; bench/NOTES.md: the IEEE sequences made the bond loops compute-bound).
@@ -44,7 +62,9 @@ PD_HD inline float fast_rsqrt(float x) {
   return 1.0f / std::sqrt(x);
 #endif
 }
-PD_HD inline double fast_rsqrt(double x) { return 1.0 / std::sqrt(x); }
+PD_HD inline double fast_rsqrt(double x) {
+  return 1.0 / std::sqrt(x);
+}
 PD_HD inline float fast_divide(float a, float b) {
 #if defined(__CUDA_ARCH__)
   return __fdividef(a, b);
@@ -52,7 +72,9 @@ PD_HD inline float fast_divide(float a, float b) {
   return a / b;
 #endif
 }
-PD_HD inline double fast_divide(double a, double b) { return a / b; }
+PD_HD inline double fast_divide(double a, double b) {
+  return a / b;
+}
 
 // Four values stored together so a gather is one vector load (16 bytes in float, 32 in
 // double): a Vec3 plus one scalar that is read at the same time.
@@ -60,7 +82,11 @@ struct alignas(4 * sizeof(real)) Vec4 {
   real x, y, z, w;
 };
 
-PD_HD inline Vec3 xyz(Vec4 a) { return {a.x, a.y, a.z}; }
-PD_HD inline Vec4 with_w(Vec3 a, real w) { return {a.x, a.y, a.z, w}; }
+PD_HD inline Vec3 xyz(Vec4 a) {
+  return {a.x, a.y, a.z};
+}
+PD_HD inline Vec4 with_w(Vec3 a, real w) {
+  return {a.x, a.y, a.z, w};
+}
 
 }  // namespace pd

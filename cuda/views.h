@@ -26,18 +26,18 @@ struct Ledger {
 // displacements (xi + (u_j - u_i)) to keep float32 round-off out of small strains.
 struct ParticlesView {
   int32_t n = 0;
-  const Vec4* rest = nullptr;          // xyz: reference position X [m]; w: volume V [m^3]
-  Vec4* disp = nullptr;                // xyz: displacement u [m]; w: effective strain limit tau' (eq. 5), set by `init`
-  Vec3* vel = nullptr;                 // velocity v
-  Vec3* force = nullptr;               // total force on the particle [N]
-  const real* inv_mass = nullptr;      // 1/m [1/kg]
-  const uint16_t* material = nullptr;  // index into MaterialTable
-  const int32_t* body = nullptr;       // bodies do not bond to each other
-  const uint8_t* flags = nullptr;      // ParticleFlag bits
-  const real* strain_limit0 = nullptr; // scattered base strain limit tau_i
-  real* strain_min = nullptr;          // minimum bond strain of the last force pass
-  int32_t* intact = nullptr;           // unbroken bonds, written by `springforces`
-  Ledger* ledger = nullptr;            // energy accounting (see Ledger)
+  const Vec4* rest = nullptr;  // xyz: reference position X [m]; w: volume V [m^3]
+  Vec4* disp = nullptr;   // xyz: displacement u [m]; w: effective strain limit tau' (eq. 5), set by `init`
+  Vec3* vel = nullptr;    // velocity v
+  Vec3* force = nullptr;  // total force on the particle [N]
+  const real* inv_mass = nullptr;       // 1/m [1/kg]
+  const uint16_t* material = nullptr;   // index into MaterialTable
+  const int32_t* body = nullptr;        // bodies do not bond to each other
+  const uint8_t* flags = nullptr;       // ParticleFlag bits
+  const real* strain_limit0 = nullptr;  // scattered base strain limit tau_i
+  real* strain_min = nullptr;           // minimum bond strain of the last force pass
+  int32_t* intact = nullptr;            // unbroken bonds, written by `springforces`
+  Ledger* ledger = nullptr;             // energy accounting (see Ledger)
   // State-based materials only (null otherwise): x theta_i (dilatation, set by `init`),
   // y 1/m_i with m_i = sum_j omega |xi|^2 beta V_j over the initial family, z phi_i =
   // 1 - intact/initial bonds of the last step (damage, set by `init`).
@@ -67,8 +67,12 @@ struct BondsView {
   }
 };
 
-PD_HD inline bool bond_intact(int32_t nb) { return nb >= 0; }
-PD_HD inline int32_t bond_partner(int32_t nb) { return nb >= 0 ? nb : ~nb; }
+PD_HD inline bool bond_intact(int32_t nb) {
+  return nb >= 0;
+}
+PD_HD inline int32_t bond_partner(int32_t nb) {
+  return nb >= 0 ? nb : ~nb;
+}
 
 // Spatial hash of cells of side `cell` (Teschner et al. 2003). Particles are sorted by
 // bin; bin b holds sorted entries [bin_start[b], bin_end[b]). Several cells can share a
@@ -76,10 +80,10 @@ PD_HD inline int32_t bond_partner(int32_t nb) { return nb >= 0 ? nb : ~nb; }
 struct HashView {
   uint32_t bins = 0;  // power of two
   real inv_cell = 0;
-  uint32_t* key = nullptr;         // bin of each particle, then sorted
-  int32_t* sorted = nullptr;       // particle ids in bin order
-  int32_t* bin_start = nullptr;    // first sorted entry of each bin, -1 when empty
-  int32_t* bin_end = nullptr;      // one past the last sorted entry
+  uint32_t* key = nullptr;       // bin of each particle, then sorted
+  int32_t* sorted = nullptr;     // particle ids in bin order
+  int32_t* bin_start = nullptr;  // first sorted entry of each bin, -1 when empty
+  int32_t* bin_end = nullptr;    // one past the last sorted entry
 };
 
 struct Cell {
@@ -92,7 +96,9 @@ PD_HD inline int32_t cell_coord(real v, real inv_cell) {
 PD_HD inline Cell cell_of(Vec3 p, real inv_cell) {
   return {cell_coord(p.x, inv_cell), cell_coord(p.y, inv_cell), cell_coord(p.z, inv_cell)};
 }
-PD_HD inline bool same_cell(Cell a, Cell b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+PD_HD inline bool same_cell(Cell a, Cell b) {
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
 PD_HD inline uint32_t cell_bin(Cell c, uint32_t bins) {
   const uint32_t h = (uint32_t(c.x) * 73856093u) ^ (uint32_t(c.y) * 19349663u) ^ (uint32_t(c.z) * 83492791u);
   return h & (bins - 1u);
@@ -114,15 +120,15 @@ struct Material {
   uint8_t partial_volumes = 1;
   PD_HD real family_radius() const { return partial_volumes ? horizon + real(0.5) * spacing : horizon; }
   // Bond-based:
-  real micromodulus = 0;       // c = 18K / (pi delta^4)  [N/m^6]
+  real micromodulus = 0;  // c = 18K / (pi delta^4)  [N/m^6]
   // State-based:
-  real bulk_modulus = 0;       // K [Pa]
-  real shear_modulus = 0;      // mu [Pa]
-  real damage_alpha = 0;       // alpha of Chen eq. 18
-  uint8_t chen_fracture = 1;   // 1: Chen eq. 18 from both ends; 0: stretch > max(tau_i, tau_j)
+  real bulk_modulus = 0;      // K [Pa]
+  real shear_modulus = 0;     // mu [Pa]
+  real damage_alpha = 0;      // alpha of Chen eq. 18
+  uint8_t chen_fracture = 1;  // 1: Chen eq. 18 from both ends; 0: stretch > max(tau_i, tau_j)
   uint8_t plastic = 0;
-  real yield_psi0 = 0;         // Mitchell's yield constant psi_0 (Chen eq. 12)
-  real plastic_limit = 0;      // Chen's gamma as a stretch: |e^p| <= plastic_limit |xi| (eq. 15)
+  real yield_psi0 = 0;     // Mitchell's yield constant psi_0 (Chen eq. 12)
+  real plastic_limit = 0;  // Chen's gamma as a stretch: |e^p| <= plastic_limit |xi| (eq. 15)
   uint8_t anisotropic = 0;
   real aniso[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // G of Chen eq. 16, row major
 };

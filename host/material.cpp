@@ -20,7 +20,8 @@ double pmb_critical_time_step(double density, double bulk_modulus, double horizo
   return std::sqrt(2.0 * density * horizon * horizon / (36.0 * bulk_modulus));
 }
 
-double lps_critical_stretch(double fracture_energy, double bulk_modulus, double shear_modulus, double horizon) {
+double lps_critical_stretch(double fracture_energy, double bulk_modulus, double shear_modulus,
+                            double horizon) {
   const double k = 3 * shear_modulus + std::pow(0.75, 4) * (bulk_modulus - 5 * shear_modulus / 3);
   return std::sqrt(fracture_energy / (k * horizon));
 }

@@ -20,7 +20,8 @@ double pmb_critical_time_step(double density, double bulk_modulus, double horizo
 
 // Critical stretch of the ordinary state-based solid from fracture energy (Madenci &
 // Oterkus 2014, eq. 5.20 in 3D): s0 = sqrt(G0 / ((3 mu + (3/4)^4 (K - 5 mu / 3)) delta)).
-double lps_critical_stretch(double fracture_energy, double bulk_modulus, double shear_modulus, double horizon);
+double lps_critical_stretch(double fracture_energy, double bulk_modulus, double shear_modulus,
+                            double horizon);
 
 // Mitchell's yield constant from a von Mises yield stress, 3D: psi_0 = 25 sigma_Y^2 / (8 pi delta^5)
 // (Mitchell 2011; the constant Peridigm and LAMMPS use).

@@ -9,19 +9,20 @@
 namespace pd {
 
 struct ParticleSet {
-  std::vector<Vec3> rest;            // reference positions [m]
-  std::vector<Vec3> velocity;        // initial velocities [m/s]
-  std::vector<real> volume;          // [m^3]
-  std::vector<real> mass;            // [kg]
-  std::vector<real> strain_limit0;   // scattered base strain limit per particle
-  std::vector<uint16_t> material;    // index into the material table
-  std::vector<int32_t> body;         // bodies are bonded internally only
-  std::vector<uint8_t> flags;        // ParticleFlag bits
+  std::vector<Vec3> rest;           // reference positions [m]
+  std::vector<Vec3> velocity;       // initial velocities [m/s]
+  std::vector<real> volume;         // [m^3]
+  std::vector<real> mass;           // [kg]
+  std::vector<real> strain_limit0;  // scattered base strain limit per particle
+  std::vector<uint16_t> material;   // index into the material table
+  std::vector<int32_t> body;        // bodies are bonded internally only
+  std::vector<uint8_t> flags;       // ParticleFlag bits
 
   size_t size() const { return rest.size(); }
   void reserve(size_t n);
   // Appends one particle; returns its index.
-  size_t add(Vec3 x, Vec3 v, real vol, real m, real tau0, uint16_t mat, int32_t body_id, uint8_t flag_bits = 0);
+  size_t add(Vec3 x, Vec3 v, real vol, real m, real tau0, uint16_t mat, int32_t body_id,
+             uint8_t flag_bits = 0);
 };
 
 // Everything an engine needs to run: particles, material constants and step parameters.

@@ -29,7 +29,9 @@ PD_HD inline Energy operator+(const Energy& a, const Energy& b) {
   s.released = a.released + b.released;
   return s;
 }
-PD_HD inline Energy& operator+=(Energy& a, const Energy& b) { return a = a + b; }
+PD_HD inline Energy& operator+=(Energy& a, const Energy& b) {
+  return a = a + b;
+}
 
 // Strain energy of particle i: PMB sum_j c s^2 |xi| beta V_i V_j / 4; LPS
 // V_i (K theta^2 / 2 + (15 mu / (2 m)) sum_j omega (e^d - e^p)^2 beta V_j).

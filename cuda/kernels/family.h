@@ -29,7 +29,8 @@ PD_HD inline void for_each_family_member(int32_t i, ParticlesView p, HashView h,
   });
 }
 
-PD_HD inline void count_family(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt, int32_t* count) {
+PD_HD inline void count_family(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt,
+                               int32_t* count) {
   int32_t c = 0;
   for_each_family_member(i, p, h, mt, [&](int32_t) { ++c; });
   count[i] = c;

@@ -29,7 +29,8 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
     const int32_t j = b.neighbor[slot];
     if (!bond_intact(j)) continue;
     const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
-    const real td = alpha * influence(g.xi, g.inv_r0, m) * (g.e - theta * g.r0 * real(1.0 / 3.0) - b.plastic[slot]);
+    const real td =
+        alpha * influence(g.xi, g.inv_r0, m) * (g.e - theta * g.r0 * real(1.0 / 3.0) - b.plastic[slot]);
     norm2 += td * td * volume_fraction(g.r0, m) * g.volume_j;
   }
   if (norm2 <= real(2) * m.yield_psi0) return;

@@ -55,7 +55,8 @@ PD_HD inline BondGeometry bond_geometry(const ParticlesView& p, int32_t i, int32
 }
 
 // `inv_mw` is 1/m of the particle whose state this is.
-PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_mw, real ep, const Material& m) {
+PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_mw, real ep,
+                              const Material& m) {
   const real dil = real(3) * m.bulk_modulus * theta * r0;
   const real dev = real(15) * m.shear_modulus * (e - theta * r0 * real(1.0 / 3.0) - ep);
   return omega * inv_mw * (dil + dev);

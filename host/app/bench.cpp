@@ -44,7 +44,8 @@ SimulationInput lattice_input(const BenchOptions& opt) {
       m.plastic_limit = real(0.05);
     }
   } else {
-    throw std::invalid_argument("bench: --model must be bond_based, state_based or plastic, got '" + opt.model + "'");
+    throw std::invalid_argument("bench: --model must be bond_based, state_based or plastic, got '" +
+                                opt.model + "'");
   }
   const int64_t n = opt.lattice;
   in.particles.reserve(size_t(n * n * n));
@@ -57,8 +58,8 @@ SimulationInput lattice_input(const BenchOptions& opt) {
   for (int64_t k = 0; k < n; ++k)
     for (int64_t j = 0; j < n; ++j)
       for (int64_t i = 0; i < n; ++i)
-        in.particles.add({real(i * lambda), real(j * lambda), real(k * lambda)}, {jiggle(), jiggle(), jiggle()},
-                         real(vol), real(2440 * vol), real(5e-4), 0, 0);
+        in.particles.add({real(i * lambda), real(j * lambda), real(k * lambda)},
+                         {jiggle(), jiggle(), jiggle()}, real(vol), real(2440 * vol), real(5e-4), 0, 0);
   in.step.dt = real(0x1p-23);
   in.step.contact_stiffness = real(1e8);
   in.contact = opt.contact;
@@ -125,11 +126,11 @@ int bench_command(const BenchOptions& opt) {
   std::printf("bench      %s on %s [%s], %s, git %s\n", workload.c_str(), engine->device_name().c_str(),
               backend_name(backend), date.c_str(), rev.c_str());
   std::printf("size       %zu particles, %lld bonds (mean %.1f per particle), %.1f MiB, %lld steps\n",
-              input.particles.size(), (long long)fam.bonds, fam.mean, double(engine->memory_bytes()) / (1 << 20),
-              (long long)opt.steps);
+              input.particles.size(), (long long)fam.bonds, fam.mean,
+              double(engine->memory_bytes()) / (1 << 20), (long long)opt.steps);
   print_kernel_table(std::cout, rows);
-  std::printf("wall       %.3f s for %lld steps: %.3e bond-updates/s end to end\n", wall, (long long)opt.steps,
-              double(fam.bonds) * double(opt.steps) / wall);
+  std::printf("wall       %.3f s for %lld steps: %.3e bond-updates/s end to end\n", wall,
+              (long long)opt.steps, double(fam.bonds) * double(opt.steps) / wall);
 
   // Results file: one JSON document per run.
   ensure_directory(opt.out);
@@ -141,10 +142,11 @@ int bench_command(const BenchOptions& opt) {
      << ",\n  \"steps\": " << opt.steps << ",\n  \"wall_seconds\": " << wall << ",\n  \"kernels\": [\n";
   for (size_t k = 0; k < rows.size(); ++k) {
     const auto& r = rows[k];
-    js << "    {\"name\": \"" << r.name << "\", \"launches\": " << r.launches << ", \"seconds\": " << r.seconds
-       << ", \"ms_per_launch\": " << r.ms_per_launch << ", \"share\": " << r.share
-       << ", \"bond_updates_per_s\": " << r.bond_updates_per_s << ", \"registers\": " << r.registers
-       << ", \"occupancy\": " << r.occupancy << "}" << (k + 1 < rows.size() ? "," : "") << "\n";
+    js << "    {\"name\": \"" << r.name << "\", \"launches\": " << r.launches
+       << ", \"seconds\": " << r.seconds << ", \"ms_per_launch\": " << r.ms_per_launch
+       << ", \"share\": " << r.share << ", \"bond_updates_per_s\": " << r.bond_updates_per_s
+       << ", \"registers\": " << r.registers << ", \"occupancy\": " << r.occupancy << "}"
+       << (k + 1 < rows.size() ? "," : "") << "\n";
   }
   js << "  ]\n}\n";
   const std::string file =

@@ -9,11 +9,11 @@
 namespace pd {
 
 struct BenchOptions {
-  std::string scene;           // a scene file, or empty for the lattice
-  double scale = 1.0;          // scene particle-count scale
-  int64_t lattice = 100;       // particles per side of the synthetic cube
-  double horizon = 3.0;        // delta / lambda of the lattice
-  bool contact = false;        // lattice: launch collection + collisions
+  std::string scene;                 // a scene file, or empty for the lattice
+  double scale = 1.0;                // scene particle-count scale
+  int64_t lattice = 100;             // particles per side of the synthetic cube
+  double horizon = 3.0;              // delta / lambda of the lattice
+  bool contact = false;              // lattice: launch collection + collisions
   std::string model = "bond_based";  // lattice material: bond_based | state_based | plastic
   std::string backend = "auto";
   int64_t steps = 200;

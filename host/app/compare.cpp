@@ -27,7 +27,8 @@ std::vector<std::string> frame_files(const std::string& dir) {
 
 int compare_command(const CompareOptions& opt) {
   for (const auto& d : {opt.a, opt.b})
-    if (!std::filesystem::is_directory(d)) throw std::invalid_argument("compare: '" + d + "' is not a folder");
+    if (!std::filesystem::is_directory(d))
+      throw std::invalid_argument("compare: '" + d + "' is not a folder");
   const RestData rest = read_rest_file(opt.a + "/" + kRestFileName);
   const auto names = frame_files(opt.a);
   int frames = 0;
@@ -52,9 +53,10 @@ int compare_command(const CompareOptions& opt) {
     ++frames;
     std::printf("%-18s %14.3e %14.3e %8s\n", name.c_str(), rel, dmg, frame_ok ? "ok" : "DIFFERS");
   }
-  if (frames == 0) throw std::invalid_argument("compare: no common frame files in '" + opt.a + "' and '" + opt.b + "'");
-  std::printf("compare: %d frames, %s (tolerances: displacement %.1e relative L2, damage %.1e mean)\n", frames,
-              ok ? "agree" : "DIFFER", opt.position_tolerance, opt.damage_tolerance);
+  if (frames == 0)
+    throw std::invalid_argument("compare: no common frame files in '" + opt.a + "' and '" + opt.b + "'");
+  std::printf("compare: %d frames, %s (tolerances: displacement %.1e relative L2, damage %.1e mean)\n",
+              frames, ok ? "agree" : "DIFFER", opt.position_tolerance, opt.damage_tolerance);
   return ok ? 0 : 1;
 }
 

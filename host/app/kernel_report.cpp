@@ -36,8 +36,8 @@ std::vector<KernelRow> kernel_rows(const KernelStats& stats, const std::string& 
 
 void print_kernel_table(std::ostream& os, const std::vector<KernelRow>& rows) {
   char line[256];
-  std::snprintf(line, sizeof line, "%-22s %9s %10s %7s %14s %5s %6s\n", "kernel", "launches", "ms/launch", "share",
-                "bond-upd/s", "regs", "occup");
+  std::snprintf(line, sizeof line, "%-22s %9s %10s %7s %14s %5s %6s\n", "kernel", "launches", "ms/launch",
+                "share", "bond-upd/s", "regs", "occup");
   os << line;
   for (const auto& r : rows) {
     char regs[16] = "-", occ[16] = "-";

@@ -43,11 +43,13 @@ void print_setup(const Scene& scene, const SetupResult& setup, const RunOptions&
     char model[160];
     if (km.model == kStateBased)
       std::snprintf(model, sizeof model, "state-based K %.4g Pa, mu %.4g Pa%s%s", double(km.bulk_modulus),
-                    double(km.shear_modulus), km.plastic ? ", plastic" : "", km.anisotropic ? ", anisotropic" : "");
+                    double(km.shear_modulus), km.plastic ? ", plastic" : "",
+                    km.anisotropic ? ", anisotropic" : "");
     else
       std::snprintf(model, sizeof model, "bond-based c %.4g N/m^6", m.micromodulus);
-    std::printf("material   '%s' on body '%s': %s; lambda %.4g m, delta %.4g m, strain limit %.4g, dt_c %.3g s\n",
-                m.name.c_str(), m.body.c_str(), model, m.spacing, m.horizon, m.strain_limit, m.critical_dt);
+    std::printf(
+        "material   '%s' on body '%s': %s; lambda %.4g m, delta %.4g m, strain limit %.4g, dt_c %.3g s\n",
+        m.name.c_str(), m.body.c_str(), model, m.spacing, m.horizon, m.strain_limit, m.critical_dt);
   }
   std::printf("time step  dt %.4g s = %.2f dt_c (continuum estimate); %lld steps per frame\n", scene.dt,
               scene.dt / setup.critical_dt, (long long)scene.steps_per_frame);
@@ -72,7 +74,8 @@ class EnergyLog {
   void add(int64_t frame, int64_t step, double time, const Energy& e) {
     char line[320];
     std::snprintf(line, sizeof line, "%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", (long long)frame,
-                  (long long)step, time, e.kinetic, e.strain, e.contact, e.gravity, e.work, e.released, e.balance());
+                  (long long)step, time, e.kinetic, e.strain, e.contact, e.gravity, e.work, e.released,
+                  e.balance());
     text_ += line;
     write_file_atomic(path_, text_);
   }
@@ -85,9 +88,9 @@ class EnergyLog {
 // integrator's and the fracture's errors, a fraction of the energy in play; a blow-up
 // creates energy without bound. Returns how far past that bound the run is (> 1: blow-up).
 double energy_excess(const Energy& e0, const Energy& e) {
-  const double in_play = std::fabs(e0.kinetic) + std::fabs(e0.strain) + std::fabs(e0.contact) + std::fabs(e.kinetic) +
-                         std::fabs(e.strain) + std::fabs(e.contact) + std::fabs(e.work) + std::fabs(e.released) +
-                         std::fabs(e.gravity - e0.gravity);
+  const double in_play = std::fabs(e0.kinetic) + std::fabs(e0.strain) + std::fabs(e0.contact) +
+                         std::fabs(e.kinetic) + std::fabs(e.strain) + std::fabs(e.contact) +
+                         std::fabs(e.work) + std::fabs(e.released) + std::fabs(e.gravity - e0.gravity);
   const double growth = e.balance() - e0.balance();
   return in_play > 0 ? growth / in_play : 0;
 }
@@ -113,7 +116,8 @@ RestData rest_data(const ParticleSet& ps) {
 }
 
 // Gathers one frame's per-particle data from the engine.
-FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame) {
+FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count,
+                     int64_t frame) {
   ParticleState s;
   engine.read_state(s);
   FrameData f;
@@ -148,10 +152,11 @@ int run_command(const RunOptions& opt) {
   std::unique_ptr<Engine> engine = make_engine(backend, setup.input);
   const FamilyStats& fam = engine->family_stats();
   std::printf("device     %s [%s]\n", engine->device_name().c_str(), backend_name(backend));
-  std::printf("bonds      %lld (per particle min %d, mean %.1f, max %d); families built in %.2f s; %.1f MiB\n",
-              (long long)fam.bonds, fam.min, fam.mean, fam.max,
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count(),
-              double(engine->memory_bytes()) / (1 << 20));
+  std::printf(
+      "bonds      %lld (per particle min %d, mean %.1f, max %d); families built in %.2f s; %.1f MiB\n",
+      (long long)fam.bonds, fam.min, fam.mean, fam.max,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count(),
+      double(engine->memory_bytes()) / (1 << 20));
 
   // Output folder: rest state once, then one set of files per frame.
   const std::string out =
@@ -188,26 +193,29 @@ int run_command(const RunOptions& opt) {
     engine->advance(scene.steps_per_frame);
     const int64_t bad = engine->first_non_finite();
     if (bad >= 0) {
-      std::fprintf(stderr,
-                   "\nerror: numerical blow-up: particle %lld is not finite by step %lld (frame %lld, between steps "
-                   "%lld and %lld); dt = %.3g s is %.2f of the critical time step. Frames up to %lld are written "
-                   "in %s\n",
-                   (long long)bad, (long long)engine->step(), (long long)frame,
-                   (long long)(engine->step() - scene.steps_per_frame), (long long)engine->step(), scene.dt,
-                   scene.dt / setup.critical_dt, (long long)(frame - 1), out.c_str());
+      std::fprintf(
+          stderr,
+          "\nerror: numerical blow-up: particle %lld is not finite by step %lld (frame %lld, between steps "
+          "%lld and %lld); dt = %.3g s is %.2f of the critical time step. Frames up to %lld are written "
+          "in %s\n",
+          (long long)bad, (long long)engine->step(), (long long)frame,
+          (long long)(engine->step() - scene.steps_per_frame), (long long)engine->step(), scene.dt,
+          scene.dt / setup.critical_dt, (long long)(frame - 1), out.c_str());
       return kExitBlowUp;
     }
     const Energy energy = engine->energy();
     const double excess = energy_excess(energy0, energy);
     if (excess > 1.0 || !std::isfinite(energy.balance())) {
       std::fprintf(stderr,
-                   "\nerror: numerical blow-up: the energy grew by %.3g J (%.1f times the energy in play) by step %lld "
-                   "(frame %lld); particle %lld moves fastest. dt = %.3g s is %.2f of the critical time step%s. Frames "
+                   "\nerror: numerical blow-up: the energy grew by %.3g J (%.1f times the energy in play) by "
+                   "step %lld "
+                   "(frame %lld); particle %lld moves fastest. dt = %.3g s is %.2f of the critical time "
+                   "step%s. Frames "
                    "up to %lld are written in %s\n",
                    energy.balance() - energy0.balance(), excess, (long long)engine->step(), (long long)frame,
                    (long long)fastest_particle(*engine), scene.dt, scene.dt / setup.critical_dt,
-                   scene.contact ? "; a high contact stiffness needs a smaller dt too" : "", (long long)(frame - 1),
-                   out.c_str());
+                   scene.contact ? "; a high contact stiffness needs a smaller dt too" : "",
+                   (long long)(frame - 1), out.c_str());
       return kExitBlowUp;
     }
     energy_log.add(frame, engine->step(), engine->time(), energy);
@@ -216,9 +224,10 @@ int run_command(const RunOptions& opt) {
     const double steps_per_s = double(frame * scene.steps_per_frame) / elapsed;
     const double eta = elapsed / double(frame) * double(scene.frames - frame);
     const double broken = fam.bonds > 0 ? double(engine->broken_bonds()) / double(fam.bonds) : 0;
-    std::printf("%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%  energy balance %+.2f%%  %s%s",
-                tty ? "\r" : "", (long long)frame, (long long)scene.frames, (long long)engine->step(), steps_per_s,
-                format_duration(eta).c_str(), 100 * broken, 100 * excess, fragment_log.c_str(), tty ? "   " : "\n");
+    std::printf(
+        "%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%  energy balance %+.2f%%  %s%s",
+        tty ? "\r" : "", (long long)frame, (long long)scene.frames, (long long)engine->step(), steps_per_s,
+        format_duration(eta).c_str(), 100 * broken, 100 * excess, fragment_log.c_str(), tty ? "   " : "\n");
     std::fflush(stdout);
   }
   if (tty) std::printf("\n");

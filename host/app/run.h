@@ -11,7 +11,7 @@ struct RunOptions {
   std::string backend = "auto";
   int64_t frames = -1;           // -1: the scene's
   int64_t steps_per_frame = -1;  // -1: the scene's
-  std::string out;      // empty: out/<scene name>
+  std::string out;               // empty: out/<scene name>
   double scale = 1.0;
   bool allow_unstable_dt = false;
   int blend_frames = 0;  // fragment split blending (host/fragments/smoothing.h); 0: off
@@ -20,9 +20,9 @@ struct RunOptions {
 // Exit codes shared by the commands.
 enum ExitCode : int {
   kExitOk = 0,
-  kExitUsage = 2,       // bad scene, option or input file
-  kExitBlowUp = 3,      // numerical blow-up detected
-  kExitRuntime = 4,     // device or I/O failure
+  kExitUsage = 2,    // bad scene, option or input file
+  kExitBlowUp = 3,   // numerical blow-up detected
+  kExitRuntime = 4,  // device or I/O failure
 };
 
 int run_command(const RunOptions& options);

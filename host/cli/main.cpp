@@ -20,14 +20,19 @@ int main(int argc, char** argv) {
   RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "simulate a scene and write per-frame output");
   run_cmd->add_option("scene", run.scene, "scene file (TOML)")->required();
-  run_cmd->add_option("--backend", run.backend, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
-  run_cmd->add_option("--frames", run.frames, "number of frames (default: the scene's)")->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--backend", run.backend, "auto | cpu | cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  run_cmd->add_option("--frames", run.frames, "number of frames (default: the scene's)")
+      ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--steps-per-frame", run.steps_per_frame, "steps per frame (default: the scene's)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_option("--out", run.out, "output folder (default: out/<scene name>)");
   run_cmd->add_option("--scale", run.scale, "particle-count factor, e.g. 0.05 for a small CPU run");
-  run_cmd->add_flag("--allow-unstable-dt", run.allow_unstable_dt, "run even if dt exceeds the stable time step");
-  run_cmd->add_option("--blend-frames", run.blend_frames, "blend a split fragment's transform over N frames (0: off)")
+  run_cmd->add_flag("--allow-unstable-dt", run.allow_unstable_dt,
+                    "run even if dt exceeds the stable time step");
+  run_cmd
+      ->add_option("--blend-frames", run.blend_frames,
+                   "blend a split fragment's transform over N frames (0: off)")
       ->check(CLI::NonNegativeNumber);
 
   BenchOptions bench;
@@ -73,7 +78,8 @@ int main(int argc, char** argv) {
     if (*info_cmd) {
       std::string why;
       const bool gpu = cuda_device_available(&why);
-      std::printf("perifrac %s\ncpu   available\ncuda  %s\n", PERIFRAC_VERSION, gpu ? "available" : why.c_str());
+      std::printf("perifrac %s\ncpu   available\ncuda  %s\n", PERIFRAC_VERSION,
+                  gpu ? "available" : why.c_str());
       return kExitOk;
     }
   } catch (const SceneError& e) {

@@ -30,7 +30,8 @@ TEST(Collisions, NoForceAtOrBeyondTheContactDistance) {
 TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
   Random rng(17);
   std::vector<Vec3> pts(3000);
-  for (auto& p : pts) p = {real(rng.uniform() * 2 - 1), real(rng.uniform() * 2 - 1), real(rng.uniform() * 2 - 1)};
+  for (auto& p : pts)
+    p = {real(rng.uniform() * 2 - 1), real(rng.uniform() * 2 - 1), real(rng.uniform() * 2 - 1)};
   const real cell = real(0.1);
   // Hash by sorting (bin, id), as the engine does.
   HashView h;

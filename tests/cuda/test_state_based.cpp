@@ -18,7 +18,9 @@ using testing::state_material;
 
 constexpr double kEps = std::numeric_limits<real>::epsilon();
 
-Mat3 zero() { return Mat3{}; }
+Mat3 zero() {
+  return Mat3{};
+}
 
 // Elastic constants C11, C12, C44 of the interior particle (cubic symmetry of the lattice).
 struct Cubic {
@@ -51,7 +53,8 @@ TEST(StateBased, DilatationEqualsTraceOfHomogeneousStrain) {
       InteriorParticle a(state_material(1e9, 0.3, ratio, partial), ratio);
       a.deform(grad);
       // Exact up to the second-order term of the extension (|strain|) and float round-off.
-      EXPECT_NEAR(a.theta(), trace, std::fabs(trace) * (10 * strain + 200 * kEps)) << "delta/lambda " << ratio;
+      EXPECT_NEAR(a.theta(), trace, std::fabs(trace) * (10 * strain + 200 * kEps))
+          << "delta/lambda " << ratio;
     }
 }
 
@@ -86,7 +89,8 @@ TEST(StateBased, ErrorShrinksAsTheHorizonGrows) {
   const double youngs = 1e9, nu = 0.3;
   auto error = [&](double ratio) {
     const Cubic c = elastic_constants(state_material(youngs, nu, ratio), ratio);
-    return std::fabs(c.youngs() / youngs - 1) + std::fabs(c.poisson() - nu) + std::fabs(2 * c.c44 / (c.c11 - c.c12) - 1);
+    return std::fabs(c.youngs() / youngs - 1) + std::fabs(c.poisson() - nu) +
+           std::fabs(2 * c.c44 / (c.c11 - c.c12) - 1);
   };
   EXPECT_LT(error(4), error(3));
   EXPECT_LT(error(5), error(4));
@@ -180,7 +184,8 @@ TEST(StateBased, PlasticLimitCapsThePlasticExtension) {
   }
   for (int32_t k = 0; k < a.family_size(); ++k) {
     const int64_t slot = a.bonds().slot(0, k);
-    max_ratio = std::max(max_ratio, std::fabs(double(a.plastic[slot])) / length(xyz(a.rest[a.neighbor[slot]])));
+    max_ratio =
+        std::max(max_ratio, std::fabs(double(a.plastic[slot])) / length(xyz(a.rest[a.neighbor[slot]])));
   }
   EXPECT_LE(max_ratio, 2e-3 * (1 + 1e-5));
   EXPECT_GT(max_ratio, 1.9e-3);  // the cap is reached

@@ -14,9 +14,9 @@
 namespace pd {
 namespace {
 
-#define REQUIRE_GPU()                                                  \
-  do {                                                                 \
-    std::string why;                                                   \
+#define REQUIRE_GPU()                                                    \
+  do {                                                                   \
+    std::string why;                                                     \
     if (!cuda_device_available(&why)) GTEST_SKIP() << "no GPU: " << why; \
   } while (0)
 
@@ -78,9 +78,10 @@ TEST(GpuEquivalence, GlassPlateSmallScale) {
   const double jaccard = double(common) / double(ba.size() + bb.size() - common);
   RecordProperty("displacement_rel_l2", std::to_string(rel));
   RecordProperty("broken_jaccard", std::to_string(jaccard));
-  std::printf("[ equivalence ] %zu particles, %lld steps: displacement rel L2 %.3e, broken bonds cpu %zu gpu %zu, "
-              "Jaccard %.5f\n",
-              setup.input.particles.size(), (long long)steps, rel, ba.size(), bb.size(), jaccard);
+  std::printf(
+      "[ equivalence ] %zu particles, %lld steps: displacement rel L2 %.3e, broken bonds cpu %zu gpu %zu, "
+      "Jaccard %.5f\n",
+      setup.input.particles.size(), (long long)steps, rel, ba.size(), bb.size(), jaccard);
   ASSERT_GT(ba.size(), 100u) << "the projectile should have broken the plate";
   EXPECT_LT(rel, 1e-3);
   EXPECT_GT(jaccard, 0.98);
@@ -113,9 +114,10 @@ TEST(GpuEquivalence, StateBasedPlasticBarPulledApart) {
       size_t common = 0;
       for (const auto& p : ba) common += bb.count(p);
       const double jaccard = double(common) / double(ba.size() + bb.size() - common);
-      std::printf("[ equivalence ] state-based plastic bar, %zu particles, 800 steps: displacement rel L2 %.3e, "
-                  "broken bonds cpu %zu gpu %zu, Jaccard %.5f\n",
-                  in.particles.size(), relative_l2(b.disp, a.disp), ba.size(), bb.size(), jaccard);
+      std::printf(
+          "[ equivalence ] state-based plastic bar, %zu particles, 800 steps: displacement rel L2 %.3e, "
+          "broken bonds cpu %zu gpu %zu, Jaccard %.5f\n",
+          in.particles.size(), relative_l2(b.disp, a.disp), ba.size(), bb.size(), jaccard);
       ASSERT_GT(ba.size(), 1000u) << "the bar should have started to break";
       EXPECT_GT(jaccard, 0.98);
     }

@@ -105,7 +105,8 @@ TEST(EngineConservation, MomentumIsConservedWithoutExternalForces) {
 TEST(EngineConservation, MomentumIsConservedWithPlasticityAndDamage) {
   auto in = testing::state_block(8, 6, 5, 1e-3, 5e-4, true, 0.2);
   Random rng(4);
-  for (auto& v : in.particles.velocity) v = {real(3 * rng.normal()), real(3 * rng.normal()), real(3 * rng.normal())};
+  for (auto& v : in.particles.velocity)
+    v = {real(3 * rng.normal()), real(3 * rng.normal()), real(3 * rng.normal())};
   in.contact = true;
   in.step.contact_stiffness = real(1e8);
   double p0[3] = {0, 0, 0}, scale = 0;

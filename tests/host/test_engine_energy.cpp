@@ -16,7 +16,8 @@ namespace {
 
 // A free bar vibrating in its first bending-like mode (smooth velocities): no breaking, no contact.
 SimulationInput vibrating_block(bool state_based, double dt_fraction) {
-  auto in = state_based ? testing::state_block(16, 4, 4, 1e-3, 0.5, false) : testing::lattice_block(16, 4, 4, 1e-3, 0.5);
+  auto in = state_based ? testing::state_block(16, 4, 4, 1e-3, 0.5, false)
+                        : testing::lattice_block(16, 4, 4, 1e-3, 0.5);
   for (size_t i = 0; i < in.particles.size(); ++i)
     in.particles.velocity[i] = {0, real(0.01 * std::cos(M_PI * in.particles.rest[i].x / 15e-3)), 0};
   const Material& m = in.materials.m[0];
@@ -44,7 +45,8 @@ EnergyError energy_error(const SimulationInput& in, double duration) {
   EnergyError err{0, 0};
   double first = 0, last = 0;
   const size_t w = samples.size() / 5;
-  for (size_t k = 0; k < w; ++k) first += samples[k] / double(w), last += samples[samples.size() - 1 - k] / double(w);
+  for (size_t k = 0; k < w; ++k)
+    first += samples[k] / double(w), last += samples[samples.size() - 1 - k] / double(w);
   err.drift = std::fabs(last - first);
   for (double v : samples) err.amplitude = std::max(err.amplitude, std::fabs(v));
   return err;
@@ -91,7 +93,8 @@ TEST(EngineEnergy, BalanceHoldsThroughFracture) {
 TEST(EngineEnergy, ExternalWorkIsAccounted) {
   auto hit = testing::lattice_block(12, 12, 3, 1e-3, 0.5);
   hit.step.n_projectiles = 1;
-  hit.step.projectile[0] = {{real(5.5e-3), real(5.5e-3), real(9e-3)}, {0, 0, real(-20)}, real(4e-3), real(1e5)};
+  hit.step.projectile[0] = {
+      {real(5.5e-3), real(5.5e-3), real(9e-3)}, {0, 0, real(-20)}, real(4e-3), real(1e5)};
   auto pull = testing::lattice_block(16, 4, 4, 1e-3, 0.5);
   for (size_t i = 0; i < pull.particles.size(); ++i)
     if (pull.particles.rest[i].x > 13.5e-3) {

@@ -33,8 +33,8 @@ inline SimulationInput lattice_block(int nx, int ny, int nz, double lambda, doub
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         auto c = [&](int n) { return (n + jitter * (rng.uniform() - 0.5)) * lambda; };
-        in.particles.add({real(c(i)), real(c(j)), real(c(k))}, {0, 0, 0}, real(vol), real(2440 * vol), real(tau),
-                         0, 0);
+        in.particles.add({real(c(i)), real(c(j)), real(c(k))}, {0, 0, 0}, real(vol), real(2440 * vol),
+                         real(tau), 0, 0);
       }
   in.step.dt = real(0x1p-23);
   return in;

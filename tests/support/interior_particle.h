@@ -121,7 +121,8 @@ struct InteriorParticle {
     for (int32_t k = 0; k < count[0]; ++k) {
       const int64_t slot = b.slot(0, k);
       const BondGeometry g = bond_geometry(view(), 0, neighbor[slot]);
-      const double t = force_state(influence(g.xi, g.inv_r0, m), g.r0, g.e, state[0].x, state[0].y, plastic[slot], m);
+      const double t =
+          force_state(influence(g.xi, g.inv_r0, m), g.r0, g.e, state[0].x, state[0].y, plastic[slot], m);
       const double w = t * volume_fraction(g.r0, m) * g.inv_r;
       const double y[3] = {g.y.x, g.y.y, g.y.z}, xi[3] = {g.xi.x, g.xi.y, g.xi.z};
       for (int a = 0; a < 3; ++a)

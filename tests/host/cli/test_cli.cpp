@@ -37,10 +37,11 @@ class Cli : public ::testing::Test {
   // A small valid scene with `extra` appended and `replace` substitutions applied.
   std::string scene(const std::string& body_lines, const std::string& extra = "") {
     const std::string path = (dir_ / "scene.toml").string();
-    std::ofstream(path) << "[simulation]\nsteps_per_frame = 20\nframes = 2\n"
-                        << "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
-                        << "[[bodies]]\nmaterial = \"glass\"\n"
-                        << body_lines << extra;
+    std::ofstream(path)
+        << "[simulation]\nsteps_per_frame = 20\nframes = 2\n"
+        << "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+        << "[[bodies]]\nmaterial = \"glass\"\n"
+        << body_lines << extra;
     return path;
   }
   std::string out() const { return (dir_ / "out").string(); }
@@ -67,13 +68,14 @@ void expect_scene_error(const Result& r, const std::string& key) {
 }
 
 TEST_F(Cli, MissingKey) {
-  expect_scene_error(run_perifrac("run " + scene("size = [0.02, 0.01, 0.01]\n") + " --backend cpu --out " + out()),
-                     "spacing");
+  expect_scene_error(
+      run_perifrac("run " + scene("size = [0.02, 0.01, 0.01]\n") + " --backend cpu --out " + out()),
+      "spacing");
 }
 
 TEST_F(Cli, UnknownKey) {
-  expect_scene_error(run_perifrac("run " + scene(kGoodBody, "[world]\ngravty = [0, 0, 0]\n") + " --out " + out()),
-                     "gravty");
+  expect_scene_error(
+      run_perifrac("run " + scene(kGoodBody, "[world]\ngravty = [0, 0, 0]\n") + " --out " + out()), "gravty");
 }
 
 TEST_F(Cli, NegativeDensity) {
@@ -89,16 +91,18 @@ TEST_F(Cli, NegativeDensity) {
 }
 
 TEST_F(Cli, HorizonBelowSpacing) {
-  expect_scene_error(
-      run_perifrac("run " + scene(kGoodBody, "[materials.soft]\ndensity = 1.0\nbulk_modulus = 1.0\n"
-                                             "strain_limit = 0.1\nhorizon = 0.5\n") +
-                   " --out " + out()),
-      "horizon");
+  expect_scene_error(run_perifrac("run " +
+                                  scene(kGoodBody,
+                                        "[materials.soft]\ndensity = 1.0\nbulk_modulus = 1.0\n"
+                                        "strain_limit = 0.1\nhorizon = 0.5\n") +
+                                  " --out " + out()),
+                     "horizon");
 }
 
 TEST_F(Cli, ZeroParticles) {
-  expect_scene_error(run_perifrac("run " + scene("size = [0.02, 0.0001, 0.01]\nspacing = 0.002\n") + " --out " + out()),
-                     "size");
+  expect_scene_error(
+      run_perifrac("run " + scene("size = [0.02, 0.0001, 0.01]\nspacing = 0.002\n") + " --out " + out()),
+      "size");
 }
 
 TEST_F(Cli, UnstableTimeStepIsRefused) {
