@@ -12,7 +12,7 @@ out=out/demo
 if [ "$preset" = cuda ]; then
   "$bin" run "$scene" --backend cuda --out "$out"
 else
-  "$bin" run "$scene" --backend cpu --scale 0.05 --frames 24 --out "$out"
+  "$bin" run "$scene" --backend cpu --scale 0.05 --frames 16 --out "$out"
 fi
 "$bin" render "$out"
 echo "demo: frames in $out (particles: *.vtu for ParaView, *.pfr), images in $out/render/"
