@@ -36,4 +36,43 @@ PD_HD inline BondLengths bond_lengths(Vec3 xi, Vec3 y) {
   return l;
 }
 
+// Geometry of one bond at the current positions, with what the partner's records carry.
+struct BondGeometry {
+  Vec3 xi, y;
+  real r0, inv_r0, r, inv_r, e;  // reference and current lengths (and reciprocals), extension
+  real volume_j, tau_j;          // the partner's volume and effective strain limit
+};
+
+PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j) {
+  BondGeometry g;
+  g.xi = xyz(rest_j) - xyz(rest_i);
+  const Vec3 eta = xyz(disp_j) - xyz(disp_i);
+  g.y = g.xi + eta;
+  const BondLengths l = bond_lengths(g.xi, g.y);
+  g.r0 = l.r0;
+  g.inv_r0 = l.inv_r0;
+  g.r = l.r;
+  g.inv_r = l.inv_r;
+  g.e = bond_elongation(g.xi, eta, g.r0, g.r);
+  g.volume_j = rest_j.w;
+  g.tau_j = disp_j.w;
+  return g;
+}
+
+// Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order.
+template <class Visit>
+PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b, Visit&& visit) {
+  const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
+  const int32_t count = b.count[i];
+  PD_BOND_LOOP
+  for (int32_t k = 0; k < count; ++k) {
+    const int64_t slot = b.slot(i, k);
+    const int32_t j = b.neighbor[slot];
+    if (!bond_intact(j)) continue;
+    visit(slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]));
+  }
+}
+
+// `inv_mw` is 1/m of the particle whose state this is.
+
 }  // namespace pd

@@ -36,23 +36,19 @@ PD_HD inline Energy& operator+=(Energy& a, const Energy& b) {
 // Strain energy of particle i: PMB sum_j c s^2 |xi| beta V_i V_j / 4; LPS
 // V_i (K theta^2 / 2 + (15 mu / (2 m)) sum_j omega (e^d - e^p)^2 beta V_j).
 PD_HD inline double strain_energy(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
-  const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
+  const real vol_i = p.volume(i);
   const bool state = m.model == kStateBased;
   const Vec4 si = state ? p.state[i] : Vec4{0, 0, 0, 0};
   double sum = 0;
-  for (int32_t k = 0; k < b.count[i]; ++k) {
-    const int64_t slot = b.slot(i, k);
-    const int32_t j = b.neighbor[slot];
-    if (!bond_intact(j)) continue;
-    const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
+  for_each_intact_bond(i, p, b, [&](int64_t slot, int32_t, const BondGeometry& g) {
     if (state) {
       const real ep = b.plastic ? b.plastic[slot] : real(0);
-      sum += double(lps_bond_energy(g, si.x, si.y, ep, rest_i.w, m));
+      sum += double(lps_bond_energy(g, si.x, si.y, ep, vol_i, m));
     } else {
-      sum += double(pmb_bond_energy(g.e * g.inv_r0, g.r0, rest_i.w, g.volume_j, m));
+      sum += double(pmb_bond_energy(g.e * g.inv_r0, g.r0, vol_i, g.volume_j, m));
     }
-  }
-  if (state) sum += 0.5 * double(m.bulk_modulus) * double(si.x) * double(si.x) * double(rest_i.w);
+  });
+  if (state) sum += 0.5 * double(m.bulk_modulus) * double(si.x) * double(si.x) * double(vol_i);
   return sum;
 }
 

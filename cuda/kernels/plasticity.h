@@ -16,33 +16,21 @@ namespace pd {
 PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   if (!m.plastic) return;
-  const Vec4 rest_i = p.rest[i], disp_i = p.disp[i], si = p.state[i];
-  const real theta = si.x;
-  const real alpha = real(15) * m.shear_modulus * si.y;
-  const int32_t count = b.count[i];
+  const real theta = p.state[i].x;
+  const real alpha = real(15) * m.shear_modulus * p.state[i].y;
 
   // Trial norm over the intact family.
   real norm2 = 0;
-  PD_BOND_LOOP
-  for (int32_t k = 0; k < count; ++k) {
-    const int64_t slot = b.slot(i, k);
-    const int32_t j = b.neighbor[slot];
-    if (!bond_intact(j)) continue;
-    const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
+  for_each_intact_bond(i, p, b, [&](int64_t slot, int32_t, const BondGeometry& g) {
     const real td =
         alpha * influence(g.xi, g.inv_r0, m) * (g.e - theta * g.r0 * real(1.0 / 3.0) - b.plastic[slot]);
     norm2 += td * td * volume_fraction(g.r0, m) * g.volume_j;
-  }
+  });
   if (norm2 <= real(2) * m.yield_psi0) return;
 
   // Project onto the yield surface and cap the plastic extension.
   const real scale = std::sqrt(real(2) * m.yield_psi0 / norm2);
-  PD_BOND_LOOP
-  for (int32_t k = 0; k < count; ++k) {
-    const int64_t slot = b.slot(i, k);
-    const int32_t j = b.neighbor[slot];
-    if (!bond_intact(j)) continue;
-    const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
+  for_each_intact_bond(i, p, b, [&](int64_t slot, int32_t, const BondGeometry& g) {
     const real ed = g.e - theta * g.r0 * real(1.0 / 3.0);
     real ep = ed - scale * (ed - b.plastic[slot]);
     if (m.plastic_limit > real(0)) {
@@ -50,7 +38,7 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
       ep = ep > cap ? cap : (ep < -cap ? -cap : ep);
     }
     b.plastic[slot] = ep;
-  }
+  });
 }
 
 }  // namespace pd

@@ -17,36 +17,22 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real vol_j, const
 template <bool kAccumulate>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
-  const Vec4 rest_i = p.rest[i];
-  const Vec4 disp_i = p.disp[i];
-  const real tau_i = disp_i.w;
-  const int32_t count = b.count[i];
+  const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};
   real smin = real(0);
   int32_t intact = 0;
-  PD_BOND_LOOP
-  for (int32_t k = 0; k < count; ++k) {
-    const int64_t slot = b.slot(i, k);
-    const int32_t j = b.neighbor[slot];
-    if (!bond_intact(j)) continue;
-    const Vec4 rest_j = p.rest[j];
-    const Vec4 disp_j = p.disp[j];
-    const Vec3 xi = xyz(rest_j) - xyz(rest_i);
-    const Vec3 eta = xyz(disp_j) - xyz(disp_i);
-    const Vec3 y = xi + eta;
-    const BondLengths l = bond_lengths(xi, y);
-    const real s = bond_elongation(xi, eta, l.r0, l.r) * l.inv_r0;
-    const real tau_j = disp_j.w;
-    if (s > (tau_i > tau_j ? tau_i : tau_j)) {
+  for_each_intact_bond(i, p, b, [&](int64_t slot, int32_t j, const BondGeometry& g) {
+    const real s = g.e * g.inv_r0;
+    if (s > (tau_i > g.tau_j ? tau_i : g.tau_j)) {
       b.neighbor[slot] = ~j;
-      p.ledger[i].released += double(pmb_bond_energy(s, l.r0, rest_i.w, rest_j.w, m));
-      continue;
+      p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.volume_j, m));
+      return;
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
-    f += (m.micromodulus * s * rest_j.w * volume_fraction(l.r0, m) * l.inv_r) * y;
-  }
-  f = rest_i.w * f;
+    f += (m.micromodulus * s * g.volume_j * volume_fraction(g.r0, m) * g.inv_r) * g.y;
+  });
+  f = vol_i * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;
   p.strain_min[i] = smin;
   p.intact[i] = intact;

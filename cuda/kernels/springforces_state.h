@@ -13,19 +13,13 @@ namespace pd {
 template <bool kAccumulate, bool kPlastic>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
-  const Vec4 rest_i = p.rest[i], disp_i = p.disp[i], state_i = p.state[i];
+  const Vec4 state_i = p.state[i];
   const real theta_i = state_i.x, inv_mw_i = state_i.y, phi_i = state_i.z;
-  const real tau_i = disp_i.w;
-  const int32_t count = b.count[i];
+  const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};
   real smin = real(0);
   int32_t intact = 0;
-  PD_BOND_LOOP
-  for (int32_t k = 0; k < count; ++k) {
-    const int64_t slot = b.slot(i, k);
-    const int32_t j = b.neighbor[slot];
-    if (!bond_intact(j)) continue;
-    const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
+  for_each_intact_bond(i, p, b, [&](int64_t slot, int32_t j, const BondGeometry& g) {
     const Vec4 state_j = p.state[j];
     const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
     const real ep_ji = kPlastic ? b.plastic[b.slot(j, b.reverse[slot])] : real(0);
@@ -36,8 +30,8 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
                                         : s > (tau_i > tau_j ? tau_i : tau_j);
     if (breaks) {
       b.neighbor[slot] = ~j;
-      p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, rest_i.w, m));
-      continue;
+      p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
+      return;
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
@@ -45,8 +39,8 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const real t = force_state(omega, g.r0, g.e, theta_i, inv_mw_i, ep_ij, m) +
                    force_state(omega, g.r0, g.e, state_j.x, state_j.y, ep_ji, m);
     f += (t * volume_fraction(g.r0, m) * g.volume_j * g.inv_r) * g.y;
-  }
-  f = rest_i.w * f;
+  });
+  f = vol_i * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;
   p.strain_min[i] = smin;
   p.intact[i] = intact;

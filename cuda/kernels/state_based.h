@@ -27,34 +27,6 @@ PD_HD inline real influence(Vec3 xi, real inv_r0, const Material& m) {
   return m.horizon * fast_rsqrt(dot(gx, gx));
 }
 
-// Geometry of one bond at the current positions, with what the partner's records carry.
-struct BondGeometry {
-  Vec3 xi, y;
-  real r0, inv_r0, r, inv_r, e;  // reference and current lengths (and reciprocals), extension
-  real volume_j, tau_j;          // the partner's volume and effective strain limit
-};
-
-PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j) {
-  BondGeometry g;
-  g.xi = xyz(rest_j) - xyz(rest_i);
-  const Vec3 eta = xyz(disp_j) - xyz(disp_i);
-  g.y = g.xi + eta;
-  const BondLengths l = bond_lengths(g.xi, g.y);
-  g.r0 = l.r0;
-  g.inv_r0 = l.inv_r0;
-  g.r = l.r;
-  g.inv_r = l.inv_r;
-  g.e = bond_elongation(g.xi, eta, g.r0, g.r);
-  g.volume_j = rest_j.w;
-  g.tau_j = disp_j.w;
-  return g;
-}
-
-PD_HD inline BondGeometry bond_geometry(const ParticlesView& p, int32_t i, int32_t j) {
-  return bond_geometry(p.rest[i], p.disp[i], p.rest[j], p.disp[j]);
-}
-
-// `inv_mw` is 1/m of the particle whose state this is.
 PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_mw, real ep,
                               const Material& m) {
   const real dil = real(3) * m.bulk_modulus * theta * r0;
@@ -91,15 +63,10 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
 
 // theta_i over the intact bonds.
 PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
-  const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   real sum = 0;
-  PD_BOND_LOOP
-  for (int32_t k = 0; k < b.count[i]; ++k) {
-    const int32_t j = b.neighbor[b.slot(i, k)];
-    if (!bond_intact(j)) continue;
-    const BondGeometry g = bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]);
+  for_each_intact_bond(i, p, b, [&](int64_t, int32_t, const BondGeometry& g) {
     sum += influence(g.xi, g.inv_r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * g.volume_j;
-  }
+  });
   return real(3) * sum * p.state[i].y;
 }
 

@@ -137,14 +137,8 @@ TEST(GpuConservation, MomentumAndDeterminism) {
   for (auto& v : in.particles.velocity) v = {real(rng.normal()), real(rng.normal()), real(rng.normal())};
   in.contact = true;
   in.step.contact_stiffness = real(1e8);
-  double p0[3] = {0, 0, 0}, scale = 0;
-  for (size_t i = 0; i < in.particles.size(); ++i) {
-    const double m = in.particles.mass[i];
-    p0[0] += m * in.particles.velocity[i].x;
-    p0[1] += m * in.particles.velocity[i].y;
-    p0[2] += m * in.particles.velocity[i].z;
-    scale += m * length(in.particles.velocity[i]);
-  }
+  double scale = 0;
+  const auto p0 = testing::total_momentum(in, in.particles.velocity, &scale);
   ParticleState runs[2];
   for (auto& s : runs) {
     auto e = make_cuda_engine(in);
@@ -152,13 +146,7 @@ TEST(GpuConservation, MomentumAndDeterminism) {
     e->read_state(s);
     EXPECT_GT(e->broken_bonds(), 0);
   }
-  double p1[3] = {0, 0, 0};
-  for (size_t i = 0; i < in.particles.size(); ++i) {
-    const double m = in.particles.mass[i];
-    p1[0] += m * runs[0].vel[i].x;
-    p1[1] += m * runs[0].vel[i].y;
-    p1[2] += m * runs[0].vel[i].z;
-  }
+  const auto p1 = testing::total_momentum(in, runs[0].vel);
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(p1[a], p0[a], 64 * std::numeric_limits<real>::epsilon() * scale);
   // Gather-only force sums and a sort-based hash: two GPU runs are bit-identical.
   for (size_t i = 0; i < runs[0].disp.size(); ++i) {

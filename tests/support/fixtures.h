@@ -1,6 +1,7 @@
 // Small simulation inputs shared by the CPU and GPU test suites.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -59,6 +60,22 @@ inline SimulationInput state_block(int nx, int ny, int nz, double lambda, double
     m.plastic_limit = real(0.05);
   }
   return in;
+}
+
+// Total momentum of `vel` with the input's masses, and the sum of |m v| (its scale).
+inline std::array<double, 3> total_momentum(const SimulationInput& in, const std::vector<Vec3>& vel,
+                                            double* scale = nullptr) {
+  std::array<double, 3> p{0, 0, 0};
+  double s = 0;
+  for (size_t i = 0; i < vel.size(); ++i) {
+    const double m = in.particles.mass[i];
+    p[0] += m * vel[i].x;
+    p[1] += m * vel[i].y;
+    p[2] += m * vel[i].z;
+    s += m * length(vel[i]);
+  }
+  if (scale) *scale = s;
+  return p;
 }
 
 inline double total_mass(const SimulationInput& in) {

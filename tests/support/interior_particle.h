@@ -120,7 +120,7 @@ struct InteriorParticle {
     const BondsView b = bonds();
     for (int32_t k = 0; k < count[0]; ++k) {
       const int64_t slot = b.slot(0, k);
-      const BondGeometry g = bond_geometry(view(), 0, neighbor[slot]);
+      const BondGeometry g = bond_geometry(rest[0], disp[0], rest[neighbor[slot]], disp[neighbor[slot]]);
       const double t =
           force_state(influence(g.xi, g.inv_r0, m), g.r0, g.e, state[0].x, state[0].y, plastic[slot], m);
       const double w = t * volume_fraction(g.r0, m) * g.inv_r;

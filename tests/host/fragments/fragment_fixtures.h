@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host/engine.h"
+#include "tests/support/temp_dir.h"
 
 namespace pd::testing {
 
@@ -50,22 +51,6 @@ inline bool break_bond(BondLists& b, int32_t i, int32_t j) {
   return false;
 }
 
-// A fresh, empty directory per test, removed afterwards.
-class ScratchDirTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ =
-        std::filesystem::path(::testing::TempDir()) / ("perifrac_" + std::string(info->test_suite_name()) +
-                                                       "_" + info->name() + "_" + std::to_string(getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::filesystem::path dir_;
-};
+using ScratchDirTest = TempDirTest;
 
 }  // namespace pd::testing

@@ -12,50 +12,15 @@
 #include <vector>
 
 #include "host/io/atomic_file.h"
+#include "tests/support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh, empty directory per test, removed afterwards.
-class FrameFileTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / ("perifrac_" + std::string(info->test_suite_name()) + "_" +
-                                             info->name() + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  size_t entry_count() const {
-    return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
-  }
-
-  fs::path dir_;
-};
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `f`, expecting an IoError whose message names `path` and contains `reason`.
-template <class F>
-void expect_io_error(F&& f, const std::string& path, const std::string& reason) {
-  try {
-    f();
-    ADD_FAILURE() << "no IoError for " << path;
-  } catch (const pd::IoError& e) {
-    std::string message = e.what();
-    EXPECT_NE(message.find("'" + path + "'"), std::string::npos) << message;
-    EXPECT_NE(message.find(reason), std::string::npos) << message;
-  }
-}
+using FrameFileTest = pd::testing::TempDirTest;
+using pd::testing::expect_io_error;
+using pd::testing::read_all;
 
 // Plain (non-atomic, no fsync) write, for the many corrupted inputs the tests make.
 void write_bytes(const std::string& path, std::string_view bytes) {

@@ -15,30 +15,13 @@
 #include <vector>
 
 #include "host/io/atomic_file.h"
+#include "tests/support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh, empty directory per test, removed afterwards.
-class IoDirTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / ("perifrac_" + std::string(info->test_suite_name()) + "_" +
-                                             info->name() + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  size_t entry_count() const {
-    return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
-  }
-
-  fs::path dir_;
-};
+using IoDirTest = pd::testing::TempDirTest;
 
 using VtkWriterTest = IoDirTest;
 using PvdSeriesTest = IoDirTest;
