@@ -51,6 +51,5 @@ inline bool break_bond(BondLists& b, int32_t i, int32_t j) {
   return false;
 }
 
-using ScratchDirTest = TempDirTest;
 
 }  // namespace pd::testing

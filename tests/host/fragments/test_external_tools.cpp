@@ -52,10 +52,10 @@ constexpr double kLambda = 0.1;
 
 // A block whose right half (x index >= 4) breaks off at frame 1 and turns about z by 0.3 rad per
 // frame around (4, 0, 0) lambda, while the whole block rises 0.05 m per frame.
-class FragmentTools : public testing::ScratchDirTest {
+class FragmentTools : public testing::TempDirTest {
  protected:
   void SetUp() override {
-    ScratchDirTest::SetUp();
+    TempDirTest::SetUp();
     const SimulationInput in = testing::lattice_block(kNx, kNy, kNz, kLambda);
     BondLists bonds;
     make_cpu_engine(in)->read_bonds(bonds);
