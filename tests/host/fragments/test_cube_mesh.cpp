@@ -17,7 +17,7 @@
 namespace pd {
 namespace {
 
-using CubeMeshTest = testing::ScratchDirTest;
+using CubeMeshTest = testing::TempDirTest;
 
 // Closed and consistently oriented: every directed edge of an object's quads appears as often as
 // its reverse; on a manifold surface exactly once each (each edge shared by exactly two faces).

@@ -16,7 +16,7 @@
 namespace pd {
 namespace {
 
-using FragmentOutputTest = testing::ScratchDirTest;
+using FragmentOutputTest = testing::TempDirTest;
 
 constexpr int kNx = 8, kNy = 4, kNz = 3;
 constexpr double kLambda = 1e-3;

@@ -16,7 +16,7 @@
 namespace pd {
 namespace {
 
-using FragmentsFileTest = testing::ScratchDirTest;
+using FragmentsFileTest = testing::TempDirTest;
 
 std::vector<Fragment> random_fragments(size_t n, uint64_t seed) {
   Random rng(seed);

@@ -15,7 +15,7 @@
 namespace pd {
 namespace {
 
-using PlyPointsTest = testing::ScratchDirTest;
+using PlyPointsTest = testing::TempDirTest;
 
 FrameData random_frame(size_t n, bool component, uint64_t seed) {
   Random rng(seed);
