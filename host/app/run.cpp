@@ -51,15 +51,16 @@ void print_setup(const Scene& scene, const SetupResult& setup, const RunOptions&
         "material   '%s' on body '%s': %s; lambda %.4g m, delta %.4g m, strain limit %.4g, dt_c %.3g s\n",
         m.name.c_str(), m.body.c_str(), model, m.spacing, m.horizon, m.strain_limit, m.critical_dt);
   }
-  std::printf("time step  dt %.4g s = %.2f dt_c (continuum estimate); %lld steps per frame\n", scene.dt,
-              scene.dt / setup.critical_dt, (long long)scene.steps_per_frame);
+  std::printf("time step  dt %.4g s = %.2f dt_c (continuum estimate)%s; %lld steps per frame\n", setup.dt,
+              setup.dt / setup.critical_dt, scene.dt_auto ? ", chosen by dt = \"auto\"" : "",
+              (long long)scene.steps_per_frame);
 }
 
 // A dt above the stable limit is a user mistake unless explicitly allowed.
 void check_time_step(const Scene& scene, const SetupResult& setup, bool allow) {
-  if (scene.dt <= setup.critical_dt || allow) return;
+  if (setup.dt <= setup.critical_dt || allow) return;
   std::ostringstream msg;
-  msg << "dt = " << scene.dt << " s exceeds the stable time step " << setup.critical_dt
+  msg << "dt = " << setup.dt << " s exceeds the stable time step " << setup.critical_dt
       << " s of the stiffest material (allowed: dt <= " << setup.critical_dt
       << "; pass --allow-unstable-dt to run anyway)";
   throw SceneError(scene.path, "simulation.dt", msg.str());
@@ -199,8 +200,8 @@ int run_command(const RunOptions& opt) {
           "%lld and %lld); dt = %.3g s is %.2f of the critical time step. Frames up to %lld are written "
           "in %s\n",
           (long long)bad, (long long)engine->step(), (long long)frame,
-          (long long)(engine->step() - scene.steps_per_frame), (long long)engine->step(), scene.dt,
-          scene.dt / setup.critical_dt, (long long)(frame - 1), out.c_str());
+          (long long)(engine->step() - scene.steps_per_frame), (long long)engine->step(), setup.dt,
+          setup.dt / setup.critical_dt, (long long)(frame - 1), out.c_str());
       return kExitBlowUp;
     }
     const Energy energy = engine->energy();
@@ -213,7 +214,7 @@ int run_command(const RunOptions& opt) {
                    "step%s. Frames "
                    "up to %lld are written in %s\n",
                    energy.balance() - energy0.balance(), excess, (long long)engine->step(), (long long)frame,
-                   (long long)fastest_particle(*engine), scene.dt, scene.dt / setup.critical_dt,
+                   (long long)fastest_particle(*engine), setup.dt, setup.dt / setup.critical_dt,
                    scene.contact ? "; a high contact stiffness needs a smaller dt too" : "",
                    (long long)(frame - 1), out.c_str());
       return kExitBlowUp;

@@ -104,6 +104,7 @@ struct Scene {
 
   // [simulation]
   double dt = 0x1p-23;            // time step [s], > 0
+  bool dt_auto = false;           // dt = "auto": half the stable time step of the stiffest material
   int64_t steps_per_frame = 500;  // >= 1
   int64_t frames = 30;            // >= 1
   uint64_t seed = 1;

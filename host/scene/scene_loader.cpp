@@ -255,6 +255,10 @@ class TableReader {
   }
 
   bool has(std::string_view key) const { return table_->get(key) != nullptr; }
+  bool is_string(std::string_view key) const {
+    const toml::node* n = table_->get(key);
+    return n && n->is_string();
+  }
 
   // An array of `n` finite numbers.
   template <size_t N>
@@ -645,7 +649,15 @@ Scene parse_root(const toml::table& root, const std::string& path) {
 
   // [simulation]
   const TableReader sim = top.table("simulation", kSimulationKeys);
-  sim.number("dt", scene.dt, greater_than(0));
+  std::string dt_word;
+  if (sim.is_string("dt")) {
+    sim.string("dt", dt_word, {"auto"});
+    scene.dt_auto = true;
+  } else {
+    Bounds dt = greater_than(0);
+    dt.note = "or \"auto\" for half the stable time step";
+    sim.number("dt", scene.dt, dt);
+  }
   sim.integer("steps_per_frame", scene.steps_per_frame, 1);
   sim.integer("frames", scene.frames, 1);
   int64_t seed = 0;

@@ -202,7 +202,8 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
 
   // Step parameters.
   StepParams& sp = in.step;
-  sp.dt = real(scene.dt);
+  result.dt = scene.dt_auto ? kAutoDtFraction * result.critical_dt : scene.dt;
+  sp.dt = real(result.dt);
   sp.gravity = to_vec3(scene.gravity);
   sp.floor_enabled = scene.floor ? 1 : 0;
   sp.floor_height = real(scene.floor_height);

@@ -9,6 +9,9 @@
 
 namespace pd {
 
+// dt = "auto" takes this fraction of the stable time step estimate.
+constexpr double kAutoDtFraction = 0.5;
+
 struct SetupOptions {
   // Multiplies every body's particle count (approximately): spacing is divided by
   // cbrt(scale). Lets a CPU run a small version of a GPU scene.
@@ -27,6 +30,7 @@ struct SetupResult {
   std::vector<MaterialSummary> materials;  // one per material table entry
   std::vector<std::string> body_names;
   double critical_dt = 0;  // smallest over the materials
+  double dt = 0;           // the time step the run uses: the scene's, or kAutoDtFraction * critical_dt
 };
 
 // Throws SceneError for problems that only show once sizes are known (too many particles,

@@ -117,6 +117,19 @@ TEST_F(Cli, UnstableTimeStepIsRefused) {
   EXPECT_NE(u.output.find("--allow-unstable-dt"), std::string::npos);
 }
 
+// dt = "auto" runs at half the stable time step and says so.
+TEST_F(Cli, AutomaticTimeStep) {
+  const std::string path = (dir_ / "scene.toml").string();
+  std::ofstream(path) << "[simulation]\ndt = \"auto\"\nframes = 1\nsteps_per_frame = 5\n"
+                      << "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+                      << "[[bodies]]\nmaterial = \"glass\"\n"
+                      << kGoodBody;
+  const Result r = run_perifrac("run " + path + " --backend cpu --out " + out());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("= 0.50 dt_c (continuum estimate), chosen by dt = \"auto\""), std::string::npos)
+      << r.output;
+}
+
 TEST_F(Cli, MissingSceneFile) {
   const Result r = run_perifrac("run " + (dir_ / "nope.toml").string() + " --out " + out());
   EXPECT_EQ(r.exit_code, 2) << r.output;

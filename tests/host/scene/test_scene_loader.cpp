@@ -250,8 +250,7 @@ TEST(SceneLoader, UnknownKey) {
 }
 
 TEST(SceneLoader, WrongType) {
-  expect_error("[simulation]\ndt = \"fast\"\n" + kMinimal, "simulation.dt",
-               "expected a number, got a string");
+  expect_error("[simulation]\ndt = true\n" + kMinimal, "simulation.dt", "expected a number, got a boolean");
   expect_error("[simulation]\nframes = 2.5\n" + kMinimal, "simulation.frames", "expected an integer");
   expect_error("[world]\nfloor = 1\n" + kMinimal, "world.floor", "expected a boolean");
   expect_error("description = 3\n" + kMinimal, "description", "expected a string");
@@ -520,6 +519,14 @@ TEST(SceneLoader, ShapeKeysAreValidated) {
   expect_error(body("shape = \"vase\"\nradius = 0.1\nheight = 0.3\nwall = 0.005\nparticles = \"shell\"\n"
                     "shell_thickness = 0.005\n"),
                "bodies[0].wall", "shell_thickness");
+}
+
+TEST(SceneLoader, AutomaticTimeStep) {
+  const Scene s = parse_scene("[simulation]\ndt = \"auto\"\n" + kMinimal, kFile);
+  EXPECT_TRUE(s.dt_auto);
+  EXPECT_FALSE(parse_scene(kMinimal, kFile).dt_auto);
+  expect_error("[simulation]\ndt = \"fast\"\n" + kMinimal, "simulation.dt", "\"auto\"");
+  expect_error("[simulation]\ndt = -1.0\n" + kMinimal, "simulation.dt", "auto");
 }
 
 }  // namespace
