@@ -256,7 +256,7 @@ class EngineImpl final : public Engine {
   // Collision cells of side max(lambda), twice the largest contact distance.
   void allocate_contact_hash() {
     real spacing = 0;
-    for (int m = 0; m < materials_.count; ++m) spacing = std::max(spacing, materials_.m[m].spacing);
+    for (int m = 0; m < materials_.count; ++m) spacing = std::max(spacing, materials_.m[m].contact_spacing);
     allocate_hash(spacing);
   }
 

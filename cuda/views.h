@@ -114,6 +114,7 @@ struct Material {
   uint8_t model = kBondBased;
   real horizon = 0;            // delta [m]
   real spacing = 0;            // lambda [m]
+  real contact_spacing = 0;    // contact distance of two particles: (s_i + s_j) / 4 [m]
   real compression_alpha = 0;  // alpha of Levine eq. 5
   // Partial volumes: a neighbour whose cube overlaps the horizon sphere counts with the
   // overlapped fraction, so families reach delta + lambda/2; otherwise families end at delta.

@@ -23,11 +23,11 @@ PD_HD inline void collision_forces(int32_t i, ParticlesView p, HashView h, const
                                    real stiffness) {
   auto pos = [&](int32_t j) { return p.position(j); };
   const Vec3 xi = pos(i);
-  const real quarter_i = real(0.25) * mt.m[p.material[i]].spacing;
+  const real quarter_i = real(0.25) * mt.m[p.material[i]].contact_spacing;
   Vec3 f{0, 0, 0};
   for_each_within_half_cell(xi, h, pos, [&](int32_t j) {
     if (j == i) return;
-    const real rc = quarter_i + real(0.25) * mt.m[p.material[j]].spacing;
+    const real rc = quarter_i + real(0.25) * mt.m[p.material[j]].contact_spacing;
     f += contact_force(xi, pos(j), rc, stiffness);
   });
   p.force[i] = f;

@@ -57,11 +57,11 @@ PD_HD inline double contact_energy(int32_t i, const ParticlesView& p, HashView h
                                    real stiffness) {
   auto pos = [&](int32_t j) { return p.position(j); };
   const Vec3 xi = pos(i);
-  const real quarter_i = real(0.25) * mt.m[p.material[i]].spacing;
+  const real quarter_i = real(0.25) * mt.m[p.material[i]].contact_spacing;
   double sum = 0;
   for_each_within_half_cell(xi, h, pos, [&](int32_t j) {
     if (j == i) return;
-    const double rc = quarter_i + real(0.25) * mt.m[p.material[j]].spacing;
+    const double rc = quarter_i + real(0.25) * mt.m[p.material[j]].contact_spacing;
     const double d = length(xi - pos(j));
     if (d < rc) sum += stiffness * (rc - d) * (rc - d) * (rc - d) / 6.0;
   });

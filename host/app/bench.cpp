@@ -30,6 +30,7 @@ SimulationInput lattice_input(const BenchOptions& opt) {
   Material& m = in.materials.m[0];
   m.horizon = real(delta);
   m.spacing = real(lambda);
+  m.contact_spacing = real(lambda);
   m.compression_alpha = real(0.25);
   if (opt.model == "bond_based") {
     m.partial_volumes = 0;

@@ -168,7 +168,8 @@ int run_command(const RunOptions& opt) {
   BondLists bonds;
   engine->read_bonds(bonds);
   const std::vector<int32_t>& count = bonds.count;
-  FragmentOutput fragments(setup.input, bonds, {out, opt.blend_frames, true});
+  FragmentOutput fragments(setup.input, bonds, {out, opt.blend_frames, true, setup.all_cubes},
+                           setup.adjacency);
   std::string fragment_log;
   auto write_frame = [&](int64_t frame) {
     FrameData f = frame_data(*engine, setup.input.particles, count, frame);
@@ -236,9 +237,10 @@ int run_command(const RunOptions& opt) {
   const int64_t steps = scene.frames * scene.steps_per_frame;
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(backend));
   print_kernel_table(std::cout, kernel_rows(engine->stats(), "pd/", fam.bonds, steps));
-  fragments.write_meshes();
-  std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", out.c_str(),
-              (long long)scene.frames + 1, fragments.components().count());
+  const bool meshes = fragments.write_meshes();
+  std::printf("output     %s (%lld frames; %zu fragment pieces%s)\n", out.c_str(),
+              (long long)scene.frames + 1, fragments.components().count(),
+              meshes ? " in fragments.obj" : "; piece meshes for grid cubes only");
   return kExitOk;
 }
 

@@ -7,37 +7,6 @@
 
 namespace pd {
 
-ElementAdjacency adjacency_from_pairs(size_t n, const std::vector<std::pair<int32_t, int32_t>>& pairs) {
-  // Degrees, then offsets.
-  ElementAdjacency adj;
-  adj.offset.assign(n + 1, 0);
-  for (const auto& [a, b] : pairs) {
-    if (a < 0 || b < 0 || size_t(a) >= n || size_t(b) >= n || a == b)
-      throw std::invalid_argument("adjacency pair (" + std::to_string(a) + ", " + std::to_string(b) +
-                                  ") is not two distinct particles of " + std::to_string(n));
-    ++adj.offset[size_t(a) + 1];
-    ++adj.offset[size_t(b) + 1];
-  }
-  for (size_t i = 0; i < n; ++i) adj.offset[i + 1] += adj.offset[i];
-
-  // Both directions of every pair, then each list sorted and checked for repeats.
-  adj.neighbor.resize(size_t(adj.offset[n]));
-  std::vector<int64_t> fill(adj.offset.begin(), adj.offset.end() - 1);
-  for (const auto& [a, b] : pairs) {
-    adj.neighbor[size_t(fill[size_t(a)]++)] = b;
-    adj.neighbor[size_t(fill[size_t(b)]++)] = a;
-  }
-  for (size_t i = 0; i < n; ++i) {
-    auto first = adj.neighbor.begin() + adj.offset[i], last = adj.neighbor.begin() + adj.offset[i + 1];
-    std::sort(first, last);
-    auto repeat = std::adjacent_find(first, last);
-    if (repeat != last)
-      throw std::invalid_argument("adjacency pair (" + std::to_string(i) + ", " + std::to_string(*repeat) +
-                                  ") is given twice");
-  }
-  return adj;
-}
-
 std::vector<real> particle_spacing(const ParticleSet& particles, const MaterialTable& materials) {
   std::vector<real> spacing(particles.size());
   for (size_t i = 0; i < particles.size(); ++i) spacing[i] = materials.m[particles.material[i]].spacing;

@@ -7,23 +7,11 @@
 #include <utility>
 #include <vector>
 
+#include "../adjacency.h"
 #include "../engine.h"
 #include "../particle_set.h"
 
 namespace pd {
-
-// Symmetric neighbour lists in CSR form: the elements adjacent to particle i are
-// neighbor[offset[i] .. offset[i + 1]); j is listed for i exactly when i is listed for j.
-struct ElementAdjacency {
-  std::vector<int64_t> offset{0};  // particles + 1 entries
-  std::vector<int32_t> neighbor;
-
-  size_t size() const { return offset.size() - 1; }
-};
-
-// Adjacency of `n` particles from undirected pairs (each pair once, either order). Throws
-// std::invalid_argument for an index outside [0, n), a self pair or a repeated pair.
-ElementAdjacency adjacency_from_pairs(size_t n, const std::vector<std::pair<int32_t, int32_t>>& pairs);
 
 // Cube side of each grid particle: the spacing lambda of its material.
 std::vector<real> particle_spacing(const ParticleSet& particles, const MaterialTable& materials);

@@ -11,12 +11,13 @@
 namespace pd {
 
 FragmentOutput::FragmentOutput(const SimulationInput& input, const BondLists& bonds,
-                               FragmentOutputOptions options)
+                               FragmentOutputOptions options, ElementAdjacency adjacency)
     : options_(std::move(options)),
       rest_(input.particles.rest),
       mass_(input.particles.mass),
       spacing_(particle_spacing(input.particles, input.materials)),
-      adjacency_(grid_adjacency(bonds, rest_, spacing_)),
+      adjacency_(adjacency.size() == rest_.size() ? std::move(adjacency)
+                                                  : grid_adjacency(bonds, rest_, spacing_)),
       finder_(adjacency_, bonds),
       smoother_(options_.blend_frames) {}
 
@@ -36,9 +37,11 @@ ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
   return component_stats(components_);
 }
 
-void FragmentOutput::write_meshes(const std::string& name) const {
+bool FragmentOutput::write_meshes(const std::string& name) const {
   if (components_.count() == 0) throw std::logic_error("FragmentOutput::write_meshes before the first frame");
+  if (!options_.cube_meshes) return false;
   write_obj(options_.dir + "/" + name, cube_fragment_mesh(adjacency_, rest_, spacing_, components_));
+  return true;
 }
 
 }  // namespace pd

@@ -1,7 +1,8 @@
 // The fragment outputs of a run in one object for the frame loop: per frame it finds the
 // components, fills FrameData::component, fits and smooths the fragment transforms and writes
 // fragments_NNNNN.pfg and points_NNNNN.ply; at the end it writes the rest-space piece surfaces
-// (fragments.obj). Grid bodies only: the element adjacency is derived from the families.
+// (fragments.obj, for bodies of grid cubes). The element adjacency comes from the geometry
+// stage, or is derived from the families for grid bodies.
 #pragma once
 
 #include <string>
@@ -18,15 +19,18 @@
 namespace pd {
 
 struct FragmentOutputOptions {
-  std::string dir;       // output directory (must exist)
-  int blend_frames = 0;  // split blending (FragmentSmoother); 0: off
-  bool points = true;    // write points_NNNNN.ply
+  std::string dir;          // output directory (must exist)
+  int blend_frames = 0;     // split blending (FragmentSmoother); 0: off
+  bool points = true;       // write points_NNNNN.ply
+  bool cube_meshes = true;  // every body is grid cubes: write_meshes can build their surfaces
 };
 
 class FragmentOutput {
  public:
-  // `bonds`: the families as built, before the first step.
-  FragmentOutput(const SimulationInput& input, const BondLists& bonds, FragmentOutputOptions options);
+  // `bonds`: the families as built, before the first step. `adjacency`: the elements that share
+  // a face (from the geometry stage); empty: derived from the families as for grid cubes.
+  FragmentOutput(const SimulationInput& input, const BondLists& bonds, FragmentOutputOptions options,
+                 ElementAdjacency adjacency = {});
 
   // Fragments of frame `f` from the engine's current `bonds`: sets f.component, writes the
   // frame's files and returns the component statistics for the log. Throws IoError when a file
@@ -34,9 +38,10 @@ class FragmentOutput {
   ComponentStats process(FrameData& f, const BondLists& bonds);
 
   // Writes <dir>/<name>: the rest-space surfaces of the last processed frame's fragments (OBJ;
-  // the last frame's are the finest, as fragments only split). Throws std::logic_error before
-  // the first process(), IoError when the file cannot be written.
-  void write_meshes(const std::string& name = "fragments.obj") const;
+  // the last frame's are the finest, as fragments only split). Returns false, writing nothing,
+  // unless every body is grid cubes. Throws std::logic_error before the first process(),
+  // IoError when the file cannot be written.
+  bool write_meshes(const std::string& name = "fragments.obj") const;
 
   const Components& components() const { return components_; }
   const std::vector<Fragment>& fragments() const { return fragments_; }

@@ -6,24 +6,6 @@
 
 namespace pd {
 
-Adjacency adjacency_from_pairs(size_t n, std::vector<std::pair<int32_t, int32_t>> pairs) {
-  // Both directions, then sort and drop repeats; rows follow from the first entries.
-  const size_t m = pairs.size();
-  pairs.reserve(2 * m);
-  for (size_t k = 0; k < m; ++k) pairs.emplace_back(pairs[k].second, pairs[k].first);
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  Adjacency a;
-  a.offset.assign(n + 1, 0);
-  for (const auto& [i, j] : pairs)
-    if (i != j) ++a.offset[size_t(i) + 1];
-  for (size_t i = 0; i < n; ++i) a.offset[i + 1] += a.offset[i];
-  a.index.reserve(size_t(a.offset[n]));
-  for (const auto& [i, j] : pairs)
-    if (i != j) a.index.push_back(j);
-  return a;
-}
-
 double ParticleGeometry::total_volume() const {
   return std::accumulate(volume.begin(), volume.end(), 0.0);
 }

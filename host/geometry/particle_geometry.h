@@ -7,22 +7,11 @@
 #include <vector>
 
 #include "tet_mesh.h"
+#include "../adjacency.h"
 #include "vec3d.h"
 #include "voronoi_cells.h"
 
 namespace pd {
-
-// Symmetric adjacency in compressed sparse rows: the neighbours of i are
-// index[offset[i] .. offset[i + 1]), sorted, without i itself.
-struct Adjacency {
-  std::vector<int64_t> offset{0};
-  std::vector<int32_t> index;
-  size_t size() const { return offset.size() - 1; }
-  int64_t degree(size_t i) const { return offset[i + 1] - offset[i]; }
-};
-
-// From unordered pairs (each given once or twice, in either order): both directions, sorted, unique.
-Adjacency adjacency_from_pairs(size_t n, std::vector<std::pair<int32_t, int32_t>> pairs);
 
 enum class ElementKind { cube, tet, voronoi };
 
@@ -33,7 +22,7 @@ struct ParticleGeometry {
   std::vector<double> mass;     // density * volume [kg], see set_density
   std::vector<double> lambda;   // distance to the nearest other particle [m]
   double min_distance = 0;      // Levine's lambda: the smallest of `lambda` [m]
-  Adjacency adjacency;          // elements sharing a face
+  ElementAdjacency adjacency;   // elements sharing a face
   double cube_side = 0;         // cubes: their edge length [m]
   TetMesh tets;                 // tets: the tet mesh, one particle per tet in the same order
   VoronoiCells cells;           // voronoi: the clipped cells and their surface triangles

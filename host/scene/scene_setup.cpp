@@ -1,5 +1,6 @@
 #include "scene_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -35,7 +36,10 @@ bool inside(const SceneAnchor& a, Vec3 x) {
 }
 
 // Kernel constants of one body's material at the body's spacing.
-Material derive_material(const SceneMaterial& sm, double spacing, MaterialSummary& summary) {
+// `spacing` is lambda, the particle spacing the horizon is measured in; `contact_spacing` sets
+// the contact distance (a quarter of it per particle).
+Material derive_material(const SceneMaterial& sm, double spacing, double contact_spacing,
+                         MaterialSummary& summary) {
   const double delta = sm.horizon * spacing;
   const bool state = sm.model == "state_based";
   Material m;
@@ -44,6 +48,7 @@ Material derive_material(const SceneMaterial& sm, double spacing, MaterialSummar
   m.spacing = real(spacing);
   m.compression_alpha = real(sm.compression_alpha);
   m.partial_volumes = sm.partial_volumes.value_or(state) ? 1 : 0;
+  m.contact_spacing = real(contact_spacing);
   summary.spacing = spacing;
   summary.horizon = delta;
   if (!state) {
@@ -127,6 +132,13 @@ real scattered_limit(double tau, double sigma, Random& rng) {
   return real(tau * std::fmax(0.05, 1.0 + sigma * z));
 }
 
+double median_nearest_distance(const ParticleGeometry& g) {
+  std::vector<double> d = g.lambda;
+  if (d.empty()) return 0;
+  std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
 }  // namespace
 
 SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
@@ -141,6 +153,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
 
   // Bodies: one material table entry per body (a material's horizon depends on the spacing).
   int64_t total = 0;
+  std::vector<std::pair<int32_t, int32_t>> adjacency_pairs;
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     const SceneBody& body = scene.bodies[b];
     const std::string key = "bodies[" + std::to_string(b) + "]";
@@ -180,10 +193,24 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     summary.name = sm.name;
     summary.body = body.name;
     const uint16_t mat = uint16_t(in.materials.count);
-    in.materials.m[in.materials.count++] = derive_material(sm, spacing, summary);
+    // Levine's lambda: for grid cubes the spacing; for tets and Voronoi cells the particles'
+    // typical nearest-neighbour distance (the median) sets the horizon, and their smallest
+    // distance the contact distance, so a body never collides with itself at rest.
+    const bool cubes = geometry.kind == ElementKind::cube;
+    const double lambda = cubes ? spacing : median_nearest_distance(geometry);
+    in.materials.m[in.materials.count++] =
+        derive_material(sm, lambda, cubes ? spacing : geometry.min_distance, summary);
     result.critical_dt = b == 0 ? summary.critical_dt : std::fmin(result.critical_dt, summary.critical_dt);
     result.materials.push_back(summary);
     result.body_names.push_back(body.name);
+
+    // Element adjacency, renumbered into the scene's particle indices.
+    const int32_t base = int32_t(ps.size());
+    for (size_t i = 0; i < geometry.size(); ++i)
+      for (int64_t k = geometry.adjacency.offset[i]; k < geometry.adjacency.offset[i + 1]; ++k)
+        if (int32_t(i) < geometry.adjacency.neighbor[size_t(k)])
+          adjacency_pairs.emplace_back(base + int32_t(i), base + geometry.adjacency.neighbor[size_t(k)]);
+    result.all_cubes = result.all_cubes && geometry.kind == ElementKind::cube;
 
     // Particles: volume from the element, mass = density x volume; anchors by rest position.
     for (size_t i = 0; i < geometry.size(); ++i) {
@@ -199,6 +226,8 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
              scattered_limit(summary.strain_limit, sm.strain_limit_scatter, rng), mat, int32_t(b), flags);
     }
   }
+
+  result.adjacency = adjacency_from_pairs(ps.size(), std::move(adjacency_pairs));
 
   // Step parameters.
   StepParams& sp = in.step;

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "../adjacency.h"
 #include "../particle_set.h"
 #include "scene.h"
 
@@ -29,8 +30,10 @@ struct SetupResult {
   SimulationInput input;
   std::vector<MaterialSummary> materials;  // one per material table entry
   std::vector<std::string> body_names;
-  double critical_dt = 0;  // smallest over the materials
-  double dt = 0;           // the time step the run uses: the scene's, or kAutoDtFraction * critical_dt
+  double critical_dt = 0;      // smallest over the materials
+  double dt = 0;               // the time step the run uses: the scene's, or kAutoDtFraction * critical_dt
+  ElementAdjacency adjacency;  // which particles' elements share a face, over all bodies
+  bool all_cubes = true;       // every body is made of grid cubes
 };
 
 // Throws SceneError for problems that only show once sizes are known (too many particles,

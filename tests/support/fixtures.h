@@ -16,6 +16,7 @@ inline Material glass_material(double lambda, double m = 3.0, bool partial = tru
   Material mat;
   mat.horizon = real(m * lambda);
   mat.spacing = real(lambda);
+  mat.contact_spacing = real(lambda);
   mat.micromodulus = real(pmb_micromodulus(32.81e9, m * lambda));
   mat.compression_alpha = real(0.25);
   mat.partial_volumes = partial ? 1 : 0;
@@ -51,6 +52,7 @@ inline SimulationInput state_block(int nx, int ny, int nz, double lambda, double
   m.model = kStateBased;
   m.horizon = real(3 * lambda);
   m.spacing = real(lambda);
+  m.contact_spacing = real(lambda);
   m.bulk_modulus = real(70e9 / (3 * 0.4));
   m.shear_modulus = real(70e9 / 2.6);
   m.damage_alpha = 1;

@@ -1,6 +1,8 @@
 // The frame-loop object end to end on engine families: a block that is cut and whose right half
 // turns away writes the expected components, transforms, points and piece surfaces.
 #include "host/fragments/fragment_output.h"
+#include "host/scene/scene.h"
+#include "host/scene/scene_setup.h"
 
 #include <gtest/gtest.h>
 
@@ -115,4 +117,41 @@ TEST_F(FragmentOutputTest, BlendingStartsBothPiecesAtTheWholePose) {
 }
 
 }  // namespace
+// A Voronoi body at rest: its particles sit closer than the nominal spacing, yet it neither
+// collides with itself nor breaks, and the geometry's cell adjacency makes it one fragment.
+TEST_F(FragmentOutputTest, VoronoiBodyAtRestIsOneFragment) {
+  const Scene scene = parse_scene(R"(
+[world]
+gravity = [0.0, 0.0, 0.0]
+[materials.stone]
+density = 2400.0
+bulk_modulus = 30e9
+strain_limit = 5e-4
+[[bodies]]
+shape = "sphere"
+radius = 0.02
+particles = "voronoi"
+spacing = 0.004
+material = "stone"
+)",
+                                  "voronoi.toml");
+  const SetupResult setup = setup_scene(scene, {});
+  ASSERT_FALSE(setup.all_cubes);
+  ASSERT_EQ(setup.adjacency.size(), setup.input.particles.size());
+  auto engine = make_cpu_engine(setup.input);
+  engine->advance(200);
+  EXPECT_EQ(engine->broken_bonds(), 0);
+  BondLists bonds;
+  engine->read_bonds(bonds);
+  FragmentOutput out(setup.input, bonds, {dir_.string(), 0, false, setup.all_cubes}, setup.adjacency);
+  FrameData f;
+  f.position = setup.input.particles.rest;
+  f.velocity.assign(f.position.size(), Vec3{0, 0, 0});
+  f.damage.assign(f.position.size(), 0.0f);
+  f.body = setup.input.particles.body;
+  out.process(f, bonds);
+  EXPECT_EQ(out.components().count(), 1u);
+  EXPECT_FALSE(out.write_meshes());
+}
+
 }  // namespace pd

@@ -21,13 +21,13 @@ namespace {
 
 constexpr int64_t kBudget = 20'000'000;
 
-void expect_symmetric(const Adjacency& a) {
+void expect_symmetric(const ElementAdjacency& a) {
   for (size_t i = 0; i < a.size(); ++i)
     for (int64_t k = a.offset[i]; k < a.offset[i + 1]; ++k) {
-      const int32_t j = a.index[size_t(k)];
+      const int32_t j = a.neighbor[size_t(k)];
       ASSERT_NE(size_t(j), i);
-      const auto* begin = a.index.data() + a.offset[size_t(j)];
-      const auto* end = a.index.data() + a.offset[size_t(j) + 1];
+      const auto* begin = a.neighbor.data() + a.offset[size_t(j)];
+      const auto* end = a.neighbor.data() + a.offset[size_t(j) + 1];
       ASSERT_TRUE(std::binary_search(begin, end, int32_t(i))) << i << " -> " << j << " but not back";
     }
 }
