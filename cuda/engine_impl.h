@@ -39,8 +39,8 @@ class EngineImpl final : public Engine {
     build_families();
     if (state_based_) allocate_state();
     if (contact_) allocate_contact_hash();
-    body_forces_ = step_params_.n_projectiles > 0 || step_params_.floor_enabled ||
-                   step_params_.gravity.x != 0 || step_params_.gravity.y != 0 || step_params_.gravity.z != 0;
+    body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
+                   step_params_.gravity.y != 0 || step_params_.gravity.z != 0;
     compute_forces();
     exec_.flush_stats();
   }
@@ -58,7 +58,7 @@ class EngineImpl final : public Engine {
       step_params_.time = real(time_ + dt);
       launch_position_update(exec_, particles(), dt);
       compute_forces();
-      launch_velocity_update(exec_, particles(), dt);
+      launch_velocity_update(exec_, particles(), step_params_);
       time_ += dt;
       ++step_;
     }

@@ -103,8 +103,8 @@ void launch_position_update(Exec& ex, ParticlesView p, real dt) {
 }
 
 template <class Exec>
-void launch_velocity_update(Exec& ex, ParticlesView p, real dt) {
-  ex.parallel_for("pd/velocity_update", p.n, [=] PD_HD(int64_t i) { velocity_update(int32_t(i), p, dt); });
+void launch_velocity_update(Exec& ex, ParticlesView p, StepParams sp) {
+  ex.parallel_for("pd/velocity_update", p.n, [=] PD_HD(int64_t i) { velocity_update(int32_t(i), p, sp); });
 }
 
 // Family build passes.

@@ -1,5 +1,5 @@
-// Kernel 5, `bodyforces`: gravity, floor contact (the upward velocity component is
-// reflected with restitution, Levine sec. 3) and spherical projectiles (Levine eq. 7).
+// Kernel 5, `bodyforces`: gravity and spherical projectiles (Levine eq. 7). The floor
+// (Levine sec. 3) acts on the full-step velocity in the velocity update (integrate.h).
 #pragma once
 
 #include <cmath>
@@ -34,21 +34,14 @@ PD_HD inline Vec3 projectile_force(Vec3 x, const Projectile& pr, real time) {
 }
 
 // The ledger records the work of the projectiles over the step (force times the half-step
-// velocity times dt) and the kinetic energy the floor's restitution takes away.
+// velocity times dt).
 PD_HD inline void body_forces(int32_t i, ParticlesView p, const StepParams& sp) {
   const Vec3 x = p.position(i);
   const real mass = real(1) / p.inv_mass[i];
-  Vec3 f = p.force[i] + mass * sp.gravity;
   Vec3 fp{0, 0, 0};
   for (int32_t k = 0; k < sp.n_projectiles; ++k) fp += projectile_force(x, sp.projectile[k], sp.time);
-  p.force[i] = f + fp;
-  const Vec3 v = p.vel[i];
-  double work = double(sp.dt) * double(dot(fp, v));
-  if (sp.floor_enabled && x.y < sp.floor_height && v.y < real(0) && !(p.flags[i] & kAnchored)) {
-    p.vel[i].y = -sp.restitution * v.y;
-    work -= 0.5 * double(mass) * double(v.y) * double(v.y) * (1.0 - double(sp.restitution) * sp.restitution);
-  }
-  if (work != 0) p.ledger[i].work += work;
+  p.force[i] = p.force[i] + mass * sp.gravity + fp;
+  if (sp.n_projectiles > 0) p.ledger[i].work += double(sp.dt) * double(dot(fp, p.vel[i]));
 }
 
 }  // namespace pd

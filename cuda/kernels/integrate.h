@@ -22,13 +22,22 @@ PD_HD inline void position_update(int32_t i, ParticlesView p, real dt) {
 }
 
 // An anchor holds its particle against the force on it: it does work -f.v dt on the body.
-PD_HD inline void velocity_update(int32_t i, ParticlesView p, real dt) {
+// The floor y = floor_height reflects the downward velocity of a particle below it with the
+// restitution factor (Levine sec. 3); on the full-step velocity, so the ledger records
+// exactly the kinetic energy it takes away.
+PD_HD inline void velocity_update(int32_t i, ParticlesView p, const StepParams& sp) {
   if (p.flags[i] & kAnchored) {
     const Vec3 v = p.vel[i];
-    if (v.x != 0 || v.y != 0 || v.z != 0) p.ledger[i].work -= double(dt) * double(dot(p.force[i], v));
+    if (v.x != 0 || v.y != 0 || v.z != 0) p.ledger[i].work -= double(sp.dt) * double(dot(p.force[i], v));
     return;
   }
-  p.vel[i] += (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
+  Vec3 v = p.vel[i] + (real(0.5) * sp.dt * p.inv_mass[i]) * p.force[i];
+  if (sp.floor_enabled && v.y < real(0) && p.position(i).y < sp.floor_height) {
+    const double vy = v.y, e = sp.restitution;
+    p.ledger[i].work -= 0.5 / double(p.inv_mass[i]) * vy * vy * (1.0 - e * e);
+    v.y = -sp.restitution * v.y;
+  }
+  p.vel[i] = v;
 }
 
 }  // namespace pd

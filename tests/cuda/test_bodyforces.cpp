@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cuda/kernels/bodyforces.h"
+#include "cuda/kernels/integrate.h"
 
 namespace pd {
 namespace {
@@ -73,9 +74,14 @@ TEST(BodyForces, GravityAndFloorReflection) {
   body_forces(0, p, sp);
   EXPECT_FLOAT_EQ(force.x, 1);
   EXPECT_FLOAT_EQ(force.y, real(2 * -9.81));
+  // The floor reflects the full-step velocity in the velocity update and books the loss.
+  force = {0, 0, 0};
+  sp.dt = real(1e-6);
+  velocity_update(0, p, sp);
   EXPECT_FLOAT_EQ(vel.y, real(1.98));
+  EXPECT_NEAR(ledger.work, -0.5 * 2.0 * 4.0 * (1 - 0.99 * 0.99), 1e-6);
   // Moving up already: not reflected again.
-  body_forces(0, p, sp);
+  velocity_update(0, p, sp);
   EXPECT_FLOAT_EQ(vel.y, real(1.98));
 }
 

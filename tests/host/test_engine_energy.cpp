@@ -112,5 +112,21 @@ TEST(EngineEnergy, ExternalWorkIsAccounted) {
   }
 }
 
+// A block thrown onto the floor (restitution 0.3): the kinetic energy the floor takes away is
+// booked exactly, including the impact's large accelerations.
+TEST(EngineEnergy, FloorLossIsAccounted) {
+  auto in = testing::lattice_block(6, 6, 6, 1e-3, 0.5);
+  for (auto& v : in.particles.velocity) v = {0, real(-2), 0};
+  in.step.floor_enabled = 1;
+  in.step.floor_height = real(-0.05e-3);
+  in.step.restitution = real(0.3);
+  auto e = make_cpu_engine(in);
+  const Energy e0 = e->energy();
+  e->advance(1500);
+  const Energy e1 = e->energy();
+  EXPECT_LT(e1.work, -0.3 * e0.kinetic);  // the floor took a good part of the energy
+  EXPECT_NEAR(e1.balance(), e0.balance(), 0.01 * e0.kinetic);
+}
+
 }  // namespace
 }  // namespace pd
