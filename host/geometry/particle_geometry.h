@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "tet_mesh.h"
 #include "../adjacency.h"
+#include "tet_mesh.h"
 #include "vec3d.h"
 #include "voronoi_cells.h"
 

@@ -51,5 +51,4 @@ inline bool break_bond(BondLists& b, int32_t i, int32_t j) {
   return false;
 }
 
-
 }  // namespace pd::testing
