@@ -29,12 +29,17 @@ class DeviceArray {
   size_t size() const { return size_; }
   size_t bytes() const { return size_ * sizeof(T); }
 
-  void upload(const std::vector<T>& host) { exec_->upload(data_, host.data(), bytes()); }
+  // Copies to and from host vectors; an empty array copies nothing (its data is null).
+  void upload(const std::vector<T>& host) {
+    if (size_ > 0) exec_->upload(data_, host.data(), bytes());
+  }
   void download(std::vector<T>& host) const {
     host.resize(size_);
-    exec_->download(host.data(), data_, bytes());
+    if (size_ > 0) exec_->download(host.data(), data_, bytes());
   }
-  void zero() { exec_->fill_bytes(data_, 0, bytes()); }
+  void zero() {
+    if (size_ > 0) exec_->fill_bytes(data_, 0, bytes());
+  }
 
  private:
   void swap(DeviceArray& o) {

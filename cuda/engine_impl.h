@@ -28,16 +28,13 @@ class EngineImpl final : public Engine {
         materials_(in.materials),
         step_params_(in.step),
         contact_(in.contact) {
-    for (int m = 0; m < materials_.count; ++m) {
-      state_based_ = state_based_ || materials_.m[m].model == kStateBased;
-      plastic_ = plastic_ || (materials_.m[m].model == kStateBased && materials_.m[m].plastic);
-    }
+    features_ = features_of(materials_, contact_);
     const ParticleSet& ps = in.particles;
     n_ = int32_t(ps.size());
     if (n_ <= 0) throw std::runtime_error("the scene has no particles");
     upload_particles(ps);
     build_families();
-    if (state_based_) allocate_state();
+    if (features_.state_based) allocate_state();
     if (contact_) allocate_contact_hash();
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0;
@@ -97,6 +94,48 @@ class EngineImpl final : public Engine {
   }
 
   size_t memory_bytes() const override { return allocated_; }
+
+  void save(EngineSnapshot& out) override {
+    out.step = step_;
+    out.time = time_;
+    disp_.download(out.disp);
+    vel_.download(out.vel);
+    force_.download(out.force);
+    strain_min_.download(out.strain_min);
+    intact_.download(out.intact);
+    ledger_.download(out.ledger);
+    state_.download(out.state);
+    neighbor_.download(out.neighbor);
+    plastic_ext_.download(out.plastic);
+  }
+
+  void restore(const EngineSnapshot& in) override {
+    const auto check = [](const char* what, size_t got, size_t want) {
+      if (got != want)
+        throw std::invalid_argument(std::string("snapshot ") + what + " has " + std::to_string(got) +
+                                    " entries, the engine " + std::to_string(want));
+    };
+    check("disp", in.disp.size(), disp_.size());
+    check("vel", in.vel.size(), vel_.size());
+    check("force", in.force.size(), force_.size());
+    check("strain_min", in.strain_min.size(), strain_min_.size());
+    check("intact", in.intact.size(), intact_.size());
+    check("ledger", in.ledger.size(), ledger_.size());
+    check("state", in.state.size(), state_.size());
+    check("neighbor", in.neighbor.size(), neighbor_.size());
+    check("plastic", in.plastic.size(), plastic_ext_.size());
+    step_ = in.step;
+    time_ = in.time;
+    disp_.upload(in.disp);
+    vel_.upload(in.vel);
+    force_.upload(in.force);
+    strain_min_.upload(in.strain_min);
+    intact_.upload(in.intact);
+    ledger_.upload(in.ledger);
+    state_.upload(in.state);
+    neighbor_.upload(in.neighbor);
+    plastic_ext_.upload(in.plastic);
+  }
 
  private:
   template <class T>
@@ -245,7 +284,7 @@ class EngineImpl final : public Engine {
     state_ = make<Vec4>(n_);
     state_.zero();
     launch_weighted_volume(exec_, particles(), bonds(), materials_);
-    if (!plastic_) return;
+    if (!features_.plastic) return;
     plastic_ext_ = make<real>(neighbor_.size());
     plastic_ext_.zero();
     reverse_ = make<uint16_t>(neighbor_.size());
@@ -264,16 +303,13 @@ class EngineImpl final : public Engine {
   void compute_forces() {
     const ParticlesView p = particles();
     const BondsView b = bonds();
-    if (state_based_)
-      launch_init<true>(exec_, p, b, hash_view(true), materials_);
-    else
-      launch_init<false>(exec_, p, b, hash_view(true), materials_);
-    if (plastic_) launch_plasticity(exec_, p, b, materials_);
+    launch_init(exec_, p, b, hash_view(true), materials_, features_);
+    if (features_.plastic) launch_plasticity(exec_, p, b, materials_, features_);
     if (contact_) {
       launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true));
       launch_collisions(exec_, p, hash_view(true), materials_, step_params_.contact_stiffness);
     }
-    launch_springforces(exec_, p, b, materials_, contact_, state_based_, plastic_);
+    launch_springforces(exec_, p, b, materials_, features_);
     if (body_forces_) launch_bodyforces(exec_, p, step_params_);
   }
 
@@ -283,8 +319,7 @@ class EngineImpl final : public Engine {
   MaterialTable materials_;
   StepParams step_params_;
   bool contact_ = false;
-  bool state_based_ = false;
-  bool plastic_ = false;
+  KernelFeatures features_;
   bool body_forces_ = false;
   int32_t n_ = 0;
   int64_t step_ = 0;

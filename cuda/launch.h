@@ -2,6 +2,7 @@
 // profiler reports. Views and parameters are captured by value. One source for both backends.
 #pragma once
 
+#include "features.h"
 #include "kernels/bodyforces.h"
 #include "kernels/collection.h"
 #include "kernels/collisions.h"
@@ -16,19 +17,33 @@
 namespace pd {
 
 // Kernel 1. Threads past the particle count only reset bins (and vice versa).
-template <bool kStateBased, class Exec>
-void launch_init(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt) {
+template <bool kStateBased, bool kAnisotropic, class Exec>
+void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt) {
   const int64_t n = p.n > int64_t(h.bins) ? p.n : int64_t(h.bins);
   ex.parallel_for("pd/init", n, [=] PD_HD(int64_t i) {
-    if (i < p.n) init_particle<kStateBased>(int32_t(i), p, b, mt);
+    if (i < p.n) init_particle<kStateBased, kAnisotropic>(int32_t(i), p, b, mt);
     if (i < int64_t(h.bins)) reset_bin(uint32_t(i), h);
   });
 }
 
-// Plastic state-based materials: the return mapping, after `init` computed theta.
 template <class Exec>
-void launch_plasticity(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
-  ex.parallel_for("pd/plasticity", p.n, [=] PD_HD(int64_t i) { plastic_update(int32_t(i), p, b, mt); });
+void launch_init(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt, KernelFeatures f) {
+  if (!f.state_based) return launch_init_variant<false, false>(ex, p, b, h, mt);
+  if (f.anisotropic) return launch_init_variant<true, true>(ex, p, b, h, mt);
+  launch_init_variant<true, false>(ex, p, b, h, mt);
+}
+
+// Plastic state-based materials: the return mapping, after `init` computed theta.
+template <bool kAnisotropic, class Exec>
+void launch_plasticity_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+  ex.parallel_for("pd/plasticity", p.n,
+                  [=] PD_HD(int64_t i) { plastic_update<kAnisotropic>(int32_t(i), p, b, mt); });
+}
+
+template <class Exec>
+void launch_plasticity(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
+  if (f.anisotropic) return launch_plasticity_variant<true>(ex, p, b, mt);
+  launch_plasticity_variant<false>(ex, p, b, mt);
 }
 
 template <class Exec>
@@ -59,35 +74,34 @@ void launch_collisions(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, 
 
 // Kernel 4, one instantiation per feature set so a scene pays only for what it uses.
 // kAccumulate adds to the force `collisions` wrote.
-template <bool kAccumulate, bool kStateBased, bool kPlastic>
+template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic>
 PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
                                     const MaterialTable& mt) {
   if constexpr (kStateBased)
-    state_forces<kAccumulate, kPlastic>(i, p, b, mt);
+    state_forces<kAccumulate, kPlastic, kAnisotropic>(i, p, b, mt);
   else
     spring_forces<kAccumulate>(i, p, b, mt);
 }
 
-template <bool kAccumulate, bool kStateBased, bool kPlastic, class Exec>
+template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   ex.parallel_for("pd/springforces", p.n, [=] PD_HD(int64_t i) {
-    springforces_body<kAccumulate, kStateBased, kPlastic>(int32_t(i), p, b, mt);
+    springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic>(int32_t(i), p, b, mt);
   });
 }
 
 template <class Exec>
-void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, bool accumulate,
-                         bool state_based, bool plastic) {
-  if (!state_based) {
-    if (accumulate) return launch_springforces_variant<true, false, false>(ex, p, b, mt);
-    return launch_springforces_variant<false, false, false>(ex, p, b, mt);
-  }
-  if (plastic) {
-    if (accumulate) return launch_springforces_variant<true, true, true>(ex, p, b, mt);
-    return launch_springforces_variant<false, true, true>(ex, p, b, mt);
-  }
-  if (accumulate) return launch_springforces_variant<true, true, false>(ex, p, b, mt);
-  return launch_springforces_variant<false, true, false>(ex, p, b, mt);
+void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
+  static_bools(
+      [&](auto accumulate, auto state_based, auto plastic, auto anisotropic) {
+        constexpr bool kState = decltype(state_based)::value;
+        constexpr bool kPlastic = kState && decltype(plastic)::value;
+        constexpr bool kAniso = kState && decltype(anisotropic)::value;
+        // Plasticity and anisotropy exist only for state-based materials: no bond-based copies.
+        if constexpr (kState || (!decltype(plastic)::value && !decltype(anisotropic)::value))
+          launch_springforces_variant<decltype(accumulate)::value, kState, kPlastic, kAniso>(ex, p, b, mt);
+      },
+      f.contact, f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic);
 }
 
 // Kernel 5.

@@ -10,7 +10,7 @@
 
 namespace pd {
 
-template <bool kAccumulate, bool kPlastic>
+template <bool kAccumulate, bool kPlastic, bool kAnisotropic>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
   const Vec4 state_i = p.state[i];
@@ -35,7 +35,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
-    const real omega = influence(g.xi, g.inv_r0, m);
+    const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m);
     const real t = force_state(omega, g.r0, g.e, theta_i, inv_mw_i, ep_ij, m) +
                    force_state(omega, g.r0, g.e, state_j.x, state_j.y, ep_ji, m);
     f += (t * volume_fraction(g.r0, m) * g.volume_j * g.inv_r) * g.y;

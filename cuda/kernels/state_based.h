@@ -19,8 +19,11 @@
 namespace pd {
 
 // omega = delta / |G xi|; the same from both ends of a bond (|G(-xi)| = |G xi|).
+// kAnisotropic = false compiles the matrix out (every material of the run is isotropic);
+// true reads G for the materials that have one. Set-up and per-frame code use the default.
+template <bool kAnisotropic = true>
 PD_HD inline real influence(Vec3 xi, real inv_r0, const Material& m) {
-  if (!m.anisotropic) return m.horizon * inv_r0;
+  if (!kAnisotropic || !m.anisotropic) return m.horizon * inv_r0;
   const real* g = m.aniso;
   const Vec3 gx{g[0] * xi.x + g[1] * xi.y + g[2] * xi.z, g[3] * xi.x + g[4] * xi.y + g[5] * xi.z,
                 g[6] * xi.x + g[7] * xi.y + g[8] * xi.z};
@@ -62,10 +65,11 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
 }
 
 // theta_i over the intact bonds.
+template <bool kAnisotropic = true>
 PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
   real sum = 0;
   for_each_intact_bond(i, p, b, [&](int64_t, int32_t, const BondGeometry& g) {
-    sum += influence(g.xi, g.inv_r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * g.volume_j;
+    sum += influence<kAnisotropic>(g.xi, g.inv_r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * g.volume_j;
   });
   return real(3) * sum * p.state[i].y;
 }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "cuda/features.h"
 #include "tests/support/interior_particle.h"
 
 namespace pd {
@@ -130,7 +131,7 @@ TEST(StateBased, HomogeneousDeformationIsInEquilibrium) {
   g[1][2] = 4e-4;
   g[2][1] = -2e-4;
   a.deform(g);
-  state_forces<false, false>(0, a.view(), a.bonds(), a.table);
+  state_forces<false, false, false>(0, a.view(), a.bonds(), a.table);
   const double bond_scale = std::fabs(a.stress()[0][0]);  // ~ the size of single bond terms summed
   EXPECT_LT(length(a.force[0]), 1e3 * kEps * bond_scale);
   EXPECT_EQ(a.intact[0], a.family_size());
@@ -218,6 +219,31 @@ TEST(StateBased, AnisotropyStiffensThePreferredDirection) {
   // An isotropic G gives 1.
   m.anisotropic = 0;
   EXPECT_NEAR(stiffness_ratio(4), 1, 1e-3);
+}
+
+// The isotropic instantiation (anisotropy compiled out) gives the same forces, bit for bit,
+// as the general one on an isotropic material, and the engine asks for the general one only
+// when a material has a matrix.
+TEST(StateBased, IsotropicInstantiationMatchesTheGeneralOne) {
+  InteriorParticle a(state_material(1e9, 0.3), 3);
+  Mat3 g = zero();
+  g[0][0] = 1e-3;
+  g[0][2] = 3e-4;
+  a.deform(g);
+  a.force[0] = Vec3{1, 2, 3};  // perturb the equilibrium sum so a difference would show
+  state_forces<true, false, false>(0, a.view(), a.bonds(), a.table);
+  const Vec3 isotropic = a.force[0];
+  a.force[0] = Vec3{1, 2, 3};
+  state_forces<true, false, true>(0, a.view(), a.bonds(), a.table);
+  EXPECT_EQ(a.force[0].x, isotropic.x);
+  EXPECT_EQ(a.force[0].y, isotropic.y);
+  EXPECT_EQ(a.force[0].z, isotropic.z);
+
+  MaterialTable t = a.table;
+  EXPECT_FALSE(features_of(t, false).anisotropic);
+  t.m[0].anisotropic = 1;
+  const KernelFeatures f = features_of(t, true);
+  EXPECT_TRUE(f.anisotropic && f.state_based && f.contact && !f.plastic);
 }
 
 }  // namespace

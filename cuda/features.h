@@ -1,0 +1,48 @@
+// Compile-time feature sets (LAMMPS KOKKOS style): the per-step kernels are instantiated for
+// the physics a run uses, so an elastic scene pays nothing for plasticity or anisotropy and a
+// bond-based one nothing for dilatation. The engine picks the instantiation once per call.
+#pragma once
+
+#include <type_traits>
+
+#include "views.h"
+
+namespace pd {
+
+// The physics of a run.
+struct KernelFeatures {
+  bool contact = false;      // collisions wrote forces that springforces adds to
+  bool state_based = false;  // some material is state-based: dilatation in `init`
+  bool plastic = false;      // some state-based material is plastic
+  bool anisotropic = false;  // some state-based material has an anisotropy matrix G
+};
+
+inline KernelFeatures features_of(const MaterialTable& mt, bool contact) {
+  KernelFeatures f;
+  f.contact = contact;
+  for (int k = 0; k < mt.count; ++k) {
+    const Material& m = mt.m[k];
+    if (m.model != kStateBased) continue;
+    f.state_based = true;
+    f.plastic = f.plastic || m.plastic;
+    f.anisotropic = f.anisotropic || m.anisotropic;
+  }
+  return f;
+}
+
+// Calls f(std::integral_constant<bool, b>...) with the runtime flags turned into types, so
+// one call site reaches every instantiation: static_bools(f, true, false) calls
+// f(std::true_type{}, std::false_type{}).
+template <bool... kDone, class F>
+void static_bools(F&& f) {
+  f(std::integral_constant<bool, kDone>{}...);
+}
+template <bool... kDone, class F, class... Rest>
+void static_bools(F&& f, bool first, Rest... rest) {
+  if (first)
+    static_bools<kDone..., true>(f, rest...);
+  else
+    static_bools<kDone..., false>(f, rest...);
+}
+
+}  // namespace pd
