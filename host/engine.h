@@ -44,6 +44,22 @@ struct BondLists {
   }
 };
 
+// Everything a run changes, for checkpoints: restoring it into an engine built from the same
+// input continues the run bit for bit on the same backend. The rest (reference positions,
+// masses, strain limits, families as built) follows from the input.
+struct EngineSnapshot {
+  int64_t step = 0;
+  double time = 0;
+  std::vector<Vec4> disp;  // (u, tau')
+  std::vector<Vec3> vel, force;
+  std::vector<real> strain_min;
+  std::vector<int32_t> intact;
+  std::vector<Ledger> ledger;
+  std::vector<Vec4> state;        // state-based materials only, else empty
+  std::vector<int32_t> neighbor;  // family slots; a broken bond is stored as ~j
+  std::vector<real> plastic;      // plastic materials only, else empty
+};
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -62,6 +78,10 @@ class Engine {
   // Index of the first particle whose displacement, velocity or force is not finite; -1 if none.
   virtual int64_t first_non_finite() = 0;
   virtual KernelStats& stats() = 0;
+  virtual void save(EngineSnapshot& out) = 0;
+  // Throws std::invalid_argument, changing nothing, when the snapshot's sizes are not this
+  // engine's (another scene or scale).
+  virtual void restore(const EngineSnapshot& in) = 0;
   // Bytes of backend memory held by the engine.
   virtual size_t memory_bytes() const = 0;
 };

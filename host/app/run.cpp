@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "../engine.h"
@@ -17,6 +18,9 @@
 #include "../scene/scene.h"
 #include "../scene/scene_setup.h"
 #include "backend_choice.h"
+#include "checkpoint.h"
+#include "energy_watch.h"
+#include "interrupt.h"
 #include "kernel_report.h"
 
 namespace pd {
@@ -66,47 +70,6 @@ void check_time_step(const Scene& scene, const SetupResult& setup, bool allow) {
   throw SceneError(scene.path, "simulation.dt", msg.str());
 }
 
-// Per-frame energy log, rewritten atomically after every frame (energy.csv).
-class EnergyLog {
- public:
-  explicit EnergyLog(std::string path) : path_(std::move(path)) {
-    text_ = "frame,step,time,kinetic,strain,contact,gravity,work,released,balance\n";
-  }
-  void add(int64_t frame, int64_t step, double time, const Energy& e) {
-    char line[320];
-    std::snprintf(line, sizeof line, "%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", (long long)frame,
-                  (long long)step, time, e.kinetic, e.strain, e.contact, e.gravity, e.work, e.released,
-                  e.balance());
-    text_ += line;
-    write_file_atomic(path_, text_);
-  }
-
- private:
-  std::string path_, text_;
-};
-
-// The energy watchdog: the balance (mechanical energy + released - work) may drift by the
-// integrator's and the fracture's errors, a fraction of the energy in play; a blow-up
-// creates energy without bound. Returns how far past that bound the run is (> 1: blow-up).
-double energy_excess(const Energy& e0, const Energy& e) {
-  const double in_play = std::fabs(e0.kinetic) + std::fabs(e0.strain) + std::fabs(e0.contact) +
-                         std::fabs(e.kinetic) + std::fabs(e.strain) + std::fabs(e.contact) +
-                         std::fabs(e.work) + std::fabs(e.released) + std::fabs(e.gravity - e0.gravity);
-  const double growth = e.balance() - e0.balance();
-  return in_play > 0 ? growth / in_play : 0;
-}
-
-// The particle moving fastest: where a blow-up shows first.
-int64_t fastest_particle(Engine& engine) {
-  ParticleState s;
-  engine.read_state(s);
-  int64_t best = 0;
-  double speed = -1;
-  for (size_t i = 0; i < s.vel.size(); ++i)
-    if (double(length(s.vel[i])) > speed) speed = length(s.vel[best = int64_t(i)]);
-  return best;
-}
-
 RestData rest_data(const ParticleSet& ps) {
   RestData r;
   r.position = ps.rest;
@@ -136,9 +99,58 @@ FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<in
   return f;
 }
 
+// Reads the checkpoint of `opt.resume` and takes over what the run was started with: the scene
+// (unless given again), scale, steps per frame, blending, and the frame count unless --frames
+// extends it.
+RunCheckpoint open_resume(RunOptions& opt) {
+  const std::string path = opt.resume + "/" + kCheckpointFileName;
+  if (!std::filesystem::exists(path))
+    throw ResumeError("cannot resume from '" + opt.resume + "': it holds no " + kCheckpointFileName +
+                      " (the run wrote none yet, or this is not a run's output folder); start the run "
+                      "again without --resume");
+  RunCheckpoint c;
+  try {
+    c = read_checkpoint(path);
+  } catch (const IoError& e) {
+    throw ResumeError(std::string(e.what()) + "; start the run again without --resume");
+  }
+  if (opt.scene.empty()) opt.scene = c.scene_path;
+  if (!opt.out.empty() && opt.out != opt.resume)
+    throw ResumeError("--out '" + opt.out + "' and --resume '" + opt.resume +
+                      "' differ: a resumed run continues in its own folder");
+  opt.out = opt.resume;
+  opt.scale = c.scale;
+  opt.blend_frames = c.blend_frames;
+  opt.allow_unstable_dt = opt.allow_unstable_dt || c.allow_unstable_dt;
+  if (opt.steps_per_frame >= 1 && opt.steps_per_frame != c.steps_per_frame)
+    throw ResumeError("--steps-per-frame " + std::to_string(opt.steps_per_frame) + " differs from the " +
+                      std::to_string(c.steps_per_frame) + " of the checkpointed run");
+  opt.steps_per_frame = c.steps_per_frame;
+  if (opt.frames < 0) opt.frames = c.frames;
+  return c;
+}
+
+// The checkpoint must come from this scene file and set-up; the backend may differ (the run
+// continues, no longer bit for bit).
+void check_resume(const RunCheckpoint& c, const Scene& scene, const SetupResult& setup, Backend backend) {
+  if (file_fingerprint(scene.path) != c.scene_hash)
+    throw ResumeError("cannot resume: the scene file '" + scene.path +
+                      "' is not the one the checkpoint was written from (it changed, or another scene "
+                      "was given)");
+  if (setup_fingerprint(setup.input) != c.setup_hash)
+    throw ResumeError("cannot resume: set-up of '" + scene.path +
+                      "' no longer gives the checkpoint's particles (a mesh or the seed changed)");
+  if (c.backend != backend_name(backend))
+    std::printf("resume     checkpoint written on %s, continuing on %s: results are not bit-identical\n",
+                c.backend.c_str(), backend_name(backend));
+}
+
 }  // namespace
 
-int run_command(const RunOptions& opt) {
+int run_command(const RunOptions& options) {
+  RunOptions opt = options;
+  std::optional<RunCheckpoint> resume;
+  if (!opt.resume.empty()) resume = open_resume(opt);
   Scene scene = load_scene(opt.scene);
   if (opt.frames >= 0) scene.frames = opt.frames;
   if (opt.steps_per_frame >= 1) scene.steps_per_frame = opt.steps_per_frame;
@@ -149,6 +161,7 @@ int run_command(const RunOptions& opt) {
   std::string note;
   const Backend backend = choose_backend(opt.backend, &note);
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
+  if (resume) check_resume(*resume, scene, setup, backend);
   const auto t_setup = std::chrono::steady_clock::now();
   std::unique_ptr<Engine> engine = make_engine(backend, setup.input);
   const FamilyStats& fam = engine->family_stats();
@@ -163,6 +176,8 @@ int run_command(const RunOptions& opt) {
   const std::string out =
       opt.out.empty() ? "out/" + std::filesystem::path(scene.path).stem().string() : opt.out;
   ensure_directory(out);
+  if (const size_t stale = remove_stale_temporaries(out))
+    std::printf("output     removed %zu partial file(s) of an interrupted run\n", stale);
   if (scene.write_binary) write_rest_file(out + "/" + kRestFileName, rest_data(setup.input.particles));
   PvdSeries series(out, "particles");
   BondLists bonds;
@@ -182,16 +197,60 @@ int run_command(const RunOptions& opt) {
       series.add(f.time, name);
     }
   };
-  write_frame(0);
+
+  // A fresh run writes frame 0; a resumed one restores the state after its checkpointed frame.
   EnergyLog energy_log(out + "/energy.csv");
-  const Energy energy0 = engine->energy();
-  energy_log.add(0, 0, 0.0, energy0);
+  Energy energy0;
+  int64_t first_frame = 1;
+  if (resume) {
+    engine->restore(resume->engine);
+    fragments.smoother().restore(std::move(resume->smoother));
+    series.restore(std::move(resume->series));
+    energy_log.restore(std::move(resume->energy_log));
+    energy0 = resume->energy0;
+    first_frame = resume->frame + 1;
+    std::printf("resume     from frame %lld (step %lld) of %s\n", (long long)resume->frame,
+                (long long)resume->engine.step, out.c_str());
+    if (first_frame > scene.frames) {
+      std::printf("output     the run is complete at frame %lld; pass --frames N (N > %lld) to extend it\n",
+                  (long long)resume->frame, (long long)resume->frame);
+      return kExitOk;
+    }
+  } else {
+    write_frame(0);
+    energy0 = engine->energy();
+    energy_log.add(0, 0, 0.0, energy0);
+  }
   engine->stats().reset_times();
+
+  // Checkpoints: the whole state after a frame, atomically replacing the previous one.
+  const std::string scene_hash_path = scene.path;
+  auto write_checkpoint_now = [&](int64_t frame) {
+    RunCheckpoint c;
+    c.scene_path = scene.path;
+    c.scene_hash = file_fingerprint(scene_hash_path);
+    c.setup_hash = setup_fingerprint(setup.input);
+    c.scale = opt.scale;
+    c.steps_per_frame = scene.steps_per_frame;
+    c.frames = scene.frames;
+    c.blend_frames = opt.blend_frames;
+    c.allow_unstable_dt = opt.allow_unstable_dt;
+    c.backend = backend_name(backend);
+    c.frame = frame;
+    engine->save(c.engine);
+    c.energy0 = energy0;
+    c.energy_log = energy_log.text();
+    c.series = series.entries();
+    c.smoother = fragments.smoother().history();
+    write_checkpoint(out + "/" + kCheckpointFileName, c);
+  };
+  const InterruptGuard interrupt;
+  auto last_checkpoint = std::chrono::steady_clock::now();
 
   // Frame loop with a progress line; a non-finite state stops the run with the step.
   const bool tty = isatty(fileno(stdout));
   const auto t0 = std::chrono::steady_clock::now();
-  for (int64_t frame = 1; frame <= scene.frames; ++frame) {
+  for (int64_t frame = first_frame; frame <= scene.frames; ++frame) {
     engine->advance(scene.steps_per_frame);
     const int64_t bad = engine->first_non_finite();
     if (bad >= 0) {
@@ -222,9 +281,27 @@ int run_command(const RunOptions& opt) {
     }
     energy_log.add(frame, engine->step(), engine->time(), energy);
     write_frame(frame);
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double steps_per_s = double(frame * scene.steps_per_frame) / elapsed;
-    const double eta = elapsed / double(frame) * double(scene.frames - frame);
+
+    const auto now = std::chrono::steady_clock::now();
+    const bool by_count = opt.checkpoint_every > 0 && frame % opt.checkpoint_every == 0;
+    const bool by_time =
+        opt.checkpoint_minutes > 0 &&
+        std::chrono::duration<double>(now - last_checkpoint).count() >= 60 * opt.checkpoint_minutes;
+    if (by_count || by_time || InterruptGuard::signal_received()) {
+      write_checkpoint_now(frame);
+      last_checkpoint = now;
+    }
+    if (InterruptGuard::signal_received()) {
+      std::printf(
+          "%sinterrupted after frame %lld: checkpoint written; continue with: perifrac run --resume %s\n",
+          tty ? "\n" : "", (long long)frame, out.c_str());
+      return kExitInterrupted;
+    }
+
+    const double elapsed = std::chrono::duration<double>(now - t0).count();
+    const int64_t done = frame - first_frame + 1;
+    const double steps_per_s = double(done * scene.steps_per_frame) / elapsed;
+    const double eta = elapsed / double(done) * double(scene.frames - frame);
     const double broken = fam.bonds > 0 ? double(engine->broken_bonds()) / double(fam.bonds) : 0;
     std::printf(
         "%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%  energy balance %+.2f%%  %s%s",
@@ -234,7 +311,7 @@ int run_command(const RunOptions& opt) {
   }
   if (tty) std::printf("\n");
 
-  const int64_t steps = scene.frames * scene.steps_per_frame;
+  const int64_t steps = (scene.frames - first_frame + 1) * scene.steps_per_frame;
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(backend));
   print_kernel_table(std::cout, kernel_rows(engine->stats(), "pd/", fam.bonds, steps));
   const bool meshes = fragments.write_meshes();

@@ -15,14 +15,20 @@ struct RunOptions {
   double scale = 1.0;
   bool allow_unstable_dt = false;
   int blend_frames = 0;  // fragment split blending (host/fragments/smoothing.h); 0: off
+  // Checkpoints (host/app/checkpoint.h) after every N frames and every M minutes of wall time
+  // (0: off), and on SIGINT/SIGTERM. `resume`: an output folder to continue from its checkpoint.
+  int64_t checkpoint_every = 0;
+  double checkpoint_minutes = 10;
+  std::string resume;
 };
 
 // Exit codes shared by the commands.
 enum ExitCode : int {
   kExitOk = 0,
-  kExitUsage = 2,    // bad scene, option or input file
-  kExitBlowUp = 3,   // numerical blow-up detected
-  kExitRuntime = 4,  // device or I/O failure
+  kExitUsage = 2,          // bad scene, option or input file
+  kExitBlowUp = 3,         // numerical blow-up detected
+  kExitRuntime = 4,        // device or I/O failure
+  kExitInterrupted = 130,  // SIGINT/SIGTERM: stopped after writing a checkpoint
 };
 
 int run_command(const RunOptions& options);

@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "host/app/bench.h"
+#include "host/app/checkpoint.h"
 #include "host/app/compare.h"
 #include "host/app/run.h"
 #include "host/engine.h"
@@ -19,7 +20,7 @@ int main(int argc, char** argv) {
 
   RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "simulate a scene and write per-frame output");
-  run_cmd->add_option("scene", run.scene, "scene file (TOML)")->required();
+  run_cmd->add_option("scene", run.scene, "scene file (TOML); with --resume, the checkpoint's by default");
   run_cmd->add_option("--backend", run.backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   run_cmd->add_option("--frames", run.frames, "number of frames (default: the scene's)")
@@ -34,6 +35,14 @@ int main(int argc, char** argv) {
       ->add_option("--blend-frames", run.blend_frames,
                    "blend a split fragment's transform over N frames (0: off)")
       ->check(CLI::NonNegativeNumber);
+  run_cmd
+      ->add_option("--checkpoint-every", run.checkpoint_every, "write a checkpoint every N frames (0: off)")
+      ->check(CLI::NonNegativeNumber);
+  run_cmd
+      ->add_option("--checkpoint-minutes", run.checkpoint_minutes,
+                   "write a checkpoint every M minutes of wall time (0: off; default 10)")
+      ->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--resume", run.resume, "continue the run in this output folder from its checkpoint");
 
   BenchOptions bench;
   CLI::App* bench_cmd = app.add_subcommand("bench", "time the step kernels (bond-updates/s, occupancy)");
@@ -71,7 +80,13 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*run_cmd) return run_command(run);
+    if (*run_cmd) {
+      if (run.scene.empty() && run.resume.empty()) {
+        std::fprintf(stderr, "error: run: give a scene file, or --resume DIR to continue a run\n");
+        return kExitUsage;
+      }
+      return run_command(run);
+    }
     if (*bench_cmd) return bench_command(bench);
     if (*compare_cmd) return compare_command(compare);
     if (*render_cmd) return render_frames(render);
@@ -83,6 +98,9 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
   } catch (const SceneError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitUsage;
+  } catch (const ResumeError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitUsage;
   } catch (const IoError& e) {

@@ -44,6 +44,7 @@ class FragmentOutput {
   bool write_meshes(const std::string& name = "fragments.obj") const;
 
   const Components& components() const { return components_; }
+  FragmentSmoother& smoother() { return smoother_; }
   const std::vector<Fragment>& fragments() const { return fragments_; }
 
  private:

@@ -43,7 +43,6 @@ class FragmentSmoother {
   // Weight of a split's correction `age` frames after it: 1 at age 0, 0 from blend_frames on.
   double weight(int age) const;
 
- private:
   // A fragment's correction, kept from frame to frame.
   struct Correction {
     int32_t particles = 0;
@@ -51,7 +50,18 @@ class FragmentSmoother {
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // shift of the centroid [m]
     int age = -1;                                      // frames since the split; -1: none
   };
+  // What carries over from one call to the next, for checkpoints.
+  struct History {
+    std::vector<int32_t> previous_index;
+    std::vector<Correction> previous;
+  };
+  History history() const { return {previous_index_, previous_}; }
+  void restore(History h) {
+    previous_index_ = std::move(h.previous_index);
+    previous_ = std::move(h.previous);
+  }
 
+ private:
   bool refines(const Components& c) const;
 
   int frames_;

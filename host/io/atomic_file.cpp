@@ -1,12 +1,14 @@
 #include "atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <streambuf>
@@ -174,6 +176,27 @@ void ensure_directory(const std::string& dir) {
   if (!std::filesystem::is_directory(dir, ec)) {
     throw io_error("create directory", dir, ec ? ec.message() : "exists and is not a directory");
   }
+}
+
+size_t remove_stale_temporaries(const std::string& dir) {
+  size_t removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const size_t at = name.rfind(".tmp.");
+    if (at == std::string::npos) continue;
+    // "<pid>.<n>" after ".tmp."; the writer's pid must be gone (kill(pid, 0) fails with ESRCH).
+    const std::string rest = name.substr(at + 5);
+    const size_t dot = rest.find('.');
+    if (dot == std::string::npos || dot == 0) continue;
+    char* end = nullptr;
+    const long pid = std::strtol(rest.c_str(), &end, 10);
+    if (end != rest.c_str() + dot || pid <= 0) continue;
+    if (pid != long(::getpid()) && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH &&
+        std::filesystem::remove(entry.path(), ec))
+      ++removed;
+  }
+  return removed;
 }
 
 }  // namespace pd

@@ -36,6 +36,10 @@ std::string_view bytes_of(const std::vector<T>& v) {
   return {reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T)};
 }
 
+// Removes the temporaries that write_file_atomic left in `dir` when its process was killed
+// mid-write ("<name>.tmp.<pid>.<n>" of processes no longer running). Returns how many.
+size_t remove_stale_temporaries(const std::string& dir);
+
 // Creates `dir` and its missing parents; does nothing if it already is a directory. Throws
 // IoError when it cannot (e.g. a component of the path is a regular file).
 void ensure_directory(const std::string& dir);

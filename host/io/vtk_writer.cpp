@@ -178,6 +178,11 @@ void PvdSeries::add(double time, const std::string& file) {
   entries_ = std::move(next);
 }
 
+void PvdSeries::restore(std::vector<Entry> entries) {
+  write_file_atomic(path_, render(entries));
+  entries_ = std::move(entries);
+}
+
 std::string PvdSeries::render(const std::vector<Entry>& entries) {
   std::string x =
       "<?xml version=\"1.0\"?>\n"

@@ -28,11 +28,15 @@ class PvdSeries {
   const std::string& path() const { return path_; }
   size_t size() const { return entries_.size(); }
 
- private:
+  // The entries so far, and setting them back (a resumed run), which rewrites the index.
   struct Entry {
     double time;
     std::string file;
   };
+  const std::vector<Entry>& entries() const { return entries_; }
+  void restore(std::vector<Entry> entries);
+
+ private:
   static std::string render(const std::vector<Entry>& entries);
 
   std::string path_;

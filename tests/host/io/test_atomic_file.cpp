@@ -169,4 +169,17 @@ TEST_F(AtomicFileTest, EnsureDirectoryBelowARegularFileThrows) {
   EXPECT_EQ(read_all(path("plain")), "a file");
 }
 
+// Temporaries of killed writers are removed; the live process's own and other files stay.
+TEST_F(AtomicFileTest, StaleTemporariesOfDeadWritersAreRemoved) {
+  const std::string dead = path("frame_00001.pfr.tmp.2147483646.0");
+  const std::string live = path("frame_00002.pfr.tmp." + std::to_string(getpid()) + ".0");
+  for (const std::string& p : {dead, live, path("frame_00001.pfr"), path("notes.tmp.txt")})
+    pd::write_file_atomic(p, std::string_view("x"));
+  EXPECT_EQ(pd::remove_stale_temporaries(dir_.string()), 1u);
+  EXPECT_FALSE(std::filesystem::exists(dead));
+  EXPECT_TRUE(std::filesystem::exists(live));
+  EXPECT_TRUE(std::filesystem::exists(path("frame_00001.pfr")));
+  EXPECT_TRUE(std::filesystem::exists(path("notes.tmp.txt")));
+}
+
 }  // namespace

@@ -1,0 +1,208 @@
+#include "checkpoint.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "../io/checksum.h"
+#include "../io/record_file.h"
+
+namespace pd {
+
+namespace {
+
+constexpr char kMagic[8] = {'P', 'F', 'C', 'K', 'P', 'T', '\0', '\0'};
+
+// Doubles as hex floats so they read back exactly.
+std::string exact(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%a", v);
+  return buf;
+}
+
+// The scalar fields as "key value" lines.
+std::string meta_text(const RunCheckpoint& c) {
+  std::ostringstream m;
+  m << "real_bytes " << sizeof(real) << "\n"
+    << "scene_path " << c.scene_path << "\n"
+    << "scene_hash " << c.scene_hash << "\n"
+    << "setup_hash " << c.setup_hash << "\n"
+    << "scale " << exact(c.scale) << "\n"
+    << "steps_per_frame " << c.steps_per_frame << "\n"
+    << "frames " << c.frames << "\n"
+    << "blend_frames " << c.blend_frames << "\n"
+    << "allow_unstable_dt " << int(c.allow_unstable_dt) << "\n"
+    << "backend " << c.backend << "\n"
+    << "frame " << c.frame << "\n"
+    << "step " << c.engine.step << "\n"
+    << "time " << exact(c.engine.time) << "\n";
+  return m.str();
+}
+
+// Reads the "key value" lines back; every key must be there.
+void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) {
+  std::map<std::string, std::string> kv;
+  std::istringstream in{std::string(text)};
+  for (std::string line; std::getline(in, line);) {
+    const size_t space = line.find(' ');
+    if (space == std::string::npos) r.fail("malformed meta line '" + line + "'");
+    kv[line.substr(0, space)] = line.substr(space + 1);
+  }
+  auto get = [&](const char* key) -> const std::string& {
+    const auto it = kv.find(key);
+    if (it == kv.end()) r.fail(std::string("meta key '") + key + "' is missing");
+    return it->second;
+  };
+  auto number = [&](const char* key) {
+    const std::string& v = get(key);
+    char* end = nullptr;
+    const double x = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != '\0') r.fail(std::string("meta key '") + key + "' is not a number");
+    return x;
+  };
+  auto integer = [&](const char* key) {
+    const std::string& v = get(key);
+    char* end = nullptr;
+    const unsigned long long x = std::strtoull(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0') r.fail(std::string("meta key '") + key + "' is not an integer");
+    return x;
+  };
+  if (integer("real_bytes") != sizeof(real))
+    r.fail("written by a " + std::string(integer("real_bytes") == 8 ? "double" : "float") +
+           "-precision build; this build is " + (sizeof(real) == 8 ? "double" : "float"));
+  c.scene_path = get("scene_path");
+  c.scene_hash = integer("scene_hash");
+  c.setup_hash = integer("setup_hash");
+  c.scale = number("scale");
+  c.steps_per_frame = int64_t(integer("steps_per_frame"));
+  c.frames = int64_t(integer("frames"));
+  c.blend_frames = int(integer("blend_frames"));
+  c.allow_unstable_dt = integer("allow_unstable_dt") != 0;
+  c.backend = get("backend");
+  c.frame = int64_t(integer("frame"));
+  c.engine.step = int64_t(integer("step"));
+  c.engine.time = number("time");
+}
+
+// The PVD index as "time file" lines (time exact).
+std::string series_text(const std::vector<PvdSeries::Entry>& series) {
+  std::string s;
+  for (const auto& e : series) s += exact(e.time) + " " + e.file + "\n";
+  return s;
+}
+
+std::vector<PvdSeries::Entry> parse_series(const RecordReader& r, std::string_view text) {
+  std::vector<PvdSeries::Entry> out;
+  std::istringstream in{std::string(text)};
+  for (std::string line; std::getline(in, line);) {
+    const size_t space = line.find(' ');
+    if (space == std::string::npos) r.fail("malformed series line '" + line + "'");
+    out.push_back({std::strtod(line.substr(0, space).c_str(), nullptr), line.substr(space + 1)});
+  }
+  return out;
+}
+
+// Smoother corrections as 9 doubles each: particles, quaternion (w, x, y, z), offset, age.
+std::vector<double> pack_corrections(const std::vector<FragmentSmoother::Correction>& cs) {
+  std::vector<double> v;
+  v.reserve(cs.size() * 9);
+  for (const auto& c : cs) {
+    const auto& q = c.rotation;
+    for (double x : {double(c.particles), q.w(), q.x(), q.y(), q.z(), c.offset.x(), c.offset.y(),
+                     c.offset.z(), double(c.age)})
+      v.push_back(x);
+  }
+  return v;
+}
+
+std::vector<FragmentSmoother::Correction> unpack_corrections(const RecordReader& r,
+                                                             const std::vector<double>& v) {
+  if (v.size() % 9 != 0) r.fail("record 'corrections' is not whole corrections");
+  std::vector<FragmentSmoother::Correction> cs(v.size() / 9);
+  for (size_t k = 0; k < cs.size(); ++k) {
+    const double* d = &v[9 * k];
+    cs[k].particles = int32_t(d[0]);
+    cs[k].rotation = Eigen::Quaterniond(d[1], d[2], d[3], d[4]);
+    cs[k].offset = Eigen::Vector3d(d[5], d[6], d[7]);
+    cs[k].age = int(d[8]);
+  }
+  return cs;
+}
+
+template <class T>
+uint64_t hash_array(const std::vector<T>& v, uint64_t h) {
+  return fnv1a(bytes_of(v), h);
+}
+
+}  // namespace
+
+uint64_t setup_fingerprint(const SimulationInput& in) {
+  const ParticleSet& ps = in.particles;
+  uint64_t h = kFnvOffset;
+  h = hash_array(ps.rest, h);
+  h = hash_array(ps.volume, h);
+  h = hash_array(ps.mass, h);
+  h = hash_array(ps.strain_limit0, h);
+  h = hash_array(ps.material, h);
+  h = hash_array(ps.body, h);
+  h = hash_array(ps.flags, h);
+  h = hash_array(ps.velocity, h);
+  return h;
+}
+
+uint64_t file_fingerprint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw io_error_errno("read", path, errno);
+  std::ostringstream all;
+  all << in.rdbuf();
+  return fnv1a(all.str());
+}
+
+void write_checkpoint(const std::string& path, const RunCheckpoint& c) {
+  RecordWriter w;
+  w.add_owned("meta", meta_text(c));
+  const EngineSnapshot& e = c.engine;
+  w.add_array("disp", e.disp);
+  w.add_array("vel", e.vel);
+  w.add_array("force", e.force);
+  w.add_array("strain_min", e.strain_min);
+  w.add_array("intact", e.intact);
+  w.add_array("ledger", e.ledger);
+  w.add_array("state", e.state);
+  w.add_array("neighbor", e.neighbor);
+  w.add_array("plastic", e.plastic);
+  w.add_owned("energy0", std::string(reinterpret_cast<const char*>(&c.energy0), sizeof c.energy0));
+  w.add("energy_log", c.energy_log);
+  w.add_owned("series", series_text(c.series));
+  w.add_array("smooth_index", c.smoother.previous_index);
+  w.add_owned("corrections", std::string(bytes_of(pack_corrections(c.smoother.previous))));
+  w.write(path, kMagic, kCheckpointVersion);
+}
+
+RunCheckpoint read_checkpoint(const std::string& path) {
+  const RecordReader r(path, kMagic, kCheckpointVersion);
+  RunCheckpoint c;
+  parse_meta(r, r.get("meta"), c);
+  EngineSnapshot& e = c.engine;
+  e.disp = r.get_array<Vec4>("disp");
+  e.vel = r.get_array<Vec3>("vel");
+  e.force = r.get_array<Vec3>("force");
+  e.strain_min = r.get_array<real>("strain_min");
+  e.intact = r.get_array<int32_t>("intact");
+  e.ledger = r.get_array<Ledger>("ledger");
+  e.state = r.get_array<Vec4>("state");
+  e.neighbor = r.get_array<int32_t>("neighbor");
+  e.plastic = r.get_array<real>("plastic");
+  const std::vector<Energy> energy0 = r.get_array<Energy>("energy0");
+  if (energy0.size() != 1) r.fail("record 'energy0' has the wrong size");
+  c.energy0 = energy0[0];
+  c.energy_log = std::string(r.get("energy_log"));
+  c.series = parse_series(r, r.get("series"));
+  c.smoother.previous_index = r.get_array<int32_t>("smooth_index");
+  c.smoother.previous = unpack_corrections(r, r.get_array<double>("corrections"));
+  return c;
+}
+
+}  // namespace pd

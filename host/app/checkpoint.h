@@ -1,0 +1,58 @@
+// Checkpoints of `perifrac run`: the full state after a frame, so a killed or interrupted run
+// continues with `perifrac run --resume DIR` and produces what the uninterrupted run would have
+// (bit for bit on the same backend, device and thread count). One file, <out>/checkpoint.pck,
+// replaced atomically; a corrupted, truncated, foreign or incompatible file is refused.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "../engine.h"
+#include "../fragments/smoothing.h"
+#include "../io/vtk_writer.h"
+
+namespace pd {
+
+// A checkpoint that cannot be resumed from: missing, unreadable, or from another scene,
+// scale or build. The message says which and what to do.
+class ResumeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+inline constexpr const char* kCheckpointFileName = "checkpoint.pck";
+inline constexpr uint32_t kCheckpointVersion = 1;
+
+struct RunCheckpoint {
+  // How the run was started; a resume repeats it.
+  std::string scene_path;
+  uint64_t scene_hash = 0;  // fnv1a of the scene file's bytes
+  uint64_t setup_hash = 0;  // setup_fingerprint: particles, materials, strain limits (seed, meshes)
+  double scale = 1;
+  int64_t steps_per_frame = 0, frames = 0;
+  int blend_frames = 0;
+  bool allow_unstable_dt = false;
+  std::string backend;  // where it ran
+  // Where it stands.
+  int64_t frame = 0;  // the last frame written
+  EngineSnapshot engine;
+  Energy energy0;          // the energy at frame 0, the watchdog's reference
+  std::string energy_log;  // energy.csv up to `frame`
+  std::vector<PvdSeries::Entry> series;
+  FragmentSmoother::History smoother;
+};
+
+// Fingerprint of the particles set-up made of a scene: a change of mesh, seed or scale shows
+// (material constants are covered by the scene file's own fingerprint).
+uint64_t setup_fingerprint(const SimulationInput& in);
+uint64_t file_fingerprint(const std::string& path);
+
+// Atomic; throws IoError naming the path.
+void write_checkpoint(const std::string& path, const RunCheckpoint& c);
+// Throws IoError "cannot read '<path>': <reason>" for a missing, corrupted, truncated, foreign or
+// other-version file, or one written by a build of another precision.
+RunCheckpoint read_checkpoint(const std::string& path);
+
+}  // namespace pd

@@ -1,0 +1,32 @@
+// Energy bookkeeping of a run: the per-frame energy.csv log and the blow-up watchdog.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "../engine.h"
+
+namespace pd {
+
+// energy.csv, rewritten atomically after every frame.
+class EnergyLog {
+ public:
+  explicit EnergyLog(std::string path);
+  void add(int64_t frame, int64_t step, double time, const Energy& e);
+  const std::string& text() const { return text_; }
+  // Continues a resumed run's log from its checkpointed text (rewritten at the next add).
+  void restore(std::string text) { text_ = std::move(text); }
+
+ private:
+  std::string path_, text_;
+};
+
+// The energy watchdog: the balance (mechanical energy + released - work) may drift by the
+// integrator's and the fracture's errors, a fraction of the energy in play; a blow-up creates
+// energy without bound. Returns how far past that bound the run is (> 1: blow-up).
+double energy_excess(const Energy& e0, const Energy& e);
+
+// The particle moving fastest: where a blow-up shows first.
+int64_t fastest_particle(Engine& engine);
+
+}  // namespace pd

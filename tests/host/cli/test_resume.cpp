@@ -1,0 +1,203 @@
+// Checkpoint and resume through the binary: a run killed (SIGKILL) at random points and resumed
+// until it completes gives files identical to an uninterrupted run; SIGINT stops after a
+// checkpoint; checkpoints of another scene, or corrupted ones, are refused with exit code 2.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/support/temp_dir.h"
+
+namespace pd {
+namespace {
+
+using testing::read_all;
+
+// A plastic state-based plate hit by a block: contact, plastic history and broken bonds all
+// carry state across a checkpoint. ~1,400 particles, 16 frames of 20 steps.
+constexpr const char* kScene = R"([simulation]
+steps_per_frame = 20
+frames = 16
+dt = "auto"
+[contact]
+enabled = true
+stiffness = 1e9
+[materials.metal]
+model = "state_based"
+density = 2700.0
+youngs_modulus = 10e9
+poisson_ratio = 0.3
+strain_limit = 0.01
+[materials.metal.plastic]
+yield_stress = 20e6
+[materials.block]
+model = "state_based"
+density = 7800.0
+youngs_modulus = 50e9
+poisson_ratio = 0.3
+strain_limit = 0.5
+[[bodies]]
+material = "metal"
+size = [0.04, 0.04, 0.006]
+spacing = 0.002
+[[bodies]]
+material = "block"
+center = [0.0, 0.0, 0.008]
+size = [0.008, 0.008, 0.008]
+spacing = 0.002
+velocity = [0.0, 0.0, -200.0]
+)";
+
+// Starts the binary with `args` (one thread, output to `log`); returns the child's pid.
+pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setenv("OMP_NUM_THREADS", "1", 1);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    std::vector<char*> argv{const_cast<char*>(PERIFRAC_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(PERIFRAC_BINARY, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// Exit code, or 128 + signal for a killed child.
+int wait_for(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+int run(const std::vector<std::string>& args, const std::string& log) {
+  return wait_for(spawn(args, log));
+}
+
+class Resume : public testing::TempDirTest {
+ protected:
+  void SetUp() override {
+    TempDirTest::SetUp();
+    scene_ = path("scene.toml");
+    std::ofstream(scene_) << kScene;
+    log_ = path("log.txt");
+  }
+  std::vector<std::string> fresh(const std::string& out, const std::string& every = "1") const {
+    return {"run", scene_, "--backend", "cpu", "--out", out, "--checkpoint-every", every};
+  }
+  // The outputs that must match between an interrupted and an uninterrupted run.
+  void expect_same_outputs(const std::string& a, const std::string& b) const {
+    for (const char* f : {"frame_00016.pfr", "frame_00009.pfr", "energy.csv", "particles.pvd",
+                          "fragments_00016.pfg", "points_00016.ply", "fragments.obj"})
+      EXPECT_TRUE(read_all(a + "/" + f) == read_all(b + "/" + f)) << f << " differs";
+  }
+  std::string scene_, log_;
+};
+
+TEST_F(Resume, KilledRunsResumeToTheUninterruptedResult) {
+  const std::string reference = path("reference"), killed = path("killed");
+  ASSERT_EQ(run(fresh(reference, "0"), log_), 0) << read_all(log_);
+
+  // Kill at random points until a run completes; resume from the checkpoint when there is one.
+  std::mt19937 rng(12345);
+  std::uniform_int_distribution<int> delay_ms(30, 600);
+  int kills = 0, resumes = 0, code = -1;
+  for (int attempt = 0; attempt < 60 && code != 0; ++attempt) {
+    const bool have_checkpoint = std::filesystem::exists(killed + "/checkpoint.pck");
+    std::vector<std::string> args =
+        have_checkpoint ? std::vector<std::string>{"run", "--resume", killed, "--checkpoint-every", "1"}
+                        : fresh(killed);
+    resumes += have_checkpoint;
+    const pid_t pid = spawn(args, log_);
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    kill(pid, SIGKILL);
+    code = wait_for(pid);
+    kills += code == 128 + SIGKILL;
+    ASSERT_TRUE(code == 0 || code == 128 + SIGKILL) << "exit " << code << "\n" << read_all(log_);
+  }
+  if (code != 0) ASSERT_EQ(run({"run", "--resume", killed}, log_), 0) << read_all(log_);
+  EXPECT_GE(kills, 3);
+  EXPECT_GE(resumes, 2);
+  for (const auto& e : std::filesystem::directory_iterator(killed))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+  expect_same_outputs(reference, killed);
+}
+
+TEST_F(Resume, InterruptWritesACheckpointAndStops) {
+  const std::string reference = path("reference"), out = path("out");
+  ASSERT_EQ(run(fresh(reference, "0"), log_), 0) << read_all(log_);
+  const pid_t pid = spawn(fresh(out, "0"), log_);
+  // Wait for the first frames, then interrupt.
+  for (int i = 0; i < 200 && !std::filesystem::exists(out + "/frame_00002.pfr"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  kill(pid, SIGINT);
+  const int code = wait_for(pid);
+  if (code == 0) GTEST_SKIP() << "the run finished before the interrupt landed";
+  EXPECT_EQ(code, 130) << read_all(log_);
+  EXPECT_NE(read_all(log_).find("perifrac run --resume"), std::string::npos) << read_all(log_);
+  ASSERT_TRUE(std::filesystem::exists(out + "/checkpoint.pck"));
+  ASSERT_EQ(run({"run", "--resume", out}, log_), 0) << read_all(log_);
+  expect_same_outputs(reference, out);
+}
+
+TEST_F(Resume, CompletedRunCanBeExtended) {
+  const std::string out = path("out"), reference = path("reference");
+  ASSERT_EQ(run(fresh(reference, "0"), log_), 0);
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "9", "--checkpoint-every", "9"},
+                log_),
+            0)
+      << read_all(log_);
+  ASSERT_EQ(run({"run", "--resume", out, "--frames", "16"}, log_), 0) << read_all(log_);
+  EXPECT_TRUE(read_all(reference + "/frame_00016.pfr") == read_all(out + "/frame_00016.pfr"));
+  EXPECT_TRUE(read_all(reference + "/energy.csv") == read_all(out + "/energy.csv"));
+}
+
+// Refusals: exit code 2 with one line saying what is wrong.
+void expect_refusal(const std::vector<std::string>& args, const std::string& log_path,
+                    const std::string& what) {
+  const int code = run(args, log_path);
+  const std::string log = read_all(log_path);
+  EXPECT_EQ(code, 2) << log;
+  EXPECT_NE(log.find("error: "), std::string::npos) << log;
+  EXPECT_NE(log.find(what), std::string::npos) << log;
+}
+
+TEST_F(Resume, RefusesAFolderWithoutCheckpoint) {
+  std::filesystem::create_directories(path("empty"));
+  expect_refusal({"run", "--resume", path("empty")}, log_, "holds no checkpoint.pck");
+}
+
+TEST_F(Resume, RefusesAnotherScene) {
+  const std::string out = path("out");
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "1", "--checkpoint-every", "1"},
+                log_),
+            0);
+  std::ofstream(path("other.toml")) << kScene << "# edited\n";
+  expect_refusal({"run", path("other.toml"), "--resume", out}, log_,
+                 "is not the one the checkpoint was written from");
+}
+
+TEST_F(Resume, RefusesACorruptedCheckpoint) {
+  const std::string out = path("out");
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "1", "--checkpoint-every", "1"},
+                log_),
+            0);
+  std::string bytes = read_all(out + "/checkpoint.pck");
+  bytes[bytes.size() - 100] ^= 1;
+  std::ofstream(out + "/checkpoint.pck", std::ios::binary) << bytes;
+  expect_refusal({"run", "--resume", out}, log_, "checksum mismatch");
+}
+
+}  // namespace
+}  // namespace pd
