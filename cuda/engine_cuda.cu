@@ -15,6 +15,16 @@ bool cuda_device_available(std::string* why) {
   return true;
 }
 
+size_t cuda_free_bytes() {
+  if (!cuda_device_available()) return 0;
+  size_t free_b = 0, total_b = 0;
+  if (cudaMemGetInfo(&free_b, &total_b) != cudaSuccess) {
+    cudaGetLastError();
+    return 0;
+  }
+  return free_b;
+}
+
 std::unique_ptr<Engine> make_cuda_engine(const SimulationInput& in) {
   std::string why;
   if (!cuda_device_available(&why)) throw std::runtime_error("CUDA backend unavailable: " + why);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "../host/engine.h"
+#include "../host/memory_budget.h"
 #include "device_array.h"
 #include "launch.h"
 
@@ -262,6 +263,7 @@ class EngineImpl final : public Engine {
     exec_.upload(slice_offset_.data() + slices, &slots, sizeof(int64_t));
     drop(length);
 
+    check_bond_memory(slots);
     neighbor_ = make<int32_t>(size_t(std::max<int64_t>(slots, 1)));
     neighbor_.zero();
     launch_fill_family(exec_, p, hash_view(true), materials_, bonds());
@@ -275,6 +277,20 @@ class EngineImpl final : public Engine {
     for (int32_t c : counts) family_.bonds += c;
     family_.mean = double(family_.bonds) / n_;
     intact_.upload(counts);
+  }
+
+  // The bond arrays are the bulk of the memory: refused with a clear message, before they are
+  // allocated, when the backend has not enough free.
+  void check_bond_memory(int64_t slots) const {
+    const double per_slot = sizeof(int32_t) + (features_.plastic ? sizeof(real) + sizeof(uint16_t) : 0);
+    const double need = double(slots) * per_slot;
+    const double free = double(backend_available_bytes(backend()));
+    if (need <= free) return;
+    throw ResourceError("the families hold " + std::to_string(slots) + " bond slots (" + std::to_string(n_) +
+                        " particles), which need " + format_bytes(need) + " of " +
+                        (Exec::kDevice ? "GPU" : "host") + " memory; " + format_bytes(free) +
+                        " are free. Lower --scale, the horizon or the particle count" +
+                        (Exec::kDevice ? ", or run on a GPU with more memory" : ""));
   }
 
   // State-based arrays: the (theta, m, phi) records, m computed once, and for plasticity

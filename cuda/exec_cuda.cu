@@ -69,7 +69,9 @@ void CudaExec::flush_stats() {
   cudaError_t err = cudaDeviceSynchronize();
   if (err != cudaSuccess)
     throw std::runtime_error(std::string("CUDA error after kernel '") + last_name_ +
-                             "': " + cudaGetErrorString(err));
+                             "': " + cudaGetErrorString(err) +
+                             " (to find the faulting access: compute-sanitizer perifrac run ..., or a build "
+                             "with -DPERIFRAC_BOUNDS_CHECKS=ON)");
   for (auto& p : pending_) {
     float ms = 0;
     cuda_check(cudaEventElapsedTime(&ms, p.start, p.stop), "cudaEventElapsedTime");
@@ -125,7 +127,8 @@ void* CudaExec::allocate(size_t bytes) {
     cudaMemGetInfo(&free_b, &total_b);
     throw std::runtime_error("GPU allocation of " + std::to_string(bytes) + " bytes failed (" +
                              std::to_string(free_b >> 20) + " MiB free of " + std::to_string(total_b >> 20) +
-                             " MiB): " + cudaGetErrorString(err));
+                             " MiB): " + cudaGetErrorString(err) +
+                             "; lower --scale or the particle count, or use the CPU backend");
   }
   return p;
 }

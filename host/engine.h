@@ -93,5 +93,7 @@ std::unique_ptr<Engine> make_engine(Backend b, const SimulationInput& in);
 
 // True when the build has CUDA and a device answers; otherwise `why` says what is missing.
 bool cuda_device_available(std::string* why = nullptr);
+// Free memory of the CUDA device; 0 when there is none.
+size_t cuda_free_bytes();
 
 }  // namespace pd

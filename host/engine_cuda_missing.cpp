@@ -10,6 +10,10 @@ bool cuda_device_available(std::string* why) {
   return false;
 }
 
+size_t cuda_free_bytes() {
+  return 0;
+}
+
 std::unique_ptr<Engine> make_cuda_engine(const SimulationInput&) {
   throw std::runtime_error("CUDA backend unavailable: this build has no CUDA support");
 }

@@ -7,6 +7,7 @@
 #include "host/app/checkpoint.h"
 #include "host/app/compare.h"
 #include "host/app/run.h"
+#include "host/memory_budget.h"
 #include "host/engine.h"
 #include "host/io/atomic_file.h"
 #include "host/scene/scene.h"
@@ -98,6 +99,9 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
   } catch (const SceneError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitUsage;
+  } catch (const ResourceError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitUsage;
   } catch (const ResumeError& e) {

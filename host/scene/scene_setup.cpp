@@ -161,27 +161,30 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
       throw SceneError(scene.path, key,
                        "too many bodies (allowed: at most " + std::to_string(kMaxMaterials) + ")");
     const double spacing = body.spacing * spacing_factor;
-    constexpr int64_t kMaxScene = std::numeric_limits<int32_t>::max() / 2;
+    const int64_t budget = std::min(kMaxSceneParticles, options.max_particles);
+    auto too_many = [&](int64_t count) {
+      return SceneError(
+          scene.path, key + ".spacing",
+          "the scene would have " + std::to_string(count) + " particles (allowed: at most " +
+              std::to_string(budget) +
+              (options.budget_why.empty() || budget == kMaxSceneParticles ? std::string()
+                                                                          : ", " + options.budget_why) +
+              "; use a larger spacing or a smaller --scale)");
+    };
     if ((body.shape == "box" || body.shape == "plate") && body.particles == "grid") {
       // Counted before the particles are made.
       const auto n = box_grid_counts(body.size, spacing);
-      if (total + n[0] * n[1] * n[2] > kMaxScene)
-        throw SceneError(scene.path, key + ".spacing",
-                         "the scene would have " + std::to_string(total + n[0] * n[1] * n[2]) +
-                             " particles (allowed: at most 1073741823)");
+      if (total + n[0] * n[1] * n[2] > budget) throw too_many(total + n[0] * n[1] * n[2]);
     }
     ParticleGeometry geometry;
     try {
-      geometry = body_particles(body, spacing, spacing_factor, scene.seed + b, kMaxScene - total, key);
+      geometry = body_particles(body, spacing, spacing_factor, scene.seed + b, budget - total, key);
     } catch (const MeshError& e) {
       const bool from_file = body.shape == "mesh" && e.path() == body.mesh_path;
       throw SceneError(scene.path, key + (from_file ? ".mesh" : ".particles"), e.what());
     }
     total += int64_t(geometry.size());
-    if (total > kMaxScene)
-      throw SceneError(
-          scene.path, key + ".spacing",
-          "the scene would have " + std::to_string(total) + " particles (allowed: at most 1073741823)");
+    if (total > budget) throw too_many(total);
 
     const SceneMaterial& sm = find_material(scene, body.material);
     if (b > 0 && sm.model != find_material(scene, scene.bodies[0].material).model)

@@ -13,10 +13,17 @@ namespace pd {
 // dt = "auto" takes this fraction of the stable time step estimate.
 constexpr double kAutoDtFraction = 0.5;
 
+// Particle indices are int32 and some kernels form 2 i: the hard limit of a scene.
+constexpr int64_t kMaxSceneParticles = 1073741823;
+
 struct SetupOptions {
   // Multiplies every body's particle count (approximately): spacing is divided by
   // cbrt(scale). Lets a CPU run a small version of a GPU scene.
   double scale = 1.0;
+  // Particle budget (memory_budget.h): a scene over it is refused before its particles are
+  // made, with `budget_why` saying where the limit comes from.
+  int64_t max_particles = kMaxSceneParticles;
+  std::string budget_why;
 };
 
 // What the setup derived, for the start-up report.

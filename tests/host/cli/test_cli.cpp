@@ -15,9 +15,9 @@ struct Result {
   std::string output;  // stdout and stderr together
 };
 
-Result run_perifrac(const std::string& args) {
+Result run_perifrac(const std::string& args, const std::string& env = "") {
   Result r;
-  const std::string cmd = std::string(PERIFRAC_BINARY) + " " + args + " 2>&1";
+  const std::string cmd = env + " " + std::string(PERIFRAC_BINARY) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   char buf[4096];
   while (size_t n = std::fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
@@ -157,6 +157,16 @@ TEST_F(Cli, BlowUpIsDetectedWithTheStep) {
   EXPECT_NE(r.output.find("numerical blow-up"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("step 20"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out() + "/frame_00000.pfr"));
+}
+
+// Too many particles for the machine's memory: refused before set-up makes them, exit code 2.
+TEST_F(Cli, SceneLargerThanMemoryIsRefused) {
+  const Result r = run_perifrac(
+      "run " + scene("size = [0.1, 0.1, 0.1]\nspacing = 0.001\n") + " --backend cpu --out " + out(),
+      "PERIFRAC_HOST_MEMORY_MB=20");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("1000000 particles"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("free host memory"), std::string::npos) << r.output;
 }
 
 }  // namespace
