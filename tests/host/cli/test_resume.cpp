@@ -107,11 +107,14 @@ class Resume : public testing::TempDirTest {
 
 TEST_F(Resume, KilledRunsResumeToTheUninterruptedResult) {
   const std::string reference = path("reference"), killed = path("killed");
+  const auto t0 = std::chrono::steady_clock::now();
   ASSERT_EQ(run(fresh(reference, "0"), log_), 0) << read_all(log_);
+  const int run_ms = int(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
 
-  // Kill at random points until a run completes; resume from the checkpoint when there is one.
+  // Kill at random points (within a run's duration, so sanitizer builds are hit alike) until a
+  // run completes; resume from the checkpoint when there is one.
   std::mt19937 rng(12345);
-  std::uniform_int_distribution<int> delay_ms(30, 600);
+  std::uniform_int_distribution<int> delay_ms(run_ms / 20, run_ms / 2);
   int kills = 0, resumes = 0, code = -1;
   for (int attempt = 0; attempt < 60 && code != 0; ++attempt) {
     const bool have_checkpoint = std::filesystem::exists(killed + "/checkpoint.pck");
