@@ -100,19 +100,19 @@ std::string json_escape(const std::string& s) {
 int bench_command(const BenchOptions& opt) {
   if (opt.steps < 1 || opt.warmup < 0 || opt.lattice < 4 || opt.horizon < 1)
     throw std::invalid_argument("bench: need --steps >= 1, --warmup >= 0, --lattice >= 4, --horizon >= 1");
+  std::string note;
+  const Backend backend = choose_backend(opt.backend, &note);
   std::string workload;
   SimulationInput input;
   if (!opt.scene.empty()) {
     const Scene scene = load_scene(opt.scene);
-    input = setup_scene(scene, {opt.scale}).input;
+    input = setup_scene(scene, setup_options_for(scene, opt.scale, backend)).input;
     workload = std::filesystem::path(opt.scene).stem().string();
   } else {
     input = lattice_input(opt);
     workload = "lattice" + std::to_string(opt.lattice) + "_h" + std::to_string(int(opt.horizon)) + "_" +
                opt.model + (opt.contact ? "_contact" : "");
   }
-  std::string note;
-  const Backend backend = choose_backend(opt.backend, &note);
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
   auto engine = make_engine(backend, input);
   const FamilyStats& fam = engine->family_stats();

@@ -15,7 +15,6 @@
 #include "../io/atomic_file.h"
 #include "../io/frame_file.h"
 #include "../io/vtk_writer.h"
-#include "../memory_budget.h"
 #include "../scene/scene.h"
 #include "../scene/scene_setup.h"
 #include "backend_choice.h"
@@ -100,23 +99,6 @@ FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<in
   return f;
 }
 
-// Set-up within the memory of the machine and the backend: the particle budget follows from
-// the largest horizon and whether a material is plastic.
-SetupOptions setup_options(const Scene& scene, double scale, Backend backend) {
-  double horizon = 1;
-  bool plastic = false;
-  for (const SceneMaterial& m : scene.materials) {
-    horizon = std::max(horizon, m.horizon);
-    plastic = plastic || m.plastic.has_value();
-  }
-  const ParticleBudget budget = particle_budget(backend, horizon, plastic);
-  SetupOptions o;
-  o.scale = scale;
-  o.max_particles = budget.max_particles;
-  o.budget_why = budget.why;
-  return o;
-}
-
 // Reads the checkpoint of `opt.resume` and takes over what the run was started with: the scene
 // (unless given again), scale, steps per frame, blending, and the frame count unless --frames
 // extends it.
@@ -174,7 +156,7 @@ int run_command(const RunOptions& options) {
   if (opt.steps_per_frame >= 1) scene.steps_per_frame = opt.steps_per_frame;
   std::string note;
   const Backend backend = choose_backend(opt.backend, &note);
-  const SetupResult setup = setup_scene(scene, setup_options(scene, opt.scale, backend));
+  const SetupResult setup = setup_scene(scene, setup_options_for(scene, opt.scale, backend));
   print_setup(scene, setup, opt);
   check_time_step(scene, setup, opt.allow_unstable_dt);
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());

@@ -14,6 +14,7 @@
 #include "../geometry/tet_particles.h"
 #include "../geometry/voronoi_particles.h"
 #include "../material.h"
+#include "../memory_budget.h"
 #include "../random.h"
 
 namespace pd {
@@ -248,6 +249,20 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   }
   in.contact = scene.contact;
   return result;
+}
+
+SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend) {
+  double horizon = 1;
+  bool plastic = false;
+  for (const SceneMaterial& m : scene.materials) {
+    horizon = std::max(horizon, m.horizon);
+    plastic = plastic || m.plastic.has_value();
+  }
+  const ParticleBudget budget = particle_budget(backend, horizon, plastic);
+  SetupOptions o(scale);
+  o.max_particles = budget.max_particles;
+  o.budget_why = budget.why;
+  return o;
 }
 
 }  // namespace pd

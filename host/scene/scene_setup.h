@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "../adjacency.h"
+#include "../engine.h"
 #include "../particle_set.h"
 #include "scene.h"
 
@@ -17,6 +18,7 @@ constexpr double kAutoDtFraction = 0.5;
 constexpr int64_t kMaxSceneParticles = 1073741823;
 
 struct SetupOptions {
+  SetupOptions(double scale_factor = 1.0) : scale(scale_factor) {}  // NOLINT: {scale} reads well
   // Multiplies every body's particle count (approximately): spacing is divided by
   // cbrt(scale). Lets a CPU run a small version of a GPU scene.
   double scale = 1.0;
@@ -46,5 +48,9 @@ struct SetupResult {
 // Throws SceneError for problems that only show once sizes are known (too many particles,
 // too many material/spacing combinations, a scale out of range).
 SetupResult setup_scene(const Scene& scene, const SetupOptions& options);
+
+// Options for a run on `backend`: the particle budget (memory_budget.h) follows from the
+// machine's free memory, the largest horizon and whether a material is plastic.
+SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend);
 
 }  // namespace pd
