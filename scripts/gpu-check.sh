@@ -33,6 +33,17 @@ walls=scenes/chen_four_walls.toml
 step equiv-walls-cpu "$bin" run "$walls" --backend cpu --scale 0.02 --frames 4 --out "$OUT/equiv-walls-cpu"
 step equiv-walls-gpu "$bin" run "$walls" --backend cuda --scale 0.02 --frames 4 --out "$OUT/equiv-walls-gpu"
 step equiv-walls-compare "$bin" compare "$OUT/equiv-walls-cpu" "$OUT/equiv-walls-gpu"
+# Determinism (two runs, identical files) and checkpoint/resume (bit for bit) on the GPU.
+same_files() {
+  local a=$1 b=$2; shift 2
+  for f in "$@"; do cmp "$a/$f" "$b/$f" || return 1; done
+  echo "identical: $*"
+}
+step determinism-run "$bin" run "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu-again"
+step determinism-compare same_files "$OUT/equiv-gpu" "$OUT/equiv-gpu-again" frame_00003.pfr energy.csv fragments_00003.pfg
+step resume-first "$bin" run "$walls" --backend cuda --scale 0.02 --frames 2 --checkpoint-every 2 --out "$OUT/resume"
+step resume-rest "$bin" run --resume "$OUT/resume" --frames 4
+step resume-compare same_files "$OUT/equiv-walls-gpu" "$OUT/resume" frame_00004.pfr energy.csv fragments_00004.pfg
 # compute-sanitizer on a small scene of each material model, and on the renderer.
 for tool in memcheck racecheck; do
   step "sanitizer-$tool" compute-sanitizer --tool "$tool" --error-exitcode 9 \
