@@ -100,8 +100,8 @@ FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<in
 }
 
 // Reads the checkpoint of `opt.resume` and takes over what the run was started with: the scene
-// (unless given again), scale, steps per frame, blending, and the frame count unless --frames
-// extends it.
+// (unless given again), backend (unless given), scale, steps per frame, blending, and the frame
+// count unless --frames extends it.
 RunCheckpoint open_resume(RunOptions& opt) {
   const std::string path = opt.resume + "/" + kCheckpointFileName;
   if (!std::filesystem::exists(path))
@@ -119,6 +119,7 @@ RunCheckpoint open_resume(RunOptions& opt) {
     throw ResumeError("--out '" + opt.out + "' and --resume '" + opt.resume +
                       "' differ: a resumed run continues in its own folder");
   opt.out = opt.resume;
+  if (opt.backend == "auto") opt.backend = c.backend;  // bit for bit needs the same backend
   opt.scale = c.scale;
   opt.blend_frames = c.blend_frames;
   opt.allow_unstable_dt = opt.allow_unstable_dt || c.allow_unstable_dt;
