@@ -35,18 +35,22 @@ SimulationInput lattice_input(const BenchOptions& opt) {
   if (opt.model == "bond_based") {
     m.partial_volumes = 0;
     m.micromodulus = real(pmb_micromodulus(32.81e9, delta));
-  } else if (opt.model == "state_based" || opt.model == "plastic") {
+  } else if (opt.model == "state_based" || opt.model == "plastic" || opt.model == "anisotropic") {
     m.model = kStateBased;
     m.bulk_modulus = real(72e9 / (3 * (1 - 2 * 0.22)));
     m.shear_modulus = real(72e9 / (2 * 1.22));
+    if (opt.model == "anisotropic") {  // bonds along z weighted twice: G = I - 0.5 z z^T
+      m.anisotropic = 1;
+      m.aniso[8] = real(0.5);
+    }
     if (opt.model == "plastic") {
       m.plastic = 1;
       m.yield_psi0 = real(yield_psi0(1e3, delta));
       m.plastic_limit = real(0.05);
     }
   } else {
-    throw std::invalid_argument("bench: --model must be bond_based, state_based or plastic, got '" +
-                                opt.model + "'");
+    throw std::invalid_argument(
+        "bench: --model must be bond_based, state_based, plastic or anisotropic, got '" + opt.model + "'");
   }
   const int64_t n = opt.lattice;
   in.particles.reserve(size_t(n * n * n));

@@ -7,9 +7,9 @@
 #include "host/app/checkpoint.h"
 #include "host/app/compare.h"
 #include "host/app/run.h"
-#include "host/memory_budget.h"
 #include "host/engine.h"
 #include "host/io/atomic_file.h"
+#include "host/memory_budget.h"
 #include "host/scene/scene.h"
 #include "render/render_frames.h"
 
@@ -52,7 +52,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--lattice", bench.lattice, "lattice particles per side");
   bench_cmd->add_option("--horizon", bench.horizon, "lattice delta / lambda");
   bench_cmd->add_flag("--contact", bench.contact, "lattice: include collection + collisions");
-  bench_cmd->add_option("--model", bench.model, "lattice material: bond_based | state_based | plastic")
+  bench_cmd
+      ->add_option("--model", bench.model,
+                   "lattice material: bond_based | state_based | plastic | anisotropic")
       ->check(CLI::IsMember({"bond_based", "state_based", "plastic"}));
   bench_cmd->add_option("--backend", bench.backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
