@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   bench_cmd
       ->add_option("--model", bench.model,
                    "lattice material: bond_based | state_based | plastic | anisotropic")
-      ->check(CLI::IsMember({"bond_based", "state_based", "plastic"}));
+      ->check(CLI::IsMember({"bond_based", "state_based", "plastic", "anisotropic"}));
   bench_cmd->add_option("--backend", bench.backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   bench_cmd->add_option("--steps", bench.steps, "timed steps");
