@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -35,6 +37,7 @@ class EngineImpl final : public Engine {
     if (n_ <= 0) throw std::runtime_error("the scene has no particles");
     upload_particles(ps);
     build_families();
+    compute_critical_time_step();
     if (features_.state_based) allocate_state();
     if (contact_) allocate_contact_hash();
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
@@ -95,6 +98,7 @@ class EngineImpl final : public Engine {
   }
 
   size_t memory_bytes() const override { return allocated_; }
+  double critical_time_step() const override { return critical_dt_; }
 
   void save(EngineSnapshot& out) override {
     out.step = step_;
@@ -279,6 +283,17 @@ class EngineImpl final : public Engine {
     intact_.upload(counts);
   }
 
+  // Smallest stable step over the particles, from the families as built.
+  void compute_critical_time_step() {
+    auto rate = make<double>(size_t(n_));
+    launch_stability_rate(exec_, particles(), bonds(), materials_, rate.data());
+    std::vector<double> host;
+    rate.download(host);
+    drop(rate);
+    const double fastest = *std::max_element(host.begin(), host.end());
+    critical_dt_ = fastest > 0 ? std::sqrt(2.0 / fastest) : std::numeric_limits<double>::infinity();
+  }
+
   // The bond arrays are the bulk of the memory: refused with a clear message, before they are
   // allocated, when the backend has not enough free.
   void check_bond_memory(int64_t slots) const {
@@ -341,6 +356,7 @@ class EngineImpl final : public Engine {
   int64_t step_ = 0;
   double time_ = 0;
   size_t allocated_ = 0;
+  double critical_dt_ = 0;
   FamilyStats family_;
 
   DeviceArray<Vec4, Exec> rest_, disp_, state_;

@@ -147,6 +147,12 @@ void launch_weighted_volume(Exec& ex, ParticlesView p, BondsView b, MaterialTabl
 }
 
 template <class Exec>
+void launch_stability_rate(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, double* rate) {
+  ex.parallel_for("family/stability", p.n,
+                  [=] PD_HD(int64_t i) { rate[i] = stability_rate(int32_t(i), p, b, mt); });
+}
+
+template <class Exec>
 void launch_reverse_bonds(Exec& ex, BondsView b, uint16_t* reverse) {
   ex.parallel_for("family/reverse", b.n, [=] PD_HD(int64_t i) { reverse_bond(int32_t(i), b, reverse); });
 }

@@ -82,6 +82,9 @@ class Engine {
   // Throws std::invalid_argument, changing nothing, when the snapshot's sizes are not this
   // engine's (another scene or scale).
   virtual void restore(const EngineSnapshot& in) = 0;
+  // Stable time step from the families as built (Silling & Askari 2005, eq. 29):
+  // min_i sqrt(2 rho_i / sum_j beta V_j c / |xi_j|); infinite for particles without bonds.
+  virtual double critical_time_step() const = 0;
   // Bytes of backend memory held by the engine.
   virtual size_t memory_bytes() const = 0;
 };

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "../views.h"
+#include "bond.h"
 #include "collection.h"
 
 namespace pd {
@@ -59,6 +60,27 @@ PD_HD inline void reverse_bond(int32_t i, BondsView b, uint16_t* reverse) {
         break;
       }
   }
+}
+
+// The Silling & Askari (2005, eq. 29) stability rate of particle i over its family as built:
+// sum_j beta V_j c / |xi_j| / rho_i, so that dt_c,i = sqrt(2 / rate). State-based materials use
+// the micromodulus of the PMB material with the same P-wave modulus, c = 18 K' / (pi delta^4),
+// K' = (K + 4 mu / 3) / 1.8 (PMB's own P-wave modulus is 1.8 K), as host/material.h's estimate.
+PD_HD inline double stability_rate(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+  const Material& m = mt.m[p.material[i]];
+  double c = double(m.micromodulus);
+  if (m.model == kStateBased) {
+    const double k_eq = (double(m.bulk_modulus) + 4.0 * double(m.shear_modulus) / 3.0) / 1.8;
+    const double d = double(m.horizon);
+    c = 18.0 * k_eq / (3.14159265358979323846 * d * d * d * d);
+  }
+  double sum = 0;
+  for (int32_t k = 0; k < b.count[i]; ++k) {
+    const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
+    const real r0 = length(xyz(p.rest[j]) - xyz(p.rest[i]));
+    sum += double(volume_fraction(r0, m)) * double(p.volume(j)) * c / double(r0);
+  }
+  return sum * double(p.volume(i)) * double(p.inv_mass[i]);
 }
 
 }  // namespace pd

@@ -171,6 +171,16 @@ int run_command(const RunOptions& options) {
       (long long)fam.bonds, fam.min, fam.mean, fam.max,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count(),
       double(engine->memory_bytes()) / (1 << 20));
+  const double family_dt = engine->critical_time_step();
+  std::printf("stability  dt_c from the families %.4g s (continuum estimate %.4g s): dt = %.2f of it\n",
+              family_dt, setup.critical_dt, setup.dt / family_dt);
+  if (setup.dt > family_dt && !opt.allow_unstable_dt) {
+    std::ostringstream msg;
+    msg << "dt = " << setup.dt << " s exceeds the stable time step " << family_dt
+        << " s computed from the particles' families (allowed: dt <= " << family_dt
+        << "; pass --allow-unstable-dt to run anyway)";
+    throw SceneError(scene.path, "simulation.dt", msg.str());
+  }
 
   // Output folder: rest state once, then one set of files per frame.
   const std::string out =
