@@ -27,6 +27,23 @@ std::string read_file_bytes(const std::string& path) {
   return bytes;
 }
 
+std::string printable(std::string_view text) {
+  constexpr size_t kMax = 60;
+  std::string out;
+  for (size_t k = 0; k < text.size() && k < kMax; ++k) {
+    const unsigned char c = static_cast<unsigned char>(text[k]);
+    if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += char(c);
+    }
+  }
+  if (text.size() > kMax) out += "...";
+  return out;
+}
+
 }  // namespace detail
 
 TriMesh read_mesh(const std::string& path) {

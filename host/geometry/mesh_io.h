@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "tri_mesh.h"
 
@@ -17,6 +18,12 @@ TriMesh read_ply(const std::string& path);
 // STL stores each facet's own corners; identical corners are merged into one vertex.
 TriMesh read_stl(const std::string& path);
 
+// The same readers over a file's bytes already in memory (the read_* functions read the file and
+// call these); `path` names the mesh in messages only.
+TriMesh parse_obj(const std::string& bytes, const std::string& path);
+TriMesh parse_ply(const std::string& bytes, const std::string& path);
+TriMesh parse_stl(const std::string& bytes, const std::string& path);
+
 // Writers (atomic: temporary file, then rename; IoError on failure).
 void write_obj(const TriMesh& mesh, const std::string& path);
 void write_ply(const TriMesh& mesh, const std::string& path, bool binary);
@@ -25,6 +32,9 @@ void write_stl(const TriMesh& mesh, const std::string& path, bool binary);
 namespace detail {
 // The whole file as bytes; MeshError when it cannot be read.
 std::string read_file_bytes(const std::string& path);
+// Text of a file quoted in a message: control characters as \xNN and at most 60 characters
+// ("..." marks a cut), so every message stays one printable line.
+std::string printable(std::string_view text);
 }  // namespace detail
 
 }  // namespace pd

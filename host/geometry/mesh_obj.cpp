@@ -30,7 +30,10 @@ struct Line {
 }  // namespace
 
 TriMesh read_obj(const std::string& path) {
-  const std::string text = detail::read_file_bytes(path);
+  return parse_obj(detail::read_file_bytes(path), path);
+}
+
+TriMesh parse_obj(const std::string& text, const std::string& path) {
   TriMesh mesh;
   std::string token;
   std::vector<int32_t> polygon;
@@ -54,7 +57,7 @@ TriMesh read_obj(const std::string& path) {
         if (!line.next(token)) fail("a vertex needs 3 coordinates", "v x y z");
         char* stop = nullptr;
         v[c] = std::strtod(token.c_str(), &stop);
-        if (*stop != '\0') fail("'" + token + "' is not a number", "v x y z");
+        if (*stop != '\0') fail("'" + detail::printable(token) + "' is not a number", "v x y z");
       }
       mesh.vertices.push_back(v);
     } else if (token == "f") {
@@ -64,7 +67,7 @@ TriMesh read_obj(const std::string& path) {
         char* stop = nullptr;
         const long index = std::strtol(token.c_str(), &stop, 10);
         if (stop == token.c_str() || (*stop != '\0' && *stop != '/'))
-          fail("'" + token + "' is not a vertex index", "f i j k ... with i, j[/vt][/vn]");
+          fail("'" + detail::printable(token) + "' is not a vertex index", "f i j k ... with i, j[/vt][/vn]");
         const long n = long(mesh.vertices.size());
         const long resolved = index > 0 ? index - 1 : n + index;
         if (index == 0 || resolved < 0 || resolved >= n)

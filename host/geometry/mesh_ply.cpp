@@ -121,7 +121,9 @@ class Body {
     const std::string token = bytes_.substr(start, pos_ - start);
     char* stop = nullptr;
     const double v = std::strtod(token.c_str(), &stop);
-    if (*stop != '\0') throw MeshError(path_, where + ": '" + token + "' is not a number (allowed: numbers)");
+    if (*stop != '\0')
+      throw MeshError(path_,
+                      where + ": '" + detail::printable(token) + "' is not a number (allowed: numbers)");
     return v;
   }
 
@@ -138,7 +140,10 @@ class Body {
 }  // namespace
 
 TriMesh read_ply(const std::string& path) {
-  const std::string bytes = detail::read_file_bytes(path);
+  return parse_ply(detail::read_file_bytes(path), path);
+}
+
+TriMesh parse_ply(const std::string& bytes, const std::string& path) {
   auto fail = [&](const std::string& what, const std::string& allowed) {
     throw MeshError(path, what + " (allowed: " + allowed + ")");
   };
@@ -157,9 +162,14 @@ TriMesh read_ply(const std::string& path) {
     if (word == "format") {
       words >> format;
     } else if (word == "element") {
+      // The count is a whole number of at most 18 digits ("-1" would wrap around as a size_t).
       Element e;
-      words >> e.name >> e.count;
-      if (!words) fail("bad element line '" + line + "'", "element NAME COUNT");
+      std::string count;
+      words >> e.name >> count;
+      if (!words || count.size() > 18 || count.find_first_not_of("0123456789") != std::string::npos)
+        fail("bad element line '" + detail::printable(line) + "'",
+             "element NAME COUNT, COUNT a whole number");
+      e.count = std::stoull(count);
       elements.push_back(e);
     } else if (word == "property") {
       if (elements.empty()) fail("a property before any element", "element lines first");
@@ -171,16 +181,16 @@ TriMesh read_ply(const std::string& path) {
         words >> count_type >> item_type >> p.name;
         p.list = true;
         if (!parse_type(count_type, p.count_type) || !parse_type(item_type, p.type))
-          fail("unknown type in '" + line + "'", kTypes);
+          fail("unknown type in '" + detail::printable(line) + "'", kTypes);
       } else {
         words >> p.name;
-        if (!parse_type(type, p.type)) fail("unknown type in '" + line + "'", kTypes);
+        if (!parse_type(type, p.type)) fail("unknown type in '" + detail::printable(line) + "'", kTypes);
       }
       elements.back().properties.push_back(p);
     }
   }
   if (format != "ascii" && format != "binary_little_endian")
-    fail("format '" + format + "' is not supported", "ascii, binary_little_endian");
+    fail("format '" + detail::printable(format) + "' is not supported", "ascii, binary_little_endian");
   size_t body_start = bytes.find('\n', header_end);
   body_start = body_start == std::string::npos ? bytes.size() : body_start + 1;
 
@@ -203,9 +213,12 @@ TriMesh read_ply(const std::string& path) {
       fail("the face element lacks a vertex_indices list", "property list ... vertex_indices");
     has_faces = has_faces || is_face;
 
+    // An element without properties has nothing in the body, however many items it declares.
+    if (e.properties.empty()) continue;
     std::vector<int32_t> polygon;
+    const std::string name = detail::printable(e.name);
     for (size_t i = 0; i < e.count; ++i) {
-      const std::string where = e.name + " " + std::to_string(i);
+      const std::string where = name + " " + std::to_string(i);
       Vec3d v{};
       for (size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];

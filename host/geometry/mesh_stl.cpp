@@ -1,5 +1,6 @@
 // STL, binary (80-byte header, count, 50-byte facets) or ascii (solid/facet/vertex). Facets
 // carry their own corners; bit-identical corners are merged so the mesh is indexed.
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -18,6 +19,12 @@ class Welder {
  public:
   explicit Welder(TriMesh& mesh) : mesh_(mesh) {}
   int32_t add(const Vec3d& v) {
+    // NaN is unordered, so the map would take a corner with one for an unrelated vertex and the
+    // NaN would vanish: a non-finite corner stays a vertex of its own, for the mesh check to report.
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+      mesh_.vertices.push_back(v);
+      return int32_t(mesh_.vertices.size() - 1);
+    }
     const auto [it, inserted] = index_.emplace(v, int32_t(mesh_.vertices.size()));
     if (inserted) mesh_.vertices.push_back(v);
     return it->second;
@@ -94,7 +101,10 @@ TriMesh read_ascii(const std::string& path, const std::string& text) {
 }  // namespace
 
 TriMesh read_stl(const std::string& path) {
-  const std::string bytes = detail::read_file_bytes(path);
+  return parse_stl(detail::read_file_bytes(path), path);
+}
+
+TriMesh parse_stl(const std::string& bytes, const std::string& path) {
   // Binary when the size matches the facet count of the header; ascii files start with "solid"
   // (binary headers may too, so the size decides first).
   if (bytes.size() >= 84) {

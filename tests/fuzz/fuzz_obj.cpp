@@ -1,0 +1,13 @@
+// libFuzzer target: the input bytes as a Wavefront OBJ file (parse_obj, then check_solid).
+// A broken contract escapes as an exception, which libFuzzer reports as a crash.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "fuzz_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string bytes(reinterpret_cast<const char*>(data), size);
+  pd::fuzz::mesh_entry(pd::fuzz::MeshFormat::obj, bytes);
+  return 0;
+}
