@@ -1,4 +1,6 @@
 // The CUDA engine: the shared kernel bodies launched one particle per thread.
+#include <nvtx3/nvToolsExt.h>
+
 #include "engine_impl.h"
 #include "exec_cuda.cuh"
 
@@ -23,6 +25,13 @@ size_t cuda_free_bytes() {
     return 0;
   }
   return free_b;
+}
+
+void profiler_range_push(const char* name) {
+  nvtxRangePushA(name);
+}
+void profiler_range_pop() {
+  nvtxRangePop();
 }
 
 std::unique_ptr<Engine> make_cuda_engine(const SimulationInput& in) {

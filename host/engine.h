@@ -99,4 +99,8 @@ bool cuda_device_available(std::string* why = nullptr);
 // Free memory of the CUDA device; 0 when there is none.
 size_t cuda_free_bytes();
 
+// Named ranges for GPU profilers (NVTX push/pop); no-ops in a build without CUDA.
+void profiler_range_push(const char* name);
+void profiler_range_pop();
+
 }  // namespace pd

@@ -14,6 +14,9 @@ size_t cuda_free_bytes() {
   return 0;
 }
 
+void profiler_range_push(const char*) {}
+void profiler_range_pop() {}
+
 std::unique_ptr<Engine> make_cuda_engine(const SimulationInput&) {
   throw std::runtime_error("CUDA backend unavailable: this build has no CUDA support");
 }

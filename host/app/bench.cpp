@@ -14,6 +14,7 @@
 #include "../scene/scene_setup.h"
 #include "backend_choice.h"
 #include "kernel_report.h"
+#include "provenance.h"
 #include "run.h"
 
 namespace pd {
@@ -69,25 +70,6 @@ SimulationInput lattice_input(const BenchOptions& opt) {
   in.step.contact_stiffness = real(1e8);
   in.contact = opt.contact;
   return in;
-}
-
-std::string utc_now(const char* fmt) {
-  const std::time_t t = std::time(nullptr);
-  char buf[64];
-  std::strftime(buf, sizeof buf, fmt, std::gmtime(&t));
-  return buf;
-}
-
-std::string git_revision() {
-  if (const char* env = std::getenv("PERIFRAC_GIT_REV")) return env;
-  std::string rev;
-  if (FILE* p = popen("git rev-parse --short HEAD 2>/dev/null", "r")) {
-    char buf[64];
-    if (std::fgets(buf, sizeof buf, p)) rev = buf;
-    pclose(p);
-  }
-  while (!rev.empty() && (rev.back() == '\n' || rev.back() == '\r')) rev.pop_back();
-  return rev.empty() ? "unknown" : rev;
 }
 
 std::string json_escape(const std::string& s) {

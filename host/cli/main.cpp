@@ -6,6 +6,7 @@
 #include "host/app/bench.h"
 #include "host/app/checkpoint.h"
 #include "host/app/compare.h"
+#include "host/app/profile.h"
 #include "host/app/run.h"
 #include "host/engine.h"
 #include "host/io/atomic_file.h"
@@ -63,6 +64,21 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--out", bench.out, "results folder");
 
   RenderOptions render;
+  ProfileOptions profile;
+  CLI::App* profile_cmd = app.add_subcommand(
+      "profile", "time per kernel in step ranges of a scene (before/during/after fracture)");
+  profile_cmd->add_option("scene", profile.scene, "scene file (TOML)")->required();
+  profile_cmd->add_option("--ranges", profile.ranges, "step ranges A:B,C:D (default: 5 equal ranges)");
+  profile_cmd->add_option("--steps", profile.steps, "steps to run (default: to the last range's end)")
+      ->check(CLI::PositiveNumber);
+  profile_cmd
+      ->add_option("--timeline", profile.timeline, "timeline resolution in steps (default: ~100 points)")
+      ->check(CLI::NonNegativeNumber);
+  profile_cmd->add_option("--scale", profile.scale, "scene particle-count factor");
+  profile_cmd->add_option("--backend", profile.backend, "auto | cpu | cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  profile_cmd->add_option("--out", profile.out, "results folder");
+
   CLI::App* render_cmd = app.add_subcommand("render", "render a run's frames to PNG (DIR/render/)");
   render_cmd->add_option("dir", render.dir, "output folder of `perifrac run`")->required();
   render_cmd->add_option("--out", render.out, "image folder (default: DIR/render)");
@@ -91,6 +107,7 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (*bench_cmd) return bench_command(bench);
+    if (*profile_cmd) return profile_command(profile);
     if (*compare_cmd) return compare_command(compare);
     if (*render_cmd) return render_frames(render);
     if (*info_cmd) {

@@ -1,0 +1,190 @@
+#include "profile.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "../engine.h"
+#include "../io/atomic_file.h"
+#include "../scene/scene.h"
+#include "../scene/scene_setup.h"
+#include "backend_choice.h"
+#include "provenance.h"
+
+namespace pd {
+
+namespace {
+
+// Per-kernel seconds and launches of the step kernels ("pd/") since the last reset.
+std::map<std::string, KernelStat> step_kernels(const KernelStats& stats) {
+  std::map<std::string, KernelStat> out;
+  for (const auto& [name, s] : stats.table())
+    if (name.rfind("pd/", 0) == 0 && s.launches > 0) out[name.substr(3)] = s;
+  return out;
+}
+
+struct RangeResult {
+  int64_t begin = 0, end = 0;
+  std::map<std::string, KernelStat> kernels;  // summed over the range
+  double broken = 0;                          // broken-bond fraction at the end
+};
+
+}  // namespace
+
+std::vector<std::pair<int64_t, int64_t>> parse_step_ranges(const std::string& text) {
+  std::vector<std::pair<int64_t, int64_t>> ranges;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    long long a = -1, b = -1;
+    char tail = 0;
+    if (std::sscanf(item.c_str(), "%lld:%lld%c", &a, &b, &tail) != 2 || a < 0 || b <= a)
+      throw std::invalid_argument("--ranges: '" + item +
+                                  "' is not a step range A:B with 0 <= A < B (e.g. 0:1000,50000:51000)");
+    ranges.emplace_back(a, b);
+  }
+  if (ranges.empty()) throw std::invalid_argument("--ranges: no range given (e.g. 0:1000,50000:51000)");
+  std::sort(ranges.begin(), ranges.end());
+  for (size_t k = 1; k < ranges.size(); ++k)
+    if (ranges[k].first < ranges[k - 1].second)
+      throw std::invalid_argument(
+          "--ranges: " + std::to_string(ranges[k - 1].first) + ":" + std::to_string(ranges[k - 1].second) +
+          " and " + std::to_string(ranges[k].first) + ":" + std::to_string(ranges[k].second) + " overlap");
+  return ranges;
+}
+
+int profile_command(const ProfileOptions& opt) {
+  Scene scene = load_scene(opt.scene);
+  std::string note;
+  const Backend backend = choose_backend(opt.backend, &note);
+  const SetupResult setup = setup_scene(scene, setup_options_for(scene, opt.scale, backend));
+  const int64_t scene_steps = scene.frames * scene.steps_per_frame;
+
+  // Ranges and the run length.
+  std::vector<std::pair<int64_t, int64_t>> ranges;
+  if (!opt.ranges.empty()) ranges = parse_step_ranges(opt.ranges);
+  const int64_t steps = opt.steps > 0 ? opt.steps : (ranges.empty() ? scene_steps : ranges.back().second);
+  if (ranges.empty())
+    for (int k = 0; k < 5; ++k) ranges.emplace_back(steps * k / 5, steps * (k + 1) / 5);
+  if (ranges.back().second > steps)
+    throw std::invalid_argument("--ranges: the last range ends at step " +
+                                std::to_string(ranges.back().second) + ", after the run's " +
+                                std::to_string(steps) + " steps (raise --steps)");
+  const int64_t chunk = opt.timeline > 0 ? opt.timeline : std::max<int64_t>(1, steps / 100);
+
+  auto engine = make_engine(backend, setup.input);
+  const int64_t bonds = engine->family_stats().bonds;
+  if (!note.empty()) std::printf("backend    %s\n", note.c_str());
+  std::printf("profile    %s on %s [%s]: %zu particles, %lld bonds, %lld steps, dt %.4g s\n",
+              scene.path.c_str(), engine->device_name().c_str(), backend_name(backend),
+              setup.input.particles.size(), (long long)bonds, (long long)steps, setup.dt);
+
+  // Chunk boundaries: the timeline's and the ranges' ends, so every chunk is inside or outside
+  // each range.
+  std::set<int64_t> cuts;
+  for (int64_t s = chunk; s < steps; s += chunk) cuts.insert(s);
+  for (const auto& [a, b] : ranges) {
+    cuts.insert(a);
+    cuts.insert(b);
+  }
+  cuts.insert(steps);
+  cuts.erase(0);
+
+  std::vector<RangeResult> results;
+  for (const auto& [a, b] : ranges) results.push_back({a, b, {}, 0});
+  std::ostringstream timeline;
+  timeline << "step_begin,step_end,kernel,ms_per_step\n";
+  int64_t at = 0;
+  size_t open = ranges.size();  // index of the range being profiled, or ranges.size()
+  for (int64_t cut : cuts) {
+    for (size_t k = 0; k < ranges.size(); ++k)
+      if (ranges[k].first == at) {
+        profiler_range_push(
+            ("pd-range-" + std::to_string(ranges[k].first) + "-" + std::to_string(ranges[k].second)).c_str());
+        open = k;
+      }
+    engine->stats().reset_times();
+    engine->advance(cut - at);
+    for (const auto& [name, s] : step_kernels(engine->stats())) {
+      timeline << at << "," << cut << "," << name << "," << 1e3 * s.seconds / double(cut - at) << "\n";
+      if (open < ranges.size()) {
+        KernelStat& r = results[open].kernels[name];
+        r.seconds += s.seconds;
+        r.launches += s.launches;
+        r.registers = s.registers;
+        r.occupancy = s.occupancy;
+      }
+    }
+    at = cut;
+    if (open < ranges.size() && ranges[open].second == at) {
+      profiler_range_pop();
+      results[open].broken = bonds > 0 ? double(engine->broken_bonds()) / double(bonds) : 0;
+      open = ranges.size();
+    }
+    if (engine->first_non_finite() >= 0)
+      throw std::runtime_error("profile: the run blew up by step " + std::to_string(at) +
+                               " (run it with `perifrac run` for the watchdog's diagnosis)");
+  }
+
+  // Table: ms per step per kernel and range (Levine Table 2 layout), theoretical occupancy.
+  std::set<std::string> names;
+  for (const RangeResult& r : results)
+    for (const auto& [name, s] : r.kernels) names.insert(name);
+  std::printf("\n%-20s", "ms per step");
+  for (const RangeResult& r : results)
+    std::printf(" %15s", (std::to_string(r.begin) + ":" + std::to_string(r.end)).c_str());
+  std::printf("  regs  occupancy\n");
+  std::ostringstream csv;
+  csv << "range_begin,range_end,kernel,launches,ms_per_step,share,bond_updates_per_s,registers,"
+         "theoretical_occupancy,broken_fraction\n";
+  for (const std::string& name : names) {
+    std::printf("%-20s", name.c_str());
+    int regs = -1;
+    double occupancy = -1;
+    for (const RangeResult& r : results) {
+      const auto it = r.kernels.find(name);
+      const double n = double(r.end - r.begin);
+      double total = 0;
+      for (const auto& [k, s] : r.kernels) total += s.seconds;
+      if (it == r.kernels.end()) {
+        std::printf(" %15s", "-");
+        continue;
+      }
+      const KernelStat& s = it->second;
+      regs = s.registers;
+      occupancy = s.occupancy;
+      std::printf(" %15.4f", 1e3 * s.seconds / n);
+      csv << r.begin << "," << r.end << "," << name << "," << s.launches << "," << 1e3 * s.seconds / n << ","
+          << (total > 0 ? s.seconds / total : 0) << "," << (s.seconds > 0 ? double(bonds) * n / s.seconds : 0)
+          << "," << s.registers << "," << s.occupancy << "," << r.broken << "\n";
+    }
+    if (regs >= 0)
+      std::printf("  %4d  %9.2f\n", regs, occupancy);
+    else
+      std::printf("  %4s  %9s\n", "-", "-");
+  }
+  std::printf("%-20s", "step");
+  for (const RangeResult& r : results) {
+    double total = 0;
+    for (const auto& [k, s] : r.kernels) total += s.seconds;
+    std::printf(" %15.4f", 1e3 * total / double(r.end - r.begin));
+  }
+  std::printf("\n%-20s", "broken bonds %");
+  for (const RangeResult& r : results) std::printf(" %15.3f", 100 * r.broken);
+  std::printf("\n");
+
+  ensure_directory(opt.out);
+  const std::string stem = opt.out + "/" + utc_now("%Y%m%d-%H%M%S") + "_" + backend_name(backend) + "_" +
+                           std::filesystem::path(scene.path).stem().string();
+  const std::string header = "# " + engine->device_name() + ", " + utc_now("%Y-%m-%dT%H:%M:%SZ") + ", git " +
+                             git_revision() + ", scale " + std::to_string(opt.scale) + "\n";
+  write_file_atomic(stem + "_profile.csv", header + csv.str());
+  write_file_atomic(stem + "_timeline.csv", header + timeline.str());
+  std::printf("results    %s_profile.csv, %s_timeline.csv\n", stem.c_str(), stem.c_str());
+  return 0;
+}
+
+}  // namespace pd
