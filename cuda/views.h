@@ -90,8 +90,12 @@ struct Cell {
   int32_t x, y, z;
 };
 
+// Cell index along one axis, clamped to +-2^30 so that a runaway or non-finite position (a
+// blow-up the watchdog is about to report) still gives a valid cell and neighbour arithmetic
+// (c +- 1) cannot overflow; fmax/fmin map NaN to the lower bound.
 PD_HD inline int32_t cell_coord(real v, real inv_cell) {
-  return int32_t(std::floor(v * inv_cell));
+  constexpr real kLimit = real(1 << 30);
+  return int32_t(std::fmin(std::fmax(std::floor(v * inv_cell), -kLimit), kLimit));
 }
 PD_HD inline Cell cell_of(Vec3 p, real inv_cell) {
   return {cell_coord(p.x, inv_cell), cell_coord(p.y, inv_cell), cell_coord(p.z, inv_cell)};

@@ -1,6 +1,8 @@
 // Kernel 3 body: Levine eq. 6 quadratic repulsion.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <set>
 #include <vector>
@@ -57,6 +59,18 @@ TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
       if (length(pts[j] - pts[i]) < real(0.5) * cell) brute.insert(int32_t(j));
     for (int32_t j : brute) EXPECT_TRUE(half.count(j)) << i << " misses " << j;
   }
+}
+
+// Runaway positions (a blow-up in progress) map to valid cells whose neighbours do not overflow.
+TEST(Collisions, CellOfARunawayPositionIsClamped) {
+  const real inf = std::numeric_limits<real>::infinity();
+  for (real v : {real(1e30), real(-1e30), inf, -inf, std::numeric_limits<real>::quiet_NaN()}) {
+    const int32_t c = cell_coord(v, real(1e3));
+    EXPECT_LE(c, 1 << 30) << v;
+    EXPECT_GE(c, -(1 << 30)) << v;
+  }
+  EXPECT_EQ(cell_coord(real(2.5e-3), real(1e3)), 2);
+  EXPECT_EQ(cell_coord(real(-0.5e-3), real(1e3)), -1);
 }
 
 }  // namespace
