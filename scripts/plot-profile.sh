@@ -20,7 +20,7 @@ done
 gnuplot <<GP
 set terminal pngcairo size 1000,600 noenhanced
 set output '$png'
-set title "$(head -n 1 "$csv" | sed 's/^# //; s/"//g')"
+set title "$(head -n 1 "$csv" | sed 's/^# //; s/"//g')" font ",10"
 set xlabel 'step'
 set ylabel 'ms per step'
 set key outside right
