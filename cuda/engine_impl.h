@@ -103,43 +103,19 @@ class EngineImpl final : public Engine {
   void save(EngineSnapshot& out) override {
     out.step = step_;
     out.time = time_;
-    disp_.download(out.disp);
-    vel_.download(out.vel);
-    force_.download(out.force);
-    strain_min_.download(out.strain_min);
-    intact_.download(out.intact);
-    ledger_.download(out.ledger);
-    state_.download(out.state);
-    neighbor_.download(out.neighbor);
-    plastic_ext_.download(out.plastic);
+    for_each_state_array(out, [](const char*, auto& array, auto& host) { array.download(host); });
   }
 
   void restore(const EngineSnapshot& in) override {
-    const auto check = [](const char* what, size_t got, size_t want) {
-      if (got != want)
-        throw std::invalid_argument(std::string("snapshot ") + what + " has " + std::to_string(got) +
-                                    " entries, the engine " + std::to_string(want));
-    };
-    check("disp", in.disp.size(), disp_.size());
-    check("vel", in.vel.size(), vel_.size());
-    check("force", in.force.size(), force_.size());
-    check("strain_min", in.strain_min.size(), strain_min_.size());
-    check("intact", in.intact.size(), intact_.size());
-    check("ledger", in.ledger.size(), ledger_.size());
-    check("state", in.state.size(), state_.size());
-    check("neighbor", in.neighbor.size(), neighbor_.size());
-    check("plastic", in.plastic.size(), plastic_ext_.size());
+    auto& snapshot = const_cast<EngineSnapshot&>(in);  // only read below
+    for_each_state_array(snapshot, [](const char* what, auto& array, auto& host) {
+      if (host.size() != array.size())
+        throw std::invalid_argument(std::string("snapshot ") + what + " has " + std::to_string(host.size()) +
+                                    " entries, the engine " + std::to_string(array.size()));
+    });
     step_ = in.step;
     time_ = in.time;
-    disp_.upload(in.disp);
-    vel_.upload(in.vel);
-    force_.upload(in.force);
-    strain_min_.upload(in.strain_min);
-    intact_.upload(in.intact);
-    ledger_.upload(in.ledger);
-    state_.upload(in.state);
-    neighbor_.upload(in.neighbor);
-    plastic_ext_.upload(in.plastic);
+    for_each_state_array(snapshot, [](const char*, auto& array, auto& host) { array.upload(host); });
   }
 
  private:
@@ -281,6 +257,20 @@ class EngineImpl final : public Engine {
     for (int32_t c : counts) family_.bonds += c;
     family_.mean = double(family_.bonds) / n_;
     intact_.upload(counts);
+  }
+
+  // The arrays a run changes, paired with their snapshot vectors (save, restore).
+  template <class F>
+  void for_each_state_array(EngineSnapshot& s, F f) {
+    f("disp", disp_, s.disp);
+    f("vel", vel_, s.vel);
+    f("force", force_, s.force);
+    f("strain_min", strain_min_, s.strain_min);
+    f("intact", intact_, s.intact);
+    f("ledger", ledger_, s.ledger);
+    f("state", state_, s.state);
+    f("neighbor", neighbor_, s.neighbor);
+    f("plastic", plastic_ext_, s.plastic);
   }
 
   // Smallest stable step over the particles, from the families as built.

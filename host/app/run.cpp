@@ -194,7 +194,7 @@ int run_command(const RunOptions& options) {
   engine->read_bonds(bonds);
   const std::vector<int32_t>& count = bonds.count;
   FragmentOutput fragments(setup.input, bonds, {out, opt.blend_frames, true, setup.all_cubes},
-                           setup.adjacency);
+                           setup.adjacency, setup.embedded);
   std::string fragment_log;
   auto write_frame = [&](int64_t frame) {
     FrameData f = frame_data(*engine, setup.input.particles, count, frame);

@@ -1,5 +1,6 @@
 #include "fragment_output.h"
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -11,7 +12,8 @@
 namespace pd {
 
 FragmentOutput::FragmentOutput(const SimulationInput& input, const BondLists& bonds,
-                               FragmentOutputOptions options, ElementAdjacency adjacency)
+                               FragmentOutputOptions options, ElementAdjacency adjacency,
+                               EmbeddedTets embedded)
     : options_(std::move(options)),
       rest_(input.particles.rest),
       mass_(input.particles.mass),
@@ -19,7 +21,9 @@ FragmentOutput::FragmentOutput(const SimulationInput& input, const BondLists& bo
       adjacency_(adjacency.size() == rest_.size() ? std::move(adjacency)
                                                   : grid_adjacency(bonds, rest_, spacing_)),
       finder_(adjacency_, bonds),
-      smoother_(options_.blend_frames) {}
+      smoother_(options_.blend_frames) {
+  if (!embedded.empty()) embedded_.emplace(std::move(embedded), bonds, rest_, mass_);
+}
 
 ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
   if (f.size() != rest_.size())
@@ -34,6 +38,16 @@ ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
   write_fragments_file(options_.dir + "/" + fragments_file_name(f.frame), f.frame, f.step, f.time,
                        fragments_);
   if (options_.points) write_ply_points(options_.dir + "/" + points_file_name(f.frame), f);
+  // The embedded tet mesh: split along this frame's cracks, moved with the particles, written.
+  if (embedded_) {
+    embedded_->update(bonds, f.position);
+    embedded_->surface(crack_surface_);
+    char comment[96];
+    std::snprintf(comment, sizeof comment, "frame %lld step %lld time %.17g", (long long)f.frame,
+                  (long long)f.step, f.time);
+    write_crack_obj(options_.dir + "/" + crack_mesh_file_name(f.frame, "obj"), crack_surface_, comment);
+    write_crack_ply(options_.dir + "/" + crack_mesh_file_name(f.frame, "ply"), crack_surface_, comment);
+  }
   return component_stats(components_);
 }
 

@@ -1,10 +1,12 @@
 // The fragment outputs of a run in one object for the frame loop: per frame it finds the
 // components, fills FrameData::component, fits and smooths the fragment transforms and writes
-// fragments_NNNNN.pfg and points_NNNNN.ply; at the end it writes the rest-space piece surfaces
+// fragments_NNNNN.pfg and points_NNNNN.ply, and for tet bodies the split embedded mesh
+// (crack_mesh_NNNNN.obj / .ply, Chen sec. 5.2); at the end it writes the rest-space piece surfaces
 // (fragments.obj, for bodies of grid cubes). The element adjacency comes from the geometry
 // stage, or is derived from the families for grid bodies.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,7 @@
 #include "adjacency.h"
 #include "align.h"
 #include "components.h"
+#include "embedded_mesh.h"
 #include "smoothing.h"
 
 namespace pd {
@@ -29,8 +32,10 @@ class FragmentOutput {
  public:
   // `bonds`: the families as built, before the first step. `adjacency`: the elements that share
   // a face (from the geometry stage); empty: derived from the families as for grid cubes.
+  // `embedded`: the tet meshes of tet bodies (SetupResult::embedded); when not empty, every frame
+  // also splits and moves them and writes crack_mesh_NNNNN.obj and .ply.
   FragmentOutput(const SimulationInput& input, const BondLists& bonds, FragmentOutputOptions options,
-                 ElementAdjacency adjacency = {});
+                 ElementAdjacency adjacency = {}, EmbeddedTets embedded = {});
 
   // Fragments of frame `f` from the engine's current `bonds`: sets f.component, writes the
   // frame's files and returns the component statistics for the log. Throws IoError when a file
@@ -46,6 +51,9 @@ class FragmentOutput {
   const Components& components() const { return components_; }
   FragmentSmoother& smoother() { return smoother_; }
   const std::vector<Fragment>& fragments() const { return fragments_; }
+  // The embedded tet mesh and its surface at the last processed frame; null without tet bodies.
+  const EmbeddedTetMesh* embedded_mesh() const { return embedded_ ? &*embedded_ : nullptr; }
+  const CrackSurface& crack_surface() const { return crack_surface_; }
 
  private:
   FragmentOutputOptions options_;
@@ -56,6 +64,8 @@ class FragmentOutput {
   FragmentSmoother smoother_;
   Components components_;
   std::vector<Fragment> fragments_;
+  std::optional<EmbeddedTetMesh> embedded_;
+  CrackSurface crack_surface_;
 };
 
 }  // namespace pd

@@ -215,6 +215,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
         if (int32_t(i) < geometry.adjacency.neighbor[size_t(k)])
           adjacency_pairs.emplace_back(base + int32_t(i), base + geometry.adjacency.neighbor[size_t(k)]);
     result.all_cubes = result.all_cubes && geometry.kind == ElementKind::cube;
+    if (geometry.kind == ElementKind::tet) result.embedded.append(geometry.tets, base);
 
     // Particles: volume from the element, mass = density x volume; anchors by rest position.
     for (size_t i = 0; i < geometry.size(); ++i) {

@@ -6,6 +6,7 @@
 
 #include "../adjacency.h"
 #include "../engine.h"
+#include "../fragments/embedded_mesh.h"
 #include "../particle_set.h"
 #include "scene.h"
 
@@ -43,6 +44,7 @@ struct SetupResult {
   double dt = 0;               // the time step the run uses: the scene's, or kAutoDtFraction * critical_dt
   ElementAdjacency adjacency;  // which particles' elements share a face, over all bodies
   bool all_cubes = true;       // every body is made of grid cubes
+  EmbeddedTets embedded;  // the tet meshes of the tet and shell bodies (Chen sec. 5.2), tets as particles
 };
 
 // Throws SceneError for problems that only show once sizes are known (too many particles,
