@@ -21,11 +21,14 @@ void EnergyLog::add(int64_t frame, int64_t step, double time, const Energy& e) {
 }
 
 double energy_excess(const Energy& e0, const Energy& e) {
+  // The scale is the energy the run started with plus what legitimately entered or left since
+  // (external work, released bond energy, gravity's change), never the current kinetic or strain
+  // energy: a blow-up grows those, and a scale containing them would hide it.
   const double in_play = std::fabs(e0.kinetic) + std::fabs(e0.strain) + std::fabs(e0.contact) +
-                         std::fabs(e.kinetic) + std::fabs(e.strain) + std::fabs(e.contact) +
                          std::fabs(e.work) + std::fabs(e.released) + std::fabs(e.gravity - e0.gravity);
   const double growth = e.balance() - e0.balance();
-  return in_play > 0 ? growth / in_play : 0;
+  if (in_play > 0) return growth / in_play;
+  return growth > 0 ? INFINITY : 0;
 }
 
 int64_t fastest_particle(Engine& engine) {

@@ -22,8 +22,9 @@ class EnergyLog {
 };
 
 // The energy watchdog: the balance (mechanical energy + released - work) may drift by the
-// integrator's and the fracture's errors, a fraction of the energy in play; a blow-up creates
-// energy without bound. Returns how far past that bound the run is (> 1: blow-up).
+// integrator's and the fracture's errors, a fraction of the energy the run started with and
+// exchanged; a blow-up creates energy without bound. Returns the growth of the balance over that
+// energy (> 1: blow-up).
 double energy_excess(const Energy& e0, const Energy& e);
 
 // The particle moving fastest: where a blow-up shows first.

@@ -12,6 +12,7 @@
 #include "host/io/atomic_file.h"
 #include "host/memory_budget.h"
 #include "host/scene/scene.h"
+#include "host/validation/validate_command.h"
 #include "render/render_frames.h"
 
 int main(int argc, char** argv) {
@@ -79,6 +80,25 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   profile_cmd->add_option("--out", profile.out, "results folder");
 
+  ValidateOptions validate;
+  CLI::App* validate_cmd =
+      app.add_subcommand("validate", "run validation problems against analytic or published answers");
+  validate_cmd->add_option(
+      "--problem", validate.problem,
+      "all | wave_bar | tension_bar_pmb | tension_bar_lps | cantilever_pmb | cantilever_lps | "
+      "crack_branching");
+  validate_cmd
+      ->add_option("--resolution", validate.resolutions,
+                   "particles across, e.g. 4,6,8 (default: each problem's sweep)")
+      ->delimiter(',');
+  validate_cmd->add_option("--delta-over-lambda", validate.delta_over_lambda,
+                           "horizon in spacings (default 3)");
+  validate_cmd->add_option("--dt-fraction", validate.dt_fraction, "dt / dt_c (default 0.5)");
+  validate_cmd->add_option("--backend", validate.backend, "auto | cpu | cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  validate_cmd->add_option("--csv", validate.csv, "append rows to this CSV");
+  validate_cmd->add_flag("--quiet", validate.quiet, "no per-row output");
+
   CLI::App* render_cmd = app.add_subcommand("render", "render a run's frames to PNG (DIR/render/)");
   render_cmd->add_option("dir", render.dir, "output folder of `perifrac run`")->required();
   render_cmd->add_option("--out", render.out, "image folder (default: DIR/render)");
@@ -108,6 +128,7 @@ int main(int argc, char** argv) {
     }
     if (*bench_cmd) return bench_command(bench);
     if (*profile_cmd) return profile_command(profile);
+    if (*validate_cmd) return validate_command(validate);
     if (*compare_cmd) return compare_command(compare);
     if (*render_cmd) return render_frames(render);
     if (*info_cmd) {

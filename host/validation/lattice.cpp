@@ -1,0 +1,45 @@
+#include "lattice.h"
+
+#include "../material.h"
+
+namespace pd {
+
+Material validation_material(const ElasticSolid& s, double lambda, double m) {
+  Material mat;
+  mat.horizon = real(m * lambda);
+  mat.spacing = real(lambda);
+  mat.contact_spacing = real(lambda);
+  mat.partial_volumes = 1;
+  if (!s.state_based) {
+    mat.model = kBondBased;
+    mat.micromodulus = real(pmb_micromodulus(s.bulk(), m * lambda));
+    return mat;
+  }
+  mat.model = kStateBased;
+  mat.bulk_modulus = real(s.bulk());
+  mat.shear_modulus = real(s.shear());
+  mat.chen_fracture = 0;  // the stretch criterion: validation bonds never reach their limit
+  return mat;
+}
+
+double validation_critical_dt(const ElasticSolid& s, double lambda, double m) {
+  return s.state_based ? lps_critical_time_step(s.density, s.bulk(), s.shear(), m * lambda)
+                       : pmb_critical_time_step(s.density, s.bulk(), m * lambda);
+}
+
+size_t add_cube(ParticleSet& ps, double x, double y, double z, double lambda, const ElasticSolid& s,
+                double strain_limit, uint8_t flags) {
+  const double vol = lambda * lambda * lambda;
+  return ps.add({real(x), real(y), real(z)}, {0, 0, 0}, real(vol), real(s.density * vol), real(strain_limit),
+                0, 0, flags);
+}
+
+double fit_slope(const double* x, const double* y, size_t n) {
+  double mx = 0, my = 0;
+  for (size_t k = 0; k < n; ++k) mx += x[k] / double(n), my += y[k] / double(n);
+  double sxy = 0, sxx = 0;
+  for (size_t k = 0; k < n; ++k) sxy += (x[k] - mx) * (y[k] - my), sxx += (x[k] - mx) * (x[k] - mx);
+  return sxx > 0 ? sxy / sxx : 0;
+}
+
+}  // namespace pd

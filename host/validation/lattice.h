@@ -1,0 +1,61 @@
+// Building blocks of the validation problems: elastic solids, their kernel constants at a
+// given spacing, simple-cubic blocks of particles, and a wall clock.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+
+#include "../particle_set.h"
+
+namespace pd {
+
+// An isotropic linear elastic solid in engineering constants. Bond-based (PMB) materials have
+// nu = 1/4 whatever is asked (DESIGN.md, physics notes), so they take `youngs` and ignore `poisson`.
+struct ElasticSolid {
+  double youngs = 0;   // E [Pa]
+  double poisson = 0;  // nu
+  double density = 0;  // rho [kg/m^3]
+  bool state_based = false;
+
+  double nu() const { return state_based ? poisson : 0.25; }
+  double bulk() const { return youngs / (3 * (1 - 2 * nu())); }
+  double shear() const { return youngs / (2 * (1 + nu())); }
+};
+
+// Kernel constants at spacing lambda and horizon m lambda, with partial volumes (the choice that
+// makes the lattice sums closest to the continuum integrals; docs/validation.md).
+Material validation_material(const ElasticSolid& s, double lambda, double m);
+
+// The continuum stable time step estimate of host/material.h for this solid.
+double validation_critical_dt(const ElasticSolid& s, double lambda, double m);
+
+// Cube centres of an nx x ny x nz block of cubes of side lambda whose low corner is `corner`;
+// calls add(i, j, k, centre) for each, x fastest.
+template <class Add>
+void for_each_cube(int nx, int ny, int nz, double lambda, const double corner[3], Add add) {
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        add(i, j, k, corner[0] + (i + 0.5) * lambda, corner[1] + (j + 0.5) * lambda,
+            corner[2] + (k + 0.5) * lambda);
+}
+
+// Appends one cube particle of side lambda at rest, material 0, body 0.
+size_t add_cube(ParticleSet& ps, double x, double y, double z, double lambda, const ElasticSolid& s,
+                double strain_limit, uint8_t flags = 0);
+
+// Least-squares slope of y against x.
+double fit_slope(const double* x, const double* y, size_t n);
+
+class WallClock {
+ public:
+  WallClock() : start_(std::chrono::steady_clock::now()) {}
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace pd

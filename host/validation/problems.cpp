@@ -1,0 +1,44 @@
+#include <cmath>
+
+#include "validation.h"
+
+namespace pd {
+
+ValidationResult make_result(std::string problem, double measured, double reference) {
+  ValidationResult r;
+  r.problem = std::move(problem);
+  r.measured = measured;
+  r.reference = reference;
+  r.rel_error = std::fabs(measured - reference) / std::fabs(reference);
+  return r;
+}
+
+// Resolutions: particles across the bar or beam width, or the plate height.
+const std::vector<ValidationProblem>& validation_problems() {
+  static const std::vector<ValidationProblem> problems = {
+      {"wave_bar", "step wave in a PMB bar: front speed against sqrt(E/rho)", {4, 6, 8, 12}, run_wave_bar},
+      {"tension_bar_pmb",
+       "PMB tension bar: elongation FL/(EA), Poisson ratio 1/4",
+       {4, 6, 8, 12},
+       run_tension_bar_pmb},
+      {"tension_bar_lps",
+       "state-based tension bar: elongation FL/(EA), Poisson ratio 0.3",
+       {4, 6, 8, 12},
+       run_tension_bar_lps},
+      {"cantilever_pmb",
+       "PMB cantilever under its weight: tip deflection (Timoshenko)",
+       {4, 6, 8},
+       run_cantilever_pmb},
+      {"cantilever_lps",
+       "state-based cantilever under its weight: tip deflection (Timoshenko)",
+       {4, 6, 8},
+       run_cantilever_lps},
+      {"crack_branching",
+       "pre-notched glass plate: crack speed, branches, symmetry",
+       {20, 40, 80},
+       run_crack_branching},
+  };
+  return problems;
+}
+
+}  // namespace pd

@@ -1,0 +1,55 @@
+// Validation problems with analytic or published answers (docs/validation.md): each builds a
+// SimulationInput, runs it on an engine and compares one or more measured figures with their
+// reference values.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "../engine.h"
+
+namespace pd {
+
+// One run's settings. `resolution` counts particles across the problem's characteristic
+// length (the bar or beam width, the plate height).
+struct ValidationCase {
+  int resolution = 0;
+  double delta_over_lambda = 3;
+  double dt_fraction = 0.5;  // dt / dt_c, dt_c from the continuum estimate (host/material.h)
+  Backend backend = Backend::kCpu;
+};
+
+// One measured figure of one run.
+struct ValidationResult {
+  std::string problem;  // "problem/figure", e.g. "tension_bar_pmb/poisson"
+  double measured = 0, reference = 0;
+  double rel_error = 0;  // |measured - reference| / |reference|
+  int64_t particles = 0, steps = 0;
+  double wall_s = 0;  // engine set-up and stepping, measurement included
+  std::string note;   // a few words on what else the run showed
+};
+
+ValidationResult make_result(std::string problem, double measured, double reference);
+
+using ValidationRun = std::vector<ValidationResult> (*)(const ValidationCase&);
+
+struct ValidationProblem {
+  const char* name;
+  const char* summary;
+  std::vector<int> resolutions;  // the benchmark's default sweep, coarse to fine
+  ValidationRun run;
+};
+
+// The registered problems, in the order `validate all` runs them.
+const std::vector<ValidationProblem>& validation_problems();
+
+// The problems, one file each.
+std::vector<ValidationResult> run_wave_bar(const ValidationCase& c);
+std::vector<ValidationResult> run_tension_bar_pmb(const ValidationCase& c);
+std::vector<ValidationResult> run_tension_bar_lps(const ValidationCase& c);
+std::vector<ValidationResult> run_cantilever_pmb(const ValidationCase& c);
+std::vector<ValidationResult> run_cantilever_lps(const ValidationCase& c);
+std::vector<ValidationResult> run_crack_branching(const ValidationCase& c);
+
+}  // namespace pd

@@ -1,0 +1,111 @@
+// Validation problems at coarse resolution (docs/validation.md has the references and the reasons
+// for each tolerance). At these resolutions every particle of a bar or beam section lies within
+// delta of a free surface, so the dominant error is the peridynamic surface effect, which is of
+// order delta / W (W the width) and falls as the section is refined at fixed delta / lambda.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "host/validation/validation.h"
+
+namespace pd {
+namespace {
+
+ValidationCase at(int resolution) {
+  ValidationCase c;
+  c.resolution = resolution;
+  return c;
+}
+
+const ValidationResult& figure(const std::vector<ValidationResult>& rs, const std::string& name) {
+  for (const auto& r : rs)
+    if (r.problem == name) return r;
+  throw std::logic_error("no figure " + name);
+}
+
+void print(const std::vector<ValidationResult>& rs) {
+  for (const auto& r : rs)
+    std::printf("  %-30s measured %.5g reference %.5g error %.2f%% (%s)\n", r.problem.c_str(), r.measured,
+                r.reference, 100 * r.rel_error, r.note.c_str());
+}
+
+// Bond-based bar: the error of E and nu against the continuum is bounded by the surface-layer
+// ratio delta / W (0.75 at n = 4, 0.5 at n = 6) and falls with refinement; with an O(delta / W)
+// error the 4 -> 6 step should shrink it by about 2/3, so it must at least shrink by 0.8.
+TEST(Validation, TensionBarPmbConvergesToYoungsModulusAndQuarterPoisson) {
+  const auto coarse = run_tension_bar_pmb(at(4)), fine = run_tension_bar_pmb(at(6));
+  print(coarse);
+  print(fine);
+  for (const char* f : {"tension_bar_pmb/elongation", "tension_bar_pmb/poisson"}) {
+    EXPECT_LT(figure(coarse, f).rel_error, 0.75) << f;
+    EXPECT_LT(figure(fine, f).rel_error, 0.5) << f;
+    EXPECT_LT(figure(fine, f).rel_error, 0.8 * figure(coarse, f).rel_error) << f;
+  }
+}
+
+// State-based bar: same bounds; nu converges to the input 0.3, not to PMB's 1/4.
+TEST(Validation, TensionBarLpsConvergesToInputPoisson) {
+  const auto coarse = run_tension_bar_lps(at(4)), fine = run_tension_bar_lps(at(6));
+  print(coarse);
+  print(fine);
+  for (const char* f : {"tension_bar_lps/elongation", "tension_bar_lps/poisson"}) {
+    EXPECT_LT(figure(coarse, f).rel_error, 0.75) << f;
+    EXPECT_LT(figure(fine, f).rel_error, 0.5) << f;
+    EXPECT_LT(figure(fine, f).rel_error, 0.8 * figure(coarse, f).rel_error) << f;
+  }
+  EXPECT_LT(std::fabs(figure(fine, "tension_bar_lps/poisson").measured - 0.3),
+            std::fabs(figure(fine, "tension_bar_lps/poisson").measured - 0.25));
+}
+
+// The wave front runs at the bar velocity of the discrete bar: sqrt(E_eff / rho) with E_eff the
+// modulus the static tension test measures at the same resolution. Tolerance 1.5%: the front is
+// located to ~lambda/20 per sample over 14 widths of travel, and the one-third level of the
+// Airy head reaches c0 t only asymptotically (an offset growing as t^(1/3)). Against the
+// continuum sqrt(E/rho) the error is the surface effect's: below delta / (2W) (half the
+// modulus bound, as c ~ sqrt(E)), and falling with refinement.
+TEST(Validation, WaveFrontRunsAtTheBarVelocity) {
+  for (int n : {4, 6}) {
+    const auto wave = run_wave_bar(at(n));
+    const auto bar = run_tension_bar_pmb(at(n));
+    print(wave);
+    const double e_eff = figure(bar, "tension_bar_pmb/elongation").reference /
+                         figure(bar, "tension_bar_pmb/elongation").measured * 72e9;
+    const double c_eff = std::sqrt(e_eff / 2440);
+    std::printf("  n = %d: sqrt(E_eff / rho) = %.1f m/s\n", n, c_eff);
+    EXPECT_NEAR(wave[0].measured / c_eff, 1.0, 0.015);
+    EXPECT_LT(wave[0].rel_error, 3.0 / (2.0 * n));
+  }
+  EXPECT_LT(run_wave_bar(at(6))[0].rel_error, 0.8 * run_wave_bar(at(4))[0].rel_error);
+}
+
+// State-based cantilever: on a flat face the LPS energy of a particle equals the bulk one under
+// homogeneous strain (a half-sphere family's second moment stays isotropic), so the beam's skin,
+// which carries the bending, keeps its stiffness; the errors left come from the edges (quarter
+// families) and from particles within delta of a face, which stiffen (the tension bar shows it).
+// Measured (bench/accuracy): 1.2% at n = 4, 6.5% (stiffer) at n = 6, 0.5% at n = 6 with
+// delta = 4 lambda: not monotone in n, so this is a band, not a convergence claim. Tolerance 5%
+// at n = 4: the lattice error of E at delta = 3 lambda (+1.5%, DESIGN.md) plus the edge share of
+// the second moment of area (the 4 corner columns of 16 carry 1/4 of I) at the tension bar's
+// edge-dominated stiffening of ~10%, plus < 1% from the one-period mean of the swing.
+TEST(Validation, StateBasedCantileverMatchesTimoshenko) {
+  const auto r = run_cantilever_lps(at(4));
+  print(r);
+  EXPECT_LT(r[0].rel_error, 0.05);
+}
+
+// Crack in the pre-notched glass plate at 20 particles across (delta = 6 mm): the crack runs
+// from the notch, stays mirror-symmetric (no scatter; the set-up is symmetric), and its tip
+// stays below the Rayleigh speed. Branching needs a finer plate: benchmark only.
+TEST(Validation, NotchedPlateCrackIsSymmetricAndSubRayleigh) {
+  const auto r = run_crack_branching(at(20));
+  print(r);
+  const double speed = figure(r, "crack_branching/crack_speed").measured;
+  const double rayleigh = 0.9194 * std::sqrt(72e9 / 2.5 / 2440);
+  EXPECT_GT(speed, 0.1 * rayleigh);  // it ran
+  EXPECT_LT(speed, rayleigh);
+  EXPECT_GT(figure(r, "crack_branching/symmetry").measured, 0.95);
+}
+
+}  // namespace
+}  // namespace pd
