@@ -222,6 +222,10 @@ int run_command(const RunOptions& options) {
     std::printf("resume     from frame %lld (step %lld) of %s\n", (long long)resume->frame,
                 (long long)resume->engine.step, out.c_str());
     if (first_frame > scene.frames) {
+      // Killed after its last checkpoint: finish the end-of-run outputs; nothing else to run.
+      engine->read_bonds(bonds);
+      fragments.find_components(bonds);
+      fragments.write_meshes();
       std::printf("output     the run is complete at frame %lld; pass --frames N (N > %lld) to extend it\n",
                   (long long)resume->frame, (long long)resume->frame);
       return kExitOk;

@@ -48,6 +48,10 @@ class FragmentOutput {
   // IoError when the file cannot be written.
   bool write_meshes(const std::string& name = "fragments.obj") const;
 
+  // The components of `bonds` without writing anything: a resumed run whose checkpoint is its
+  // last frame finishes its end-of-run outputs with this (no frame is processed again).
+  void find_components(const BondLists& bonds) { finder_.find(bonds, components_); }
+
   const Components& components() const { return components_; }
   FragmentSmoother& smoother() { return smoother_; }
   const std::vector<Fragment>& fragments() const { return fragments_; }

@@ -109,23 +109,41 @@ TEST_F(Resume, KilledRunsResumeToTheUninterruptedResult) {
   const std::string reference = path("reference"), killed = path("killed");
   const auto t0 = std::chrono::steady_clock::now();
   ASSERT_EQ(run(fresh(reference, "0"), log_), 0) << read_all(log_);
-  const int run_ms = int(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  const int frame_ms =
+      int(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / 16);
 
-  // Kill at random points (within a run's duration, so sanitizer builds are hit alike) until a
-  // run completes; resume from the checkpoint when there is one.
+  // Each attempt is killed at a random point 1 to 3 frames past the furthest frame on disk, a
+  // random fraction into the next frame (so kills land in steps, frame writes and checkpoint
+  // writes alike, and every attempt makes progress whatever the build's speed); it resumes
+  // from the checkpoint when there is one.
   std::mt19937 rng(12345);
-  std::uniform_int_distribution<int> delay_ms(run_ms / 20, run_ms / 2);
+  std::uniform_int_distribution<int> frames_ahead(1, 3), into_frame_ms(0, std::max(1, frame_ms));
+  auto furthest_frame = [&] {
+    int furthest = -1;
+    if (std::filesystem::exists(killed))
+      for (const auto& e : std::filesystem::directory_iterator(killed)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("frame_", 0) == 0 && name.size() == 15 && name.substr(11) == ".pfr")
+          furthest = std::max(furthest, std::stoi(name.substr(6, 5)));
+      }
+    return furthest;
+  };
   int kills = 0, resumes = 0, code = -1;
-  for (int attempt = 0; attempt < 60 && code != 0; ++attempt) {
+  for (int attempt = 0; attempt < 40 && code != 0; ++attempt) {
     const bool have_checkpoint = std::filesystem::exists(killed + "/checkpoint.pck");
     std::vector<std::string> args =
         have_checkpoint ? std::vector<std::string>{"run", "--resume", killed, "--checkpoint-every", "1"}
                         : fresh(killed);
     resumes += have_checkpoint;
+    const int target = furthest_frame() + frames_ahead(rng);
     const pid_t pid = spawn(args, log_);
-    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    int status = 0;
+    while (furthest_frame() < target && waitpid(pid, &status, WNOHANG) == 0)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    std::this_thread::sleep_for(std::chrono::milliseconds(into_frame_ms(rng)));
     kill(pid, SIGKILL);
-    code = wait_for(pid);
+    code =
+        waitpid(pid, &status, WNOHANG) == 0 ? wait_for(pid) : (WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     kills += code == 128 + SIGKILL;
     ASSERT_TRUE(code == 0 || code == 128 + SIGKILL) << "exit " << code << "\n" << read_all(log_);
   }
@@ -164,6 +182,16 @@ TEST_F(Resume, CompletedRunCanBeExtended) {
   ASSERT_EQ(run({"run", "--resume", out, "--frames", "16"}, log_), 0) << read_all(log_);
   EXPECT_TRUE(read_all(reference + "/frame_00016.pfr") == read_all(out + "/frame_00016.pfr"));
   EXPECT_TRUE(read_all(reference + "/energy.csv") == read_all(out + "/energy.csv"));
+}
+
+// Killed after the last frame's checkpoint but before the end-of-run outputs: resuming writes them.
+TEST_F(Resume, RunKilledAfterItsLastCheckpointIsFinished) {
+  const std::string out = path("out");
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--checkpoint-every", "16"}, log_), 0);
+  const std::string meshes = read_all(out + "/fragments.obj");
+  std::filesystem::remove(out + "/fragments.obj");
+  ASSERT_EQ(run({"run", "--resume", out}, log_), 0) << read_all(log_);
+  EXPECT_TRUE(read_all(out + "/fragments.obj") == meshes);
 }
 
 // Refusals: exit code 2 with one line saying what is wrong.
