@@ -14,10 +14,7 @@ out=${OUT:-out}/profile-occupancy
 mkdir -p "$out"
 command -v ncu >/dev/null || { echo "profile-occupancy: ncu (Nsight Compute) not found" >&2; exit 1; }
 
-metrics=gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum
-metrics+=,gpu__dram_throughput.avg.pct_of_peak_sustained_elapsed
-metrics+=,sm__warps_active.avg.pct_of_peak_sustained_active,launch__registers_per_thread
-metrics+=,sm__throughput.avg.pct_of_peak_sustained_elapsed
+source scripts/ncu-metrics.sh
 last=${ranges##*:}
 # The run's own per-range table and timeline (unprofiled), and the bond count.
 "$bin" profile "$scene" --scale "$scale" --backend cuda --ranges "$ranges" --out "$out" | tee "$out/profile.txt"

@@ -13,10 +13,7 @@ out=${OUT:-out}/profile
 mkdir -p "$out"
 command -v ncu >/dev/null || { echo "profile: ncu (Nsight Compute) not found" >&2; exit 1; }
 
-metrics=gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum
-metrics+=,gpu__dram_throughput.avg.pct_of_peak_sustained_elapsed
-metrics+=,sm__warps_active.avg.pct_of_peak_sustained_active,launch__registers_per_thread
-metrics+=,sm__throughput.avg.pct_of_peak_sustained_elapsed
+source scripts/ncu-metrics.sh
 
 device=$(nvidia-smi --query-gpu=name --format=csv,noheader | head -n 1)
 {

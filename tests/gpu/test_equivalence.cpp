@@ -10,15 +10,10 @@
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
 #include "tests/support/fixtures.h"
+#include "tests/support/require_gpu.h"
 
 namespace pd {
 namespace {
-
-#define REQUIRE_GPU()                                                    \
-  do {                                                                   \
-    std::string why;                                                     \
-    if (!cuda_device_available(&why)) GTEST_SKIP() << "no GPU: " << why; \
-  } while (0)
 
 std::set<std::pair<int32_t, int32_t>> broken_set(Engine& e) {
   BondLists b;

@@ -9,15 +9,10 @@
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
 #include "tests/support/fixtures.h"
+#include "tests/support/require_gpu.h"
 
 namespace pd {
 namespace {
-
-#define REQUIRE_GPU()                                                    \
-  do {                                                                   \
-    std::string why;                                                     \
-    if (!cuda_device_available(&why)) GTEST_SKIP() << "no GPU: " << why; \
-  } while (0)
 
 // 800 x 800 x 800 particles (5.1e8): past any current GPU at ~900 B per particle.
 TEST(GpuMemory, SceneLargerThanTheDeviceIsRefusedBeforeSetup) {
