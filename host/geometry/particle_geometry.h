@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../adjacency.h"
+#include "stage_time.h"
 #include "tet_mesh.h"
 #include "vec3d.h"
 #include "voronoi_cells.h"
@@ -17,15 +18,16 @@ enum class ElementKind { cube, tet, voronoi };
 
 struct ParticleGeometry {
   ElementKind kind = ElementKind::cube;
-  std::vector<Vec3d> position;  // rest position: cube centre, tet barycentre, Voronoi site [m]
-  std::vector<double> volume;   // the element's volume (inside the solid) [m^3]
-  std::vector<double> mass;     // density * volume [kg], see set_density
-  std::vector<double> lambda;   // distance to the nearest other particle [m]
-  double min_distance = 0;      // Levine's lambda: the smallest of `lambda` [m]
-  ElementAdjacency adjacency;   // elements sharing a face
-  double cube_side = 0;         // cubes: their edge length [m]
-  TetMesh tets;                 // tets: the tet mesh, one particle per tet in the same order
-  VoronoiCells cells;           // voronoi: the clipped cells and their surface triangles
+  std::vector<Vec3d> position;    // rest position: cube centre, tet barycentre, Voronoi site [m]
+  std::vector<double> volume;     // the element's volume (inside the solid) [m^3]
+  std::vector<double> mass;       // density * volume [kg], see set_density
+  std::vector<double> lambda;     // distance to the nearest other particle [m]
+  double min_distance = 0;        // Levine's lambda: the smallest of `lambda` [m]
+  ElementAdjacency adjacency;     // elements sharing a face
+  double cube_side = 0;           // cubes: their edge length [m]
+  TetMesh tets;                   // tets: the tet mesh, one particle per tet in the same order
+  VoronoiCells cells;             // voronoi: the clipped cells and their surface triangles
+  std::vector<StageTime> stages;  // wall time of each stage of the build, in order
 
   size_t size() const { return position.size(); }
   double total_volume() const;

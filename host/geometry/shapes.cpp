@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace pd {
 
@@ -70,28 +71,56 @@ double vase_foot(double radius, double height) {
   return std::min(0.25 * radius, 0.1 * height);
 }
 
-TriMesh revolve(const Profile& profile, int segments, bool periodic) {
+std::vector<int> ring_segments(const Profile& profile, int segments, bool periodic, double edge) {
+  std::vector<int> count(profile.size());
+  for (size_t k = 0; k < profile.size(); ++k) {
+    const double r = profile[k][0];
+    if (!periodic && r == 0)
+      count[k] = 1;  // a pole
+    else if (edge > 0)
+      count[k] = std::clamp(int(std::ceil(2 * kPi * r / edge)), std::min(6, segments), segments);
+    else
+      count[k] = segments;
+  }
+  return count;
+}
+
+TriMesh revolve(const Profile& profile, int segments, bool periodic, double edge) {
   TriMesh mesh;
   const size_t n = profile.size();
+  const std::vector<int> count = ring_segments(profile, segments, periodic, edge);
   std::vector<int32_t> first(n);  // first vertex of each ring; a pole is one vertex
-  std::vector<bool> pole(n);
   for (size_t k = 0; k < n; ++k) {
     first[k] = int32_t(mesh.vertices.size());
-    pole[k] = !periodic && profile[k][0] == 0;
-    const int count = pole[k] ? 1 : segments;
-    for (int s = 0; s < count; ++s) {
-      const double a = 2 * kPi * s / segments;
+    for (int s = 0; s < count[k]; ++s) {
+      const double a = 2 * kPi * s / count[k];
       mesh.vertices.push_back({profile[k][0] * std::cos(a), profile[k][1], -profile[k][0] * std::sin(a)});
     }
   }
-  auto at = [&](size_t k, int s) { return pole[k] ? first[k] : first[k] + (s % segments); };
+  auto at = [&](size_t k, int s) { return first[k] + s % count[k]; };
   const size_t bands = periodic ? n : n - 1;
   for (size_t k = 0; k < bands; ++k) {
     const size_t k1 = (k + 1) % n;
-    for (int s = 0; s < segments; ++s) {
-      const int32_t a = at(k, s), b = at(k, s + 1), c = at(k1, s + 1), d = at(k1, s);
-      if (!pole[k]) mesh.triangles.push_back({a, b, c});
-      if (!pole[k1]) mesh.triangles.push_back({a, c, d});
+    const int m0 = count[k], m1 = count[k1];
+    if (m0 == m1 || m0 == 1 || m1 == 1) {
+      // Equal rings (quads split along one diagonal), or a fan around a pole.
+      for (int s = 0; s < std::max(m0, m1); ++s) {
+        const int32_t a = at(k, s), b = at(k, s + 1), c = at(k1, s + 1), d = at(k1, s);
+        if (m0 > 1) mesh.triangles.push_back({a, b, c});
+        if (m1 > 1) mesh.triangles.push_back({a, c, d});
+      }
+      continue;
+    }
+    // Rings of different counts: walk both by angle, always advancing the one whose next
+    // point comes first (compared exactly as i / m0 against j / m1).
+    for (int i = 0, j = 0; i < m0 || j < m1;) {
+      if (j == m1 || (i < m0 && int64_t(i + 1) * m1 <= int64_t(j + 1) * m0)) {
+        mesh.triangles.push_back({at(k, i), at(k, i + 1), at(k1, j)});
+        ++i;
+      } else {
+        mesh.triangles.push_back({at(k, i), at(k1, j + 1), at(k1, j)});
+        ++j;
+      }
     }
   }
   return mesh;
@@ -113,14 +142,59 @@ TriMesh box_mesh(const Vec3d& size) {
 }
 
 TriMesh sphere_mesh(double radius, double edge) {
-  const int segments = segments_for(radius, edge);
-  const int rings = std::max(6, segments / 2);
-  Profile p;
-  for (int k = 0; k <= rings; ++k) {
-    const double a = kPi * k / rings;
-    p.push_back({k == 0 || k == rings ? 0.0 : radius * std::sin(a), -radius * std::cos(a)});
+  // A geodesic sphere: each face of an icosahedron cut into f^2 triangles, projected outward.
+  // The triangles are nearly equilateral everywhere (a latitude-longitude mesh has slivers at
+  // its poles, where TetGen's quality refinement stalls).
+  const double t = 0.5 * (1 + std::sqrt(5.0));
+  const Vec3d corner[12] = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                            {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  const int face[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                           {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                           {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                           {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  // Edge of the icosahedron inscribed in the unit sphere: 1 / sin(2 pi / 5).
+  const int f = int(std::clamp(std::ceil(1.0515 * radius / edge), 2.0, 256.0));
+  TriMesh mesh;
+  // Points shared by faces (on edges and corners) are found by their weights on the corners.
+  std::map<std::array<int, 6>, int32_t> shared;
+  auto point = [&](const int* c, int i, int j) {
+    const int w[3] = {f - i - j, i, j};
+    std::array<int, 6> key{-1, 0, -1, 0, -1, 0};
+    int used = 0;
+    for (int a = 0; a < 3; ++a)
+      if (w[a] > 0) key[size_t(2 * used)] = c[a], key[size_t(2 * used + 1)] = w[a], ++used;
+    // Canonical order of the (corner, weight) pairs.
+    for (int a = 0; a < used; ++a)
+      for (int b = a + 1; b < used; ++b)
+        if (key[size_t(2 * b)] < key[size_t(2 * a)]) {
+          std::swap(key[size_t(2 * a)], key[size_t(2 * b)]);
+          std::swap(key[size_t(2 * a + 1)], key[size_t(2 * b + 1)]);
+        }
+    const bool interior = used == 3;
+    if (!interior) {
+      const auto it = shared.find(key);
+      if (it != shared.end()) return it->second;
+    }
+    Vec3d p{0, 0, 0};
+    for (int a = 0; a < 3; ++a) p = p + double(w[a]) * corner[c[a]];
+    mesh.vertices.push_back((radius / norm(p)) * p);
+    const int32_t id = int32_t(mesh.vertices.size() - 1);
+    if (!interior) shared.emplace(key, id);
+    return id;
+  };
+  std::vector<int32_t> row((size_t(f) + 1) * (size_t(f) + 2) / 2);
+  for (const auto& c : face) {
+    auto index = [&](int i, int j) { return size_t(i) * (size_t(2 * f) + 3 - size_t(i)) / 2 + size_t(j); };
+    for (int i = 0; i <= f; ++i)
+      for (int j = 0; i + j <= f; ++j) row[index(i, j)] = point(c, i, j);
+    for (int i = 0; i < f; ++i)
+      for (int j = 0; i + j < f; ++j) {
+        mesh.triangles.push_back({row[index(i, j)], row[index(i + 1, j)], row[index(i, j + 1)]});
+        if (i + j + 1 < f)
+          mesh.triangles.push_back({row[index(i + 1, j)], row[index(i + 1, j + 1)], row[index(i, j + 1)]});
+      }
   }
-  return finish(revolve(p, segments, false));
+  return finish(std::move(mesh));
 }
 
 TriMesh cylinder_mesh(double radius, double height, double edge) {
@@ -128,7 +202,7 @@ TriMesh cylinder_mesh(double radius, double height, double edge) {
   line_to(p, {radius, -0.5 * height}, edge);
   line_to(p, {radius, 0.5 * height}, edge);
   line_to(p, {0, 0.5 * height}, edge);
-  return finish(revolve(p, segments_for(radius, edge), false));
+  return finish(revolve(p, segments_for(radius, edge), false, edge));
 }
 
 TriMesh torus_mesh(double radius, double tube_radius, double edge) {
@@ -138,7 +212,7 @@ TriMesh torus_mesh(double radius, double tube_radius, double edge) {
     const double a = 2 * kPi * k / around;
     p.push_back({radius + tube_radius * std::cos(a), tube_radius * std::sin(a)});
   }
-  return finish(revolve(p, segments_for(radius + tube_radius, edge), true));
+  return finish(revolve(p, segments_for(radius + tube_radius, edge), true, edge));
 }
 
 TriMesh vase_mesh(double radius, double height, double wall, double edge) {
@@ -164,18 +238,18 @@ TriMesh vase_mesh(double radius, double height, double wall, double edge) {
     p.push_back({r0 - foot + inner * std::sin(a), y0 + foot - inner * std::cos(a)});
   }
   line_to(p, {0, y0 + wall}, edge);
-  return finish(revolve(p, segments_for(radius, edge), false));
+  return finish(revolve(p, segments_for(radius, edge), false, edge));
 }
 
 TriMesh vase_sheet(double radius, double height, double edge) {
   Profile p;
   vase_outer_surface(p, radius, height, edge);
   // Orient as the closed vase's outer surface: normals away from the axis.
-  TriMesh sheet = revolve(p, segments_for(radius, edge), false);
-  TriMesh closed = revolve(p, segments_for(radius, edge), false);
+  TriMesh sheet = revolve(p, segments_for(radius, edge), false, edge);
+  TriMesh closed = sheet;
   const int32_t lid = int32_t(closed.vertices.size());
   closed.vertices.push_back({0, p.back()[1], 0});
-  const int segments = segments_for(radius, edge);
+  const int segments = ring_segments(p, segments_for(radius, edge), false, edge).back();
   const int32_t rim = lid - segments;
   for (int s = 0; s < segments; ++s) closed.triangles.push_back({rim + s, rim + (s + 1) % segments, lid});
   if (signed_volume(closed) < 0) flip_orientation(sheet);

@@ -14,7 +14,8 @@ namespace pd {
 // Axis-aligned box of edge lengths `size`, two triangles per face.
 TriMesh box_mesh(const Vec3d& size);
 
-// Sphere of `radius` (a latitude-longitude mesh).
+// Sphere of `radius`: a geodesic mesh (an icosahedron's faces cut into nearly equilateral
+// triangles of about `edge`, projected onto the sphere).
 TriMesh sphere_mesh(double radius, double edge);
 
 // Closed cylinder along y: `radius`, `height`.
@@ -38,6 +39,13 @@ TriMesh vase_sheet(double radius, double height, double edge);
 // Surface of revolution of a profile of (r, y) points around the y axis with `segments` around.
 // Points with r = 0 become poles; a periodic profile (a closed loop, e.g. a circle) makes a torus.
 // The result faces outward when the profile encloses area; open profiles give open sheets.
-TriMesh revolve(const std::vector<std::array<double, 2>>& profile, int segments, bool periodic);
+// With `edge` > 0 each ring gets only about one point per `edge` (at least 6, at most
+// `segments`: see ring_segments), so rings near the axis have no slivers; 0 = `segments` on all.
+TriMesh revolve(const std::vector<std::array<double, 2>>& profile, int segments, bool periodic,
+                double edge = 0);
+
+// Points on each ring of revolve(profile, segments, periodic, edge): 1 at a pole.
+std::vector<int> ring_segments(const std::vector<std::array<double, 2>>& profile, int segments, bool periodic,
+                               double edge);
 
 }  // namespace pd

@@ -1,5 +1,6 @@
 #include "tet_particles.h"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -9,6 +10,7 @@ namespace pd {
 
 ParticleGeometry tet_particles(TetMesh mesh) {
   ParticleGeometry g;
+  StageClock clock(&g.stages);
   g.kind = ElementKind::tet;
   const size_t n = mesh.tets.size();
   g.position.resize(n);
@@ -23,7 +25,9 @@ ParticleGeometry tet_particles(TetMesh mesh) {
   }
   g.adjacency = adjacency_from_pairs(n, std::move(pairs));
   g.tets = std::move(mesh);
+  clock.lap("tet particles + adjacency");
   compute_lambda(g);
+  clock.lap("nearest distances");
   return g;
 }
 
@@ -32,11 +36,16 @@ ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& option
   if (options.max_volume > 0)
     check_particle_budget(signed_volume(solid), options.max_volume, max_particles, name,
                           "tet volumes of at most " + std::to_string(options.max_volume) + " m^3");
-  TetMesh mesh = tetrahedralize(solid, options, name);
+  std::vector<StageTime> stages;
+  TetgenOptions timed = options;
+  if (!timed.stages) timed.stages = &stages;
+  TetMesh mesh = tetrahedralize(solid, timed, name);
   if (int64_t(mesh.tets.size()) > max_particles)
     throw MeshError(name, "TetGen made " + std::to_string(mesh.tets.size()) + " tets (allowed: at most " +
                               std::to_string(max_particles) + " particles per body; raise the volume bound)");
-  return tet_particles(std::move(mesh));
+  ParticleGeometry g = tet_particles(std::move(mesh));
+  if (timed.stages == &stages) g.stages.insert(g.stages.begin(), stages.begin(), stages.end());
+  return g;
 }
 
 FattenedShell fattened_shell(const TriMesh& surface, double thickness, int layers) {
@@ -88,6 +97,11 @@ FattenedShell fattened_shell(const TriMesh& surface, double thickness, int layer
   for (int k = 1; k + 1 < layers; ++k)
     for (const Vec3d& p : layer(thickness * k / (layers - 1))) shell.layer_points.push_back(p);
   return shell;
+}
+
+int scaled_shell_layers(int layers, double spacing_factor) {
+  const double gaps = double(std::max(layers, 2) - 1) / spacing_factor;
+  return 1 + int(std::max(1.0, std::round(std::min(gaps, 1e6))));
 }
 
 ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,

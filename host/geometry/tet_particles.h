@@ -29,6 +29,12 @@ struct FattenedShell {
 };
 FattenedShell fattened_shell(const TriMesh& surface, double thickness, int layers);
 
+// The vertex layers of a shell when its spacing is multiplied by `spacing_factor` (--scale):
+// the thickness is geometry and stays, so the gaps between layers (layers - 1) follow
+// thickness / spacing: round((layers - 1) / spacing_factor), at least one (two layers, the outer
+// and the inner surface).
+int scaled_shell_layers(int layers, double spacing_factor);
+
 // Tets of the fattened shell of `surface` (an open sheet such as vase_sheet(), or a closed mesh).
 ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,
                                  int64_t max_particles, const std::string& name);

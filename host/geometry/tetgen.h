@@ -5,24 +5,27 @@
 #include <string>
 #include <vector>
 
+#include "stage_time.h"
 #include "tet_mesh.h"
 #include "tri_mesh.h"
 
 namespace pd {
 
 struct TetgenOptions {
-  double quality = 1.414;  // -q: bound on the radius-edge ratio of the tets; 0 = no quality refinement
-  double max_volume = 0;   // -a: bound on each tet's volume [m^3]; 0 = none
+  double quality = 1.414;     // -q: bound on the radius-edge ratio of the tets; 0 = no quality refinement
+  double max_volume = 0;      // -a: bound on each tet's volume [m^3]; 0 = none
+  bool keep_surface = false;  // -Y: no Steiner points on the surface (its triangles are tet faces)
   std::vector<Vec3d> extra_points;  // -i: points to insert (inside the solid)
   std::string work_dir;  // where the .smesh and output files go; empty = a temporary folder, removed after
+  std::vector<StageTime>* stages = nullptr;  // when set, gets the time of writing, TetGen and reading
 };
 
 // The path of the tetgen program on PATH, or empty.
 std::string find_tetgen();
 
 // Tetrahedralizes the closed, outward mesh `surface` (checked by check_solid) with
-// `tetgen -p[q][a][i]nzQ`. Throws MeshError (naming `name`) when tetgen is missing — with the
-// install command — or fails, quoting its last message.
+// `tetgen -p[Y][q][a][i]O0nzQ` (O0: see tetgen.cpp). Throws MeshError (naming `name`) when tetgen is missing
+// — with the install command — or fails, quoting its last message.
 TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, const std::string& name);
 
 }  // namespace pd

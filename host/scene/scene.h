@@ -77,6 +77,7 @@ struct SceneBody {
   std::string repair = "none";           // mesh: "none" | "fill_holes"
   double tet_quality = 1.414;            // tets/shell: TetGen -q radius-edge bound; 0 = no quality refinement
   std::optional<double> tet_max_volume;  // tets/shell: TetGen -a bound [m^3]; default 2 spacing^3
+  bool tet_keep_surface = false;         // tets/shell: TetGen -Y, no Steiner points on the surface
   double shell_thickness = 0;            // shell: depth of the shell inward from the surface [m]
   int64_t shell_layers = 4;              // shell: surfaces of vertices through the thickness, >= 2
   double spacing = 0;       // lambda [m], > 0: grid cube side, Voronoi minimum distance, horizon unit

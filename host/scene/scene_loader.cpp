@@ -466,11 +466,12 @@ const Keys kStateBasedOnlyKeys = {"shear_modulus", "youngs_modulus", "poisson_ra
                                   "damage_alpha",  "plastic",        "anisotropy"};
 const Keys kPlasticKeys = {"yield_stress", "psi0", "limit"};
 const Keys kAnisotropyKeys = {"direction", "ratio", "matrix"};
-const Keys kBodyKeys = {
-    "name",         "shape",     "particles", "center",      "size",           "width",
-    "depth",        "thickness", "radius",    "height",      "tube_radius",    "wall",
-    "mesh",         "scale",     "repair",    "tet_quality", "tet_max_volume", "shell_thickness",
-    "shell_layers", "spacing",   "material",  "velocity"};
+const Keys kBodyKeys = {"name",           "shape",           "particles",       "center",
+                        "size",           "width",           "depth",           "thickness",
+                        "radius",         "height",          "tube_radius",     "wall",
+                        "mesh",           "scale",           "repair",          "tet_quality",
+                        "tet_max_volume", "shell_thickness", "shell_layers",    "spacing",
+                        "material",       "velocity",        "tet_keep_surface"};
 const Keys kShapes = {"box", "plate", "sphere", "cylinder", "torus", "vase", "mesh"};
 const Keys kParticleKinds = {"grid", "tets", "shell", "voronoi"};
 // The dimension keys of each shape (in kShapes order).
@@ -661,7 +662,7 @@ void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
 // TetGen and shell switches, only with the particles that use them.
 void parse_particle_switches(const TableReader& r, SceneBody& b) {
   const bool tets = b.particles == "tets" || b.particles == "shell", shell = b.particles == "shell";
-  for (std::string_view key : {"tet_quality", "tet_max_volume"})
+  for (std::string_view key : {"tet_quality", "tet_max_volume", "tet_keep_surface"})
     if (r.has(key) && !tets)
       r.fail(key, "only for particles = \"tets\" or \"shell\"",
              "no TetGen switch with particles = " + quoted(b.particles));
@@ -677,6 +678,7 @@ void parse_particle_switches(const TableReader& r, SceneBody& b) {
   }
   double volume = 0;
   if (r.number("tet_max_volume", volume, greater_than(0))) b.tet_max_volume = volume;
+  r.boolean("tet_keep_surface", b.tet_keep_surface);
   if (!shell) return;
   Bounds thickness = greater_than(0);
   if (b.shape == "vase") {

@@ -120,10 +120,13 @@ ParticleGeometry body_particles(const SceneBody& body, double spacing, double sp
   if (body.particles == "voronoi") return voronoi_particles(solid, spacing, seed, max_particles, name);
   TetgenOptions options;
   options.quality = body.tet_quality;
+  options.keep_surface = body.tet_keep_surface;
   const double cube = spacing_factor * spacing_factor * spacing_factor;
   options.max_volume = body.tet_max_volume ? *body.tet_max_volume * cube : 2 * spacing * spacing * spacing;
   if (body.particles == "tets") return tet_particles(solid, options, max_particles, name);
-  return shell_particles(solid, body.shell_thickness, int(body.shell_layers), options, max_particles, name);
+  return shell_particles(solid, body.shell_thickness,
+                         scaled_shell_layers(int(body.shell_layers), spacing_factor), options, max_particles,
+                         name);
 }
 
 // Per-particle strain limit: normal scatter of relative deviation sigma, truncated at 3 sigma

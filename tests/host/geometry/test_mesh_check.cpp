@@ -14,6 +14,20 @@ namespace {
 
 const std::string kPath = "broken.obj";
 
+// A latitude-longitude sphere of radius 1: 21 segments around, 10 rings, a fan of 21 triangles
+// around each pole (the first and the last triangles), so removing a fan opens one hole.
+TriMesh latitude_longitude_sphere() {
+  std::vector<std::array<double, 2>> profile;
+  for (int k = 0; k <= 10; ++k) {
+    const double a = 3.14159265358979323846 * k / 10;
+    profile.push_back({k == 0 || k == 10 ? 0.0 : std::sin(a), -std::cos(a)});
+  }
+  TriMesh sphere = revolve(profile, 21, false);
+  transform(sphere, 1, -1.0 * bounds(sphere).center());
+  if (signed_volume(sphere) < 0) flip_orientation(sphere);
+  return sphere;
+}
+
 TriMesh tetrahedron() {
   TriMesh m;
   m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -81,9 +95,9 @@ TEST(MeshCheck, OpenMeshReportsTheHoleCount) {
   box.triangles.erase(box.triangles.begin(), box.triangles.begin() + 2);  // the -x face
   expect_refused(box, "the mesh is open: 1 hole (boundary loops) with 4 boundary edges");
   // A sphere with two caps removed: two holes.
-  TriMesh sphere = sphere_mesh(1, 0.3);
+  TriMesh sphere = latitude_longitude_sphere();
   const size_t n = sphere.triangles.size();
-  const int segments = 21;  // segments_for(1, 0.3)
+  const int segments = 21;
   sphere.triangles.erase(sphere.triangles.end() - segments, sphere.triangles.end());
   sphere.triangles.erase(sphere.triangles.begin(), sphere.triangles.begin() + segments);
   ASSERT_EQ(sphere.triangles.size(), n - 2 * segments);
@@ -91,7 +105,7 @@ TEST(MeshCheck, OpenMeshReportsTheHoleCount) {
 }
 
 TEST(MeshCheck, FillHolesClosesSimpleLoops) {
-  TriMesh sphere = sphere_mesh(1, 0.3);
+  TriMesh sphere = latitude_longitude_sphere();
   const double closed_volume = signed_volume(sphere);
   sphere.triangles.erase(sphere.triangles.begin(), sphere.triangles.begin() + 21);  // bottom cap fan
   const MeshReport r = check_solid(sphere, kPath, {true});

@@ -116,6 +116,24 @@ TEST(TetParticles, SphereVolumeIsExact) {
   EXPECT_EQ(boundary, g.tets.boundary_faces.size());
 }
 
+// tet_keep_surface (-Y): TetGen adds no points on the surface, so the tet mesh's boundary is the
+// input's triangles; without it TetGen splits them.
+TEST(TetParticles, KeepSurfaceLeavesTheSurfaceTriangles) {
+  if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
+  const TriMesh sphere = sphere_mesh(1, 0.2);
+  TetgenOptions options;
+  options.max_volume = 0.002;
+  options.keep_surface = true;
+  const ParticleGeometry kept = tet_particles(sphere, options, kBudget, "sphere");
+  EXPECT_EQ(kept.tets.boundary_faces.size(), sphere.triangles.size());
+  EXPECT_NEAR(kept.total_volume(), signed_volume(sphere), 1e-5 * signed_volume(sphere));
+  for (size_t t = 0; t < kept.size(); ++t) ASSERT_LE(kept.volume[t], 0.002 * (1 + 1e-9));
+  expect_symmetric(kept.adjacency);
+  options.keep_surface = false;
+  const ParticleGeometry split = tet_particles(sphere, options, kBudget, "sphere");
+  EXPECT_GT(split.tets.boundary_faces.size(), sphere.triangles.size());
+}
+
 // Barycentres against TetGen's own files, read here independently.
 TEST(TetParticles, BarycentresMatchTetgenFiles) {
   if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
@@ -148,6 +166,8 @@ TEST(TetParticles, SpotVolume) {
   options.max_volume = 2e-5;
   const ParticleGeometry g = tet_particles(spot, options, kBudget, path);
   EXPECT_NEAR(g.total_volume(), signed_volume(spot), 1e-5 * signed_volume(spot));
+  // The volume bound holds for every tet (TetGen's mesh optimization, now off, broke it here).
+  for (size_t t = 0; t < g.size(); ++t) ASSERT_LE(g.volume[t], 2e-5 * (1 + 1e-9)) << "tet " << t;
   expect_inside(spot, g);
   expect_symmetric(g.adjacency);
 }

@@ -8,6 +8,7 @@
 #include "geometry_fixtures.h"
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/shapes.h"
+#include "host/geometry/tet_particles.h"
 #include "host/geometry/tetgen.h"
 #include "host/scene/scene_setup.h"
 
@@ -20,8 +21,8 @@ const std::string kHead =
     "[materials.glass]\ndensity = 2000\nbulk_modulus = 4.3e10\nstrain_limit = 0.001\n[[bodies]]\nmaterial = "
     "\"glass\"\n";
 
-SetupResult setup(const std::string& body, const std::string& path = "test.toml") {
-  return setup_scene(parse_scene(kHead + body, path), {});
+SetupResult setup(const std::string& body, const std::string& path = "test.toml", double scale = 1) {
+  return setup_scene(parse_scene(kHead + body, path), SetupOptions(scale));
 }
 
 double total_volume(const ParticleSet& ps) {
@@ -75,6 +76,43 @@ TEST(SceneBodies, VaseShellTorusCylinderPlate) {
   EXPECT_EQ(setup("shape = \"plate\"\nwidth = 0.1\ndepth = 0.2\nthickness = 0.01\nspacing = 0.01\n")
                 .input.particles.size(),
             200u);
+}
+
+TEST(SceneBodies, ShellLayersFollowTheScaledSpacing) {
+  EXPECT_EQ(scaled_shell_layers(4, 1), 4);
+  EXPECT_EQ(scaled_shell_layers(4, 2), 3);    // 3 gaps at twice the spacing: 1.5, rounded to 2
+  EXPECT_EQ(scaled_shell_layers(4, 10), 2);   // never fewer than one gap (outer + inner surface)
+  EXPECT_EQ(scaled_shell_layers(3, 0.5), 5);  // a finer spacing: more layers through the wall
+  EXPECT_EQ(scaled_shell_layers(2, 3), 2);
+}
+
+// --scale coarsens a shell body like any other: the spacing (and with it the surface mesh and
+// the tet volume bound) grows by 1 / cbrt(scale), the layers through the wall follow, and the
+// wall keeps its thickness, so the particle count falls about as scale and the volume stays.
+TEST(SceneBodies, ShellCoarsensWithScale) {
+  if (find_tetgen().empty()) GTEST_SKIP() << "tetgen is not installed";
+  const std::string vase =
+      "shape = \"vase\"\nradius = 0.05\nheight = 0.15\nspacing = 0.002\nparticles = \"shell\"\n"
+      "shell_thickness = 0.006\nshell_layers = 4\n";
+  const SetupResult full = setup(vase);
+  const SetupResult coarse = setup(vase, "test.toml", 0.125);  // spacing x 2: 2 layers, not 4
+  const double n_full = double(full.input.particles.size()), n_coarse = double(coarse.input.particles.size());
+  EXPECT_LT(n_coarse, 0.25 * n_full) << n_full << " particles at scale 1, " << n_coarse << " at 0.125";
+  EXPECT_GT(n_coarse, 0.02 * n_full);
+  // The same wall: the surfaces differ only by their facets.
+  EXPECT_NEAR(total_volume(coarse.input.particles), total_volume(full.input.particles),
+              0.03 * total_volume(full.input.particles));
+  EXPECT_NEAR(coarse.materials[0].spacing / full.materials[0].spacing, 2, 0.5);
+}
+
+TEST(SceneBodies, TetKeepSurfaceOnlyWithTets) {
+  const std::string sphere = "shape = \"sphere\"\nradius = 0.1\nspacing = 0.01\ntet_keep_surface = true\n";
+  EXPECT_THROW(setup(sphere + "particles = \"grid\"\n"), SceneError);
+  if (find_tetgen().empty()) GTEST_SKIP() << "tetgen is not installed";
+  const SetupResult r = setup(sphere + "particles = \"tets\"\n");
+  const double volume = 4 * kPi / 3 * 0.001;
+  EXPECT_GT(r.input.particles.size(), 1000u);
+  EXPECT_NEAR(total_volume(r.input.particles), volume, 0.02 * volume);
 }
 
 TEST(SceneBodies, MeshRelativeToTheSceneFile) {
