@@ -7,6 +7,13 @@
 namespace pd {
 
 ConvexCell::ConvexCell(const Vec3d& lo, const Vec3d& hi) {
+  reset(lo, hi);
+}
+
+void ConvexCell::reset(const Vec3d& lo, const Vec3d& hi) {
+  vertices_.clear();
+  for (Face& f : faces_) spare_.push_back(std::move(f));
+  faces_.clear();
   for (int k = 0; k < 8; ++k)
     vertices_.push_back({k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]});
   // Sides as corner quads (bit 0 = +x, bit 1 = +y, bit 2 = +z), counter-clockwise from outside.
@@ -16,8 +23,8 @@ ConvexCell::ConvexCell(const Vec3d& lo, const Vec3d& hi) {
     const int axis = s / 2, high = s % 2;
     Vec3d n{0, 0, 0};
     n[axis] = high ? 1 : -1;
-    faces_.push_back(
-        {n, high ? hi[axis] : -lo[axis], -1 - s, {quads[s][0], quads[s][1], quads[s][2], quads[s][3]}});
+    faces_.push_back(new_face(n, high ? hi[axis] : -lo[axis], -1 - s));
+    faces_.back().corners.assign(quads[s], quads[s] + 4);
   }
   update_live();
 }
@@ -35,6 +42,7 @@ bool ConvexCell::clip(const Vec3d& n_in, double d_in, int32_t id) {
   }
   if (!outside) return false;
   if (!inside) {
+    for (Face& f : faces_) spare_.push_back(std::move(f));
     faces_.clear();
     live_.clear();
     return true;
@@ -43,7 +51,8 @@ bool ConvexCell::clip(const Vec3d& n_in, double d_in, int32_t id) {
   // Each face keeps its inside part; the crossing X of an edge leaving the half-space and Y of
   // the edge entering it are linked Y -> X for the new face (the opposite of the face's X -> Y).
   // (Small linear tables: a cut crosses a handful of edges.)
-  std::vector<std::pair<uint64_t, int32_t>> crossing;
+  std::vector<std::pair<uint64_t, int32_t>>& crossing = crossing_;
+  crossing.clear();
   auto cross_point = [&](int32_t a, int32_t b) {
     const uint64_t key = (uint64_t(uint32_t(std::min(a, b))) << 32) | uint32_t(std::max(a, b));
     for (const auto& [k, v] : crossing)
@@ -54,9 +63,17 @@ bool ConvexCell::clip(const Vec3d& n_in, double d_in, int32_t id) {
     crossing.emplace_back(key, int32_t(vertices_.size() - 1));
     return int32_t(vertices_.size() - 1);
   };
-  std::vector<std::pair<int32_t, int32_t>> cap_next;
+  std::vector<std::pair<int32_t, int32_t>>& cap_next = cap_next_;
+  cap_next.clear();
   kept_.clear();
   for (Face& f : faces_) {
+    // A face with every corner inside stays as it is.
+    bool cut = false;
+    for (int32_t v : f.corners) cut = cut || side_[size_t(v)] > 0;
+    if (!cut) {
+      kept_.push_back(std::move(f));
+      continue;
+    }
     std::vector<int32_t>& corners = scratch_corners_;
     corners.clear();
     int32_t exit = -1, entry = -1;
@@ -69,13 +86,14 @@ bool ConvexCell::clip(const Vec3d& n_in, double d_in, int32_t id) {
       if (!a_in && b_in) corners.push_back(entry = cross_point(a, b));
     }
     if (exit >= 0 && entry >= 0) cap_next.emplace_back(entry, exit);
-    if (corners.size() >= 3) {
-      f.corners.swap(corners);  // the old corner buffer becomes the next face's scratch
+    f.corners.swap(corners);  // the old corner buffer becomes the next face's scratch
+    if (f.corners.size() >= 3)
       kept_.push_back(std::move(f));
-    }
+    else
+      spare_.push_back(std::move(f));
   }
   // The new face: follow the links from any crossing.
-  Face cap{n, d, id, {}};
+  Face cap = new_face(n, d, id);
   if (!cap_next.empty()) {
     const int32_t start = cap_next.front().first;
     int32_t v = start;
@@ -87,17 +105,42 @@ bool ConvexCell::clip(const Vec3d& n_in, double d_in, int32_t id) {
       v = it->second;
     } while (v != start && cap.corners.size() <= cap_next.size());
   }
-  if (cap.corners.size() >= 3) kept_.push_back(std::move(cap));
+  if (cap.corners.size() >= 3)
+    kept_.push_back(std::move(cap));
+  else
+    spare_.push_back(std::move(cap));
   faces_.swap(kept_);
   update_live();
   return true;
 }
 
+ConvexCell::Face ConvexCell::new_face(const Vec3d& n, double d, int32_t id) {
+  Face f;
+  if (!spare_.empty()) {
+    f = std::move(spare_.back());
+    spare_.pop_back();
+  }
+  f.normal = n;
+  f.offset = d;
+  f.id = id;
+  f.corners.clear();
+  return f;
+}
+
 void ConvexCell::update_live() {
+  // Each corner once, in the order the faces list them (no sort: marks by epoch).
+  if (mark_.size() < vertices_.size()) mark_.resize(vertices_.size() + 64, 0);
+  if (++epoch_ == 0) {
+    std::fill(mark_.begin(), mark_.end(), 0);
+    epoch_ = 1;
+  }
   live_.clear();
-  for (const Face& f : faces_) live_.insert(live_.end(), f.corners.begin(), f.corners.end());
-  std::sort(live_.begin(), live_.end());
-  live_.erase(std::unique(live_.begin(), live_.end()), live_.end());
+  for (const Face& f : faces_)
+    for (int32_t v : f.corners)
+      if (mark_[size_t(v)] != epoch_) {
+        mark_[size_t(v)] = epoch_;
+        live_.push_back(v);
+      }
 }
 
 double ConvexCell::max_distance(const Vec3d& p) const {

@@ -21,6 +21,8 @@ class ConvexCell {
 
   // The box [lo, hi]; its sides get ids -1 - (2 axis + (0 low, 1 high)).
   ConvexCell(const Vec3d& lo, const Vec3d& hi);
+  // Back to the box [lo, hi], keeping the allocated memory (one cell object serves many sites).
+  void reset(const Vec3d& lo, const Vec3d& hi);
 
   // Keeps n.x <= d (n need not be unit length). Returns false when the plane does not cut.
   bool clip(const Vec3d& n, double d, int32_t id);
@@ -37,13 +39,19 @@ class ConvexCell {
 
  private:
   void update_live();
+  Face new_face(const Vec3d& n, double d, int32_t id);  // reuses a spare face's corner buffer
 
   std::vector<Vec3d> vertices_;  // corners; those of removed parts stay unused
   std::vector<Face> faces_;
-  std::vector<int32_t> live_;  // corners of the current faces, sorted
-  std::vector<double> side_;   // scratch: signed distances
-  std::vector<Face> kept_;     // scratch: the faces being rebuilt
+  std::vector<int32_t> live_;   // corners of the current faces, each once
+  std::vector<uint32_t> mark_;  // scratch: the last update_live that listed each corner
+  uint32_t epoch_ = 0;
+  std::vector<double> side_;  // scratch: signed distances
+  std::vector<Face> kept_;    // scratch: the faces being rebuilt
+  std::vector<Face> spare_;   // removed faces, whose corner buffers are reused
   std::vector<int32_t> scratch_corners_;
+  std::vector<std::pair<uint64_t, int32_t>> crossing_;  // scratch: edge -> its crossing corner
+  std::vector<std::pair<int32_t, int32_t>> cap_next_;   // scratch: the new face's corner links
 };
 
 }  // namespace pd

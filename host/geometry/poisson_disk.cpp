@@ -11,23 +11,29 @@ namespace pd {
 
 namespace {
 
-// Background grid of side r / sqrt(3): at most one point per cell.
+// Background grid of side r / sqrt(3): at most one point per cell. Stored with a border of 2
+// empty cells on every side, so the neighbour cells of any cell are at fixed index offsets.
 class Background {
  public:
   Background(const Box3d& box, double r) : lo_(box.lo), inv_cell_(std::sqrt(3.0) / r), r2_(r * r) {
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3; ++a) {
       n_[a] = std::max<int64_t>(1, int64_t(std::ceil(box.size()[a] * inv_cell_)) + 1);
-    cell_.assign(size_t(n_[0] * n_[1] * n_[2]), -1);
+      padded_[a] = n_[a] + 4;
+    }
+    cell_.assign(size_t(padded_[0] * padded_[1] * padded_[2]), -1);
     // Cells within 2 of a point's cell that can hold a point closer than r (the gap to the
     // cell, in cell sides, below sqrt 3), nearest first so conflicts are found early.
+    std::vector<std::array<int, 4>> offsets;
     for (int z = -2; z <= 2; ++z)
       for (int y = -2; y <= 2; ++y)
         for (int x = -2; x <= 2; ++x) {
           auto gap = [](int d) { return std::max(std::abs(d) - 1, 0); };
           const int g2 = gap(x) * gap(x) + gap(y) * gap(y) + gap(z) * gap(z);
-          if (g2 < 3) offsets_.push_back({x, y, z, x * x + y * y + z * z});
+          if (g2 < 3) offsets.push_back({x, y, z, x * x + y * y + z * z});
         }
-    std::sort(offsets_.begin(), offsets_.end(), [](const auto& a, const auto& b) { return a[3] < b[3]; });
+    std::stable_sort(offsets.begin(), offsets.end(),
+                     [](const auto& a, const auto& b) { return a[3] < b[3]; });
+    for (const auto& o : offsets) offsets_.push_back((int64_t(o[2]) * padded_[1] + o[1]) * padded_[0] + o[0]);
   }
   int64_t count(int a) const { return n_[a]; }
   double cell_size() const { return 1 / inv_cell_; }
@@ -38,13 +44,15 @@ class Background {
     }
     return true;
   }
-  int32_t& at(const int64_t c[3]) { return cell_[size_t((c[2] * n_[1] + c[1]) * n_[0] + c[0])]; }
+  size_t index(const int64_t c[3]) const {
+    return size_t(((c[2] + 2) * padded_[1] + c[1] + 2) * padded_[0] + c[0] + 2);
+  }
+  int32_t& at(const int64_t c[3]) { return cell_[index(c)]; }
   // True when p is at least r from every stored point (cells within 2 of p's: r spans sqrt 3 cells).
   bool free(const Vec3d& p, const int64_t c[3], const std::vector<Vec3d>& points) const {
-    for (const auto& o : offsets_) {
-      const int64_t x = c[0] + o[0], y = c[1] + o[1], z = c[2] + o[2];
-      if (x < 0 || y < 0 || z < 0 || x >= n_[0] || y >= n_[1] || z >= n_[2]) continue;
-      const int32_t q = cell_[size_t((z * n_[1] + y) * n_[0] + x)];
+    const int32_t* base = cell_.data() + index(c);
+    for (const int64_t o : offsets_) {
+      const int32_t q = base[o];
       if (q >= 0 && distance2(p, points[size_t(q)]) < r2_) return false;
     }
     return true;
@@ -57,9 +65,9 @@ class Background {
  private:
   Vec3d lo_;
   double inv_cell_, r2_;
-  int64_t n_[3];
+  int64_t n_[3], padded_[3];
   std::vector<int32_t> cell_;
-  std::vector<std::array<int, 4>> offsets_;  // x, y, z, squared length
+  std::vector<int64_t> offsets_;  // index offsets of the neighbour cells, nearest first
 };
 
 }  // namespace

@@ -48,6 +48,19 @@ class Bins {
       for (int64_t k = start_[b]; k < start_[b + 1]; ++k) visit(items_[size_t(k)]);
     });
   }
+  // Points binned (one bin each): a copy of their positions in bin order, so a search reads
+  // contiguous memory; then for_points visits (item, position).
+  void keep_points(const std::vector<Vec3d>& points) {
+    point_.resize(items_.size());
+    for (size_t k = 0; k < items_.size(); ++k) point_[k] = points[size_t(items_[k])];
+  }
+  template <class Visit>
+  void for_points(const Vec3d& lo, const Vec3d& hi, Visit visit) const {
+    for_bins(lo, hi, [&](size_t b) {
+      for (int64_t k = start_[b]; k < start_[b + 1]; ++k) visit(items_[size_t(k)], point_[size_t(k)]);
+    });
+  }
+  const std::vector<int32_t>& items() const { return items_; }
 
  private:
   Vec3d lo_;
@@ -55,6 +68,7 @@ class Bins {
   int n_[3];
   std::vector<int64_t> start_;
   std::vector<int32_t> items_;
+  std::vector<Vec3d> point_;
 };
 
 // Keeps the part of a convex polygon with n.x <= d.
@@ -252,10 +266,13 @@ ParticleGeometry voronoi_particles(const TriMesh& solid, double r, uint64_t seed
                                    const std::string& name) {
   check_particle_budget(signed_volume(solid), r * r * r / kPoissonDensity, max_particles, name,
                         "minimum distance " + std::to_string(r) + " m");
-  const InsideTest inside(solid);
   ParticleGeometry g;
+  StageClock clock(&g.stages);
+  const InsideTest inside(solid);
   g.kind = ElementKind::voronoi;
+  clock.lap("inside test");
   g.position = poisson_disk_points(solid, inside, r, seed);
+  clock.lap("Poisson-disk sites");
   const size_t n = g.size();
   const double rho = 2 * r;  // cells are cut to the cube of half-side rho around their site
 
@@ -268,35 +285,43 @@ ParticleGeometry voronoi_particles(const TriMesh& solid, double r, uint64_t seed
   for (size_t i = 0; i < n; ++i) boxes[i].add(g.position[i]);
   Bins sites(site_box, 2 * rho);
   sites.build(n, boxes);
+  sites.keep_points(g.position);
   Bins near_sites(site_box, 2.5 * r);
   near_sites.build(n, boxes);
+  near_sites.keep_points(g.position);
+  // Cells are made in bin order (neighbours at once, for the caches); each into its own slot.
+  const std::vector<int32_t>& order = near_sites.items();
   std::vector<Box3d> tri_boxes(solid.triangles.size());
   for (size_t t = 0; t < solid.triangles.size(); ++t)
     for (int32_t v : solid.triangles[t]) tri_boxes[t].add(solid.vertices[v]);
   Bins triangle_bins(bounds(solid), rho);
   triangle_bins.build(tri_boxes.size(), tri_boxes);
 
+  clock.lap("binning");
   std::vector<CellResult> results(n);
 #pragma omp parallel
   {
     CellClipper clipper(solid, inside, triangle_bins);
     std::vector<std::pair<double, int32_t>> near;
+    ConvexCell cell(Vec3d{0, 0, 0}, Vec3d{1, 1, 1});
 #pragma omp for schedule(dynamic, 256)
-    for (int64_t i = 0; i < int64_t(n); ++i) {
+    for (int64_t k = 0; k < int64_t(n); ++k) {
+      const int32_t i = order[size_t(k)];
       const Vec3d& s = g.position[size_t(i)];
       // Candidate neighbours, nearest first: those within 2.5 r, which close most cells, then
       // (when the cell still reaches beyond 1.25 r) the rest within 2 rho = 4 r.
-      ConvexCell cell(s - Vec3d{rho, rho, rho}, s + Vec3d{rho, rho, rho});
+      cell.reset(s - Vec3d{rho, rho, rho}, s + Vec3d{rho, rho, rho});
       double reach2 = 3 * rho * rho;  // (max corner distance)^2
       double done2 = 0;               // candidates up to this squared distance were used
       for (const double radius : {2.5 * r, 2 * rho}) {
         if (4 * reach2 <= done2) break;
         near.clear();
         const Vec3d reach{radius, radius, radius};
-        (radius < 2 * rho ? near_sites : sites).for_items(s - reach, s + reach, [&](int32_t j) {
-          const double d2 = distance2(s, g.position[size_t(j)]);
-          if (j != i && d2 <= radius * radius && d2 > done2) near.emplace_back(d2, j);
-        });
+        (radius < 2 * rho ? near_sites : sites)
+            .for_points(s - reach, s + reach, [&](int32_t j, const Vec3d& q) {
+              const double d2 = distance2(s, q);
+              if (j != i && d2 <= radius * radius && d2 > done2) near.emplace_back(d2, j);
+            });
         std::sort(near.begin(), near.end());
         for (const auto& [d2, j] : near) {
           if (d2 > 4 * reach2) break;  // the bisector lies beyond every corner
@@ -308,10 +333,11 @@ ParticleGeometry voronoi_particles(const TriMesh& solid, double r, uint64_t seed
         }
         done2 = radius * radius;
       }
-      clipper.measure(int32_t(i), s, cell, results[size_t(i)]);
+      clipper.measure(i, s, cell, results[size_t(i)]);
     }
   }
 
+  clock.lap("cells (clip + volume)");
   // Gather: volumes, cells, adjacency (faces inside the solid, from either side).
   g.volume.resize(n);
   std::vector<std::pair<int32_t, int32_t>> pairs;
@@ -329,7 +355,9 @@ ParticleGeometry voronoi_particles(const TriMesh& solid, double r, uint64_t seed
     c = CellResult{};
   }
   g.adjacency = adjacency_from_pairs(n, std::move(pairs));
+  clock.lap("gather + adjacency");
   compute_lambda(g);
+  clock.lap("nearest distances");
   return g;
 }
 
