@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "host/app/bench.h"
+#include "host/app/bench_geometry.h"
 #include "host/app/checkpoint.h"
 #include "host/app/compare.h"
 #include "host/app/profile.h"
@@ -66,6 +67,26 @@ int main(int argc, char** argv) {
 
   RenderOptions render;
   ProfileOptions profile;
+  GeometryBenchOptions geometry;
+  CLI::App* geometry_cmd = app.add_subcommand(
+      "bench-geometry", "time making one body's particles (grid, tets, shell, voronoi), stage by stage");
+  geometry_cmd->add_option("--shape", geometry.shape, "sphere | vase | mesh")
+      ->check(CLI::IsMember({"sphere", "vase", "mesh"}));
+  geometry_cmd->add_option("--mesh", geometry.mesh, "with --shape mesh: an OBJ, PLY or STL file");
+  geometry_cmd->add_option("--particles", geometry.particles, "grid | tets | shell | voronoi")
+      ->check(CLI::IsMember({"grid", "tets", "shell", "voronoi"}));
+  geometry_cmd->add_option("--count", geometry.count, "wanted particles (sets the spacing)")
+      ->check(CLI::PositiveNumber);
+  geometry_cmd->add_option("--spacing", geometry.spacing, "the spacing in m (overrides --count)");
+  geometry_cmd->add_option("--tet-quality", geometry.tet_quality,
+                           "TetGen -q bound; 0 = no quality refinement");
+  geometry_cmd->add_flag("--tet-keep-surface", geometry.tet_keep_surface,
+                         "TetGen -Y: no points added on the surface");
+  geometry_cmd->add_option("--shell-thickness", geometry.shell_thickness, "vase wall / shell depth in m");
+  geometry_cmd->add_option("--threads", geometry.threads, "threads of the parallel stages (0: default)");
+  geometry_cmd->add_option("--seed", geometry.seed, "Poisson-disk seed");
+  geometry_cmd->add_option("--csv", geometry.csv, "append a row to this CSV file");
+
   CLI::App* profile_cmd = app.add_subcommand(
       "profile", "time per kernel in step ranges of a scene (before/during/after fracture)");
   profile_cmd->add_option("scene", profile.scene, "scene file (TOML)")->required();
@@ -127,6 +148,7 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (*bench_cmd) return bench_command(bench);
+    if (*geometry_cmd) return bench_geometry_command(geometry);
     if (*profile_cmd) return profile_command(profile);
     if (*validate_cmd) return validate_command(validate);
     if (*compare_cmd) return compare_command(compare);

@@ -52,9 +52,10 @@ ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t ma
     origin[a] = center[a] + (0.5 - 0.5 * double(n[a])) * spacing;
   }
   // One ray per (y, z) column: a centre is inside when an odd number of crossings lie beyond it.
+  ParticleGeometry g;
+  StageClock clock(&g.stages);
   const InsideTest inside(solid);
   std::vector<int32_t> id(size_t(n[0] * n[1] * n[2]), -1);
-  ParticleGeometry g;
   g.kind = ElementKind::cube;
   g.cube_side = spacing;
   std::vector<double> xs;
@@ -72,8 +73,11 @@ ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t ma
       }
     }
   g.volume.assign(g.size(), spacing * spacing * spacing);
+  clock.lap("grid cells inside (ray per row)");
   grid_adjacency(g, id, n);
+  clock.lap("adjacency");
   compute_lambda(g);
+  clock.lap("nearest distances");
   return g;
 }
 
