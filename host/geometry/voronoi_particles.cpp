@@ -338,20 +338,32 @@ ParticleGeometry voronoi_particles(const TriMesh& solid, double r, uint64_t seed
   }
 
   clock.lap("cells (clip + volume)");
-  // Gather: volumes, cells, adjacency (faces inside the solid, from either side).
+  // Gather: volumes, cells, adjacency (faces inside the solid, from either side). Offsets
+  // first, then every cell copied into its place in parallel.
   g.volume.resize(n);
-  std::vector<std::pair<int32_t, int32_t>> pairs;
   VoronoiCells& cells = g.cells;
   cells.surface = solid;
   cells.cube_half_side = rho;
+  cells.face_offset.assign(n + 1, 0);
+  cells.triangle_offset.assign(n + 1, 0);
+  std::vector<int64_t> pair_offset(n + 1, 0);
   for (size_t i = 0; i < n; ++i) {
-    CellResult& c = results[i];
-    g.volume[i] = c.volume;
-    cells.face_site.insert(cells.face_site.end(), c.faces.begin(), c.faces.end());
-    cells.face_offset.push_back(int64_t(cells.face_site.size()));
-    cells.triangles.insert(cells.triangles.end(), c.triangles.begin(), c.triangles.end());
-    cells.triangle_offset.push_back(int64_t(cells.triangles.size()));
-    for (int32_t j : c.adjacent) pairs.emplace_back(int32_t(i), j);
+    cells.face_offset[i + 1] = cells.face_offset[i] + int64_t(results[i].faces.size());
+    cells.triangle_offset[i + 1] = cells.triangle_offset[i] + int64_t(results[i].triangles.size());
+    pair_offset[i + 1] = pair_offset[i] + int64_t(results[i].adjacent.size());
+  }
+  cells.face_site.resize(size_t(cells.face_offset[n]));
+  cells.triangles.resize(size_t(cells.triangle_offset[n]));
+  std::vector<std::pair<int32_t, int32_t>> pairs(static_cast<size_t>(pair_offset[n]));
+#pragma omp parallel for schedule(static)
+  for (int64_t i = 0; i < int64_t(n); ++i) {
+    CellResult& c = results[size_t(i)];
+    g.volume[size_t(i)] = c.volume;
+    std::copy(c.faces.begin(), c.faces.end(), cells.face_site.begin() + cells.face_offset[size_t(i)]);
+    std::copy(c.triangles.begin(), c.triangles.end(),
+              cells.triangles.begin() + cells.triangle_offset[size_t(i)]);
+    for (size_t k = 0; k < c.adjacent.size(); ++k)
+      pairs[size_t(pair_offset[size_t(i)]) + k] = {int32_t(i), c.adjacent[k]};
     c = CellResult{};
   }
   g.adjacency = adjacency_from_pairs(n, std::move(pairs));
