@@ -64,6 +64,12 @@ PD_HD inline Ray make_ray(Vec3 o, Vec3 d, real tmin, real tmax) {
   return r;
 }
 
+// A ray's crossing of a primitive's surface.
+struct SurfaceHit {
+  real t;
+  Vec3 normal;  // outward unit normal of the face crossed
+};
+
 // Axis-aligned box [lo, hi].
 struct Box {
   Vec3 lo, hi;

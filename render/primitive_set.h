@@ -13,10 +13,18 @@ struct PrimitiveSet {
   std::vector<Vec3> cube_center;
   std::vector<real> cube_half;
   std::vector<Vec3> tet_vertex;
+  // Trimtopes (trimtope.h): CSR lists of face planes and surface triangles.
+  std::vector<Vec3> trim_site;
+  std::vector<int32_t> trim_plane_start{0};
+  std::vector<Vec3> trim_plane_normal;
+  std::vector<real> trim_plane_offset;
+  std::vector<int32_t> trim_tri_start{0};
+  std::vector<Vec3> trim_tri_vertex;
+  std::vector<Box> trim_box;
 
   int32_t size() const { return int32_t(kind.size()); }
 
-  // Both return the new primitive's index.
+  // Each returns the new primitive's index.
   int32_t add_cube(Vec3 center, real half) {
     kind.push_back(kPrimCube);
     slot.push_back(int32_t(cube_center.size()));
@@ -30,10 +38,30 @@ struct PrimitiveSet {
     tet_vertex.insert(tet_vertex.end(), {a, b, c, d});
     return size() - 1;
   }
+  // A trimtope: site V, the cell's planes dot(normal[k], x) <= offset[k], `triangles` surface
+  // triangles (3 vertices each, outward orientation) and a box holding its solid part.
+  int32_t add_trimtope(Vec3 site, const Vec3* normal, const real* offset, int32_t planes,
+                       const Vec3* triangle, int32_t triangles, const Box& box) {
+    kind.push_back(kPrimTrimtope);
+    slot.push_back(int32_t(trim_site.size()));
+    trim_site.push_back(site);
+    trim_plane_normal.insert(trim_plane_normal.end(), normal, normal + planes);
+    trim_plane_offset.insert(trim_plane_offset.end(), offset, offset + planes);
+    trim_plane_start.push_back(int32_t(trim_plane_normal.size()));
+    trim_tri_vertex.insert(trim_tri_vertex.end(), triangle, triangle + 3 * int64_t(triangles));
+    trim_tri_start.push_back(int32_t(trim_tri_vertex.size() / 3));
+    trim_box.push_back(box);
+    return size() - 1;
+  }
 
   // A view of the host arrays (host-side tests and the kd-tree build).
   PrimitivesView view() const {
-    return {size(), kind.data(), slot.data(), cube_center.data(), cube_half.data(), tet_vertex.data()};
+    PrimitivesView v{size(),           kind.data(),      slot.data(), cube_center.data(),
+                     cube_half.data(), tet_vertex.data()};
+    v.trim = {trim_site.data(),         trim_plane_start.data(), trim_plane_normal.data(),
+              trim_plane_offset.data(), trim_tri_start.data(),   trim_tri_vertex.data(),
+              trim_box.data()};
+    return v;
   }
 
   std::vector<Box> bounds() const {

@@ -1,4 +1,5 @@
-// The raytracer's solid primitives, one per particle: axis-aligned cubes and tetrahedra.
+// The raytracer's solid primitives, one per particle: axis-aligned cubes, tetrahedra and
+// trimtopes (Voronoi cells trimmed by the object's surface, trimtope.h).
 // Storage is structure-of-arrays (PrimitivesView: plain pointers passed by value to kernels);
 // primitive i is of kind[i] and its data is entry slot[i] of that kind's arrays.
 //
@@ -10,10 +11,11 @@
 #pragma once
 
 #include "geometry.h"
+#include "trimtope.h"
 
 namespace pd {
 
-enum PrimKind : uint8_t { kPrimCube = 0, kPrimTet = 1 };
+enum PrimKind : uint8_t { kPrimCube = 0, kPrimTet = 1, kPrimTrimtope = 2 };
 
 struct PrimitivesView {
   int32_t n = 0;
@@ -22,11 +24,7 @@ struct PrimitivesView {
   const Vec3* cube_center = nullptr;
   const real* cube_half = nullptr;   // half the side length
   const Vec3* tet_vertex = nullptr;  // 4 consecutive vertices per tetrahedron
-};
-
-struct SurfaceHit {
-  real t;
-  Vec3 normal;  // outward unit normal of the face crossed
+  TrimtopesView trim;
 };
 
 // Picks the entry crossing t0 when it lies in (tmin, tmax], else the exit crossing t1 when the
@@ -58,11 +56,13 @@ PD_HD inline bool intersect_cube(const Ray& r, Vec3 c, real h, SurfaceHit* hit) 
   return true;
 }
 
-// Tetrahedron v[0..3] (either orientation): clips the ray against the four face planes.
-// Faces are oriented outward; a ray parallel to a face plane must lie strictly inside it.
-PD_HD inline bool intersect_tet(const Ray& r, const Vec3* v, SurfaceHit* hit) {
-  real t0 = -INFINITY, t1 = INFINITY;
-  Vec3 n0{0, 0, 0}, n1{0, 0, 0};
+// The parameter interval [t0, t1] of the line inside tetrahedron v[0..3] (either orientation)
+// with the unnormalised outward normals of the entry and exit faces: the line clipped against
+// the four face planes. A line parallel to a face plane must lie strictly inside it.
+PD_HD inline bool tet_interval(const Ray& r, const Vec3* v, real* t0, real* t1, Vec3* n0, Vec3* n1) {
+  *t0 = -INFINITY;
+  *t1 = INFINITY;
+  *n0 = *n1 = Vec3{0, 0, 0};
   for (int f = 0; f < 4; ++f) {
     // Face f is opposite vertex f.
     const Vec3 a = v[(f + 1) & 3], b = v[(f + 2) & 3], c = v[(f + 3) & 3];
@@ -76,16 +76,23 @@ PD_HD inline bool intersect_tet(const Ray& r, const Vec3* v, SurfaceHit* hit) {
     }
     const real t = dist / denom;
     if (denom < 0) {
-      if (t > t0) {
-        t0 = t;
-        n0 = n;
+      if (t > *t0) {
+        *t0 = t;
+        *n0 = n;
       }
-    } else if (t < t1) {
-      t1 = t;
-      n1 = n;
+    } else if (t < *t1) {
+      *t1 = t;
+      *n1 = n;
     }
   }
-  if (!(t0 <= t1)) return false;
+  return *t0 <= *t1;
+}
+
+// Tetrahedron v[0..3]: the first crossing of its faces.
+PD_HD inline bool intersect_tet(const Ray& r, const Vec3* v, SurfaceHit* hit) {
+  real t0, t1;
+  Vec3 n0, n1;
+  if (!tet_interval(r, v, &t0, &t1, &n0, &n1)) return false;
   bool exiting;
   if (!first_crossing(r, t0, t1, &exiting, &hit->t)) return false;
   hit->normal = normalize(exiting ? n1 : n0);
@@ -95,6 +102,7 @@ PD_HD inline bool intersect_tet(const Ray& r, const Vec3* v, SurfaceHit* hit) {
 PD_HD inline bool intersect_primitive(const PrimitivesView& p, int32_t i, const Ray& r, SurfaceHit* hit) {
   const int32_t s = p.slot[i];
   if (p.kind[i] == kPrimCube) return intersect_cube(r, p.cube_center[s], p.cube_half[s], hit);
+  if (p.kind[i] == kPrimTrimtope) return intersect_trimtope(p.trim, s, r, hit);
   return intersect_tet(r, p.tet_vertex + 4 * int64_t(s), hit);
 }
 
@@ -105,8 +113,58 @@ PD_HD inline Box primitive_bounds(const PrimitivesView& p, int32_t i) {
     const real h = p.cube_half[s];
     return {{c.x - h, c.y - h, c.z - h}, {c.x + h, c.y + h, c.z + h}};
   }
+  if (p.kind[i] == kPrimTrimtope) return p.trim.box[s];
   const Vec3* v = p.tet_vertex + 4 * int64_t(s);
   return {vmin(vmin(v[0], v[1]), vmin(v[2], v[3])), vmax(vmax(v[0], v[1]), vmax(v[2], v[3]))};
+}
+
+// For a ray whose point at r.tmin lies inside primitive i: where it leaves the primitive's solid,
+// with the outward unit normal there (dot(normal, d) >= 0). Used to walk through a connected
+// collection of touching elements (union_walk.h). False when the ray's line misses the
+// primitive or leaves it at or before tmin.
+PD_HD inline bool primitive_exit(const PrimitivesView& p, int32_t i, const Ray& r, SurfaceHit* hit) {
+  const int32_t s = p.slot[i];
+  if (p.kind[i] == kPrimTrimtope) return exit_trimtope(p.trim, s, r, hit);
+  real t0, t1;
+  Vec3 n;
+  if (p.kind[i] == kPrimCube) {
+    const Vec3 c = p.cube_center[s];
+    const real h = p.cube_half[s];
+    int entry_axis, exit_axis;
+    if (!line_box_interval(r, {c.x - h, c.y - h, c.z - h}, {c.x + h, c.y + h, c.z + h}, &t0, &t1, &entry_axis,
+                           &exit_axis) ||
+        exit_axis < 0)
+      return false;
+    const real sign = axis_of(r.d, exit_axis) > 0 ? real(1) : real(-1);
+    n = {exit_axis == 0 ? sign : real(0), exit_axis == 1 ? sign : real(0), exit_axis == 2 ? sign : real(0)};
+  } else {
+    Vec3 n0;
+    if (!tet_interval(r, p.tet_vertex + 4 * int64_t(s), &t0, &t1, &n0, &n)) return false;
+  }
+  if (!(t1 > r.tmin) || !(t1 < INFINITY)) return false;
+  hit->t = t1;
+  hit->normal = normalize(n);
+  return true;
+}
+
+// Is the point x strictly inside primitive i's solid?
+PD_HD inline bool primitive_contains(const PrimitivesView& p, int32_t i, Vec3 x) {
+  const int32_t s = p.slot[i];
+  if (p.kind[i] == kPrimCube) {
+    const Vec3 c = p.cube_center[s];
+    const real h = p.cube_half[s];
+    return std::fabs(x.x - c.x) < h && std::fabs(x.y - c.y) < h && std::fabs(x.z - c.z) < h;
+  }
+  if (p.kind[i] == kPrimTrimtope) return trimtope_contains(p.trim, s, x);
+  const Vec3* v = p.tet_vertex + 4 * int64_t(s);
+  for (int f = 0; f < 4; ++f) {
+    const Vec3 a = v[(f + 1) & 3], b = v[(f + 2) & 3], c = v[(f + 3) & 3];
+    const Vec3 n = cross(b - a, c - a);
+    // x and the opposite vertex on the same side of the face's plane.
+    const real sx = dot(n, x - a), sv = dot(n, v[f] - a);
+    if (!(sx * sv > 0)) return false;
+  }
+  return true;
 }
 
 }  // namespace pd

@@ -52,6 +52,51 @@ inline PrimitiveSet random_scene(uint64_t seed, int cubes, int tets) {
   return s;
 }
 
+// A trimtope around centre c: the cube of half side h cut by three random planes that keep c,
+// site V = c, and (unless `solid`) a surface of two large triangles on a random plane passing
+// between V and the cube's corners, facing away from V, sometimes folded into a crease by a
+// second pair. The cube is a valid bound of the solid part.
+inline int32_t add_random_trimtope(PrimitiveSet& s, Random& rng, Vec3 c, real h, bool solid) {
+  Vec3 normal[9];
+  real offset[9];
+  for (int a = 0; a < 3; ++a) {
+    const Vec3 e{a == 0 ? real(1) : real(0), a == 1 ? real(1) : real(0), a == 2 ? real(1) : real(0)};
+    normal[2 * a] = e;
+    offset[2 * a] = dot(e, c) + h;
+    normal[2 * a + 1] = -e;
+    offset[2 * a + 1] = -dot(e, c) + h;
+  }
+  for (int k = 6; k < 9; ++k) {
+    normal[k] = random_direction(rng);
+    offset[k] = dot(normal[k], c) + uniform(rng, 0.3, 1.5) * h;
+  }
+  std::vector<Vec3> tri;
+  const int sheets = solid ? 0 : (rng.uniform() < 0.3 ? 2 : 1);
+  for (int k = 0; k < sheets; ++k) {
+    // The plane dot(m, x - c) = q, q > 0, outward normal m; a square of side 8h on it.
+    const Vec3 m = random_direction(rng);
+    const real q = uniform(rng, 0.1, 0.8) * h;
+    const Vec3 u = normalize(cross(m, std::fabs(m.x) < real(0.9) ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+    const Vec3 w = cross(m, u);  // (u, w, m) right-handed: u x w = m, so (a, b, c) below face +m
+    const Vec3 o = c + q * m;
+    const real e = 4 * h;
+    const Vec3 p00 = o - e * u - e * w, p10 = o + e * u - e * w, p11 = o + e * u + e * w,
+               p01 = o - e * u + e * w;
+    tri.insert(tri.end(), {p00, p10, p11, p00, p11, p01});
+  }
+  const Box box{{c.x - h, c.y - h, c.z - h}, {c.x + h, c.y + h, c.z + h}};
+  return s.add_trimtope(c, normal, offset, 9, tri.data(), int32_t(tri.size() / 3), box);
+}
+
+// Random trimtopes (a fifth of them without surface) mixed with cubes and tetrahedra.
+inline PrimitiveSet random_trimtope_scene(uint64_t seed, int trimtopes, int cubes, int tets) {
+  Random rng(seed);
+  PrimitiveSet s = random_scene(seed + 1000, cubes, tets);
+  for (int i = 0; i < trimtopes; ++i)
+    add_random_trimtope(s, rng, uniform_point(rng, -1, 1), uniform(rng, 0.03, 0.15), rng.uniform() < 0.2);
+  return s;
+}
+
 // An nx x ny x nz block of face-adjacent cubes of side `spacing`.
 inline PrimitiveSet lattice_scene(int nx, int ny, int nz, real spacing) {
   PrimitiveSet s;

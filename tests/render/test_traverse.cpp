@@ -138,6 +138,11 @@ TEST(ShortStackTraversal, MatchesBruteForceOnLatticesWithSharedFaces) {
   check_scene(testing::lattice_scene(11, 8, 9, real(0.1)), 104, 400);    // faces off by an ulp
 }
 
+TEST(ShortStackTraversal, MatchesBruteForceOnRandomTrimtopeScenes) {
+  EXPECT_GT(check_scene(testing::random_trimtope_scene(5, 600, 0, 0), 105, 400), 0);
+  EXPECT_GT(check_scene(testing::random_trimtope_scene(6, 500, 300, 300), 106, 300), 0);
+}
+
 TEST(ShortStackTraversal, FullStackVisitsNoMoreNodesThanRestarts) {
   const PrimitiveSet scene = testing::random_scene(3, 2000, 0);
   const KdTree tree = build_kdtree(scene.bounds());
