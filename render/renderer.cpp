@@ -1,19 +1,36 @@
 // Backend choice and the host-side preparation shared by both renderers.
 #include "renderer.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 
 namespace pd {
 
-RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo, const KdBuildOptions& options) {
+RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo, std::vector<uint8_t> material,
+                              const KdBuildOptions& options) {
   if (albedo.size() != prims.kind.size())
     throw std::invalid_argument("render scene: " + std::to_string(albedo.size()) + " albedos for " +
                                 std::to_string(prims.size()) + " primitives");
+  if (!material.empty() && material.size() != prims.kind.size())
+    throw std::invalid_argument("render scene: " + std::to_string(material.size()) + " materials for " +
+                                std::to_string(prims.size()) + " primitives");
   RenderScene scene;
-  scene.tree = build_kdtree(prims.bounds(), options);
+  const std::vector<Box> boxes = prims.bounds();
+  // Union tolerance: a fraction of the median element's smallest box side.
+  std::vector<real> sides(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const Vec3 e = boxes[i].hi - boxes[i].lo;
+    sides[i] = rmin(e.x, rmin(e.y, e.z));
+  }
+  if (!sides.empty()) {
+    std::nth_element(sides.begin(), sides.begin() + long(sides.size() / 2), sides.end());
+    scene.join_gap = kJoinGapFraction * sides[sides.size() / 2];
+  }
+  scene.tree = build_kdtree(boxes, options);
   scene.prims = std::move(prims);
   scene.albedo = std::move(albedo);
+  scene.material = std::move(material);
   return scene;
 }
 

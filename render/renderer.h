@@ -18,13 +18,20 @@ namespace pd {
 
 struct RenderScene {
   PrimitiveSet prims;
-  std::vector<Vec3> albedo;  // linear RGB, one per primitive
+  std::vector<Vec3> albedo;       // linear RGB, one per primitive
+  std::vector<uint8_t> material;  // SurfaceMaterial per primitive; empty: all opaque
+  real join_gap =
+      0;  // elements closer than this touch (union_walk.h): kJoinGapFraction of the median element
   KdTree tree;
 };
 
-// Builds the kd-tree; throws std::invalid_argument unless there is one albedo per primitive.
+// The union tolerance as a fraction of the median element's smallest box side.
+constexpr real kJoinGapFraction = real(0.005);
+
+// Builds the kd-tree and the union tolerance; throws std::invalid_argument unless there is one
+// albedo per primitive and no material or one per primitive.
 RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo,
-                              const KdBuildOptions& options = {});
+                              std::vector<uint8_t> material = {}, const KdBuildOptions& options = {});
 
 struct RenderSettings {
   int width = 1280, height = 720;
@@ -36,6 +43,7 @@ struct RenderSettings {
   real plank_width = real(0.1);    // wood texture scale [m]
   real fade_distance = real(100);  // floor fade into the horizon [m]
   real exposure = real(0.85);      // linear scale before the sRGB encoding
+  real ior = real(1.5);            // index of refraction of glass elements
 };
 
 // The kernel's shading parameters for `s` (projects the sky to SH).

@@ -13,12 +13,14 @@
 
 #include "../cuda/device_array.h"
 #include "../cuda/kernel_stats.h"
+#include "glass.h"
 #include "renderer.h"
 #include "traverse.h"
 
 namespace pd {
 
 constexpr int kRenderStackSize = 4;  // short-stack entries per ray
+constexpr int kMaxGlassPieces = 6;   // separate glass collections one primary ray passes through
 // Pixels are handed out in tiles of one warp (8 x 4), so neighbouring threads trace
 // neighbouring rays. Tile order is a fixed permutation of the image, so that the equal
 // contiguous thread ranges of a static CPU schedule each get a spread of easy and hard tiles.
@@ -28,6 +30,9 @@ struct PixelKernelParams {
   KdTreeView tree;
   PrimitivesView prims;
   const Vec3* albedo = nullptr;
+  const uint8_t* material = nullptr;  // SurfaceMaterial per primitive; null: all opaque
+  real ior = real(1.5);               // index of refraction of glass
+  real join_gap = 0;                  // union tolerance of touching elements (union_walk.h)
   CameraFrame camera;
   int32_t spp = 1;
   real exposure = 1;
@@ -37,18 +42,66 @@ struct PixelKernelParams {
   int64_t tile_step = 1;  // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
 };
 
-// Radiance arriving along a primary ray: the nearest primitive or the floor, else the sky.
-PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, const Ray& ray) {
-  const Hit hit = traverse_short_stack<kRenderStackSize>(p.tree, p.prims, ray);
+// The nearest primitive or floor crossing of `ray`: hit.prim >= 0 for a primitive; else
+// *floor_t > 0 when the ray reaches the floor.
+PD_HD inline Hit nearest(const PixelKernelParams& p, const Ray& ray, real* floor_t) {
+  Hit hit = traverse_short_stack<kRenderStackSize>(p.tree, p.prims, ray);
+  *floor_t = 0;
   const ShadingParams& s = p.shading;
   if (s.floor && ray.d.y != 0) {
     const real t = (s.floor_y - ray.o.y) / ray.d.y;
-    if (t > ray.tmin && (hit.prim < 0 || t < hit.t)) return shade_floor(s, ray.o + t * ray.d, ray.d, t);
+    if (t > ray.tmin && (hit.prim < 0 || t < hit.t)) {
+      hit.prim = -1;
+      *floor_t = t;
+    }
   }
+  return hit;
+}
+
+// Radiance of a surface seen along `ray` that is not glass: the floor, an opaque primitive or
+// the sky.
+PD_HD inline Vec3 shade_surface(const PixelKernelParams& p, const Ray& ray, const Hit& hit, real floor_t) {
+  const ShadingParams& s = p.shading;
+  if (floor_t > 0) return shade_floor(s, ray.o + floor_t * ray.d, ray.d, floor_t);
   if (hit.prim < 0) return sky_radiance(s.sky, s.sun, ray.d);
   // Shade the side facing the eye (an eye inside a primitive sees the exit face).
   const Vec3 n = dot(hit.normal, ray.d) > 0 ? -hit.normal : hit.normal;
   return shade_opaque(s, n, -ray.d, p.albedo[hit.prim]);
+}
+
+PD_HD inline bool is_glass(const PixelKernelParams& p, int32_t prim) {
+  return p.material && prim >= 0 && p.material[prim] == kMaterialGlass;
+}
+
+// Radiance arriving along a primary ray. Glass: the Fresnel-reflected part is looked up with one
+// more ray (glass seen in a reflection shows the sky behind it), the refracted part crosses the
+// collection (glass.h) and goes on to whatever lies behind, up to kMaxGlassPieces collections.
+PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, Ray ray) {
+  Vec3 radiance{0, 0, 0};
+  real weight = 1;
+  for (int piece = 0;; ++piece) {
+    real floor_t;
+    const Hit hit = nearest(p, ray, &floor_t);
+    if (!is_glass(p, hit.prim) || floor_t > 0) return radiance + weight * shade_surface(p, ray, hit, floor_t);
+    if (piece == kMaxGlassPieces)
+      return radiance + weight * sky_radiance(p.shading.sky, p.shading.sun, ray.d);
+    // Entry into the collection: the face turned towards the ray.
+    const Vec3 n = dot(hit.normal, ray.d) > 0 ? -hit.normal : hit.normal;
+    const Vec3 x = ray.o + hit.t * ray.d;
+    const Fresnel f = fresnel_dielectric(-dot(ray.d, n), real(1), p.ior);
+    const Ray mirror = make_ray(x, reflect(ray.d, n), real(0.01) * p.join_gap, INFINITY);
+    real mirror_floor;
+    const Hit seen = nearest(p, mirror, &mirror_floor);
+    radiance += (weight * f.reflect) * (is_glass(p, seen.prim) && !(mirror_floor > 0)
+                                            ? sky_radiance(p.shading.sky, p.shading.sun, mirror.d)
+                                            : shade_surface(p, mirror, seen, mirror_floor));
+    if (!(f.transmit > 0)) return radiance;
+    const GlassTransit g = glass_transit(p.tree, p.prims, x, refract(ray.d, n, real(1), p.ior, f.cos_t),
+                                         hit.prim, p.ior, p.join_gap);
+    weight *= f.transmit * g.weight;
+    if (g.last < 0) return radiance + weight * sky_radiance(p.shading.sky, p.shading.sun, g.dir);
+    ray = make_ray(g.point, g.dir, real(0.01) * p.join_gap, INFINITY);
+  }
 }
 
 // Thread i: averages the pixel's samples and stores it as sRGB.
@@ -89,6 +142,8 @@ class RendererImpl final : public Renderer {
     const PrimitiveSet& ps = scene.prims;
     if (scene.albedo.size() != ps.kind.size())
       throw std::invalid_argument("render: the scene needs one albedo per primitive");
+    if (!scene.material.empty() && scene.material.size() != ps.kind.size())
+      throw std::invalid_argument("render: the scene needs no material or one per primitive");
 
     // Upload the scene.
     auto kind = upload(ps.kind);
@@ -96,7 +151,15 @@ class RendererImpl final : public Renderer {
     auto cube_center = upload(ps.cube_center);
     auto cube_half = upload(ps.cube_half);
     auto tet_vertex = upload(ps.tet_vertex);
+    auto trim_site = upload(ps.trim_site);
+    auto trim_plane_start = upload(ps.trim_plane_start);
+    auto trim_plane_normal = upload(ps.trim_plane_normal);
+    auto trim_plane_offset = upload(ps.trim_plane_offset);
+    auto trim_tri_start = upload(ps.trim_tri_start);
+    auto trim_tri_vertex = upload(ps.trim_tri_vertex);
+    auto trim_box = upload(ps.trim_box);
     auto albedo = upload(scene.albedo);
+    auto material = upload(scene.material);
     auto nodes = upload(scene.tree.nodes);
     auto prim_index = upload(scene.tree.prim_index);
 
@@ -104,8 +167,14 @@ class RendererImpl final : public Renderer {
     PixelKernelParams p;
     p.camera = camera_frame(camera, s.width, s.height);
     p.prims = {ps.size(), kind.data(), slot.data(), cube_center.data(), cube_half.data(), tet_vertex.data()};
+    p.prims.trim = {trim_site.data(),         trim_plane_start.data(), trim_plane_normal.data(),
+                    trim_plane_offset.data(), trim_tri_start.data(),   trim_tri_vertex.data(),
+                    trim_box.data()};
     p.tree = {nodes.data(), prim_index.data(), scene.tree.bounds};
     p.albedo = albedo.data();
+    p.material = scene.material.empty() ? nullptr : material.data();
+    p.ior = s.ior;
+    p.join_gap = scene.join_gap;
     p.spp = s.spp;
     p.exposure = s.exposure;
     p.shading = make_shading_params(s);

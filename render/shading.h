@@ -23,6 +23,9 @@ struct ShadingParams {
 
 constexpr real kPi = real(3.14159265358979323846);
 
+// Per-primitive materials.
+enum SurfaceMaterial : uint8_t { kMaterialOpaque = 0, kMaterialGlass = 1 };
+
 // Radiance leaving an opaque surface towards `view` (unit, from the surface to the eye).
 PD_HD inline Vec3 shade_opaque(const ShadingParams& p, Vec3 normal, Vec3 view, Vec3 albedo) {
   // Diffuse: albedo / pi times the SH irradiance.
