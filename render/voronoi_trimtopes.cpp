@@ -48,7 +48,7 @@ bool inside_object(const RestTrimtopes& r, size_t i, const Vec3d& p) {
 
 }  // namespace
 
-RestTrimtopes rest_trimtopes(const ParticleGeometry& g) {
+RestTrimtopes rest_trimtopes(const ParticleGeometry& g, int32_t first_particle) {
   const VoronoiCells& c = g.cells;
   const size_t n = g.size();
   if (g.kind != ElementKind::voronoi || c.face_offset.size() != n + 1 || c.triangle_offset.size() != n + 1)
@@ -56,6 +56,8 @@ RestTrimtopes rest_trimtopes(const ParticleGeometry& g) {
                                 std::to_string(c.face_offset.size()) + " cell offsets for " +
                                 std::to_string(n) + " particles)");
   RestTrimtopes r;
+  r.particle.resize(n);
+  for (size_t i = 0; i < n; ++i) r.particle[i] = first_particle + int32_t(i);
   r.site = g.position;
   r.box.resize(n);
   const double rho = c.cube_half_side;
@@ -109,6 +111,21 @@ RestTrimtopes rest_trimtopes(const ParticleGeometry& g) {
     if (!(box.lo[0] <= box.hi[0])) box.add(s);  // degenerate: keep a point box at the site
   }
   return r;
+}
+
+void append(RestTrimtopes& all, const RestTrimtopes& more) {
+  auto shifted = [](std::vector<int64_t>& to, const std::vector<int64_t>& from) {
+    const int64_t base = to.back();
+    for (size_t k = 1; k < from.size(); ++k) to.push_back(base + from[k]);
+  };
+  all.particle.insert(all.particle.end(), more.particle.begin(), more.particle.end());
+  all.site.insert(all.site.end(), more.site.begin(), more.site.end());
+  shifted(all.plane_start, more.plane_start);
+  all.plane_normal.insert(all.plane_normal.end(), more.plane_normal.begin(), more.plane_normal.end());
+  all.plane_offset.insert(all.plane_offset.end(), more.plane_offset.begin(), more.plane_offset.end());
+  shifted(all.tri_start, more.tri_start);
+  all.tri_vertex.insert(all.tri_vertex.end(), more.tri_vertex.begin(), more.tri_vertex.end());
+  all.box.insert(all.box.end(), more.box.begin(), more.box.end());
 }
 
 int32_t add_placed_trimtope(PrimitiveSet* prims, const RestTrimtopes& rest, size_t i,

@@ -15,6 +15,7 @@
 namespace pd {
 
 struct RestTrimtopes {
+  std::vector<int32_t> particle;        // the particle each cell belongs to (index in the run)
   std::vector<Vec3d> site;              // Voronoi site of each cell (its particle's rest position)
   std::vector<int64_t> plane_start{0};  // CSR: planes of cell i
   std::vector<Vec3d> plane_normal;      // outward unit normals
@@ -27,8 +28,12 @@ struct RestTrimtopes {
 };
 
 // The trimtopes of a Voronoi particle geometry (ElementKind::voronoi), one per particle in its
-// order. Throws std::invalid_argument for another kind or cells that do not match the particles.
-RestTrimtopes rest_trimtopes(const ParticleGeometry& g);
+// order, their particles numbered from `first_particle`. Throws std::invalid_argument for another
+// kind or cells that do not match the particles.
+RestTrimtopes rest_trimtopes(const ParticleGeometry& g, int32_t first_particle = 0);
+
+// Appends `more` to `all` (several Voronoi bodies in one run).
+void append(RestTrimtopes& all, const RestTrimtopes& more);
 
 // Appends trimtope i moved by x -> rotation x + translation; returns the primitive's index.
 int32_t add_placed_trimtope(PrimitiveSet* prims, const RestTrimtopes& rest, size_t i,

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "../../render/trimtope_file.h"
 #include "../engine.h"
 #include "../fragments/fragment_output.h"
 #include "../io/atomic_file.h"
@@ -189,6 +190,13 @@ int run_command(const RunOptions& options) {
   if (const size_t stale = remove_stale_temporaries(out))
     std::printf("output     removed %zu partial file(s) of an interrupted run\n", stale);
   if (scene.write_binary) write_rest_file(out + "/" + kRestFileName, rest_data(setup.input.particles));
+  if (scene.write_binary && !setup.voronoi.empty()) {
+    // The Voronoi bodies' trimtopes in rest space, for `perifrac render`.
+    RestTrimtopes trimtopes;
+    for (const VoronoiBody& v : setup.voronoi)
+      append(trimtopes, rest_trimtopes(v.geometry, v.first_particle));
+    write_trimtopes_file(out + "/" + kTrimtopesFileName, trimtopes);
+  }
   PvdSeries series(out, "particles");
   BondLists bonds;
   engine->read_bonds(bonds);

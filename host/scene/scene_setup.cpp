@@ -233,6 +233,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
       ps.add(x, v, real(geometry.volume[i]), real(sm.density * geometry.volume[i]),
              scattered_limit(summary.strain_limit, sm.strain_limit_scatter, rng), mat, int32_t(b), flags);
     }
+    if (geometry.kind == ElementKind::voronoi) result.voronoi.push_back({base, std::move(geometry)});
   }
 
   result.adjacency = adjacency_from_pairs(ps.size(), std::move(adjacency_pairs));

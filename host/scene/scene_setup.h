@@ -7,6 +7,7 @@
 #include "../adjacency.h"
 #include "../engine.h"
 #include "../fragments/embedded_mesh.h"
+#include "../geometry/particle_geometry.h"
 #include "../particle_set.h"
 #include "scene.h"
 
@@ -36,6 +37,12 @@ struct MaterialSummary {
   double spacing = 0, horizon = 0, micromodulus = 0, strain_limit = 0, critical_dt = 0;
 };
 
+// A Voronoi body's particle geometry (cells, surface), kept for the renderer's trimtopes.
+struct VoronoiBody {
+  int32_t first_particle = 0;  // index of its first particle in the scene
+  ParticleGeometry geometry;
+};
+
 struct SetupResult {
   SimulationInput input;
   std::vector<MaterialSummary> materials;  // one per material table entry
@@ -45,6 +52,7 @@ struct SetupResult {
   ElementAdjacency adjacency;  // which particles' elements share a face, over all bodies
   bool all_cubes = true;       // every body is made of grid cubes
   EmbeddedTets embedded;  // the tet meshes of the tet and shell bodies (Chen sec. 5.2), tets as particles
+  std::vector<VoronoiBody> voronoi;  // the Voronoi bodies
 };
 
 // Throws SceneError for problems that only show once sizes are known (too many particles,

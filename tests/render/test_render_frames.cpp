@@ -8,8 +8,14 @@
 #include <fstream>
 #include <sstream>
 
+#include <Eigen/Geometry>
+
+#include "host/fragments/fragments_file.h"
+#include "host/geometry/shapes.h"
+#include "host/geometry/voronoi_particles.h"
 #include "host/io/atomic_file.h"
 #include "host/io/frame_file.h"
+#include "render/trimtope_file.h"
 
 namespace pd {
 namespace {
@@ -118,6 +124,100 @@ TEST_F(RenderFramesTest, RejectsMismatchedFramesAndMissingInputs) {
   o.dir = dir_.string();
   o.spp = 0;
   EXPECT_THROW(render_frames(o), std::invalid_argument);
+}
+
+// A run directory of one Voronoi body (a box) with two frames: at rest, then rotated and moved
+// as one fragment (fragments_00001.pfg).
+class VoronoiRenderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(::testing::TempDir()) /
+           ("perifrac_render_voronoi_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    const ParticleGeometry g = voronoi_particles(box_mesh({0.4, 0.2, 0.3}), 0.05, 1, 100000, "box");
+    trimtopes_ = rest_trimtopes(g);
+    write_trimtopes_file((dir_ / kTrimtopesFileName).string(), trimtopes_);
+    for (size_t i = 0; i < g.size(); ++i) {
+      rest_.position.push_back({real(g.position[i][0]), real(g.position[i][1]), real(g.position[i][2])});
+      rest_.volume.push_back(float(g.volume[i]));
+      rest_.body.push_back(0);
+      rest_.material.push_back(0);
+    }
+    write_rest_file((dir_ / kRestFileName).string(), rest_);
+    fragment_.id = 0;
+    fragment_.particles = int32_t(g.size());
+    fragment_.rotation = Eigen::AngleAxisd(0.5, Eigen::Vector3d(0, 1, 1).normalized()).toRotationMatrix();
+    fragment_.translation = Eigen::Vector3d(0.05, 0.1, -0.02);
+    for (int f = 0; f < 2; ++f) {
+      FrameData frame;
+      frame.frame = f;
+      for (size_t i = 0; i < g.size(); ++i) {
+        const Eigen::Vector3d x(g.position[i][0], g.position[i][1], g.position[i][2]);
+        const Eigen::Vector3d y = f == 0 ? x : fragment_.rotation * x + fragment_.translation;
+        frame.position.push_back({real(y.x()), real(y.y()), real(y.z())});
+      }
+      frame.velocity.assign(g.size(), {0, 0, 0});
+      frame.damage.assign(g.size(), 0.0f);
+      frame.body.assign(g.size(), 0);
+      frame.component.assign(g.size(), 0);
+      write_frame_file((dir_ / frame_file_name(f, "pfr")).string(), frame);
+      frames_.push_back(frame);
+    }
+    write_fragments_file((dir_ / fragments_file_name(1)).string(), 1, 0, 0, {fragment_});
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path dir_;
+  RestData rest_;
+  RestTrimtopes trimtopes_;
+  Fragment fragment_;
+  std::vector<FrameData> frames_;
+};
+
+TEST_F(VoronoiRenderTest, TrimtopesFollowTheirFragmentsTransform) {
+  FragmentsFrame fr;
+  fr.fragments = {fragment_};
+  PrimitiveSet prims;
+  std::vector<Vec3> albedo;
+  frame_primitives(rest_, frames_[1], &prims, &albedo, &trimtopes_, &fr);
+  ASSERT_EQ(size_t(prims.size()), rest_.size());
+  for (size_t i = 0; i < rest_.size(); ++i) {
+    ASSERT_EQ(prims.kind[i], kPrimTrimtope);
+    // The placed site is where the frame has the particle (rest site moved by the fragment).
+    const Vec3 s = prims.trim_site[size_t(prims.slot[i])];
+    EXPECT_NEAR(s.x, frames_[1].position[i].x, 1e-5);
+    EXPECT_NEAR(s.y, frames_[1].position[i].y, 1e-5);
+    EXPECT_NEAR(s.z, frames_[1].position[i].z, 1e-5);
+    // Its rotated planes keep it inside.
+    for (int32_t k = prims.trim_plane_start[size_t(prims.slot[i])];
+         k < prims.trim_plane_start[size_t(prims.slot[i]) + 1]; ++k)
+      EXPECT_LT(dot(prims.trim_plane_normal[size_t(k)], s), prims.trim_plane_offset[size_t(k)]);
+  }
+  // Without fragments each trimtope moves with its particle (a translation).
+  frame_primitives(rest_, frames_[0], &prims, &albedo, &trimtopes_, nullptr);
+  const Vec3 s0 = prims.trim_site[size_t(prims.slot[3])];
+  EXPECT_NEAR(s0.y, frames_[0].position[3].y, 1e-6);
+}
+
+TEST_F(VoronoiRenderTest, RendersTheRunWithTrimtopesOpaqueAndGlass) {
+  for (const char* material : {"opaque", "glass"}) {
+    RenderOptions o;
+    o.dir = dir_.string();
+    o.out = (dir_ / material).string();
+    o.backend = "cpu";
+    o.width = 48;
+    o.height = 32;
+    o.material = material;
+    ASSERT_EQ(render_frames(o), 0);
+    for (const char* name : {"frame_00000.png", "frame_00001.png"})
+      EXPECT_GT(fs::file_size(dir_ / material / name), 100u) << material << " " << name;
+  }
+  RenderOptions bad;
+  bad.dir = dir_.string();
+  bad.material = "wood";
+  EXPECT_THROW(render_frames(bad), std::invalid_argument);
 }
 
 }  // namespace
