@@ -104,10 +104,10 @@ int main(int argc, char** argv) {
   ValidateOptions validate;
   CLI::App* validate_cmd =
       app.add_subcommand("validate", "run validation problems against analytic or published answers");
-  validate_cmd->add_option(
-      "--problem", validate.problem,
-      "all | wave_bar | tension_bar_pmb | tension_bar_lps | cantilever_pmb | cantilever_lps | "
-      "crack_branching");
+  validate_cmd->add_option("--problem", validate.problem,
+                           "all | wave_bar | tension_bar_pmb | tension_bar_lps | cantilever_pmb | "
+                           "cantilever_lps | bar_twist_lps | bar_spin_lps | "
+                           "crack_branching");
   validate_cmd
       ->add_option("--resolution", validate.resolutions,
                    "particles across, e.g. 4,6,8 (default: each problem's sweep)")

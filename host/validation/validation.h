@@ -50,6 +50,8 @@ std::vector<ValidationResult> run_tension_bar_pmb(const ValidationCase& c);
 std::vector<ValidationResult> run_tension_bar_lps(const ValidationCase& c);
 std::vector<ValidationResult> run_cantilever_pmb(const ValidationCase& c);
 std::vector<ValidationResult> run_cantilever_lps(const ValidationCase& c);
+std::vector<ValidationResult> run_bar_twist_lps(const ValidationCase& c);
+std::vector<ValidationResult> run_bar_spin_lps(const ValidationCase& c);
 std::vector<ValidationResult> run_crack_branching(const ValidationCase& c);
 
 }  // namespace pd
