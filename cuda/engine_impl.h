@@ -30,6 +30,7 @@ class EngineImpl final : public Engine {
         device_(std::move(device)),
         materials_(in.materials),
         step_params_(in.step),
+        motion_(in.motion),
         contact_(in.contact) {
     features_ = features_of(materials_, contact_);
     const ParticleSet& ps = in.particles;
@@ -42,6 +43,7 @@ class EngineImpl final : public Engine {
     if (contact_) allocate_contact_hash();
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0;
+    motion_.apply(time_, step_params_);
     compute_forces();
     exec_.flush_stats();
   }
@@ -57,7 +59,8 @@ class EngineImpl final : public Engine {
     const real dt = step_params_.dt;
     for (int64_t s = 0; s < steps; ++s) {
       step_params_.time = real(time_ + dt);
-      launch_position_update(exec_, particles(), dt);
+      if (scripted_motion_) motion_.apply(time_ + dt, step_params_);
+      launch_position_update(exec_, particles(), step_params_);
       compute_forces();
       launch_velocity_update(exec_, particles(), step_params_);
       time_ += dt;
@@ -115,6 +118,7 @@ class EngineImpl final : public Engine {
     });
     step_ = in.step;
     time_ = in.time;
+    motion_.apply(time_, step_params_);
     for_each_state_array(snapshot, [](const char*, auto& array, auto& host) { array.upload(host); });
   }
 
@@ -142,6 +146,7 @@ class EngineImpl final : public Engine {
     p.material = material_.data();
     p.body = body_.data();
     p.flags = flags_.data();
+    p.anchor = anchor_.data();
     p.strain_limit0 = strain_limit0_.data();
     p.strain_min = strain_min_.data();
     p.intact = intact_.data();
@@ -189,6 +194,8 @@ class EngineImpl final : public Engine {
     material_ = make_from(ps.material);
     body_ = make_from(ps.body);
     flags_ = make_from(ps.flags);
+    anchor_ = ps.anchor.size() == ps.size() ? make_from(ps.anchor) : make<uint8_t>(n_);
+    if (ps.anchor.size() != ps.size()) anchor_.zero();
     strain_limit0_ = make_from(ps.strain_limit0);
     strain_min_ = make<real>(n_);
     strain_min_.zero();
@@ -339,6 +346,8 @@ class EngineImpl final : public Engine {
   std::string device_;
   MaterialTable materials_;
   StepParams step_params_;
+  MotionScript motion_;
+  bool scripted_motion_ = !motion_.empty();
   bool contact_ = false;
   KernelFeatures features_;
   bool body_forces_ = false;
@@ -355,7 +364,7 @@ class EngineImpl final : public Engine {
   DeviceArray<uint16_t, Exec> material_;
   DeviceArray<int32_t, Exec> body_, intact_;
   DeviceArray<Ledger, Exec> ledger_;
-  DeviceArray<uint8_t, Exec> flags_;
+  DeviceArray<uint8_t, Exec> flags_, anchor_;
 
   DeviceArray<int64_t, Exec> slice_offset_;
   DeviceArray<int32_t, Exec> count_, neighbor_;

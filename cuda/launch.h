@@ -112,8 +112,8 @@ void launch_bodyforces(Exec& ex, ParticlesView p, StepParams sp) {
 
 // Kernels 6 and 7.
 template <class Exec>
-void launch_position_update(Exec& ex, ParticlesView p, real dt) {
-  ex.parallel_for("pd/position_update", p.n, [=] PD_HD(int64_t i) { position_update(int32_t(i), p, dt); });
+void launch_position_update(Exec& ex, ParticlesView p, StepParams sp) {
+  ex.parallel_for("pd/position_update", p.n, [=] PD_HD(int64_t i) { position_update(int32_t(i), p, sp); });
 }
 
 template <class Exec>

@@ -41,6 +41,9 @@ PD_HD inline Vec3& operator-=(Vec3& a, Vec3 b) {
 PD_HD inline real dot(Vec3 a, Vec3 b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
+PD_HD inline Vec3 cross(Vec3 a, Vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 PD_HD inline real length_squared(Vec3 a) {
   return dot(a, a);
 }

@@ -9,7 +9,7 @@ namespace pd {
 
 // Per-particle flag bits.
 enum ParticleFlag : uint8_t {
-  kAnchored = 1u << 0,  // prescribed motion: moves with its initial velocity whatever the forces
+  kAnchored = 1u << 0,  // prescribed motion (its anchor group's, see AnchorMotion) whatever the forces
 };
 
 // Energy that entered or left a particle's books outside its potential and kinetic energy:
@@ -34,6 +34,7 @@ struct ParticlesView {
   const uint16_t* material = nullptr;   // index into MaterialTable
   const int32_t* body = nullptr;        // bodies do not bond to each other
   const uint8_t* flags = nullptr;       // ParticleFlag bits
+  const uint8_t* anchor = nullptr;      // anchor group of an anchored particle (StepParams::anchor)
   const real* strain_limit0 = nullptr;  // scattered base strain limit tau_i
   real* strain_min = nullptr;           // minimum bond strain of the last force pass
   int32_t* intact = nullptr;            // unbroken bonds, written by `springforces`
@@ -154,6 +155,24 @@ struct Projectile {
 
 constexpr int kMaxProjectiles = 4;
 
+// The motion of one anchor group at the time the step being computed ends (host/motion.h fills
+// it each step). Unscripted groups keep each particle's own velocity (u += dt v, the velocity
+// it started with); scripted ones follow a rigid motion about a pivot P given in rest space:
+//   u = offset + (R - I)(X - P),  v = velocity + omega x R (X - P),
+// with R - I given directly so that a small rotation loses no digits. A released group's
+// particles move freely from then on.
+struct AnchorMotion {
+  uint8_t scripted = 0;
+  uint8_t released = 0;
+  Vec3 pivot{0, 0, 0};
+  Vec3 offset{0, 0, 0};
+  Vec3 velocity{0, 0, 0};
+  Vec3 omega{0, 0, 0};
+  real rotation_minus_identity[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // R - I, row major
+};
+
+constexpr int kMaxAnchors = 16;
+
 // Everything the per-step kernels read that is not per-particle.
 struct StepParams {
   real dt = 0;
@@ -165,6 +184,12 @@ struct StepParams {
   real contact_stiffness = 0;  // K_c [Pa]
   int32_t n_projectiles = 0;
   Projectile projectile[kMaxProjectiles];
+  AnchorMotion anchor[kMaxAnchors];  // indexed by ParticlesView::anchor
 };
+
+// An anchored particle whose group has not been released: its motion is prescribed.
+PD_HD inline bool held(int32_t i, const ParticlesView& p, const StepParams& sp) {
+  return (p.flags[i] & kAnchored) && !sp.anchor[p.anchor[i]].released;
+}
 
 }  // namespace pd

@@ -11,10 +11,11 @@ void ParticleSet::reserve(size_t n) {
   material.reserve(n);
   body.reserve(n);
   flags.reserve(n);
+  anchor.reserve(n);
 }
 
 size_t ParticleSet::add(Vec3 x, Vec3 v, real vol, real m, real tau0, uint16_t mat, int32_t body_id,
-                        uint8_t flag_bits) {
+                        uint8_t flag_bits, uint8_t anchor_group) {
   rest.push_back(x);
   velocity.push_back(v);
   volume.push_back(vol);
@@ -23,6 +24,7 @@ size_t ParticleSet::add(Vec3 x, Vec3 v, real vol, real m, real tau0, uint16_t ma
   material.push_back(mat);
   body.push_back(body_id);
   flags.push_back(flag_bits);
+  anchor.push_back(anchor_group);
   return rest.size() - 1;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "../cuda/views.h"
+#include "motion.h"
 
 namespace pd {
 
@@ -17,12 +18,13 @@ struct ParticleSet {
   std::vector<uint16_t> material;   // index into the material table
   std::vector<int32_t> body;        // bodies are bonded internally only
   std::vector<uint8_t> flags;       // ParticleFlag bits
+  std::vector<uint8_t> anchor;      // anchor group of anchored particles (SimulationInput::motion)
 
   size_t size() const { return rest.size(); }
   void reserve(size_t n);
   // Appends one particle; returns its index.
   size_t add(Vec3 x, Vec3 v, real vol, real m, real tau0, uint16_t mat, int32_t body_id,
-             uint8_t flag_bits = 0);
+             uint8_t flag_bits = 0, uint8_t anchor_group = 0);
 };
 
 // Everything an engine needs to run: particles, material constants and step parameters.
@@ -30,6 +32,7 @@ struct SimulationInput {
   ParticleSet particles;
   MaterialTable materials;
   StepParams step;
+  MotionScript motion;   // anchors and keyframed projectiles, applied to `step` every step
   bool contact = false;  // launch `collection` and `collisions`
 };
 

@@ -19,9 +19,6 @@ PD_HD inline real clamp01(real a) {
   return a < 0 ? real(0) : (a > 1 ? real(1) : a);
 }
 
-PD_HD inline Vec3 cross(Vec3 a, Vec3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 PD_HD inline Vec3 normalize(Vec3 a) {
   return (real(1) / length(a)) * a;
 }

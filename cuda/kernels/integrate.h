@@ -1,5 +1,5 @@
-// Kernels 6 and 7: the two halves of velocity Verlet. Anchored particles keep their
-// prescribed velocity (zero for a fixed anchor) whatever the forces.
+// Kernels 6 and 7: the two halves of velocity Verlet. Held anchored particles follow their
+// group's prescribed motion (AnchorMotion; at rest for a fixed anchor) whatever the forces.
 //   position update: v += dt/2 f/m; u += dt v
 //   velocity update: v += dt/2 f/m   (with the forces of the new positions)
 #pragma once
@@ -8,12 +8,26 @@
 
 namespace pd {
 
-PD_HD inline void position_update(int32_t i, ParticlesView p, real dt) {
+// R - I (row major) applied to d.
+PD_HD inline Vec3 rotate_minus_identity(const real* m, Vec3 d) {
+  return {m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
+          m[6] * d.x + m[7] * d.y + m[8] * d.z};
+}
+
+PD_HD inline void position_update(int32_t i, ParticlesView p, const StepParams& sp) {
+  const real dt = sp.dt;
   Vec4 u = p.disp[i];
   Vec3 v = p.vel[i];
-  if (!(p.flags[i] & kAnchored)) {
+  if (!held(i, p, sp)) {
     v += (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
     p.vel[i] = v;
+  } else if (const AnchorMotion& a = sp.anchor[p.anchor[i]]; a.scripted) {
+    const Vec3 d = xyz(p.rest[i]) - a.pivot;
+    const Vec3 turned = rotate_minus_identity(a.rotation_minus_identity, d);
+    const Vec3 offset = a.offset + turned;
+    p.disp[i] = {offset.x, offset.y, offset.z, u.w};
+    p.vel[i] = a.velocity + cross(a.omega, d + turned);
+    return;
   }
   u.x += dt * v.x;
   u.y += dt * v.y;
@@ -26,7 +40,7 @@ PD_HD inline void position_update(int32_t i, ParticlesView p, real dt) {
 // restitution factor (Levine sec. 3); on the full-step velocity, so the ledger records
 // exactly the kinetic energy it takes away.
 PD_HD inline void velocity_update(int32_t i, ParticlesView p, const StepParams& sp) {
-  if (p.flags[i] & kAnchored) {
+  if (held(i, p, sp)) {
     const Vec3 v = p.vel[i];
     if (v.x != 0 || v.y != 0 || v.z != 0) p.ledger[i].work -= double(sp.dt) * double(dot(p.force[i], v));
     return;

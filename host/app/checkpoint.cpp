@@ -148,6 +148,7 @@ uint64_t setup_fingerprint(const SimulationInput& in) {
   h = hash_array(ps.material, h);
   h = hash_array(ps.body, h);
   h = hash_array(ps.flags, h);
+  h = hash_array(ps.anchor, h);
   h = hash_array(ps.velocity, h);
   return h;
 }

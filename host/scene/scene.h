@@ -85,18 +85,29 @@ struct SceneBody {
   Vec3d velocity{0, 0, 0};  // initial velocity [m/s]
 };
 
-// Particles inside the axis-aligned box move with a prescribed constant velocity (held fixed
-// by default), whatever the forces on them: grips, clamps, frames.
+// A keyframe of a path: {time [s], x, y, z [m]}.
+using SceneKeyframe = std::array<double, 4>;
+
+// Particles inside the axis-aligned box (of one body, or of all) follow a prescribed motion
+// whatever the forces on them: grips, clamps, frames (held fixed by default). The motion is a
+// constant velocity, or a keyframed translation path, plus an optional constant rotation about
+// a pivot; from `release` on the particles are free.
 struct SceneAnchor {
   Vec3d box_min{0, 0, 0}, box_max{0, 0, 0};
-  Vec3d velocity{0, 0, 0};  // [m/s]
+  std::string body;                 // only this body's particles; empty: every body
+  Vec3d velocity{0, 0, 0};          // [m/s]
+  std::vector<SceneKeyframe> path;  // translation offsets from the rest pose; excludes velocity
+  Vec3d angular_velocity{0, 0, 0};  // [rad/s] about `pivot`
+  std::optional<Vec3d> pivot;       // rest-space centre of rotation; default: the box centre
+  std::optional<double> release;    // time [s] from which the particles move freely
 };
 
 struct SceneProjectile {
-  Vec3d center{0, 0, 0};    // at t = 0 [m]
-  Vec3d velocity{0, 0, 0};  // constant [m/s]
-  double radius = 0;        // r [m], > 0
-  double strength = 0;      // K_S [Pa], >= 0
+  Vec3d center{0, 0, 0};            // at t = 0 [m]
+  Vec3d velocity{0, 0, 0};          // constant [m/s]
+  std::vector<SceneKeyframe> path;  // keyframed centre instead of center + velocity
+  double radius = 0;                // r [m], > 0
+  double strength = 0;              // K_S [Pa], >= 0
 };
 
 struct Scene {

@@ -361,6 +361,31 @@ class TableReader {
     return true;
   }
 
+  // Keyframes [[t, x, y, z], ...]: at least two, times >= 0 and strictly increasing.
+  bool keyframes(std::string_view key, std::vector<SceneKeyframe>& out) const {
+    const std::string allowed = "an array of at least 2 keyframes [time, x, y, z], times >= 0 and increasing";
+    const toml::node* n = find(key, Presence::optional, allowed);
+    if (!n) return false;
+    const auto* a = n->as_array();
+    if (!a) fail(key, "expected an array of keyframes, got " + type_name(*n), allowed);
+    if (a->size() < 2) fail(key, std::to_string(a->size()) + " keyframe(s)", allowed);
+    out.clear();
+    for (size_t k = 0; k < a->size(); ++k) {
+      const std::string item = path(key) + "[" + std::to_string(k) + "]";
+      const auto* frame = a->get(k)->as_array();
+      if (!frame || frame->size() != 4) scene_error(*file_, item, "expected [time, x, y, z]", allowed);
+      SceneKeyframe f{};
+      for (size_t c = 0; c < 4; ++c)
+        f[c] = to_number(*frame->get(c), *file_, item + "[" + std::to_string(c) + "]",
+                         c == 0 ? at_least(0) : Bounds{});
+      if (k > 0 && !(f[0] > out.back()[0]))
+        scene_error(*file_, item + "[0]",
+                    "time " + number_text(f[0]) + " does not follow " + number_text(out.back()[0]), allowed);
+      out.push_back(f);
+    }
+    return true;
+  }
+
   bool has(std::string_view key) const { return table_->get(key) != nullptr; }
   bool is_string(std::string_view key) const {
     const toml::node* n = table_->get(key);
@@ -484,8 +509,9 @@ const Keys kShapeKeys[] = {{"size"},
                            {"mesh", "scale", "repair"}};
 const Keys kDimensionKeys = {"size",        "width", "depth", "thickness", "radius", "height",
                              "tube_radius", "wall",  "mesh",  "scale",     "repair"};
-const Keys kAnchorKeys = {"box_min", "box_max", "velocity"};
-const Keys kProjectileKeys = {"center", "velocity", "radius", "strength"};
+const Keys kAnchorKeys = {"box_min", "box_max",          "body",  "velocity",
+                          "path",    "angular_velocity", "pivot", "release"};
+const Keys kProjectileKeys = {"center", "velocity", "path", "radius", "strength"};
 const Keys kOutputKeys = {"vtk", "binary"};
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
@@ -737,11 +763,25 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
   return b;
 }
 
-SceneAnchor parse_anchor(const TableReader& r) {
+SceneAnchor parse_anchor(const TableReader& r, const std::vector<SceneBody>& bodies) {
   SceneAnchor a;
   r.vec3("box_min", a.box_min, Presence::required);
   r.vec3("box_max", a.box_max, Presence::required);
+  if (r.string("body", a.body)) {
+    Keys names;
+    for (const SceneBody& b : bodies) names.push_back(b.name);
+    if (std::find(names.begin(), names.end(), a.body) == names.end())
+      r.fail("body", "no body named " + quoted(a.body), join(names, true));
+  }
+  if (r.has("velocity") && r.has("path"))
+    r.fail("path", "both velocity and path are given", "either a constant velocity or a keyframed path");
   r.vec3("velocity", a.velocity);
+  r.keyframes("path", a.path);
+  r.vec3("angular_velocity", a.angular_velocity);
+  Vec3d pivot{};
+  if (r.vec3("pivot", pivot)) a.pivot = pivot;
+  double release = 0;
+  if (r.number("release", release, at_least(0))) a.release = release;
   for (int c = 0; c < 3; ++c) {
     if (a.box_max[c] < a.box_min[c])
       r.fail("box_max",
@@ -754,8 +794,15 @@ SceneAnchor parse_anchor(const TableReader& r) {
 
 SceneProjectile parse_projectile(const TableReader& r) {
   SceneProjectile p;
-  r.vec3("center", p.center, Presence::required);
-  r.vec3("velocity", p.velocity);
+  if (r.keyframes("path", p.path)) {
+    for (std::string_view key : {"center", "velocity"})
+      if (r.has(key))
+        r.fail(key, "a keyframed projectile takes its centre from path", "path, or center and velocity");
+    p.center = {p.path[0][1], p.path[0][2], p.path[0][3]};
+  } else {
+    r.vec3("center", p.center, Presence::required);
+    r.vec3("velocity", p.velocity);
+  }
   r.number("radius", p.radius, greater_than(0), Presence::required);
   r.number("strength", p.strength, at_least(0), Presence::required);
   return p;
@@ -811,9 +858,12 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     scene.bodies.push_back(parse_body(i, bodies[i], scene.materials, path));
   if (scene.bodies.empty()) top.fail("bodies", "no body is defined", "at least one [[bodies]] table");
 
-  // [[anchors]]
-  for (const TableReader& r : top.table_array("anchors", kAnchorKeys))
-    scene.anchors.push_back(parse_anchor(r));
+  // [[anchors]], at most kMaxAnchors (the kernels hold their motions in a fixed array).
+  const auto anchors = top.table_array("anchors", kAnchorKeys);
+  if (anchors.size() > static_cast<size_t>(kMaxAnchors))
+    top.fail("anchors", std::to_string(anchors.size()) + " anchors",
+             "at most " + std::to_string(kMaxAnchors));
+  for (const TableReader& r : anchors) scene.anchors.push_back(parse_anchor(r, scene.bodies));
 
   // [[projectiles]], at most kMaxProjectiles (the kernels hold them in a fixed array).
   const auto projectiles = top.table_array("projectiles", kProjectileKeys);

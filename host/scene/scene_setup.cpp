@@ -36,6 +36,26 @@ bool inside(const SceneAnchor& a, Vec3 x) {
          x.z >= a.box_min[2] && x.z <= a.box_max[2];
 }
 
+// The host-side script of an anchor: its pivot defaults to the centre of its box.
+AnchorScript anchor_script(const SceneAnchor& a) {
+  AnchorScript s;
+  for (int c = 0; c < 3; ++c)
+    s.pivot[size_t(c)] =
+        a.pivot ? (*a.pivot)[size_t(c)] : 0.5 * (a.box_min[size_t(c)] + a.box_max[size_t(c)]);
+  s.velocity = a.velocity;
+  s.path = a.path;
+  s.omega = a.angular_velocity;
+  if (a.release) s.release = *a.release;
+  return s;
+}
+
+// Initial velocity of a particle at rest position x held by anchor script s.
+Vec3 anchor_velocity(const AnchorScript& s, Vec3 x) {
+  const PathSample start = s.path.empty() ? PathSample{{0, 0, 0}, s.velocity} : sample_path(s.path, 0);
+  const Vec3 omega = to_vec3(s.omega), d = x - to_vec3(s.pivot);
+  return to_vec3(start.velocity) + cross(omega, d);
+}
+
 // Kernel constants of one body's material at the body's spacing.
 // `spacing` is lambda, the particle spacing the horizon is measured in; `contact_spacing` sets
 // the contact distance (a quarter of it per particle).
@@ -154,6 +174,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   ParticleSet& ps = in.particles;
   Random rng(scene.seed);
   const double spacing_factor = 1.0 / std::cbrt(options.scale);
+  for (const SceneAnchor& a : scene.anchors) in.motion.anchors.push_back(anchor_script(a));
 
   // Bodies: one material table entry per body (a material's horizon depends on the spacing).
   int64_t total = 0;
@@ -220,18 +241,22 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     result.all_cubes = result.all_cubes && geometry.kind == ElementKind::cube;
     if (geometry.kind == ElementKind::tet) result.embedded.append(geometry.tets, base);
 
-    // Particles: volume from the element, mass = density x volume; anchors by rest position.
+    // Particles: volume from the element, mass = density x volume; anchors by rest position
+    // (the last anchor holding a particle wins).
     for (size_t i = 0; i < geometry.size(); ++i) {
       const Vec3 x = to_vec3(geometry.position[i]);
-      uint8_t flags = 0;
+      uint8_t flags = 0, group = 0;
       Vec3 v = to_vec3(body.velocity);
-      for (const auto& a : scene.anchors)
-        if (inside(a, x)) {
-          flags |= kAnchored;
-          v = to_vec3(a.velocity);
-        }
+      for (size_t g = 0; g < scene.anchors.size(); ++g) {
+        const SceneAnchor& a = scene.anchors[g];
+        if (!inside(a, x) || (!a.body.empty() && a.body != body.name)) continue;
+        flags |= kAnchored;
+        group = uint8_t(g);
+        v = anchor_velocity(in.motion.anchors[g], x);
+      }
       ps.add(x, v, real(geometry.volume[i]), real(sm.density * geometry.volume[i]),
-             scattered_limit(summary.strain_limit, sm.strain_limit_scatter, rng), mat, int32_t(b), flags);
+             scattered_limit(summary.strain_limit, sm.strain_limit_scatter, rng), mat, int32_t(b), flags,
+             group);
     }
     if (geometry.kind == ElementKind::voronoi) result.voronoi.push_back({base, std::move(geometry)});
   }
@@ -251,6 +276,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   for (size_t k = 0; k < scene.projectiles.size() && k < size_t(kMaxProjectiles); ++k) {
     const auto& p = scene.projectiles[k];
     sp.projectile[k] = {to_vec3(p.center), to_vec3(p.velocity), real(p.radius), real(p.strength)};
+    in.motion.projectiles.push_back(p.path);
   }
   in.contact = scene.contact;
   return result;

@@ -8,6 +8,7 @@
 
 #include "cuda/kernels/family.h"
 #include "host/engine.h"
+#include "host/motion.h"
 #include "tests/support/fixtures.h"
 
 namespace pd {
@@ -184,6 +185,67 @@ TEST(EngineAnchors, MovingAnchorsFollowTheirVelocity) {
       EXPECT_EQ(s.vel[i].x, real(0.5));
     }
   EXPECT_GT(s.disp[0].x, 0);  // the free end is pulled along through the bonds
+}
+
+// A scripted anchor turns and translates its particles rigidly: each one sits at
+// P + offset + R (X - P) with the velocity of that motion, to float round-off.
+TEST(EngineAnchors, ScriptedAnchorMovesItsParticlesRigidly) {
+  auto in = lattice_block(6, 6, 6, 1e-3);
+  AnchorScript script;
+  script.pivot = {3e-3, 3e-3, 3e-3};
+  script.omega = {0, 200, 100};  // rad/s: about 1.5 degrees over the run
+  script.path = {{0, 0, 0, 0}, {1e-4, 1e-4, 0, 0}, {1e-3, 1e-4, -2e-4, 0}};
+  in.motion.anchors = {AnchorScript{}, script};
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    if (in.particles.rest[i].y < 2e-3) {
+      in.particles.flags[i] |= kAnchored;
+      in.particles.anchor[i] = 1;
+    }
+  auto e = make_cpu_engine(in);
+  e->advance(1000);
+  ParticleState s;
+  e->read_state(s);
+  const double t = e->time();
+  const auto rm = rotation_minus_identity(script.omega, t);
+  const PathSample move = sample_path(script.path, t);
+  int checked = 0;
+  for (size_t i = 0; i < s.disp.size(); ++i) {
+    if (!(in.particles.flags[i] & kAnchored)) continue;
+    const double d[3] = {in.particles.rest[i].x - script.pivot[0], in.particles.rest[i].y - script.pivot[1],
+                         in.particles.rest[i].z - script.pivot[2]};
+    const double u[3] = {s.disp[i].x, s.disp[i].y, s.disp[i].z}, v[3] = {s.vel[i].x, s.vel[i].y, s.vel[i].z};
+    double r[3];  // R d
+    for (int row = 0; row < 3; ++row)
+      r[row] = d[row] + rm[size_t(3 * row)] * d[0] + rm[size_t(3 * row + 1)] * d[1] +
+               rm[size_t(3 * row + 2)] * d[2];
+    const auto& w = script.omega;
+    const double spin[3] = {w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2], w[0] * r[1] - w[1] * r[0]};
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(u[c], move.position[size_t(c)] + r[c] - d[c], 1e-9) << i;  // 1e-6 of the 1 mm spacing
+      EXPECT_NEAR(v[c], move.velocity[size_t(c)] + spin[c], 1e-6) << i;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
+}
+
+// From its release time on an anchor lets go: its particles fall with the rest.
+TEST(EngineAnchors, ReleasedAnchorLetsGo) {
+  auto in = lattice_block(4, 4, 4, 1e-3);
+  in.step.gravity = {0, real(-9.81), 0};
+  AnchorScript hold;
+  hold.release = 100.5 * double(in.step.dt);
+  in.motion.anchors = {hold};
+  for (size_t i = 0; i < in.particles.size(); ++i) in.particles.flags[i] |= kAnchored;
+  auto e = make_cpu_engine(in);
+  ParticleState s;
+  e->advance(100);
+  e->read_state(s);
+  for (const Vec3& v : s.vel) EXPECT_EQ(length(v), 0);
+  e->advance(100);
+  e->read_state(s);
+  const double fall = 9.81 * 100 * double(in.step.dt);  // speed gained after the release
+  for (const Vec3& v : s.vel) EXPECT_NEAR(v.y, -fall, 1e-3 * fall);
 }
 
 TEST(EngineAnchors, AnchoredParticlesStayPut) {

@@ -237,6 +237,54 @@ strain_limit = 0.001
   expect_error(kMaterial, "bodies", "no body");
 }
 
+// Scripted anchors and keyframed projectiles (docs/scene-reference.md, [[anchors]], [[projectiles]]).
+TEST(SceneLoader, AnchorAndProjectileMotionParses) {
+  const Scene s = parse_scene(kMinimal + R"(
+[[anchors]]
+box_min = [0, 0, 0]
+box_max = [1, 1, 1]
+body = "body0"
+path = [[0, 0, 0, 0], [0.5, 0.1, 0, 0]]
+angular_velocity = [0, 0, 3]
+pivot = [0.5, 0.5, 0.5]
+release = 2.5
+[[projectiles]]
+path = [[0, 0, 1, 0], [1e-3, 0, 0, 0]]
+radius = 0.1
+strength = 1e6
+)",
+                              kFile);
+  ASSERT_EQ(s.anchors.size(), 1u);
+  const SceneAnchor& a = s.anchors[0];
+  EXPECT_EQ(a.body, "body0");
+  ASSERT_EQ(a.path.size(), 2u);
+  EXPECT_EQ(a.path[1][1], 0.1);
+  EXPECT_EQ(a.angular_velocity[2], 3);
+  ASSERT_TRUE(a.pivot.has_value());
+  EXPECT_EQ(*a.release, 2.5);
+  ASSERT_EQ(s.projectiles[0].path.size(), 2u);
+  EXPECT_EQ(s.projectiles[0].center[1], 1);  // the path's first point
+}
+
+TEST(SceneLoader, MotionMistakes) {
+  const std::string anchor = kMinimal + "[[anchors]]\nbox_min = [0, 0, 0]\nbox_max = [1, 1, 1]\n";
+  expect_error(anchor + "path = [[0, 0, 0, 0]]\n", "anchors[0].path", "1 keyframe(s)");
+  expect_error(anchor + "path = [[0, 0, 0, 0], [0, 1, 0, 0]]\n", "anchors[0].path[1][0]", "does not follow");
+  expect_error(anchor + "path = [[0, 0, 0], [1, 1, 0]]\n", "anchors[0].path[0]", "expected [time, x, y, z]");
+  expect_error(anchor + "path = [[-1, 0, 0, 0], [1, 1, 0, 0]]\n", "anchors[0].path[0][0]", "out of range");
+  expect_error(anchor + "velocity = [1, 0, 0]\npath = [[0, 0, 0, 0], [1, 1, 0, 0]]\n", "anchors[0].path",
+               "both velocity and path");
+  expect_error(anchor + "body = \"wall\"\n", "anchors[0].body", "no body named \"wall\"");
+  expect_error(anchor + "release = -1\n", "anchors[0].release", "out of range");
+  std::string many = kMinimal;
+  for (int k = 0; k < 17; ++k) many += "[[anchors]]\nbox_min = [0, 0, 0]\nbox_max = [1, 1, 1]\n";
+  expect_error(many, "anchors", "at most 16");
+  expect_error(kMinimal +
+                   "[[projectiles]]\ncenter = [0, 0, 0]\npath = [[0, 0, 0, 0], [1, 1, 0, 0]]\n"
+                   "radius = 1\nstrength = 1\n",
+               "projectiles[0].center", "takes its centre from path");
+}
+
 TEST(SceneLoader, UnknownKey) {
   expect_error("colour = \"red\"\n" + kMinimal, "colour", "unknown key");
   expect_error("[simulation]\nsteps = 3\n" + kMinimal, "simulation.steps", "allowed: dt, steps_per_frame");
