@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../host/bond_cuts.h"
 #include "../host/engine.h"
 #include "../host/memory_budget.h"
 #include "device_array.h"
@@ -38,6 +39,7 @@ class EngineImpl final : public Engine {
     if (n_ <= 0) throw std::runtime_error("the scene has no particles");
     upload_particles(ps);
     build_families();
+    if (!in.cuts.empty()) apply_cuts(in);
     compute_critical_time_step();
     if (features_.state_based) allocate_state();
     if (contact_) allocate_contact_hash();
@@ -163,6 +165,7 @@ class EngineImpl final : public Engine {
     b.neighbor = neighbor_.data();
     b.plastic = plastic_ext_.data();
     b.reverse = reverse_.data();
+    b.strength = bond_strength_.data();
     return b;
   }
 
@@ -259,11 +262,32 @@ class EngineImpl final : public Engine {
     std::vector<int32_t> counts;
     count_.download(counts);
     family_.slots = slots;
+    count_family_stats(counts);
+    intact_.upload(counts);
+  }
+
+  void count_family_stats(const std::vector<int32_t>& counts) {
     family_.min = *std::min_element(counts.begin(), counts.end());
     family_.max = *std::max_element(counts.begin(), counts.end());
+    family_.bonds = 0;
     for (int32_t c : counts) family_.bonds += c;
     family_.mean = double(family_.bonds) / n_;
-    intact_.upload(counts);
+  }
+
+  // Pre-cracks and weakened surfaces: bonds crossing them leave the families (compacted on the
+  // host) or keep a strength factor, before anything is derived from the families.
+  void apply_cuts(const SimulationInput& in) {
+    BondLists lists;
+    read_bonds(lists);
+    std::vector<uint8_t> strength;
+    family_.cuts = cut_bonds(in.cuts, in.particles.rest, in.particles.body, lists, strength);
+    neighbor_.upload(lists.neighbor);
+    count_.upload(lists.count);
+    intact_.upload(lists.count);
+    count_family_stats(lists.count);
+    if (strength.empty()) return;
+    bond_strength_ = make_from(strength);
+    features_.weak_bonds = true;
   }
 
   // The arrays a run changes, paired with their snapshot vectors (save, restore).
@@ -370,6 +394,7 @@ class EngineImpl final : public Engine {
   DeviceArray<int32_t, Exec> count_, neighbor_;
   DeviceArray<real, Exec> plastic_ext_;
   DeviceArray<uint16_t, Exec> reverse_;
+  DeviceArray<uint8_t, Exec> bond_strength_;
 
   uint32_t bins_ = 0;
   real inv_cell_ = 0;

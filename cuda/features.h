@@ -15,6 +15,7 @@ struct KernelFeatures {
   bool state_based = false;  // some material is state-based: dilatation in `init`
   bool plastic = false;      // some state-based material is plastic
   bool anisotropic = false;  // some state-based material has an anisotropy matrix G
+  bool weak_bonds = false;   // some bonds carry a strength factor (pre-cracks and weakening)
 };
 
 inline KernelFeatures features_of(const MaterialTable& mt, bool contact) {

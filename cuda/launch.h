@@ -74,34 +74,35 @@ void launch_collisions(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, 
 
 // Kernel 4, one instantiation per feature set so a scene pays only for what it uses.
 // kAccumulate adds to the force `collisions` wrote.
-template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic>
+template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak>
 PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
                                     const MaterialTable& mt) {
   if constexpr (kStateBased)
-    state_forces<kAccumulate, kPlastic, kAnisotropic>(i, p, b, mt);
+    state_forces<kAccumulate, kPlastic, kAnisotropic, kWeak>(i, p, b, mt);
   else
-    spring_forces<kAccumulate>(i, p, b, mt);
+    spring_forces<kAccumulate, kWeak>(i, p, b, mt);
 }
 
-template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, class Exec>
+template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   ex.parallel_for("pd/springforces", p.n, [=] PD_HD(int64_t i) {
-    springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic>(int32_t(i), p, b, mt);
+    springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic, kWeak>(int32_t(i), p, b, mt);
   });
 }
 
 template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
   static_bools(
-      [&](auto accumulate, auto state_based, auto plastic, auto anisotropic) {
+      [&](auto accumulate, auto state_based, auto plastic, auto anisotropic, auto weak) {
         constexpr bool kState = decltype(state_based)::value;
         constexpr bool kPlastic = kState && decltype(plastic)::value;
         constexpr bool kAniso = kState && decltype(anisotropic)::value;
         // Plasticity and anisotropy exist only for state-based materials: no bond-based copies.
         if constexpr (kState || (!decltype(plastic)::value && !decltype(anisotropic)::value))
-          launch_springforces_variant<decltype(accumulate)::value, kState, kPlastic, kAniso>(ex, p, b, mt);
+          launch_springforces_variant<decltype(accumulate)::value, kState, kPlastic, kAniso,
+                                      decltype(weak)::value>(ex, p, b, mt);
       },
-      f.contact, f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic);
+      f.contact, f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds);
 }
 
 // Kernel 5.

@@ -62,6 +62,9 @@ struct BondsView {
   // Plastic state-based materials only (null otherwise):
   real* plastic = nullptr;            // e^p of this end's state on the bond [m]
   const uint16_t* reverse = nullptr;  // position k of the same bond in the partner's family
+  // Scenes with weakened bonds only (null otherwise): per slot, the factor q/255 on the bond's
+  // strain limit (host/bond_cuts.h), the same in both stored directions.
+  const uint8_t* strength = nullptr;
 
   PD_HD int64_t slot(int32_t i, int32_t k) const {
     return slice_offset[i / kSliceWidth] + int64_t(k) * kSliceWidth + (i % kSliceWidth);

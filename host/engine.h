@@ -16,11 +16,17 @@ enum class Backend { kCpu, kCuda };
 
 const char* backend_name(Backend b);
 
+// Bonds (stored per direction) that the scene's cracks removed or weakened (host/bond_cuts.h).
+struct BondCutCounts {
+  int64_t removed = 0, weakened = 0;
+};
+
 struct FamilyStats {
   int64_t bonds = 0;  // stored bonds, each pair counted once per direction
   int32_t min = 0, max = 0;
   double mean = 0;
   int64_t slots = 0;  // sliced-ELL storage, padding included
+  BondCutCounts cuts;
 };
 
 // Per-particle state copied back to the host.

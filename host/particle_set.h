@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "../cuda/views.h"
+#include "cut_triangle.h"
 #include "motion.h"
 
 namespace pd {
@@ -32,8 +33,9 @@ struct SimulationInput {
   ParticleSet particles;
   MaterialTable materials;
   StepParams step;
-  MotionScript motion;   // anchors and keyframed projectiles, applied to `step` every step
-  bool contact = false;  // launch `collection` and `collisions`
+  MotionScript motion;            // anchors and keyframed projectiles, applied to `step` every step
+  std::vector<CutTriangle> cuts;  // pre-cracks and weakened surfaces (bond_cuts.h)
+  bool contact = false;           // launch `collection` and `collisions`
 };
 
 }  // namespace pd

@@ -59,6 +59,16 @@ PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, V
   return g;
 }
 
+// The factor on a bond's strain limit: its stored strength with kWeak (scenes that weaken bonds),
+// else 1 at no cost.
+template <bool kWeak>
+PD_HD inline real bond_strength(const BondsView& b, int64_t slot) {
+  if constexpr (kWeak)
+    return real(b.strength[slot]) * real(1.0 / 255);
+  else
+    return real(1);
+}
+
 // Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order.
 template <class Visit>
 PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b, Visit&& visit) {

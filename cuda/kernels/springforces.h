@@ -1,6 +1,7 @@
 // Kernel 4, `springforces` (bond-based PMB, Silling & Askari 2005; Levine sec. 3). For each
 // bond of particle i: stretch s = (|y| - |xi|)/|xi| with y = xi + (u_j - u_i); remove the
-// bond when s > max(tau'_i, tau'_j) (both ends decide identically, so momentum is kept);
+// bond when s > w max(tau'_i, tau'_j) (w the bond's strength, 1 unless the scene weakens
+// bonds; both ends decide identically, so momentum is kept);
 // record the minimum stretch for eq. 5; accumulate f_i = sum_j c s V_i V_j beta_ij y/|y|.
 #pragma once
 
@@ -14,7 +15,7 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real vol_j, const
   return real(0.25) * m.micromodulus * s * s * r0 * volume_fraction(r0, m) * vol_i * vol_j;
 }
 
-template <bool kAccumulate>
+template <bool kAccumulate, bool kWeak>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
@@ -23,7 +24,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   int32_t intact = 0;
   for_each_intact_bond(i, p, b, [&](int64_t slot, int32_t j, const BondGeometry& g) {
     const real s = g.e * g.inv_r0;
-    if (s > (tau_i > g.tau_j ? tau_i : g.tau_j)) {
+    if (s > (tau_i > g.tau_j ? tau_i : g.tau_j) * bond_strength<kWeak>(b, slot)) {
       b.neighbor[slot] = ~j;
       p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.volume_j, m));
       return;

@@ -3,14 +3,15 @@
 // m_j, e^p_ji), so f_i = V_i sum_j (t_ij + t_ji) beta V_j y/|y|; breaking by Chen's
 // criterion (eq. 18) evaluated for both ends: the bond is removed when both ends' s^omega
 // exceed their limits, which both threads decide from the same numbers (or, with the
-// stretch criterion, when e/|xi| > max(tau_i, tau_j) as for bond-based materials).
+// stretch criterion, when e/|xi| > max(tau_i, tau_j) as for bond-based materials). A weakened
+// bond's limits are scaled by its strength w.
 #pragma once
 
 #include "state_based.h"
 
 namespace pd {
 
-template <bool kAccumulate, bool kPlastic, bool kAnisotropic>
+template <bool kAccumulate, bool kPlastic, bool kAnisotropic, bool kWeak>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
   const Vec4 state_i = p.state[i];
@@ -24,10 +25,11 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
     const real ep_ji = kPlastic ? b.plastic[b.slot(j, b.reverse[slot])] : real(0);
     const real s = g.e * g.inv_r0;
+    const real w = bond_strength<kWeak>(b, slot);
     const real tau_j = g.tau_j;
-    const bool breaks = m.chen_fracture ? chen_stretch(g.e, ep_ij, phi_i, m) > tau_i &&
-                                              chen_stretch(g.e, ep_ji, state_j.z, m) > tau_j
-                                        : s > (tau_i > tau_j ? tau_i : tau_j);
+    const bool breaks = m.chen_fracture ? chen_stretch(g.e, ep_ij, phi_i, m) > w * tau_i &&
+                                              chen_stretch(g.e, ep_ji, state_j.z, m) > w * tau_j
+                                        : s > (tau_i > tau_j ? tau_i : tau_j) * w;
     if (breaks) {
       b.neighbor[slot] = ~j;
       p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));

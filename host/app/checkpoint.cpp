@@ -150,7 +150,14 @@ uint64_t setup_fingerprint(const SimulationInput& in) {
   h = hash_array(ps.flags, h);
   h = hash_array(ps.anchor, h);
   h = hash_array(ps.velocity, h);
-  return h;
+  // Cut triangles field by field (the struct has padding).
+  std::vector<double> cuts;
+  for (const CutTriangle& t : in.cuts) {
+    for (const auto& c : t.corner) cuts.insert(cuts.end(), c.begin(), c.end());
+    cuts.push_back(t.strength);
+    cuts.push_back(double(t.body));
+  }
+  return hash_array(cuts, h);
 }
 
 uint64_t file_fingerprint(const std::string& path) {

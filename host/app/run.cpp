@@ -172,6 +172,9 @@ int run_command(const RunOptions& options) {
       (long long)fam.bonds, fam.min, fam.mean, fam.max,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count(),
       double(engine->memory_bytes()) / (1 << 20));
+  if (!setup.input.cuts.empty())
+    std::printf("cracks     %zu triangles: %lld bonds removed, %lld weakened (per direction)\n",
+                setup.input.cuts.size(), (long long)fam.cuts.removed, (long long)fam.cuts.weakened);
   const double family_dt = engine->critical_time_step();
   std::printf("stability  dt_c from the families %.4g s (continuum estimate %.4g s): dt = %.2f of it\n",
               family_dt, setup.critical_dt, setup.dt / family_dt);

@@ -110,6 +110,44 @@ struct SceneProjectile {
   double strength = 0;              // K_S [Pa], >= 0
 };
 
+// A pre-crack (strength 0: the bonds crossing it are removed before the run) or a weakened
+// surface (strength in (0, 1) scales the strain limit of the bonds crossing it): an artist's
+// control over where things break (Chen Fig. 17's pre-cracked sheet, the notched glass plate,
+// Levine's randomly weakened glass). The surface is a set of triangles (host/scene/scene_cracks.h).
+struct SceneCrack {
+  std::string shape = "quad";      // "quad" | "path" | "random_walk" | "mesh"
+  std::array<Vec3d, 4> corners{};  // quad: corners in order around it [m]
+  std::vector<Vec3d> points;       // path: a polyline [m]
+  Vec3d extrude{0, 0, 0};          // path, random_walk: the ribbon spans the line +- extrude/2 [m]
+  Vec3d start{0, 0, 0};            // random_walk: where every walk starts [m]
+  int64_t walks = 6;               // random_walk: number of walks, spread around start
+  int64_t steps = 20;              // random_walk: steps per walk
+  double step_length = 0;          // random_walk: [m], > 0
+  double turn = 30;                // random_walk: largest change of direction per step [degrees]
+  std::string mesh;                // mesh: triangles of an OBJ/PLY/STL file (need not be closed)
+  std::string mesh_path;           // mesh: resolved against the scene file's folder
+  double scale = 1;                // mesh: uniform scale of the file's coordinates
+  Vec3d translate{0, 0, 0};        // mesh: moved by this after scaling [m]
+  double strength = 0;             // in [0, 1)
+  std::string body;                // only this body's bonds; empty: every body
+};
+
+// Particles whose rest position lies in the region (of one body, or of all) get another strain
+// limit: `strain_limit` replaces the material's base value (before the scatter) and
+// `strain_limit_factor` multiplies the result. A painted or mesh-given weak (or strong) zone.
+struct SceneRegion {
+  std::string shape = "box";                 // "box" | "sphere" | "mesh" (a closed mesh)
+  Vec3d box_min{0, 0, 0}, box_max{0, 0, 0};  // box [m]
+  Vec3d center{0, 0, 0};                     // sphere [m]
+  double radius = 0;                         // sphere [m]
+  std::string mesh, mesh_path;               // mesh, resolved against the scene file's folder
+  double scale = 1;                          // mesh
+  Vec3d translate{0, 0, 0};                  // mesh [m]
+  std::string body;                          // only this body's particles; empty: every body
+  std::optional<double> strain_limit;        // in (0, 1)
+  double strain_limit_factor = 1;            // > 0
+};
+
 struct Scene {
   std::string path;         // file it was read from
   std::string description;  // one line
@@ -135,6 +173,8 @@ struct Scene {
   std::vector<SceneBody> bodies;             // [[bodies]], at least one
   std::vector<SceneAnchor> anchors;          // [[anchors]]
   std::vector<SceneProjectile> projectiles;  // [[projectiles]], at most 4
+  std::vector<SceneCrack> cracks;            // [[cracks]]
+  std::vector<SceneRegion> regions;          // [[regions]]
 
   // [output]
   bool write_vtk = true;

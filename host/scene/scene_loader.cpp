@@ -387,6 +387,8 @@ class TableReader {
   }
 
   bool has(std::string_view key) const { return table_->get(key) != nullptr; }
+  const toml::node* node(std::string_view key) const { return table_->get(key); }
+  const std::string& file() const { return *file_; }
   bool is_string(std::string_view key) const {
     const toml::node* n = table_->get(key);
     return n && n->is_string();
@@ -466,8 +468,8 @@ class TableReader {
 
 // ---- Sections ----------------------------------------------------------------------------------
 
-const Keys kTopKeys = {"description", "simulation", "world",       "contact", "materials",
-                       "bodies",      "anchors",    "projectiles", "output"};
+const Keys kTopKeys = {"description", "simulation",  "world",  "contact", "materials", "bodies",
+                       "anchors",     "projectiles", "cracks", "regions", "output"};
 const Keys kSimulationKeys = {"dt", "steps_per_frame", "frames", "seed"};
 const Keys kWorldKeys = {"gravity", "floor", "floor_height", "restitution"};
 const Keys kContactKeys = {"enabled", "stiffness"};
@@ -512,6 +514,28 @@ const Keys kDimensionKeys = {"size",        "width", "depth", "thickness", "radi
 const Keys kAnchorKeys = {"box_min", "box_max",          "body",  "velocity",
                           "path",    "angular_velocity", "pivot", "release"};
 const Keys kProjectileKeys = {"center", "velocity", "path", "radius", "strength"};
+const Keys kCrackKeys = {"shape",       "corners", "points", "extrude", "start",     "walks",    "steps",
+                         "step_length", "turn",    "mesh",   "scale",   "translate", "strength", "body"};
+const Keys kCrackShapes = {"quad", "path", "random_walk", "mesh"};
+// The geometry keys of each crack shape (in kCrackShapes order).
+const Keys kCrackShapeKeys[] = {{"corners"},
+                                {"points", "extrude"},
+                                {"start", "extrude", "walks", "steps", "step_length", "turn"},
+                                {"mesh", "scale", "translate"}};
+const Keys kRegionKeys = {"shape",
+                          "box_min",
+                          "box_max",
+                          "center",
+                          "radius",
+                          "mesh",
+                          "scale",
+                          "translate",
+                          "body",
+                          "strain_limit",
+                          "strain_limit_factor"};
+const Keys kRegionShapes = {"box", "sphere", "mesh"};
+const Keys kRegionShapeKeys[] = {
+    {"box_min", "box_max"}, {"center", "radius"}, {"mesh", "scale", "translate"}};
 const Keys kOutputKeys = {"vtk", "binary"};
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
@@ -635,6 +659,44 @@ SceneMaterial parse_material(const std::string& name, const TableReader& r) {
   return m;
 }
 
+// A path as written in a scene: relative paths start from the scene file's folder.
+std::string resolve_path(const std::string& scene_file, const std::string& path) {
+  const size_t slash = scene_file.find_last_of('/');
+  return path[0] == '/' || slash == std::string::npos ? path : scene_file.substr(0, slash + 1) + path;
+}
+
+// A `shape` key among `shapes`, with the geometry keys of the others refused; returns its index.
+size_t parse_kind(const TableReader& r, std::string& shape, const Keys& shapes, const Keys* shape_keys) {
+  r.string("shape", shape, shapes);
+  const size_t s = size_t(std::find(shapes.begin(), shapes.end(), shape) - shapes.begin());
+  for (size_t other = 0; other < shapes.size(); ++other)
+    for (std::string_view key : shape_keys[other]) {
+      const Keys& own = shape_keys[s];
+      if (r.has(key) && std::find(own.begin(), own.end(), key) == own.end())
+        r.fail(key, "not a key of shape = " + quoted(shape), "for " + shape + ": " + join(own, false));
+    }
+  return s;
+}
+
+// A body name that must name one of `bodies`.
+void parse_body_name(const TableReader& r, std::string& out, const std::vector<SceneBody>& bodies) {
+  if (!r.string("body", out)) return;
+  Keys names;
+  for (const SceneBody& b : bodies) names.push_back(b.name);
+  if (std::find(names.begin(), names.end(), out) == names.end())
+    r.fail("body", "no body named " + quoted(out), join(names, true));
+}
+
+// A mesh file reference: `mesh` (required), `scale` and `translate`.
+void parse_mesh_reference(const TableReader& r, const std::string& file, std::string& mesh,
+                          std::string& mesh_path, double& scale, Vec3d& translate) {
+  r.string("mesh", mesh, {}, Presence::required);
+  if (mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
+  mesh_path = resolve_path(file, mesh);
+  r.number("scale", scale, greater_than(0));
+  r.vec3("translate", translate);
+}
+
 // Shape and its dimensions: the keys of the chosen shape are required (mesh: `mesh` only),
 // those of other shapes are errors.
 void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
@@ -676,10 +738,7 @@ void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
   if (b.shape == "mesh") {
     r.string("mesh", b.mesh, {}, Presence::required);
     if (b.mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
-    // Relative paths start from the scene file's folder.
-    const size_t slash = file.find_last_of('/');
-    b.mesh_path =
-        b.mesh[0] == '/' || slash == std::string::npos ? b.mesh : file.substr(0, slash + 1) + b.mesh;
+    b.mesh_path = resolve_path(file, b.mesh);
     r.number("scale", b.scale, positive);
     r.string("repair", b.repair, {"none", "fill_holes"});
   }
@@ -767,12 +826,7 @@ SceneAnchor parse_anchor(const TableReader& r, const std::vector<SceneBody>& bod
   SceneAnchor a;
   r.vec3("box_min", a.box_min, Presence::required);
   r.vec3("box_max", a.box_max, Presence::required);
-  if (r.string("body", a.body)) {
-    Keys names;
-    for (const SceneBody& b : bodies) names.push_back(b.name);
-    if (std::find(names.begin(), names.end(), a.body) == names.end())
-      r.fail("body", "no body named " + quoted(a.body), join(names, true));
-  }
+  parse_body_name(r, a.body, bodies);
   if (r.has("velocity") && r.has("path"))
     r.fail("path", "both velocity and path are given", "either a constant velocity or a keyframed path");
   r.vec3("velocity", a.velocity);
@@ -806,6 +860,91 @@ SceneProjectile parse_projectile(const TableReader& r) {
   r.number("radius", p.radius, greater_than(0), Presence::required);
   r.number("strength", p.strength, at_least(0), Presence::required);
   return p;
+}
+
+// A list of points [[x, y, z], ...] with at least `min` entries.
+std::vector<Vec3d> parse_points(const TableReader& r, std::string_view key, size_t min) {
+  const std::string allowed = "an array of at least " + std::to_string(min) + " points [x, y, z]";
+  const toml::node* n = r.node(key);
+  if (!n) r.fail(key, "missing required key", allowed);
+  const auto* a = n->as_array();
+  if (!a) r.fail(key, "expected an array of points, got " + type_name(*n), allowed);
+  if (a->size() < min) r.fail(key, std::to_string(a->size()) + " point(s)", allowed);
+  std::vector<Vec3d> out;
+  for (size_t k = 0; k < a->size(); ++k) {
+    const std::string item = r.path(key) + "[" + std::to_string(k) + "]";
+    const auto* point = a->get(k)->as_array();
+    if (!point || point->size() != 3) scene_error(r.file(), item, "expected [x, y, z]", allowed);
+    Vec3d p{};
+    for (size_t c = 0; c < 3; ++c)
+      p[c] = to_number(*point->get(c), r.file(), item + "[" + std::to_string(c) + "]", Bounds{});
+    out.push_back(p);
+  }
+  return out;
+}
+
+SceneCrack parse_crack(const TableReader& r, const std::vector<SceneBody>& bodies, const std::string& file) {
+  SceneCrack c;
+  const size_t shape = parse_kind(r, c.shape, kCrackShapes, kCrackShapeKeys);
+  Bounds strength = {0, 1, false, true, "0 removes the bonds crossing, less than 1 weakens them"};
+  r.number("strength", c.strength, strength);
+  parse_body_name(r, c.body, bodies);
+  auto nonzero = [&](std::string_view key, const Vec3d& v) {
+    if (v[0] == 0 && v[1] == 0 && v[2] == 0) r.fail(key, "the zero vector", "a non-zero [x, y, z]");
+  };
+  switch (shape) {
+    case 0: {
+      const auto corners = parse_points(r, "corners", 4);
+      if (corners.size() != 4)
+        r.fail("corners", std::to_string(corners.size()) + " points", "4 points [x, y, z]");
+      std::copy(corners.begin(), corners.end(), c.corners.begin());
+      break;
+    }
+    case 1:
+      c.points = parse_points(r, "points", 2);
+      r.vec3("extrude", c.extrude, Presence::required);
+      nonzero("extrude", c.extrude);
+      break;
+    case 2:
+      r.vec3("start", c.start, Presence::required);
+      r.vec3("extrude", c.extrude, Presence::required);
+      nonzero("extrude", c.extrude);
+      r.number("step_length", c.step_length, greater_than(0), Presence::required);
+      r.integer("walks", c.walks, 1);
+      r.integer("steps", c.steps, 1);
+      if (c.walks * c.steps > 100000)
+        r.fail("steps", std::to_string(c.walks * c.steps) + " steps in all", "walks * steps <= 100000");
+      r.number("turn", c.turn, in_closed(0, 180));
+      break;
+    default:
+      parse_mesh_reference(r, file, c.mesh, c.mesh_path, c.scale, c.translate);
+  }
+  return c;
+}
+
+SceneRegion parse_region(const TableReader& r, const std::vector<SceneBody>& bodies,
+                         const std::string& file) {
+  SceneRegion g;
+  const size_t shape = parse_kind(r, g.shape, kRegionShapes, kRegionShapeKeys);
+  parse_body_name(r, g.body, bodies);
+  if (shape == 0) {
+    r.vec3("box_min", g.box_min, Presence::required);
+    r.vec3("box_max", g.box_max, Presence::required);
+    for (int c = 0; c < 3; ++c)
+      if (g.box_max[size_t(c)] < g.box_min[size_t(c)])
+        r.fail("box_max", std::string(kAxisNames[c]) + " is below box_min's", "each component >= box_min's");
+  } else if (shape == 1) {
+    r.vec3("center", g.center, Presence::required);
+    r.number("radius", g.radius, greater_than(0), Presence::required);
+  } else {
+    parse_mesh_reference(r, file, g.mesh, g.mesh_path, g.scale, g.translate);
+  }
+  double limit = 0;
+  if (r.number("strain_limit", limit, in_open(0, 1))) g.strain_limit = limit;
+  r.number("strain_limit_factor", g.strain_limit_factor, greater_than(0));
+  if (!g.strain_limit && !r.has("strain_limit_factor"))
+    r.fail("", "the region changes nothing", "strain_limit in (0, 1) and/or strain_limit_factor > 0");
+  return g;
 }
 
 Scene parse_root(const toml::table& root, const std::string& path) {
@@ -871,6 +1010,12 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     top.fail("projectiles", std::to_string(projectiles.size()) + " projectiles",
              "at most " + std::to_string(kMaxProjectiles));
   for (const TableReader& r : projectiles) scene.projectiles.push_back(parse_projectile(r));
+
+  // [[cracks]] and [[regions]]
+  for (const TableReader& r : top.table_array("cracks", kCrackKeys))
+    scene.cracks.push_back(parse_crack(r, scene.bodies, path));
+  for (const TableReader& r : top.table_array("regions", kRegionKeys))
+    scene.regions.push_back(parse_region(r, scene.bodies, path));
 
   // [output]
   const TableReader output = top.table("output", kOutputKeys);

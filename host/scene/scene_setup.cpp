@@ -16,6 +16,7 @@
 #include "../material.h"
 #include "../memory_budget.h"
 #include "../random.h"
+#include "scene_cracks.h"
 
 namespace pd {
 
@@ -175,6 +176,8 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   Random rng(scene.seed);
   const double spacing_factor = 1.0 / std::cbrt(options.scale);
   for (const SceneAnchor& a : scene.anchors) in.motion.anchors.push_back(anchor_script(a));
+  in.cuts = crack_triangles(scene);
+  const auto regions = region_tests(scene);
 
   // Bodies: one material table entry per body (a material's horizon depends on the spacing).
   int64_t total = 0;
@@ -254,9 +257,17 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
         group = uint8_t(g);
         v = anchor_velocity(in.motion.anchors[g], x);
       }
-      ps.add(x, v, real(geometry.volume[i]), real(sm.density * geometry.volume[i]),
-             scattered_limit(summary.strain_limit, sm.strain_limit_scatter, rng), mat, int32_t(b), flags,
-             group);
+      // Regions: the last one giving a strain limit sets the base value, every factor multiplies.
+      double base = summary.strain_limit, factor = 1;
+      for (size_t r = 0; r < regions.size(); ++r) {
+        const SceneRegion& region = scene.regions[r];
+        if ((!region.body.empty() && region.body != body.name) || !regions[r](geometry.position[i])) continue;
+        if (region.strain_limit) base = *region.strain_limit;
+        factor *= region.strain_limit_factor;
+      }
+      const real tau = real(factor) * scattered_limit(base, sm.strain_limit_scatter, rng);
+      ps.add(x, v, real(geometry.volume[i]), real(sm.density * geometry.volume[i]), tau, mat, int32_t(b),
+             flags, group);
     }
     if (geometry.kind == ElementKind::voronoi) result.voronoi.push_back({base, std::move(geometry)});
   }

@@ -61,7 +61,7 @@ struct Pair {
     return b;
   }
   void run() {
-    for (int i = 0; i < 2; ++i) spring_forces<false>(i, particles(), bonds(), mt);
+    for (int i = 0; i < 2; ++i) spring_forces<false, false>(i, particles(), bonds(), mt);
   }
 };
 

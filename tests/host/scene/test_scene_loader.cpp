@@ -285,6 +285,62 @@ TEST(SceneLoader, MotionMistakes) {
                "projectiles[0].center", "takes its centre from path");
 }
 
+TEST(SceneLoader, CracksAndRegionsParse) {
+  const Scene s = parse_scene(kMinimal + R"(
+[[cracks]]
+shape = "path"
+points = [[0, 0, 0], [1, 0, 0]]
+extrude = [0, 0, 1]
+strength = 0.25
+[[cracks]]
+shape = "random_walk"
+start = [0, 0, 0]
+extrude = [0, 0, 0.01]
+walks = 3
+steps = 9
+step_length = 0.002
+turn = 45
+[[regions]]
+shape = "sphere"
+center = [0, 0, 0]
+radius = 0.1
+strain_limit = 0.002
+strain_limit_factor = 0.5
+)",
+                              kFile);
+  ASSERT_EQ(s.cracks.size(), 2u);
+  EXPECT_EQ(s.cracks[0].points.size(), 2u);
+  EXPECT_EQ(s.cracks[0].strength, 0.25);
+  EXPECT_EQ(s.cracks[1].walks, 3);
+  EXPECT_EQ(s.cracks[1].turn, 45);
+  ASSERT_EQ(s.regions.size(), 1u);
+  EXPECT_EQ(*s.regions[0].strain_limit, 0.002);
+  EXPECT_EQ(s.regions[0].strain_limit_factor, 0.5);
+}
+
+TEST(SceneLoader, CrackAndRegionMistakes) {
+  const std::string crack = kMinimal + "[[cracks]]\n";
+  expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0]]\n", "cracks[0].corners", "3 point(s)");
+  expect_error(crack + "shape = \"path\"\npoints = [[0, 0, 0], [1, 0, 0]]\nextrude = [0, 0, 0]\n",
+               "cracks[0].extrude", "zero vector");
+  expect_error(
+      crack + "shape = \"path\"\npoints = [[0, 0, 0], [1, 0, 0]]\nextrude = [0, 0, 1]\ncorners = 1\n",
+      "cracks[0].corners", "not a key of shape = \"path\"");
+  expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]\nstrength = 1\n",
+               "cracks[0].strength", "out of range");
+  expect_error(crack + "shape = \"random_walk\"\nstart = [0, 0, 0]\nextrude = [0, 0, 1]\n",
+               "cracks[0].step_length", "missing required key");
+  expect_error(crack + "shape = \"fracture\"\n", "cracks[0].shape", "unsupported value");
+  expect_error(crack + "shape = \"mesh\"\n", "cracks[0].mesh", "missing required key");
+  const std::string region = kMinimal + "[[regions]]\nbox_min = [0, 0, 0]\nbox_max = [1, 1, 1]\n";
+  expect_error(region, "regions[0]", "changes nothing");
+  expect_error(region + "strain_limit = 2\n", "regions[0].strain_limit", "out of range");
+  expect_error(region + "strain_limit_factor = 0\n", "regions[0].strain_limit_factor", "out of range");
+  expect_error(region + "body = \"x\"\nstrain_limit_factor = 2\n", "regions[0].body", "no body named");
+  expect_error(kMinimal + "[[regions]]\nshape = \"sphere\"\ncenter = [0, 0, 0]\nstrain_limit_factor = 2\n",
+               "regions[0].radius", "missing required key");
+}
+
 TEST(SceneLoader, UnknownKey) {
   expect_error("colour = \"red\"\n" + kMinimal, "colour", "unknown key");
   expect_error("[simulation]\nsteps = 3\n" + kMinimal, "simulation.steps", "allowed: dt, steps_per_frame");
