@@ -27,6 +27,7 @@ std::string meta_text(const RunCheckpoint& c) {
   std::ostringstream m;
   m << "real_bytes " << sizeof(real) << "\n"
     << "scene_path " << c.scene_path << "\n"
+    << "overrides " << c.overrides.size() << "\n"
     << "scene_hash " << c.scene_hash << "\n"
     << "setup_hash " << c.setup_hash << "\n"
     << "scale " << exact(c.scale) << "\n"
@@ -38,6 +39,7 @@ std::string meta_text(const RunCheckpoint& c) {
     << "frame " << c.frame << "\n"
     << "step " << c.engine.step << "\n"
     << "time " << exact(c.engine.time) << "\n";
+  for (size_t k = 0; k < c.overrides.size(); ++k) m << "override_" << k << " " << c.overrides[k] << "\n";
   return m.str();
 }
 
@@ -73,6 +75,9 @@ void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) 
     r.fail("written by a " + std::string(integer("real_bytes") == 8 ? "double" : "float") +
            "-precision build; this build is " + (sizeof(real) == 8 ? "double" : "float"));
   c.scene_path = get("scene_path");
+  c.overrides.resize(size_t(integer("overrides")));
+  for (size_t k = 0; k < c.overrides.size(); ++k)
+    c.overrides[k] = get(("override_" + std::to_string(k)).c_str());
   c.scene_hash = integer("scene_hash");
   c.setup_hash = integer("setup_hash");
   c.scale = number("scale");
@@ -158,6 +163,12 @@ uint64_t setup_fingerprint(const SimulationInput& in) {
     cuts.push_back(double(t.body));
   }
   return hash_array(cuts, h);
+}
+
+uint64_t scene_fingerprint(const std::string& path, const std::vector<std::string>& overrides) {
+  uint64_t h = file_fingerprint(path);
+  for (const std::string& o : overrides) h = fnv1a(o + "\n", h);
+  return h;
 }
 
 uint64_t file_fingerprint(const std::string& path) {

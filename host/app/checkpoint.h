@@ -23,12 +23,13 @@ class ResumeError : public std::runtime_error {
 };
 
 inline constexpr const char* kCheckpointFileName = "checkpoint.pck";
-inline constexpr uint32_t kCheckpointVersion = 1;
+inline constexpr uint32_t kCheckpointVersion = 2;
 
 struct RunCheckpoint {
   // How the run was started; a resume repeats it.
   std::string scene_path;
-  uint64_t scene_hash = 0;  // fnv1a of the scene file's bytes
+  std::vector<std::string> overrides;  // --set KEY=VALUE, in order
+  uint64_t scene_hash = 0;             // scene_fingerprint of the file and the overrides
   uint64_t setup_hash = 0;  // setup_fingerprint: particles, materials, strain limits (seed, meshes)
   double scale = 1;
   int64_t steps_per_frame = 0, frames = 0;
@@ -48,6 +49,8 @@ struct RunCheckpoint {
 // (material constants are covered by the scene file's own fingerprint).
 uint64_t setup_fingerprint(const SimulationInput& in);
 uint64_t file_fingerprint(const std::string& path);
+// The scene file's bytes and the --set overrides applied to it.
+uint64_t scene_fingerprint(const std::string& path, const std::vector<std::string>& overrides);
 
 // Atomic; throws IoError naming the path.
 void write_checkpoint(const std::string& path, const RunCheckpoint& c);

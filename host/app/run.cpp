@@ -40,6 +40,7 @@ std::string format_duration(double seconds) {
 void print_setup(const Scene& scene, const SetupResult& setup, const RunOptions& opt) {
   std::printf("scene      %s%s%s\n", scene.path.c_str(), scene.description.empty() ? "" : " - ",
               scene.description.c_str());
+  for (const std::string& o : opt.overrides) std::printf("set        %s\n", o.c_str());
   std::printf("particles  %zu in %zu bodies (scale %g)\n", setup.input.particles.size(), scene.bodies.size(),
               opt.scale);
   for (size_t k = 0; k < setup.materials.size(); ++k) {
@@ -116,6 +117,7 @@ RunCheckpoint open_resume(RunOptions& opt) {
     throw ResumeError(std::string(e.what()) + "; start the run again without --resume");
   }
   if (opt.scene.empty()) opt.scene = c.scene_path;
+  if (opt.overrides.empty()) opt.overrides = c.overrides;
   if (!opt.out.empty() && opt.out != opt.resume)
     throw ResumeError("--out '" + opt.out + "' and --resume '" + opt.resume +
                       "' differ: a resumed run continues in its own folder");
@@ -134,11 +136,12 @@ RunCheckpoint open_resume(RunOptions& opt) {
 
 // The checkpoint must come from this scene file and set-up; the backend may differ (the run
 // continues, no longer bit for bit).
-void check_resume(const RunCheckpoint& c, const Scene& scene, const SetupResult& setup, Backend backend) {
-  if (file_fingerprint(scene.path) != c.scene_hash)
+void check_resume(const RunCheckpoint& c, const Scene& scene, const std::vector<std::string>& overrides,
+                  const SetupResult& setup, Backend backend) {
+  if (scene_fingerprint(scene.path, overrides) != c.scene_hash)
     throw ResumeError("cannot resume: the scene file '" + scene.path +
-                      "' is not the one the checkpoint was written from (it changed, or another scene "
-                      "was given)");
+                      "' or its --set overrides are not the ones the checkpoint was written from (the file "
+                      "changed, or another scene or other overrides were given)");
   if (setup_fingerprint(setup.input) != c.setup_hash)
     throw ResumeError("cannot resume: set-up of '" + scene.path +
                       "' no longer gives the checkpoint's particles (a mesh or the seed changed)");
@@ -153,7 +156,7 @@ int run_command(const RunOptions& options) {
   RunOptions opt = options;
   std::optional<RunCheckpoint> resume;
   if (!opt.resume.empty()) resume = open_resume(opt);
-  Scene scene = load_scene(opt.scene);
+  Scene scene = load_scene(opt.scene, opt.overrides);
   if (opt.frames >= 0) scene.frames = opt.frames;
   if (opt.steps_per_frame >= 1) scene.steps_per_frame = opt.steps_per_frame;
   std::string note;
@@ -162,7 +165,7 @@ int run_command(const RunOptions& options) {
   print_setup(scene, setup, opt);
   check_time_step(scene, setup, opt.allow_unstable_dt);
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
-  if (resume) check_resume(*resume, scene, setup, backend);
+  if (resume) check_resume(*resume, scene, opt.overrides, setup, backend);
   const auto t_setup = std::chrono::steady_clock::now();
   std::unique_ptr<Engine> engine = make_engine(backend, setup.input);
   const FamilyStats& fam = engine->family_stats();
@@ -253,7 +256,8 @@ int run_command(const RunOptions& options) {
   auto write_checkpoint_now = [&](int64_t frame) {
     RunCheckpoint c;
     c.scene_path = scene.path;
-    c.scene_hash = file_fingerprint(scene_hash_path);
+    c.overrides = opt.overrides;
+    c.scene_hash = scene_fingerprint(scene_hash_path, opt.overrides);
     c.setup_hash = setup_fingerprint(setup.input);
     c.scale = opt.scale;
     c.steps_per_frame = scene.steps_per_frame;

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace pd {
 
@@ -20,6 +21,7 @@ struct RunOptions {
   int64_t checkpoint_every = 0;
   double checkpoint_minutes = 10;
   std::string resume;
+  std::vector<std::string> overrides;  // --set KEY=VALUE, applied to the scene file
 };
 
 // Exit codes shared by the commands.

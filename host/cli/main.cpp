@@ -27,6 +27,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scene", run.scene, "scene file (TOML); with --resume, the checkpoint's by default");
   run_cmd->add_option("--backend", run.backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  run_cmd->add_option("--set", run.overrides,
+                      "KEY=VALUE: change a scene key for this run (repeatable), e.g. "
+                      "--set materials.glass.bulk_modulus=2.94e8 --set projectiles[0].strength=1e8");
   run_cmd->add_option("--frames", run.frames, "number of frames (default: the scene's)")
       ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--steps-per-frame", run.steps_per_frame, "steps per frame (default: the scene's)")

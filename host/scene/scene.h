@@ -183,8 +183,12 @@ struct Scene {
 
 // Reads and validates a scene file. Throws SceneError for every user mistake (unreadable
 // file, TOML syntax, unknown key, wrong type, value out of range, dangling material name).
-Scene load_scene(const std::string& path);
+// `overrides` are "KEY=VALUE" settings applied on top of the file before it is validated
+// (`perifrac run --set`): KEY a dotted path such as materials.glass.bulk_modulus or
+// projectiles[0].strength, VALUE a TOML value (2.94e8, "glass", [0, 1, 0], true).
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 // Same, from text (tests); `path` is used in messages only.
-Scene parse_scene(const std::string& text, const std::string& path);
+Scene parse_scene(const std::string& text, const std::string& path,
+                  const std::vector<std::string>& overrides = {});
 
 }  // namespace pd

@@ -1024,9 +1024,73 @@ Scene parse_root(const toml::table& root, const std::string& path) {
   return scene;
 }
 
+// ---- Overrides ---------------------------------------------------------------------------------
+
+// Applies one "KEY=VALUE" override to the document: tables on the way are created, array
+// elements must exist; the value replaces what the file had.
+void apply_override(toml::table& root, const std::string& setting, const std::string& file) {
+  const std::string allowed =
+      "KEY=VALUE, KEY a dotted path (materials.glass.density, bodies[0].spacing), "
+      "VALUE a TOML value (2.5e9, \"text\", [1, 0, 0], true)";
+  const size_t eq = setting.find('=');
+  std::string key = eq == std::string::npos ? setting : setting.substr(0, eq);
+  while (!key.empty() && (key.back() == ' ' || key.back() == '\t')) key.pop_back();
+  key.erase(0, key.find_first_not_of(" \t"));
+  auto fail = [&](const std::string& what) { scene_error(file, "--set " + key, what, allowed); };
+  if (eq == std::string::npos || eq == 0) fail("expected KEY=VALUE");
+  toml::table value_doc;
+  try {
+    value_doc = toml::parse("value = " + setting.substr(eq + 1));
+  } catch (const toml::parse_error& e) {
+    fail("the value is not TOML: " + std::string(e.description()));
+  }
+  // Walk the path: name segments, each optionally followed by [index] parts.
+  toml::node* here = &root;
+  std::string name;
+  size_t i = 0;
+  auto step_into_name = [&](bool last) -> bool {
+    toml::table* t = here->as_table();
+    if (!t) fail("'" + name + "' is inside something that is not a table");
+    if (last) {
+      t->insert_or_assign(name, *value_doc.get("value"));
+      return true;
+    }
+    if (!t->get(name)) t->insert(name, toml::table{});
+    here = t->get(name);
+    return false;
+  };
+  while (i < key.size()) {
+    const size_t end = key.find_first_of(".[", i);
+    name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
+    if (name.empty()) fail("an empty name in the path");
+    i = end == std::string::npos ? key.size() : end;
+    if (step_into_name(i >= key.size())) return;
+    while (i < key.size() && key[i] == '[') {
+      const size_t close = key.find(']', i);
+      if (close == std::string::npos) fail("an unclosed [");
+      const std::string digits = key.substr(i + 1, close - i - 1);
+      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
+        fail("[" + digits + "] is not an index");
+      toml::array* a = here->as_array();
+      const size_t index = std::stoul(digits);
+      if (!a || index >= a->size()) fail("'" + name + "' has no element " + digits);
+      i = close + 1;
+      if (i >= key.size()) {
+        a->replace(a->begin() + long(index), *value_doc.get("value"));
+        return;
+      }
+      here = a->get(index);
+    }
+    if (key[i] != '.') fail("expected '.' after ']'");
+    ++i;
+  }
+  fail("an empty name in the path");
+}
+
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& path) {
+Scene parse_scene(const std::string& text, const std::string& path,
+                  const std::vector<std::string>& overrides) {
   // Characters that toml++ cannot classify go through the private-use plane 15 (see above); one
   // already there would come back as another character, so it is refused.
   const std::string shifted = shift_characters(text, true);
@@ -1042,10 +1106,12 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     throw syntax_error(path, e.source().begin.line, e.source().begin.column,
                        was_shifted ? shift_characters(description, false) : description);
   }
-  return parse_root(was_shifted ? shift_back(root) : root, path);
+  if (was_shifted) root = shift_back(root);
+  for (const std::string& setting : overrides) apply_override(root, setting, path);
+  return parse_root(root, path);
 }
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
   // Read the whole file; fopen/fread set errno for the message (ENOENT, EACCES, EISDIR, ...).
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   auto cannot_read = [&] {
@@ -1057,7 +1123,7 @@ Scene load_scene(const std::string& path) {
   size_t got = 0;
   while ((got = std::fread(buf, 1, sizeof buf, file.get())) > 0) text.append(buf, got);
   if (std::ferror(file.get())) throw cannot_read();
-  return parse_scene(text, path);
+  return parse_scene(text, path, overrides);
 }
 
 }  // namespace pd

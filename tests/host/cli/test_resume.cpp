@@ -216,7 +216,21 @@ TEST_F(Resume, RefusesAnotherScene) {
             0);
   std::ofstream(path("other.toml")) << kScene << "# edited\n";
   expect_refusal({"run", path("other.toml"), "--resume", out}, log_,
-                 "is not the one the checkpoint was written from");
+                 "are not the ones the checkpoint was written from");
+}
+
+// --set overrides are part of the run: a resume repeats them, and other overrides are refused.
+TEST_F(Resume, KeepsTheRunsOverrides) {
+  const std::string out = path("out");
+  const std::string set = "materials.metal.density=1500";
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "1", "--checkpoint-every", "1",
+                 "--set", set},
+                log_),
+            0);
+  ASSERT_EQ(run({"run", "--resume", out, "--frames", "2"}, log_), 0) << read_all(log_);
+  EXPECT_NE(read_all(log_).find("set        " + set), std::string::npos) << read_all(log_);
+  expect_refusal({"run", "--resume", out, "--frames", "3", "--set", "materials.metal.density=1600"}, log_,
+                 "are not the ones the checkpoint was written from");
 }
 
 TEST_F(Resume, RefusesACorruptedCheckpoint) {

@@ -341,6 +341,42 @@ TEST(SceneLoader, CrackAndRegionMistakes) {
                "regions[0].radius", "missing required key");
 }
 
+// --set KEY=VALUE on top of the file: replaces values, adds optional keys, indexes arrays of
+// tables; the result is validated like the file itself.
+TEST(SceneLoader, OverridesApplyBeforeValidation) {
+  const std::string text = kMinimal + "[[projectiles]]\ncenter = [0, 0, 0]\nradius = 1\nstrength = 1\n";
+  const Scene s =
+      parse_scene(text, kFile,
+                  {"materials.glass.density=1234.5", "simulation.frames=7", "world.gravity=[0, 0, -1]",
+                   "projectiles[0].strength=1e9", "bodies[0].velocity = [1, 2, 3]"});
+  EXPECT_EQ(s.materials[0].density, 1234.5);
+  EXPECT_EQ(s.frames, 7);
+  EXPECT_EQ(s.gravity[2], -1);
+  EXPECT_EQ(s.projectiles[0].strength, 1e9);
+  EXPECT_EQ(s.bodies[0].velocity[2], 3);
+}
+
+TEST(SceneLoader, OverrideMistakes) {
+  auto error_with = [&](const std::string& setting) {
+    try {
+      parse_scene(kMinimal, kFile, {setting});
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_with("simulation.frames").find("--set simulation.frames: expected KEY=VALUE"),
+            std::string::npos);
+  EXPECT_NE(error_with("simulation.frames=seven").find("the value is not TOML"), std::string::npos);
+  EXPECT_NE(error_with("bodies[3].spacing=1").find("has no element 3"), std::string::npos);
+  EXPECT_NE(error_with("bodies[x].spacing=1").find("[x] is not an index"), std::string::npos);
+  EXPECT_NE(error_with("materials.glass.density.x=1").find("not a table"), std::string::npos);
+  // A valid override that makes the scene invalid is reported like a mistake in the file.
+  EXPECT_NE(error_with("materials.glass.density=-1").find("materials.glass.density: -1 is out of range"),
+            std::string::npos);
+  EXPECT_NE(error_with("simulation.framez=3").find("simulation.framez: unknown key"), std::string::npos);
+}
+
 TEST(SceneLoader, UnknownKey) {
   expect_error("colour = \"red\"\n" + kMinimal, "colour", "unknown key");
   expect_error("[simulation]\nsteps = 3\n" + kMinimal, "simulation.steps", "allowed: dt, steps_per_frame");
