@@ -5,9 +5,36 @@
 
 namespace pd {
 
+// What a user can do about a CUDA error of this kind.
+const char* cuda_hint(cudaError_t err) {
+  switch (err) {
+    case cudaErrorMemoryAllocation:
+      return "the GPU is out of memory: lower --scale or the particle count, free the GPU, or use --backend "
+             "cpu";
+    case cudaErrorNoDevice:
+    case cudaErrorInsufficientDriver:
+    case cudaErrorInvalidDevice:
+    case cudaErrorNoKernelImageForDevice:
+      return "no usable GPU for this build (it targets sm_90 unless configured with "
+             "-DCMAKE_CUDA_ARCHITECTURES=...): use --backend cpu, or rebuild for this GPU";
+    case cudaErrorLaunchOutOfResources:
+    case cudaErrorInvalidConfiguration:
+      return "the kernel could not be launched with this build's block size on this GPU: please report it "
+             "with the output of `perifrac info`";
+    case cudaErrorIllegalAddress:
+    case cudaErrorMisalignedAddress:
+    case cudaErrorLaunchFailure:
+      return "a kernel accessed memory out of bounds: rerun under compute-sanitizer, or with a build "
+             "configured with -DPERIFRAC_BOUNDS_CHECKS=ON, and report it";
+    default:
+      return "see `perifrac info` for the device; --backend cpu runs without the GPU";
+  }
+}
+
 void cuda_check(cudaError_t err, const char* what) {
   if (err == cudaSuccess) return;
-  throw std::runtime_error(std::string("CUDA error in ") + what + ": " + cudaGetErrorString(err));
+  throw std::runtime_error(std::string("CUDA error in ") + what + ": " + cudaGetErrorString(err) + "; " +
+                           cuda_hint(err));
 }
 
 CudaExec::CudaExec(KernelStats* stats) : stats_(stats) {}
@@ -69,9 +96,7 @@ void CudaExec::flush_stats() {
   cudaError_t err = cudaDeviceSynchronize();
   if (err != cudaSuccess)
     throw std::runtime_error(std::string("CUDA error after kernel '") + last_name_ +
-                             "': " + cudaGetErrorString(err) +
-                             " (to find the faulting access: compute-sanitizer perifrac run ..., or a build "
-                             "with -DPERIFRAC_BOUNDS_CHECKS=ON)");
+                             "': " + cudaGetErrorString(err) + "; " + cuda_hint(err));
   for (auto& p : pending_) {
     float ms = 0;
     cuda_check(cudaEventElapsedTime(&ms, p.start, p.stop), "cudaEventElapsedTime");
@@ -88,7 +113,7 @@ void* CudaExec::scratch(int slot, size_t bytes) {
   if (bytes > scratch_bytes_[slot]) {
     cudaFree(scratch_[slot]);
     scratch_[slot] = nullptr;
-    cuda_check(cudaMalloc(&scratch_[slot], bytes), "cudaMalloc (scratch)");
+    scratch_[slot] = allocate(bytes);
     scratch_bytes_[slot] = bytes;
   }
   return scratch_[slot];
@@ -127,8 +152,7 @@ void* CudaExec::allocate(size_t bytes) {
     cudaMemGetInfo(&free_b, &total_b);
     throw std::runtime_error("GPU allocation of " + std::to_string(bytes) + " bytes failed (" +
                              std::to_string(free_b >> 20) + " MiB free of " + std::to_string(total_b >> 20) +
-                             " MiB): " + cudaGetErrorString(err) +
-                             "; lower --scale or the particle count, or use the CPU backend");
+                             " MiB): " + cudaGetErrorString(err) + "; " + cuda_hint(err));
   }
   return p;
 }

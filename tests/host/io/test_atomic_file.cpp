@@ -3,11 +3,15 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/mount.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -150,6 +154,58 @@ TEST_F(AtomicFileTest, OsWriteErrorIsReportedWithItsReason) {
   }
   EXPECT_EQ(read_all(target), "old");
   EXPECT_EQ(entries(), std::vector<std::string>{"out.txt"});
+}
+
+// A full disk: a 64 KiB tmpfs mounted in the test folder (root only; the test skips where the
+// system refuses the mount). The write fails with ENOSPC naming the path, the old file stays and
+// no temporary is left behind.
+TEST_F(AtomicFileTest, DiskFullIsReportedWithThePath) {
+  const std::string dir = path("full");
+  fs::create_directories(dir);
+  if (mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=64k") != 0)
+    GTEST_SKIP() << "cannot mount a small tmpfs here (" << std::strerror(errno) << "): needs root";
+  const std::string target = dir + "/out.txt";
+  pd::write_file_atomic(target, std::string_view("old"));
+  expect_io_error([&] { pd::write_file_atomic(target, std::string(1 << 20, 'x')); }, target,
+                  "No space left on device");
+  EXPECT_EQ(read_all(target), "old");
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);
+  umount2(dir.c_str(), MNT_DETACH);
+}
+
+// A folder the user may not write to: the error names the path and the reason. Root may write
+// anywhere, so as root the write runs in a child process that has dropped to an ordinary user.
+TEST_F(AtomicFileTest, PermissionDeniedIsReportedWithThePath) {
+  const std::string dir = path("locked");
+  fs::create_directories(dir);
+  chmod(dir.c_str(), 0555);
+  const std::string target = dir + "/out.txt";
+  auto attempt = [&]() -> int {
+    try {
+      pd::write_file_atomic(target, std::string_view("data"));
+    } catch (const pd::IoError& e) {
+      const std::string m = e.what();
+      return m.find(target) != std::string::npos && m.find("Permission denied") != std::string::npos ? 0 : 1;
+    }
+    return 2;
+  };
+  if (geteuid() != 0) {
+    EXPECT_EQ(attempt(), 0);
+  } else {
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0)
+      _exit(setresgid(65534, 65534, 65534) == 0 && setresuid(65534, 65534, 65534) == 0 ? attempt() : 3);
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0)
+        << "1: message without the path or reason, 2: no error, 3: setuid failed";
+  }
+  EXPECT_FALSE(fs::exists(target));
+  chmod(dir.c_str(), 0755);
 }
 
 TEST_F(AtomicFileTest, EnsureDirectoryCreatesParentsAndAcceptsExisting) {
