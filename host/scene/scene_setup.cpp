@@ -286,7 +286,10 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   sp.n_projectiles = int32_t(scene.projectiles.size());
   for (size_t k = 0; k < scene.projectiles.size() && k < size_t(kMaxProjectiles); ++k) {
     const auto& p = scene.projectiles[k];
-    sp.projectile[k] = {to_vec3(p.center), to_vec3(p.velocity), real(p.radius), real(p.strength)};
+    // Eq. 7 is a force per particle: at --scale S every particle holds 1/S times the volume, so
+    // K_S / S keeps the push per unit of mass, and the look, what it is at full size.
+    sp.projectile[k] = {to_vec3(p.center), to_vec3(p.velocity), real(p.radius),
+                        real(p.strength / options.scale)};
     in.motion.projectiles.push_back(p.path);
   }
   in.contact = scene.contact;

@@ -493,23 +493,27 @@ TEST(SceneLoader, ControlCharactersInKeysStayOnOneLine) {
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
-TEST(SceneLoader, ReferenceDocExampleParses) {
-  std::ifstream doc(std::string(PERIFRAC_SOURCE_DIR) + "/docs/scene-reference.md");
-  ASSERT_TRUE(doc) << "docs/scene-reference.md not found";
-  std::stringstream text;
-  text << doc.rdbuf();
-  const std::string md = text.str();
-  const std::string fence = "```toml\n";
-  const size_t begin = md.find(fence);
-  ASSERT_NE(begin, std::string::npos) << "no ```toml block";
-  const size_t end = md.find("```", begin + fence.size());
-  ASSERT_NE(end, std::string::npos);
-  const std::string example = md.substr(begin + fence.size(), end - begin - fence.size());
-  try {
-    const Scene s = parse_scene(example, "scene-reference.md");
-    EXPECT_EQ(s.bodies.size(), 1u);
-  } catch (const SceneError& e) {
-    ADD_FAILURE() << e.what();
+// The first ```toml block of each document is a complete scene.
+TEST(SceneLoader, DocumentedExamplesParse) {
+  for (const char* name : {"scene-reference.md", "user-guide.md"}) {
+    SCOPED_TRACE(name);
+    std::ifstream doc(std::string(PERIFRAC_SOURCE_DIR) + "/docs/" + name);
+    ASSERT_TRUE(doc) << "docs/" << name << " not found";
+    std::stringstream text;
+    text << doc.rdbuf();
+    const std::string md = text.str();
+    const std::string fence = "```toml\n";
+    const size_t begin = md.find(fence);
+    ASSERT_NE(begin, std::string::npos) << "no ```toml block";
+    const size_t end = md.find("```", begin + fence.size());
+    ASSERT_NE(end, std::string::npos);
+    const std::string example = md.substr(begin + fence.size(), end - begin - fence.size());
+    try {
+      const Scene s = parse_scene(example, name);
+      EXPECT_EQ(s.bodies.size(), 1u);
+    } catch (const SceneError& e) {
+      ADD_FAILURE() << e.what();
+    }
   }
 }
 

@@ -1,0 +1,151 @@
+#!/usr/bin/env bash
+# The gallery: runs every shipped scene and the papers' parameter sweeps, renders a still of each
+# (and with --clips every frame, made into a short MP4 where ffmpeg is present), and writes the
+# index docs/gallery/README.md: scene, paper figure, particles, bonds, time per step on the device.
+#
+#   scripts/gallery.sh [--backend auto|cpu|cuda] [--only "NAME ..."] [--clips] [--out DIR] [--docs DIR]
+#                      [--list]
+#
+# On a GPU (--backend cuda, or auto with one) the scenes run at full size, sweeps of the two
+# 600k-particle scenes at a quarter; on the CPU every entry runs at its scene's CPU preview scale
+# (hours on 2 cores for all of them: pick some with --only). Runs and renders go to DIR (default
+# out/gallery); stills (and clips) and the index to --docs (default docs/gallery). --list prints
+# the entries. Needs the perifrac binary of scripts/setup.sh (or PERIFRAC_BIN).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# name | scene | paper figure | overrides (;-separated) | GPU scale | CPU scale | frames | still frame
+ENTRIES=(
+  "glass_plate|glass_plate_projectile|Levine Fig. 2|-|1|0.05|40|24"
+  "glass_plate_ks_1e6|glass_plate_projectile|Levine Fig. 5, K_S = 1e6|projectiles[0].strength=1e6|1|0.05|24|24"
+  "glass_plate_ks_1e8|glass_plate_projectile|Levine Fig. 5, K_S = 1e8|projectiles[0].strength=1e8|1|0.05|24|24"
+  "vase|vase_drop|Levine Fig. 1|-|1|0.02|60|40"
+  "vase_k_2.94e8|vase_drop|Levine Fig. 6, K = 2.94e8|materials.clay.bulk_modulus=2.94e8|0.25|0.02|40|40"
+  "vase_k_8.82e9|vase_drop|Levine Fig. 6, K = 8.82e9|materials.clay.bulk_modulus=8.82e9|0.25|0.02|40|40"
+  "vase_tau_0.01|vase_drop|Levine Fig. 8, tau = 0.01|materials.clay.strain_limit=0.01|0.25|0.02|40|40"
+  "vase_tau_0.001|vase_drop|Levine Fig. 8, tau = 0.001|materials.clay.strain_limit=0.001|0.25|0.02|40|40"
+  "vase_tau_0.0002|vase_drop|Levine Fig. 8, tau = 0.0002|materials.clay.strain_limit=0.0002|0.25|0.02|40|40"
+  "ring|torus_voronoi_drop|Levine Fig. 3 (delta = 6 lambda)|-|1|0.1|40|30"
+  "ring_delta_2|torus_voronoi_drop|Levine Fig. 7, delta = 2 lambda|materials.ceramic.horizon=2|1|0.1|40|30"
+  "ring_delta_3|torus_voronoi_drop|Levine Fig. 7, delta = 3 lambda|materials.ceramic.horizon=3|1|0.1|40|30"
+  "four_walls|chen_four_walls|Chen Fig. 1|-|1|0.05|60|60"
+  "elastic_vs_plastic|chen_elastic_vs_plastic_wall|Chen Fig. 4|-|1|0.1|60|60"
+  "ductile_gamma_0.1|chen_ductile_gamma|Chen Fig. 5, gamma = 0.1|-|1|0.05|60|60"
+  "ductile_gamma_0.15|chen_ductile_gamma|Chen Fig. 5, gamma = 0.15|materials.ductile.plastic.limit=0.15|1|0.05|60|60"
+  "ductile_gamma_0.2|chen_ductile_gamma|Chen Fig. 5, gamma = 0.2|materials.ductile.plastic.limit=0.2|1|0.05|60|60"
+  "glass_alpha_0|chen_glass_wall_alpha|Chen Fig. 7, alpha = 0|-|1|0.05|60|60"
+  "glass_alpha_2|chen_glass_wall_alpha|Chen Fig. 7, alpha = 2|materials.glass.damage_alpha=2|1|0.05|60|60"
+  "glass_alpha_8|chen_glass_wall_alpha|Chen Fig. 7, alpha = 8|materials.glass.damage_alpha=8|1|0.05|60|60"
+  "jello|chen_jello_bullet|Chen Fig. 8|-|1|0.1|60|40"
+  "beams_poisson|chen_beams_poisson|Chen Fig. 9|-|1|0.3|150|150"
+  "beams_bend|chen_beams_bend|Chen Fig. 10|-|1|0.2|60|20"
+  "bar_swing|chen_bar_swing|Chen Fig. 11|-|1|0.3|60|20"
+  "bar_twist|chen_bar_twist|Chen Fig. 12|-|1|0.3|36|36"
+  "stretch_tear|chen_stretch_tear|Chen Fig. 14|-|1|0.1|60|50"
+  "glass_pressed|chen_glass_wall_pressed|Chen Fig. 15|-|1|0.05|50|50"
+  "elastic_drop|chen_elastic_drop|Chen Fig. 16|-|1|0.1|60|40"
+  "thin_sheet|chen_thin_sheet_tear|Chen Fig. 17|-|1|0.1|60|50"
+)
+
+usage() { sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+BACKEND=auto ONLY="" CLIPS=0 OUT=out/gallery DOCS=docs/gallery
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --backend) BACKEND=$2; shift 2 ;;
+    --only) ONLY=$2; shift 2 ;;
+    --clips) CLIPS=1; shift ;;
+    --out) OUT=$2; shift 2 ;;
+    --docs) DOCS=$2; shift 2 ;;
+    --list) printf '%s\n' "${ENTRIES[@]}" | cut -d'|' -f1-3 | tr '|' '\t'; exit 0 ;;
+    *) usage ;;
+  esac
+done
+preset=$(cat build/.last-preset 2>/dev/null || echo cpu)
+BIN=${PERIFRAC_BIN:-build/$preset/perifrac}
+[[ -x $BIN ]] || { echo "error: no perifrac binary at '$BIN': run scripts/setup.sh first" >&2; exit 2; }
+if [[ $BACKEND == auto ]]; then
+  BACKEND=cpu
+  "$BIN" info 2>/dev/null | grep -q '^cuda *available' && BACKEND=cuda
+fi
+mkdir -p "$OUT" "$DOCS"
+WIDTH=480 HEIGHT=270 SPP=4
+
+# Links the files of run folder $1 that frame $2 needs into $3: everything but the other frames.
+link_frame() {
+  local run=$1 frame=$2 dest=$3 f name tag
+  tag=$(printf '%05d' "$frame")
+  rm -rf "$dest" && mkdir -p "$dest"
+  for f in "$run"/*; do
+    name=$(basename "$f")
+    [[ -f $f ]] || continue
+    if [[ $name =~ _[0-9]{5}\. ]] && [[ $name != *_"$tag".* ]]; then continue; fi
+    ln -s "$(realpath "$f")" "$dest/$name"
+  done
+}
+
+declare -A rows
+for entry in "${ENTRIES[@]}"; do
+  IFS='|' read -r name scene figure sets gpu_scale cpu_scale frames still <<<"$entry"
+  if [[ -n $ONLY ]] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
+  scale=$gpu_scale
+  [[ $BACKEND == cpu ]] && scale=$cpu_scale
+  args=(run "scenes/$scene.toml" --backend "$BACKEND" --scale "$scale" --frames "$frames" --out "$OUT/$name"
+        --set output.vtk=false)
+  if [[ $sets != - ]]; then
+    IFS=';' read -ra list <<<"$sets"
+    for s in "${list[@]}"; do args+=(--set "$s"); done
+  fi
+  echo "== $name ($figure): perifrac ${args[*]}"
+  if ! "$BIN" "${args[@]}" >"$OUT/$name.log" 2>&1; then
+    echo "   failed (exit $?): $(grep -m1 'error' "$OUT/$name.log" || tail -1 "$OUT/$name.log")"
+    rows[$name]="| $name | $figure | failed: see $OUT/$name.log | | | | | |"
+    continue
+  fi
+  # The still: the chosen frame alone, rendered on the same backend.
+  link_frame "$OUT/$name" "$still" "$OUT/$name.still"
+  "$BIN" render "$OUT/$name.still" --backend "$BACKEND" --out "$OUT/$name.still/render" --width $WIDTH \
+    --height $HEIGHT --spp $SPP >"$OUT/$name.render.log" 2>&1
+  cp "$OUT/$name.still/render/frame_$(printf '%05d' "$still").png" "$DOCS/$name.png"
+  if [[ $CLIPS == 1 ]]; then
+    "$BIN" render "$OUT/$name" --backend "$BACKEND" --width $WIDTH --height $HEIGHT --spp $SPP \
+      >>"$OUT/$name.render.log" 2>&1
+    if command -v ffmpeg >/dev/null; then
+      ffmpeg -loglevel error -y -framerate 12 -i "$OUT/$name/render/frame_%05d.png" -pix_fmt yuv420p \
+        -c:v libx264 -crf 30 "$DOCS/$name.mp4"
+    fi
+  fi
+  particles=$(sed -n 's/^particles  \([0-9]*\) .*/\1/p' "$OUT/$name.log")
+  bonds=$(sed -n 's/^bonds      \([0-9]*\) .*/\1/p' "$OUT/$name.log")
+  step_ms=$(sed -n 's/^step (all kernels) *[0-9]* *\([0-9.]*\) .*/\1/p' "$OUT/$name.log")
+  device=$(sed -n 's/^device     //p' "$OUT/$name.log")
+  desc="$scene.toml"
+  [[ $sets == - ]] || desc+=" --set ${sets//;/ --set }"
+  [[ $scale == 1 ]] || desc+=" --scale $scale"
+  rows[$name]="| $name | $figure | $desc | $particles | $bonds | $step_ms | $device | ![$name]($name.png) |"
+done
+
+# Rows of entries not run this time stay as the index had them.
+if [[ -f $DOCS/README.md ]]; then
+  while IFS= read -r line; do
+    key=$(echo "$line" | cut -d'|' -f2 | tr -d ' ')
+    [[ -n $key && -z ${rows[$key]+x} ]] && rows[$key]=$line
+  done < <(grep '^| [a-z]' "$DOCS/README.md" | grep -v '^| entry ')
+fi
+
+{
+  echo "# Gallery"
+  echo
+  echo "Every shipped scene and the papers' parameter sweeps, made by \`scripts/gallery.sh\` on"
+  echo "$(date -u +%Y-%m-%d) (last run: backend $BACKEND, git $(git rev-parse --short HEAD 2>/dev/null || echo unknown))."
+  echo "Time per step: all kernels of a step, from the run's kernel table. Stills are ${WIDTH}x${HEIGHT},"
+  echo "$SPP samples per pixel, rendered by \`perifrac render\` on the same backend."
+  echo
+  echo "| entry | figure | scene and overrides | particles | bonds | ms per step | device | still |"
+  echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+  for entry in "${ENTRIES[@]}"; do
+    name=${entry%%|*}
+    [[ -z ${rows[$name]+x} ]] || echo "${rows[$name]}"
+  done
+} >"$DOCS/README.md.tmp"
+mv "$DOCS/README.md.tmp" "$DOCS/README.md"
+echo "gallery: $DOCS/README.md"
