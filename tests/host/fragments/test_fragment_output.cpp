@@ -1,8 +1,6 @@
 // The frame-loop object end to end on engine families: a block that is cut and whose right half
 // turns away writes the expected components, transforms, points and piece surfaces.
 #include "host/fragments/fragment_output.h"
-#include "host/scene/scene.h"
-#include "host/scene/scene_setup.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +10,10 @@
 
 #include "host/fragments/fragments_file.h"
 #include "host/fragments/ply_points.h"
+#include "host/scene/scene.h"
+#include "host/scene/scene_setup.h"
 #include "tests/host/fragments/fragment_fixtures.h"
+#include "tests/host/fragments/mesh_checks.h"
 #include "tests/support/fixtures.h"
 
 namespace pd {
@@ -116,9 +117,9 @@ TEST_F(FragmentOutputTest, BlendingStartsBothPiecesAtTheWholePose) {
   EXPECT_THROW(out.process(wrong, bonds), std::invalid_argument);
 }
 
-}  // namespace
 // A Voronoi body at rest: its particles sit closer than the nominal spacing, yet it neither
-// collides with itself nor breaks, and the geometry's cell adjacency makes it one fragment.
+// collides with itself nor breaks, and the geometry's cell adjacency makes it one fragment, whose
+// piece and crack mesh are the cells' outer surface.
 TEST_F(FragmentOutputTest, VoronoiBodyAtRestIsOneFragment) {
   const Scene scene = parse_scene(R"(
 [world]
@@ -136,14 +137,15 @@ material = "stone"
 )",
                                   "voronoi.toml");
   const SetupResult setup = setup_scene(scene, {});
-  ASSERT_FALSE(setup.all_cubes);
+  ASSERT_EQ(setup.voronoi.size(), 1u);
   ASSERT_EQ(setup.adjacency.size(), setup.input.particles.size());
   auto engine = make_cpu_engine(setup.input);
   engine->advance(200);
   EXPECT_EQ(engine->broken_bonds(), 0);
   BondLists bonds;
   engine->read_bonds(bonds);
-  FragmentOutput out(setup.input, bonds, {dir_.string(), 0, false, setup.all_cubes}, setup.adjacency);
+  FragmentOutput out(setup.input, bonds, {dir_.string(), 0, false}, setup.adjacency, setup.embedded,
+                     {{setup.voronoi[0].first_particle, &setup.voronoi[0].geometry}});
   FrameData f;
   f.position = setup.input.particles.rest;
   f.velocity.assign(f.position.size(), Vec3{0, 0, 0});
@@ -151,7 +153,16 @@ material = "stone"
   f.body = setup.input.particles.body;
   out.process(f, bonds);
   EXPECT_EQ(out.components().count(), 1u);
-  EXPECT_FALSE(out.write_meshes());
+  out.write_meshes();
+  std::ifstream obj(path("fragments.obj"));
+  std::string line;
+  size_t objects = 0;
+  while (std::getline(obj, line)) objects += line.rfind("o ", 0) == 0;
+  EXPECT_EQ(objects, 1u);
+  const CrackSurface s = read_crack_mesh(path("crack_mesh_00000.ply"));
+  EXPECT_EQ(s.crack_count(), 0u);
+  EXPECT_EQ(testing::closed_piece_volumes(s).size(), 1u);
 }
 
+}  // namespace
 }  // namespace pd
