@@ -22,10 +22,11 @@ int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
   return i;
 }
 
+// Is b in a's list (short lists, in any order: grid_adjacency keeps the families' order)?
 bool adjacent(const ElementAdjacency& adj, int32_t a, int32_t b) {
-  const auto begin = adj.neighbor.begin() + adj.offset[size_t(a)],
-             end = adj.neighbor.begin() + adj.offset[size_t(a) + 1];
-  return std::binary_search(begin, end, b);
+  for (int64_t k = adj.offset[size_t(a)]; k < adj.offset[size_t(a) + 1]; ++k)
+    if (adj.neighbor[size_t(k)] == b) return true;
+  return false;
 }
 
 Vec3d to_vec3d(const Vec3& v) {

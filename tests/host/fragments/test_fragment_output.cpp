@@ -65,12 +65,20 @@ TEST_F(FragmentOutputTest, CutBlockWritesTwoFragments) {
   FrameData f0 = frame(in, 0, 0);
   EXPECT_EQ(format_component_stats(out.process(f0, bonds)), "fragments 1 (64-127:1)");
   EXPECT_EQ(f0.component, std::vector<int32_t>(f0.size(), 0));
+  // The crack mesh (its adjacency derived from the families, in their order): nothing split.
+  EXPECT_EQ(out.embedded_mesh().vertex_count(), out.embedded_mesh().original_vertex_count());
+  EXPECT_EQ(out.crack_surface().crack_count(), 0u);
 
   // Frame 1: cut, right half turned by 0.3 rad.
   cut(bonds);
   FrameData f1 = frame(in, 1, 0.3);
   EXPECT_EQ(format_component_stats(out.process(f1, bonds)), "fragments 2 (32-63:2)");
   for (size_t i = 0; i < f1.size(); ++i) EXPECT_EQ(f1.component[i], i % kNx < 4 ? 0 : 4);
+  // The crack mesh: every cube face on the cut cracked and opened, two closed halves.
+  EXPECT_EQ(out.embedded_mesh().crack_face_count(), size_t(kNy * kNz));
+  EXPECT_EQ(out.embedded_mesh().open_crack_face_count(), size_t(kNy * kNz));
+  EXPECT_EQ(read_crack_mesh(path(crack_mesh_file_name(1, "ply"))).crack_count(), size_t(2 * 2 * kNy * kNz));
+  EXPECT_EQ(testing::closed_piece_volumes(out.crack_surface()).size(), 2u);
 
   // Files: the fragments and points of both frames, then the piece surfaces.
   const FragmentsFrame back = read_fragments_file(path(fragments_file_name(1)));
