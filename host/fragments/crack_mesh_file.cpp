@@ -8,6 +8,7 @@
 #include "../geometry/mesh_io.h"
 #include "../geometry/tri_mesh.h"
 #include "../io/atomic_file.h"
+#include "obj_text.h"
 
 namespace pd {
 
@@ -22,25 +23,28 @@ std::string crack_mesh_file_name(int64_t frame, std::string_view extension) {
 }
 
 void write_crack_obj(const std::string& path, const CrackSurface& s, const std::string& comment) {
-  write_file_atomic(path, [&](std::ostream& out) {
-    out << "# perifrac crack mesh: " << comment
-        << "\n# the original surface (g surface) and the crack surfaces (g crack), docs/fragments.md\n";
-    char line[128];
-    for (const Vec3d& p : s.vertices) {
-      std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p[0], p[1], p[2]);
-      out << line;
-    }
-    // The original surface, then the cracks, each under its group and material name.
-    for (uint8_t crack = 0; crack < 2; ++crack) {
-      out << (crack ? "g crack\nusemtl crack\n" : "g surface\nusemtl surface\n");
-      for (size_t f = 0; f < s.triangles.size(); ++f) {
-        if (s.crack[f] != crack) continue;
-        const auto& t = s.triangles[f];
-        std::snprintf(line, sizeof line, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
-        out << line;
-      }
-    }
+  std::string text =
+      "# perifrac crack mesh: " + comment +
+      "\n# the original surface (g surface) and the crack surfaces (g crack), docs/fragments.md\n";
+  text += format_lines(s.vertices.size(), [&](std::string& out, size_t v) {
+    out += 'v';
+    for (double x : s.vertices[v]) append_coordinate(out, x);
+    out += '\n';
   });
+  // The original surface, then the cracks, each under its group and material name.
+  std::vector<size_t> faces;
+  for (uint8_t crack = 0; crack < 2; ++crack) {
+    text += crack ? "g crack\nusemtl crack\n" : "g surface\nusemtl surface\n";
+    faces.clear();
+    for (size_t f = 0; f < s.triangles.size(); ++f)
+      if (s.crack[f] == crack) faces.push_back(f);
+    text += format_lines(faces.size(), [&](std::string& out, size_t k) {
+      out += 'f';
+      for (int32_t v : s.triangles[faces[k]]) append_index(out, v + 1);
+      out += '\n';
+    });
+  }
+  write_file_atomic(path, text);
 }
 
 // Binary output copies floats and ints as they are in memory.

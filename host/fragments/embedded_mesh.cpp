@@ -116,8 +116,18 @@ EmbeddedMesh::EmbeddedMesh(ElementComplex complex, const ElementAdjacency& adjac
     std::vector<int64_t> fill(incident_start_.begin(), incident_start_.end() - 1);
     for (size_t c = 0; c < nc; ++c) incident_[size_t(fill[size_t(complex_.corner_vertex[c])]++)] = int64_t(c);
   }
+  incident_element_.resize(nc);
+  incident_weight_.resize(nc);
+  for (size_t i = 0; i < nc; ++i) {
+    const int32_t e = corner_element_[size_t(incident_[i])];
+    incident_element_[i] = e;
+    incident_weight_[i] = double(mass_[size_t(e)]) / complex_.corners(size_t(e));
+  }
   corner_copy_ = complex_.corner_vertex;
+  incident_copy_.resize(nc);
+  for (size_t i = 0; i < nc; ++i) incident_copy_[i] = corner_copy_[size_t(incident_[i])];
   position_ = complex_.vertices;
+  frame_.resize(nv);
   original_.resize(nv);
   std::iota(original_.begin(), original_.end(), 0);
   int64_t most = 0;
@@ -146,11 +156,17 @@ void EmbeddedMesh::update(const BondLists& bonds, const std::vector<Vec3>& posit
   // Crack-face set (Chen sec. 5.2): the faces of a pair join it once their bond is broken in either
   // family, and stay (bonds never heal). Only the vertices of faces that joined now can have their
   // elements separated, so only they are examined.
+  // (The bond reads are scattered over the families: they run in parallel, then the few pairs that
+  // cracked are taken in order.)
+  const int64_t np = int64_t(pair_state_.size());
+  newly_.resize(size_t(np));
+#pragma omp parallel for schedule(static)
+  for (int64_t p = 0; p < np; ++p)
+    newly_[size_t(p)] =
+        pair_state_[size_t(p)] == 0 && !(bond_intact(bonds.neighbor[size_t(pair_slot_[size_t(p)][0])]) &&
+                                         bond_intact(bonds.neighbor[size_t(pair_slot_[size_t(p)][1])]));
   for (size_t p = 0; p < pair_state_.size(); ++p) {
-    if (pair_state_[p] != 0) continue;
-    if (bond_intact(bonds.neighbor[size_t(pair_slot_[p][0])]) &&
-        bond_intact(bonds.neighbor[size_t(pair_slot_[p][1])]))
-      continue;
+    if (!newly_[p]) continue;
     pair_state_[p] = 1;
     ++crack_pairs_;
     for (int32_t e : pair_element_[p])
@@ -182,32 +198,56 @@ void EmbeddedMesh::update(const BondLists& bonds, const std::vector<Vec3>& posit
   // Each copy belongs to one original vertex, so the loop over original vertices writes disjoint
   // copies.
   const int64_t nv = int64_t(original_vertex_count());
-  sums_.resize(position_.size());
-#pragma omp parallel for schedule(static)
-  for (int64_t v = 0; v < nv; ++v) {
-    const int64_t begin = incident_start_[size_t(v)], end = incident_start_[size_t(v) + 1];
-    for (int64_t i = begin; i < end; ++i)
-      sums_[size_t(corner_copy_[size_t(incident_[size_t(i)])])] = {0, {0, 0, 0}, {0, 0, 0}, -1};
-    for (int64_t i = begin; i < end; ++i) {
-      const int64_t corner = incident_[size_t(i)];
-      Sums& s = sums_[size_t(corner_copy_[size_t(corner)])];
-      const size_t e = size_t(corner_element_[size_t(corner)]);
-      const double w = double(mass_[e]) / complex_.corners(e);
-      s.weight += w;
-      s.now = s.now + w * to_vec3d(position[e]);
-      s.rest = s.rest + w * to_vec3d(rest_[e]);
-      s.particle = int32_t(e);
+  now_.resize(position_.size());
+#pragma omp parallel
+  {
+    std::vector<int32_t> copies;  // the copies of one vertex
+#pragma omp for schedule(static)
+    for (int64_t v = 0; v < nv; ++v) {
+      const int64_t begin = incident_start_[size_t(v)], end = incident_start_[size_t(v) + 1];
+      copies.clear();
+      for (int64_t i = begin; i < end; ++i) {
+        const int32_t copy = incident_copy_[size_t(i)];
+        if (std::find(copies.begin(), copies.end(), copy) != copies.end()) continue;
+        copies.push_back(copy);
+        now_[size_t(copy)] = {0, 0, 0};
+      }
+      for (int64_t i = begin; i < end; ++i) {
+        Vec3d& sum = now_[size_t(incident_copy_[size_t(i)])];
+        sum = sum + incident_weight_[size_t(i)] * to_vec3d(position[size_t(incident_element_[size_t(i)])]);
+      }
+      for (const int32_t copy : copies) {
+        const CopyFrame& f = frame_[size_t(copy)];
+        const Eigen::Matrix3d& r = fits[size_t(c.index[size_t(f.particle)])].fit.rotation;
+        const Eigen::Vector3d turned = r * Eigen::Vector3d(f.offset[0], f.offset[1], f.offset[2]);
+        position_[size_t(copy)] =
+            f.inv_weight * now_[size_t(copy)] + Vec3d{turned.x(), turned.y(), turned.z()};
+      }
     }
-    for (int64_t i = begin; i < end; ++i) {
-      const size_t copy = size_t(corner_copy_[size_t(incident_[size_t(i)])]);
-      Sums& s = sums_[copy];
-      if (s.particle < 0) continue;  // placed already
-      const Eigen::Matrix3d& r = fits[size_t(c.index[size_t(s.particle)])].fit.rotation;
-      const Vec3d offset = complex_.vertices[size_t(v)] - (1 / s.weight) * s.rest;
-      const Eigen::Vector3d turned = r * Eigen::Vector3d(offset[0], offset[1], offset[2]);
-      position_[copy] = (1 / s.weight) * s.now + Vec3d{turned.x(), turned.y(), turned.z()};
-      s.particle = -1;
-    }
+  }
+}
+
+// The rest frame of each copy of v (for update): the weighted centroid c(0) of its particles, the
+// copy's offset x_v(0) - c(0), the inverse weight and one of the particles.
+void EmbeddedMesh::place_at_rest(int32_t v) {
+  const int64_t begin = incident_start_[size_t(v)], end = incident_start_[size_t(v) + 1];
+  claimed_.clear();  // the copies of v
+  for (int64_t i = begin; i < end; ++i) {
+    const int32_t copy = incident_copy_[size_t(i)];
+    if (std::find(claimed_.begin(), claimed_.end(), copy) != claimed_.end()) continue;
+    claimed_.push_back(copy);
+    frame_[size_t(copy)] = {{0, 0, 0}, 0, -1};
+  }
+  for (int64_t i = begin; i < end; ++i) {
+    CopyFrame& f = frame_[size_t(incident_copy_[size_t(i)])];
+    f.offset = f.offset + incident_weight_[size_t(i)] * to_vec3d(rest_[size_t(incident_element_[size_t(i)])]);
+    f.inv_weight += incident_weight_[size_t(i)];  // the weight, until inverted below
+    f.particle = incident_element_[size_t(i)];
+  }
+  for (const int32_t copy : claimed_) {
+    CopyFrame& f = frame_[size_t(copy)];
+    f.inv_weight = 1 / f.inv_weight;
+    f.offset = complex_.vertices[size_t(v)] - f.inv_weight * f.offset;
   }
 }
 
@@ -254,11 +294,13 @@ void EmbeddedMesh::split(int32_t v) {
       } else {
         copy = int32_t(position_.size());
         position_.push_back(position_[size_t(old)]);
+        frame_.push_back(frame_[size_t(old)]);
         original_.push_back(v);
         split_now = true;
       }
     }
     corner_copy_[size_t(corner)] = copy;
+    incident_copy_[size_t(begin + i)] = copy;
   }
   // Crack faces at v that the split opened.
   if (split_now)
@@ -273,6 +315,7 @@ void EmbeddedMesh::split(int32_t v) {
       }
     }
   for (int32_t i = 0; i < m; ++i) local_[size_t(corner_element_[size_t(incident_[size_t(begin + i)])])] = -1;
+  place_at_rest(v);
 }
 
 // True when the two elements of pair p use different copies of a vertex they share.

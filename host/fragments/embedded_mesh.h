@@ -51,15 +51,20 @@ class EmbeddedMesh {
 
  private:
   void split(int32_t v);
+  void place_at_rest(int32_t v);  // frame_ of v's copies
   bool open(int64_t pair) const;
 
   ElementComplex complex_;
   std::vector<real> mass_;
   std::vector<Vec3> rest_;               // particle rest positions
   std::vector<int32_t> corner_element_;  // per corner: its element
-  // Corners at original vertex v: incident_[incident_start_[v] .. incident_start_[v + 1]).
+  // Corners at original vertex v: incident_[incident_start_[v] .. incident_start_[v + 1]), and,
+  // stored alongside for the per-frame pass over the vertices, each one's element, copy (the same
+  // as corner_copy_) and weight m_p / (corners of the element).
   std::vector<int64_t> incident_start_;
   std::vector<int64_t> incident_;
+  std::vector<int32_t> incident_element_, incident_copy_;
+  std::vector<double> incident_weight_;
   // Element pairs that share faces: the two elements, the bond slots of the pair in both families
   // (-1: not adjacent, never holds), and the state: 0 intact, 1 crack, 2 crack opened by a split.
   std::vector<std::array<int32_t, 2>> pair_element_;
@@ -74,16 +79,19 @@ class EmbeddedMesh {
   std::vector<int32_t> corner_copy_;
   std::vector<Vec3d> position_;
   std::vector<int32_t> original_;
-  // Scratch of update and split.
-  std::vector<int32_t> dirty_;
-  std::vector<uint8_t> is_dirty_;
-  std::vector<int32_t> local_, group_parent_, group_copy_, claimed_;
-  struct Sums {
-    double weight;
-    Vec3d now, rest;
+  // Per copy: its rest offset from the weighted centroid of its particles, the inverse of their
+  // weight, and one of them (for the fragment whose rotation turns the offset).
+  struct CopyFrame {
+    Vec3d offset;
+    double inv_weight;
     int32_t particle;
   };
-  std::vector<Sums> sums_;
+  std::vector<CopyFrame> frame_;
+  // Scratch of update and split.
+  std::vector<int32_t> dirty_;
+  std::vector<uint8_t> is_dirty_, newly_;
+  std::vector<int32_t> local_, group_parent_, group_copy_, claimed_;
+  std::vector<Vec3d> now_;  // per copy: the weighted sum of its particles' current positions
 };
 
 }  // namespace pd

@@ -1,10 +1,10 @@
 #include "piece_mesh.h"
 
-#include <cstdio>
-#include <ostream>
 #include <stdexcept>
+#include <string>
 
 #include "../io/atomic_file.h"
+#include "obj_text.h"
 
 namespace pd {
 
@@ -46,27 +46,25 @@ FragmentMesh fragment_pieces(const ElementComplex& complex, const Components& c)
 }
 
 void write_obj(const std::string& path, const FragmentMesh& mesh) {
-  write_file_atomic(path, [&](std::ostream& out) {
-    out << "# perifrac fragment surfaces in rest space [m], one object per fragment;\n"
-           "# fragments_NNNNN.pfg holds each fragment's transform per frame (docs/fragments.md)\n";
-    char line[128];
-    for (size_t o = 0; o < mesh.objects(); ++o) {
-      out << "o fragment_" << mesh.ids[o] << "\n";
-      for (int64_t v = mesh.vertex_start[o]; v < mesh.vertex_start[o + 1]; ++v) {
-        const Vec3d& p = mesh.vertices[size_t(v)];
-        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p[0], p[1], p[2]);
-        out << line;
-      }
-      for (int64_t q = mesh.object_start[o]; q < mesh.object_start[o + 1]; ++q) {
-        out << 'f';
-        for (int64_t k = mesh.polygon_start[size_t(q)]; k < mesh.polygon_start[size_t(q) + 1]; ++k) {
-          std::snprintf(line, sizeof line, " %d", mesh.polygon_vertex[size_t(k)] + 1);
-          out << line;
-        }
-        out << '\n';
-      }
+  // Per object: its name, its vertices, its polygons (1-based indices into all vertices).
+  std::string text =
+      "# perifrac fragment surfaces in rest space [m], one object per fragment;\n"
+      "# fragments_NNNNN.pfg holds each fragment's transform per frame (docs/fragments.md)\n";
+  text += format_lines(mesh.objects(), [&](std::string& out, size_t o) {
+    out += "o fragment_" + std::to_string(mesh.ids[o]) + "\n";
+    for (int64_t v = mesh.vertex_start[o]; v < mesh.vertex_start[o + 1]; ++v) {
+      out += 'v';
+      for (double x : mesh.vertices[size_t(v)]) append_coordinate(out, x);
+      out += '\n';
+    }
+    for (int64_t q = mesh.object_start[o]; q < mesh.object_start[o + 1]; ++q) {
+      out += 'f';
+      for (int64_t k = mesh.polygon_start[size_t(q)]; k < mesh.polygon_start[size_t(q) + 1]; ++k)
+        append_index(out, mesh.polygon_vertex[size_t(k)] + 1);
+      out += '\n';
     }
   });
+  write_file_atomic(path, text);
 }
 
 }  // namespace pd

@@ -301,6 +301,34 @@ TEST(EmbeddedMesh, RigidMotionsStayRigid) {
   }
 }
 
+// A resumed run rebuilds the mesh from the bonds at once: it must write what the run split frame by
+// frame writes (groups depend only on the crack set, positions only on the particles and fits).
+TEST(EmbeddedMesh, RebuiltMeshEqualsTheOneSplitFrameByFrame) {
+  for (const bool cubes : {false, true}) {
+    SCOPED_TRACE(cubes ? "cubes" : "tets");
+    Block a = cubes ? cube_block(4, 4, 3) : tet_block(4, 4, 3);
+    const std::vector<Vec3> rest = a.in.particles.rest;
+    std::vector<Vec3> x;
+    for (int frame = 0; frame < 4; ++frame) {
+      if (frame == 1) testing::break_bond(a.bonds, 5, a.bonds.neighbor[size_t(a.bonds.view().slot(5, 0))]);
+      if (frame == 2) cut(a.bonds, rest, 0, 2 * kSide);
+      if (frame == 3) cut(a.bonds, rest, 1, 1 * kSide);
+      x = shifted(rest, {real(1e-4 * frame), 0, real(-2e-4 * frame)});
+      for (Vec3& p : x)
+        if (p.x > 2 * kSide) p.y += real(3e-4 * frame);
+      a.update(x);
+    }
+    Block b = cubes ? cube_block(4, 4, 3) : tet_block(4, 4, 3);
+    b.bonds = a.bonds;
+    b.update(x);
+    const CrackSurface sa = a.mesh->surface(), sb = b.mesh->surface();
+    EXPECT_EQ(sa.triangles, sb.triangles);
+    EXPECT_EQ(sa.crack, sb.crack);
+    EXPECT_EQ(sa.vertices, sb.vertices);
+    EXPECT_EQ(a.mesh->open_crack_face_count(), b.mesh->open_crack_face_count());
+  }
+}
+
 // Deformation is followed only through the particles' centroid: a vertex is off the deformed
 // place of its rest position by (F - R) (x_v - c) for a homogeneous deformation F with fitted
 // rotation R, c the centroid of the vertex's particles, at most |F - R| times an element's
