@@ -193,7 +193,8 @@ int bench_fragments_command(const FragmentsBenchOptions& o) {
   t = Clock::now();
   std::vector<VoronoiElements> voronoi;
   if (kind == "voronoi") voronoi.push_back({0, &b.cells});
-  ElementComplex elements = particle_elements(ps.rest, spacing, adjacency, b.tets, voronoi);
+  VoronoiComplexReport report;
+  ElementComplex elements = particle_elements(ps.rest, spacing, adjacency, b.tets, voronoi, &report);
   b.setup.push_back({"element complex", seconds_since(t)});
   const size_t vertices = elements.vertices.size(), faces = elements.faces();
   t = Clock::now();
@@ -204,7 +205,11 @@ int bench_fragments_command(const FragmentsBenchOptions& o) {
       "bench-fragments: %s, %zu particles (%s), delta = %g lambda, %lld stored bonds, %d threads, %u cores\n",
       kind.c_str(), n, b.shape.c_str(), horizon, (long long)stored, threads,
       std::thread::hardware_concurrency());
-  std::printf("elements: %zu vertices, %zu faces, %zu adjacent pairs\n", vertices, faces, finder.pairs());
+  std::printf("elements: %zu vertices, %zu faces, %zu adjacent pairs", vertices, faces, finder.pairs());
+  if (kind == "voronoi")
+    std::printf("; %zu cells cut by the surface, %zu faces whose loops did not close", report.boundary_cells,
+                report.failed_faces);
+  std::printf("\n");
   for (const StageTime& s : b.setup) std::printf("  %-40s %9.3f s\n", s.name.c_str(), s.seconds);
 
   // The three states: intact, cut into blocks^3 blocks, every bond broken. Each frame turns the

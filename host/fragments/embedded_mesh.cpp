@@ -302,31 +302,23 @@ void EmbeddedMesh::split(int32_t v) {
     corner_copy_[size_t(corner)] = copy;
     incident_copy_[size_t(begin + i)] = copy;
   }
-  // Crack faces at v that the split opened.
+  // Crack faces at v that the split opened: both elements at v, now on different copies of it.
+  // (Copies change only here, so a face is checked whenever one of its vertices splits.)
   if (split_now)
     for (int32_t i = 0; i < m; ++i) {
       const size_t e = size_t(corner_element_[size_t(incident_[size_t(begin + i)])]);
       for (int64_t k = element_pair_start_[e]; k < element_pair_start_[e + 1]; ++k) {
         const int64_t p = element_pair_[size_t(k)];
-        if (pair_state_[size_t(p)] == 1 && open(p)) {
-          pair_state_[size_t(p)] = 2;
-          ++open_pairs_;
-        }
+        if (pair_state_[size_t(p)] != 1) continue;
+        const auto& pe = pair_element_[size_t(p)];
+        const int32_t j = local_[size_t(pe[0] == int32_t(e) ? pe[1] : pe[0])];
+        if (j < 0 || incident_copy_[size_t(begin + i)] == incident_copy_[size_t(begin + j)]) continue;
+        pair_state_[size_t(p)] = 2;
+        ++open_pairs_;
       }
     }
   for (int32_t i = 0; i < m; ++i) local_[size_t(corner_element_[size_t(incident_[size_t(begin + i)])])] = -1;
   place_at_rest(v);
-}
-
-// True when the two elements of pair p use different copies of a vertex they share.
-bool EmbeddedMesh::open(int64_t p) const {
-  const size_t a = size_t(pair_element_[size_t(p)][0]), b = size_t(pair_element_[size_t(p)][1]);
-  for (int64_t ca = complex_.corner_start[a]; ca < complex_.corner_start[a + 1]; ++ca)
-    for (int64_t cb = complex_.corner_start[b]; cb < complex_.corner_start[b + 1]; ++cb)
-      if (complex_.corner_vertex[size_t(ca)] == complex_.corner_vertex[size_t(cb)] &&
-          corner_copy_[size_t(ca)] != corner_copy_[size_t(cb)])
-        return true;
-  return false;
 }
 
 void EmbeddedMesh::surface(CrackSurface& out) const {

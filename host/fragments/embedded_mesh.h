@@ -52,7 +52,6 @@ class EmbeddedMesh {
  private:
   void split(int32_t v);
   void place_at_rest(int32_t v);  // frame_ of v's copies
-  bool open(int64_t pair) const;
 
   ElementComplex complex_;
   std::vector<real> mass_;

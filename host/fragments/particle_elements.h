@@ -11,6 +11,7 @@
 #include "../geometry/particle_geometry.h"
 #include "element_complex.h"
 #include "tet_complex.h"
+#include "voronoi_complex.h"
 
 namespace pd {
 
@@ -21,9 +22,11 @@ struct VoronoiElements {
 };
 
 // `adjacency`: face neighbours over all particles (the cubes' lattice is walked along it).
-// Throws std::invalid_argument as the builders do (cube_complex, tet_complex, voronoi_complex).
+// `report`, when given, adds up the Voronoi bodies' reports. Throws std::invalid_argument as the
+// builders do (cube_complex, tet_complex, voronoi_complex).
 ElementComplex particle_elements(const std::vector<Vec3>& rest, const std::vector<real>& spacing,
                                  const ElementAdjacency& adjacency, const EmbeddedTets& tets,
-                                 const std::vector<VoronoiElements>& voronoi);
+                                 const std::vector<VoronoiElements>& voronoi,
+                                 VoronoiComplexReport* report = nullptr);
 
 }  // namespace pd
