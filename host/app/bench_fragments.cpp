@@ -14,7 +14,9 @@
 
 #include "../fragments/adjacency.h"
 #include "../fragments/fragment_output.h"
+#include "../fragments/fragments_file.h"
 #include "../fragments/piece_mesh.h"
+#include "../fragments/ply_points.h"
 #include "../geometry/shapes.h"
 #include "../geometry/voronoi_particles.h"
 #include "../material.h"
@@ -141,10 +143,12 @@ void break_bonds(BondLists& bonds, Apart apart) {
     }
 }
 
-// The per-frame stages, in the order they run.
-const char* const kStages[] = {"components",    "fits",      "crack mesh update",
-                               "crack surface", "crack OBJ", "crack PLY"};
-constexpr int kStageCount = 6;
+// The per-frame stages, in the order FragmentOutput::process runs them.
+const char* const kStages[] = {"components",          "fits",           "crack mesh update",
+                               "blending (4 frames)", "fragments file", "points PLY",
+                               "crack surface",       "crack OBJ",      "crack PLY"};
+constexpr int kStageCount = 9;
+const char* const kStates[] = {"intact", "cut", "shattered"};
 
 }  // namespace
 
@@ -232,25 +236,14 @@ int bench_fragments_command(const FragmentsBenchOptions& o) {
   frame.velocity.assign(n, {0, 0, 0});
   frame.damage.assign(n, 0);
   frame.body.assign(n, 0);
-  std::ofstream csv_out;
-  if (!o.csv.empty()) {
-    const bool fresh = !std::filesystem::exists(o.csv);
-    csv_out.open(o.csv, std::ios::app);
-    if (fresh)
-      csv_out << "date,revision,cores,threads,particles,count,state,fragments,stage,first_ms,then_ms\n";
-  }
-  const std::string stamp = utc_now("%Y-%m-%dT%H:%M:%SZ") + "," + git_revision() + "," +
-                            std::to_string(std::thread::hardware_concurrency()) + "," +
-                            std::to_string(threads) + "," + kind + "," + std::to_string(n) + ",";
-  std::printf("per frame [ms]: the first frame after the change / the mean of the next %d\n", o.frames - 1);
-  std::printf("  %-11s %10s", "state", "fragments");
-  for (const char* s : kStages) std::printf(" %17s", s);
-  std::printf(" %17s %12s  %s\n", "pieces (build)", "pieces OBJ", "crack triangles / pieces OBJ size");
+  FragmentSmoother smoother(4);
+  double first[3][kStageCount] = {}, then[3][kStageCount] = {}, build[3] = {}, write[3] = {};
+  size_t fragments[3] = {}, triangles[3] = {};
+  double megabytes[3] = {};
   int64_t global_frame = 0;
   for (int state = 0; state < 3; ++state) {
     if (state == 1) break_bonds(bonds, [&](int32_t i, int32_t j) { return block(i) != block(j); });
     if (state == 2) break_bonds(bonds, [](int32_t, int32_t) { return true; });
-    double first[kStageCount] = {}, rest[kStageCount] = {};
     for (int f = 0; f < o.frames; ++f, ++global_frame) {
       const double angle = 1e-3 * double(global_frame), c = std::cos(angle), s = std::sin(angle);
       frame.frame = global_frame;
@@ -259,7 +252,7 @@ int bench_fragments_command(const FragmentsBenchOptions& o) {
         const double x = ps.rest[i].x - centre[0], y = ps.rest[i].y - centre[1];
         frame.position[i] = {real(centre[0] + c * x - s * y), real(centre[1] + s * x + c * y), ps.rest[i].z};
       }
-      double* into = f == 0 ? first : rest;
+      double* into = f == 0 ? first[state] : then[state];
       auto lap = [&](int stage) {
         const Clock::time_point now = Clock::now();
         into[stage] += std::chrono::duration<double>(now - t).count() / (f == 0 ? 1 : o.frames - 1);
@@ -267,43 +260,82 @@ int bench_fragments_command(const FragmentsBenchOptions& o) {
       };
       t = Clock::now();
       finder.find(bonds, components);
+      frame.component = components.id;
       lap(0);
       align_fragments(components, ps.rest, frame.position, ps.mass, fits);
       lap(1);
       mesh.update(bonds, frame.position, components, fits);
       lap(2);
-      mesh.surface(surface);
+      smoother.apply(components, ps.rest, frame.position, ps.mass, fits);
       lap(3);
-      write_crack_obj(dir + "/" + crack_mesh_file_name(global_frame, "obj"), surface, "bench");
+      write_fragments_file(dir + "/" + fragments_file_name(global_frame), global_frame, 0, 0, fits);
       lap(4);
-      write_crack_ply(dir + "/" + crack_mesh_file_name(global_frame, "ply"), surface, "bench");
+      write_ply_points(dir + "/" + points_file_name(global_frame), frame);
       lap(5);
+      mesh.surface(surface);
+      lap(6);
+      write_crack_obj(dir + "/" + crack_mesh_file_name(global_frame, "obj"), surface, "bench");
+      lap(7);
+      write_crack_ply(dir + "/" + crack_mesh_file_name(global_frame, "ply"), surface, "bench");
+      lap(8);
+      // Only the last frames' files are kept: a shattered body writes hundreds of MB per frame.
+      if (global_frame > 0)
+        for (const std::string& old :
+             {fragments_file_name(global_frame - 1), points_file_name(global_frame - 1),
+              crack_mesh_file_name(global_frame - 1, "obj"), crack_mesh_file_name(global_frame - 1, "ply")})
+          std::filesystem::remove(dir + "/" + old);
     }
     // The rest-space pieces of this state (written once per run by `perifrac run`).
     t = Clock::now();
     const FragmentMesh pieces = fragment_pieces(mesh.elements(), components);
-    const double build = seconds_since(t);
+    build[state] = seconds_since(t);
     t = Clock::now();
     const std::string obj = dir + "/fragments.obj";
     write_obj(obj, pieces);
-    const double write = seconds_since(t);
-    const char* name = state == 0 ? "intact" : state == 1 ? "cut" : "shattered";
-    std::printf("  %-11s %10zu", name, components.count());
-    for (int k = 0; k < kStageCount; ++k) std::printf(" %8.1f / %6.1f", 1e3 * first[k], 1e3 * rest[k]);
-    std::printf(" %17.1f %12.1f  %zu / %.1f MB\n", 1e3 * build, 1e3 * write, surface.triangles.size(),
-                double(std::filesystem::file_size(obj)) / 1e6);
-    if (csv_out) {
-      const std::string row = stamp + name + "," + std::to_string(components.count()) + ",";
-      for (int k = 0; k < kStageCount; ++k)
-        csv_out << row << kStages[k] << ',' << 1e3 * first[k] << ',' << 1e3 * rest[k] << '\n';
-      csv_out << row << "pieces (build)," << 1e3 * build << ",\n"
-              << row << "pieces OBJ," << 1e3 * write << ",\n";
-    }
+    write[state] = seconds_since(t);
+    fragments[state] = components.count();
+    triangles[state] = surface.triangles.size();
+    megabytes[state] = double(std::filesystem::file_size(obj)) / 1e6;
   }
-  if (csv_out) {
+
+  // The table: one row per stage, one column per state.
+  std::printf("per frame [ms], the first frame after the change / the mean of the next %d:\n", o.frames - 1);
+  std::printf("  %-22s", "");
+  for (int state = 0; state < 3; ++state) std::printf(" %21s", kStates[state]);
+  std::printf("\n  %-22s", "fragments");
+  for (int state = 0; state < 3; ++state) std::printf(" %21zu", fragments[state]);
+  for (int k = 0; k < kStageCount; ++k) {
+    std::printf("\n  %-22s", kStages[k]);
+    for (int state = 0; state < 3; ++state)
+      std::printf(" %10.1f / %8.1f", 1e3 * first[state][k], 1e3 * then[state][k]);
+  }
+  std::printf("\n  %-22s", "crack triangles");
+  for (int state = 0; state < 3; ++state) std::printf(" %21zu", triangles[state]);
+  std::printf("\nonce per run [ms]:\n  %-22s", "pieces (build)");
+  for (int state = 0; state < 3; ++state) std::printf(" %21.1f", 1e3 * build[state]);
+  std::printf("\n  %-22s", "pieces OBJ (write)");
+  for (int state = 0; state < 3; ++state)
+    std::printf(" %10.1f %7.1f MB", 1e3 * write[state], megabytes[state]);
+  std::printf("\n");
+  std::fflush(stdout);
+
+  if (!o.csv.empty()) {
+    const bool fresh = !std::filesystem::exists(o.csv);
+    std::ofstream csv(o.csv, std::ios::app);
+    if (fresh) csv << "date,revision,cores,threads,particles,count,state,fragments,stage,first_ms,then_ms\n";
+    const std::string stamp = utc_now("%Y-%m-%dT%H:%M:%SZ") + "," + git_revision() + "," +
+                              std::to_string(std::thread::hardware_concurrency()) + "," +
+                              std::to_string(threads) + "," + kind + "," + std::to_string(n) + ",";
+    for (int state = 0; state < 3; ++state) {
+      const std::string row = stamp + kStates[state] + "," + std::to_string(fragments[state]) + ",";
+      for (int k = 0; k < kStageCount; ++k)
+        csv << row << kStages[k] << ',' << 1e3 * first[state][k] << ',' << 1e3 * then[state][k] << '\n';
+      csv << row << "pieces (build)," << 1e3 * build[state] << ",\n"
+          << row << "pieces OBJ," << 1e3 * write[state] << ",\n";
+    }
     for (const StageTime& s : b.setup)
-      csv_out << stamp << "set-up,1," << s.name << ',' << 1e3 * s.seconds << ",\n";
-    if (!csv_out) throw std::runtime_error("bench-fragments: cannot write " + o.csv);
+      csv << stamp << "set-up,1," << s.name << ',' << 1e3 * s.seconds << ",\n";
+    if (!csv) throw std::runtime_error("bench-fragments: cannot write " + o.csv);
   }
   if (temporary) std::filesystem::remove_all(dir);
   return 0;
