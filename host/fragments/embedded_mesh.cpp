@@ -128,8 +128,6 @@ EmbeddedMesh::EmbeddedMesh(ElementComplex complex, const ElementAdjacency& adjac
   for (size_t i = 0; i < nc; ++i) incident_copy_[i] = corner_copy_[size_t(incident_[i])];
   position_ = complex_.vertices;
   frame_.resize(nv);
-  original_.resize(nv);
-  std::iota(original_.begin(), original_.end(), 0);
   int64_t most = 0;
   for (size_t v = 0; v < nv; ++v) most = std::max(most, incident_start_[v + 1] - incident_start_[v]);
   is_dirty_.assign(nv, 0);
@@ -295,7 +293,6 @@ void EmbeddedMesh::split(int32_t v) {
         copy = int32_t(position_.size());
         position_.push_back(position_[size_t(old)]);
         frame_.push_back(frame_[size_t(old)]);
-        original_.push_back(v);
         split_now = true;
       }
     }

@@ -74,10 +74,9 @@ class EmbeddedMesh {
   std::vector<int64_t> element_pair_start_, element_pair_;
   size_t crack_pairs_ = 0, open_pairs_ = 0;
   size_t slots_ = 0;  // bond slots of the families
-  // Vertex copies: the copy each corner uses now, each copy's position and original vertex.
+  // Vertex copies: the copy each corner uses now, and each copy's position.
   std::vector<int32_t> corner_copy_;
   std::vector<Vec3d> position_;
-  std::vector<int32_t> original_;
   // Per copy: its rest offset from the weighted centroid of its particles, the inverse of their
   // weight, and one of them (for the fragment whose rotation turns the offset).
   struct CopyFrame {
