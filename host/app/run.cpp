@@ -207,8 +207,10 @@ int run_command(const RunOptions& options) {
   BondLists bonds;
   engine->read_bonds(bonds);
   const std::vector<int32_t>& count = bonds.count;
-  FragmentOutput fragments(setup.input, bonds, {out, opt.blend_frames, true, setup.all_cubes},
-                           setup.adjacency, setup.embedded);
+  std::vector<VoronoiElements> voronoi_elements;
+  for (const VoronoiBody& v : setup.voronoi) voronoi_elements.push_back({v.first_particle, &v.geometry});
+  FragmentOutput fragments(setup.input, bonds, {out, opt.blend_frames}, setup.adjacency, setup.embedded,
+                           voronoi_elements);
   std::string fragment_log;
   auto write_frame = [&](int64_t frame) {
     FrameData f = frame_data(*engine, setup.input.particles, count, frame);
@@ -343,10 +345,9 @@ int run_command(const RunOptions& options) {
   const int64_t steps = (scene.frames - first_frame + 1) * scene.steps_per_frame;
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(backend));
   print_kernel_table(std::cout, kernel_rows(engine->stats(), "pd/", fam.bonds, steps));
-  const bool meshes = fragments.write_meshes();
-  std::printf("output     %s (%lld frames; %zu fragment pieces%s)\n", out.c_str(),
-              (long long)scene.frames + 1, fragments.components().count(),
-              meshes ? " in fragments.obj" : "; piece meshes for grid cubes only");
+  fragments.write_meshes();
+  std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", out.c_str(),
+              (long long)scene.frames + 1, fragments.components().count());
   return kExitOk;
 }
 

@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "host/app/bench.h"
+#include "host/app/bench_fragments.h"
 #include "host/app/bench_geometry.h"
 #include "host/app/checkpoint.h"
 #include "host/app/compare.h"
@@ -90,6 +91,25 @@ int main(int argc, char** argv) {
   geometry_cmd->add_option("--seed", geometry.seed, "Poisson-disk seed");
   geometry_cmd->add_option("--csv", geometry.csv, "append a row to this CSV file");
 
+  FragmentsBenchOptions fragments;
+  CLI::App* fragments_cmd = app.add_subcommand(
+      "bench-fragments", "time the per-frame fragment outputs (components, fits, crack and piece meshes)");
+  fragments_cmd->add_option("--particles", fragments.particles, "grid | tets | voronoi")
+      ->check(CLI::IsMember({"grid", "tets", "voronoi"}));
+  fragments_cmd->add_option("--count", fragments.count, "wanted particles")
+      ->check(CLI::Range(int64_t(8), int64_t(1) << 30));
+  fragments_cmd
+      ->add_option("--horizon", fragments.horizon, "delta / lambda (0: 3 for grid and voronoi, 1.5 for tets)")
+      ->check(CLI::NonNegativeNumber);
+  fragments_cmd->add_option("--blocks", fragments.blocks, "the cut state has blocks^3 fragments")
+      ->check(CLI::Range(2, 100));
+  fragments_cmd->add_option("--frames", fragments.frames, "timed frames per state")
+      ->check(CLI::Range(2, 1000));
+  fragments_cmd->add_option("--threads", fragments.threads, "OpenMP threads (0: default)");
+  fragments_cmd->add_option("--out", fragments.out,
+                            "folder for the files (default: a temporary one, removed)");
+  fragments_cmd->add_option("--csv", fragments.csv, "append rows to this CSV file");
+
   CLI::App* profile_cmd = app.add_subcommand(
       "profile", "time per kernel in step ranges of a scene (before/during/after fracture)");
   profile_cmd->add_option("scene", profile.scene, "scene file (TOML)")->required();
@@ -152,6 +172,7 @@ int main(int argc, char** argv) {
     }
     if (*bench_cmd) return bench_command(bench);
     if (*geometry_cmd) return bench_geometry_command(geometry);
+    if (*fragments_cmd) return bench_fragments_command(fragments);
     if (*profile_cmd) return profile_command(profile);
     if (*validate_cmd) return validate_command(validate);
     if (*compare_cmd) return compare_command(compare);

@@ -1,111 +1,95 @@
-// Chen et al.'s embedded tetrahedral mesh (sec. 5.2): the tet mesh whose elements are the particles
-// of tet bodies, split along the cracks as bonds break and moved with the particles, so its
-// boundary is the object's surface plus the crack surfaces. Per frame it writes that split surface
-// as OBJ and PLY with a per-face flag: crack face or original surface.
+// Chen et al.'s embedded mesh (sec. 5.2), for every kind of element: the polygon complex of the
+// particles' cubes, tets or Voronoi cells (element_complex.h), split along the cracks as bonds
+// break and moved with the particles, so its boundary is the object's surface plus the crack
+// surfaces. Per frame it gives that split surface (crack_mesh_file.h writes it as OBJ and PLY).
 #pragma once
 
-#include <array>
 #include <cstdint>
-#include <string>
-#include <string_view>
 #include <vector>
 
+#include "../adjacency.h"
 #include "../engine.h"
-#include "../geometry/tet_mesh.h"
 #include "../geometry/vec3d.h"
+#include "align.h"
+#include "components.h"
+#include "crack_mesh_file.h"
+#include "element_complex.h"
+#include "tet_complex.h"  // EmbeddedTets, which the scene set-up keeps for tet bodies
 
 namespace pd {
 
-// The tet meshes of all tet bodies of a scene in one: scene-space vertices, tets, and the particle
-// each tet stands for (its barycentre). Bodies never share vertices.
-struct EmbeddedTets {
-  std::vector<Vec3d> vertices;               // rest positions [m]
-  std::vector<std::array<int32_t, 4>> tets;  // vertex indices
-  std::vector<int32_t> particle;             // per tet: its particle index in the scene
-
-  bool empty() const { return tets.empty(); }
-  // Adds one body's mesh whose tet t is particle first_particle + t.
-  void append(const TetMesh& mesh, int32_t first_particle);
-};
-
-// A split surface: every face of a tet that has no tet on its other side any more, facing out of
-// the material. Original-surface triangles come first, then the crack triangles.
-struct CrackSurface {
-  std::vector<Vec3d> vertices;                    // current positions [m]
-  std::vector<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside
-  std::vector<uint8_t> crack;                     // per triangle: 1 on a crack, 0 on the original surface
-
-  size_t crack_count() const;
-};
-
-class EmbeddedTetMesh {
+class EmbeddedMesh {
  public:
-  // `bonds`: the families as built. `rest`, `mass`: the particles' rest positions and masses.
-  // Throws std::invalid_argument when an index is out of range, a face is shared by more than two
-  // tets, two tets sharing a face stand for the same particle, or their particles share no family
-  // bond in both directions.
-  EmbeddedTetMesh(EmbeddedTets tets, const BondLists& bonds, std::vector<Vec3> rest, std::vector<real> mass);
+  // `complex`: the elements, element p standing for particle p (assemble()). `adjacency`: the
+  // adjacent elements whose bond holds fragments together (components.h); faces between elements
+  // that are not adjacent there never hold (a crack from the start). `bonds`: the families as
+  // built; `rest`, `mass`: the particles' rest positions and masses. Throws std::invalid_argument
+  // when sizes differ or two adjacent elements share faces but no family bond in both directions.
+  EmbeddedMesh(ElementComplex complex, const ElementAdjacency& adjacency, const BondLists& bonds,
+               std::vector<Vec3> rest, std::vector<real> mass);
 
   // One frame: adds the faces whose bond is now broken (in either family) to the crack-face set,
-  // splits the vertices they separate, then moves every vertex with its particles (eqs. 19-21).
-  // `position`: the particles' current positions. Throws std::invalid_argument on a size mismatch.
-  void update(const BondLists& bonds, const std::vector<Vec3>& position);
+  // splits the vertices they separate, then places every vertex copy by its particles (eqs. 19-21
+  // in the fragment's rotating frame, see update's comment). `position`: the particles' current
+  // positions; `c` and `fits`: the frame's fragments and their rigid fits (align_fragments).
+  // Throws std::invalid_argument on a size mismatch.
+  void update(const BondLists& bonds, const std::vector<Vec3>& position, const Components& c,
+              const std::vector<Fragment>& fits);
 
-  // The current split surface (only the vertices it uses, numbered in order of first use).
+  // The current split surface (only the vertices it uses, numbered in order of first use);
+  // polygons are cut into fans of triangles.
   void surface(CrackSurface& out) const;
   CrackSurface surface() const;
 
-  size_t tet_count() const { return particle_.size(); }
-  size_t original_vertex_count() const { return incident_start_.size() - 1; }
+  const ElementComplex& elements() const { return complex_; }  // in rest space, as given
+  size_t element_count() const { return complex_.size(); }
+  size_t original_vertex_count() const { return complex_.vertices.size(); }
   size_t vertex_count() const { return position_.size(); }  // after splitting
-  // Crack faces: all faces whose bond broke; open: those a vertex split separated (drawn).
-  size_t crack_face_count() const { return crack_faces_; }
-  size_t open_crack_face_count() const { return open_faces_; }
+  // Cracked element pairs: all whose bond broke; open: those a vertex split separated (drawn).
+  size_t crack_face_count() const { return crack_pairs_; }
+  size_t open_crack_face_count() const { return open_pairs_; }
 
  private:
   void split(int32_t v);
-  bool open(int64_t face) const;
+  void place_at_rest(int32_t v);  // frame_ of v's copies
 
-  std::vector<std::array<int32_t, 4>> tet_;  // original vertex indices, positively oriented
-  std::vector<int32_t> particle_;
+  ElementComplex complex_;
   std::vector<real> mass_;
-  std::vector<Vec3> previous_;  // particle positions at the last update (rest at first)
-  // Corner 4 t + k of tet t: the vertex (copy) it uses now, and the interior face opposite it
-  // (-1 on the original surface).
-  std::vector<int32_t> corner_vertex_;
-  std::vector<int64_t> corner_face_;
-  // Corners 4 t + k at original vertex v: incident_[incident_start_[v] .. incident_start_[v + 1]).
-  std::vector<int64_t> incident_start_, incident_;
-  // Interior faces: the two tets' corners opposite the face, the bond slots of the pair in both
-  // families, and the state: 0 intact, 1 crack face, 2 crack face opened by a split.
-  std::vector<std::array<int64_t, 2>> face_corner_, face_slot_;
-  std::vector<uint8_t> face_state_;
-  size_t crack_faces_ = 0, open_faces_ = 0;
-  // Vertices (copies): position and original vertex.
-  std::vector<Vec3d> position_;
-  std::vector<int32_t> original_;
+  std::vector<Vec3> rest_;               // particle rest positions
+  std::vector<int32_t> corner_element_;  // per corner: its element
+  // Corners at original vertex v: incident_[incident_start_[v] .. incident_start_[v + 1]), and,
+  // stored alongside for the per-frame pass over the vertices, each one's element, copy (the same
+  // as corner_copy_) and weight m_p / (corners of the element).
+  std::vector<int64_t> incident_start_;
+  std::vector<int64_t> incident_;
+  std::vector<int32_t> incident_element_, incident_copy_;
+  std::vector<double> incident_weight_;
+  // Element pairs that share faces: the two elements, the bond slots of the pair in both families
+  // (-1: not adjacent, never holds), and the state: 0 intact, 1 crack, 2 crack opened by a split.
+  std::vector<std::array<int32_t, 2>> pair_element_;
+  std::vector<std::array<int64_t, 2>> pair_slot_;
+  std::vector<uint8_t> pair_state_;
+  std::vector<int64_t> face_pair_;  // per face: its pair, -1 on the object's surface
+  // The pairs of element e: element_pair_[element_pair_start_[e] .. [e + 1]).
+  std::vector<int64_t> element_pair_start_, element_pair_;
+  size_t crack_pairs_ = 0, open_pairs_ = 0;
   size_t slots_ = 0;  // bond slots of the families
+  // Vertex copies: the copy each corner uses now, and each copy's position.
+  std::vector<int32_t> corner_copy_;
+  std::vector<Vec3d> position_;
+  // Per copy: its rest offset from the weighted centroid of its particles, the inverse of their
+  // weight, and one of them (for the fragment whose rotation turns the offset).
+  struct CopyFrame {
+    Vec3d offset;
+    double inv_weight;
+    int32_t particle;
+  };
+  std::vector<CopyFrame> frame_;
   // Scratch of update and split.
   std::vector<int32_t> dirty_;
-  std::vector<uint8_t> is_dirty_;
+  std::vector<uint8_t> is_dirty_, newly_;
   std::vector<int32_t> local_, group_parent_, group_copy_, claimed_;
-  std::vector<double> weight_;
-  std::vector<Vec3d> shift_;
+  std::vector<Vec3d> now_;  // per copy: the weighted sum of its particles' current positions
 };
-
-// "crack_mesh_00042.<extension>": a frame's crack mesh file in the output directory.
-std::string crack_mesh_file_name(int64_t frame, std::string_view extension);
-
-// Writers (atomic; IoError when the file cannot be written). `comment` goes into the header.
-// OBJ: `v` lines, then the original surface as `g surface` / `usemtl surface` and the crack faces
-// as `g crack` / `usemtl crack` (1-based triangle `f` lines).
-void write_crack_obj(const std::string& path, const CrackSurface& s, const std::string& comment);
-// PLY, binary little endian: vertex `float x y z`, face `list uchar int vertex_indices` and
-// `uchar crack`.
-void write_crack_ply(const std::string& path, const CrackSurface& s, const std::string& comment);
-
-// Reads what the writers wrote (by extension, .obj or .ply; positions as stored). Throws MeshError
-// for a file of another layout.
-CrackSurface read_crack_mesh(const std::string& path);
 
 }  // namespace pd

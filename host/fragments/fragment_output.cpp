@@ -5,15 +5,15 @@
 #include <string>
 #include <utility>
 
-#include "cube_mesh.h"
 #include "fragments_file.h"
+#include "piece_mesh.h"
 #include "ply_points.h"
 
 namespace pd {
 
 FragmentOutput::FragmentOutput(const SimulationInput& input, const BondLists& bonds,
                                FragmentOutputOptions options, ElementAdjacency adjacency,
-                               EmbeddedTets embedded)
+                               const EmbeddedTets& tets, const std::vector<VoronoiElements>& voronoi)
     : options_(std::move(options)),
       rest_(input.particles.rest),
       mass_(input.particles.mass),
@@ -21,9 +21,9 @@ FragmentOutput::FragmentOutput(const SimulationInput& input, const BondLists& bo
       adjacency_(adjacency.size() == rest_.size() ? std::move(adjacency)
                                                   : grid_adjacency(bonds, rest_, spacing_)),
       finder_(adjacency_, bonds),
-      smoother_(options_.blend_frames) {
-  if (!embedded.empty()) embedded_.emplace(std::move(embedded), bonds, rest_, mass_);
-}
+      smoother_(options_.blend_frames),
+      embedded_(particle_elements(rest_, spacing_, adjacency_, tets, voronoi), adjacency_, bonds, rest_,
+                mass_) {}
 
 ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
   if (f.size() != rest_.size())
@@ -33,15 +33,15 @@ ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
   finder_.find(bonds, components_);
   f.component = components_.id;
   align_fragments(components_, rest_, f.position, mass_, fragments_);
+  // The embedded mesh: split along this frame's cracks, placed by the particles and the fits.
+  if (options_.crack_meshes) embedded_.update(bonds, f.position, components_, fragments_);
   smoother_.apply(components_, rest_, f.position, mass_, fragments_);
   // Files of the frame.
   write_fragments_file(options_.dir + "/" + fragments_file_name(f.frame), f.frame, f.step, f.time,
                        fragments_);
   if (options_.points) write_ply_points(options_.dir + "/" + points_file_name(f.frame), f);
-  // The embedded tet mesh: split along this frame's cracks, moved with the particles, written.
-  if (embedded_) {
-    embedded_->update(bonds, f.position);
-    embedded_->surface(crack_surface_);
+  if (options_.crack_meshes) {
+    embedded_.surface(crack_surface_);
     char comment[96];
     std::snprintf(comment, sizeof comment, "frame %lld step %lld time %.17g", (long long)f.frame,
                   (long long)f.step, f.time);
@@ -51,11 +51,9 @@ ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
   return component_stats(components_);
 }
 
-bool FragmentOutput::write_meshes(const std::string& name) const {
+void FragmentOutput::write_meshes(const std::string& name) const {
   if (components_.count() == 0) throw std::logic_error("FragmentOutput::write_meshes before the first frame");
-  if (!options_.cube_meshes) return false;
-  write_obj(options_.dir + "/" + name, cube_fragment_mesh(adjacency_, rest_, spacing_, components_));
-  return true;
+  write_obj(options_.dir + "/" + name, fragment_pieces(embedded_.elements(), components_));
 }
 
 }  // namespace pd

@@ -1,9 +1,10 @@
 // The fragment outputs of a run in one object for the frame loop: per frame it finds the
 // components, fills FrameData::component, fits and smooths the fragment transforms and writes
-// fragments_NNNNN.pfg and points_NNNNN.ply, and for tet bodies the split embedded mesh
-// (crack_mesh_NNNNN.obj / .ply, Chen sec. 5.2); at the end it writes the rest-space piece surfaces
-// (fragments.obj, for bodies of grid cubes). The element adjacency comes from the geometry
-// stage, or is derived from the families for grid bodies.
+// fragments_NNNNN.pfg and points_NNNNN.ply, and the split embedded mesh of the particles'
+// elements (crack_mesh_NNNNN.obj / .ply, Chen sec. 5.2); at the end it writes the rest-space
+// piece surfaces (fragments.obj). Elements: cubes for grid bodies, the tets of tet bodies, the
+// clipped cells of Voronoi bodies (particle_elements.h). The element adjacency comes from the
+// geometry stage, or is derived from the families for grid bodies.
 #pragma once
 
 #include <optional>
@@ -17,25 +18,28 @@
 #include "align.h"
 #include "components.h"
 #include "embedded_mesh.h"
+#include "particle_elements.h"
 #include "smoothing.h"
 
 namespace pd {
 
 struct FragmentOutputOptions {
-  std::string dir;          // output directory (must exist)
-  int blend_frames = 0;     // split blending (FragmentSmoother); 0: off
-  bool points = true;       // write points_NNNNN.ply
-  bool cube_meshes = true;  // every body is grid cubes: write_meshes can build their surfaces
+  std::string dir;           // output directory (must exist)
+  int blend_frames = 0;      // split blending (FragmentSmoother); 0: off
+  bool points = true;        // write points_NNNNN.ply
+  bool crack_meshes = true;  // write crack_mesh_NNNNN.obj and .ply
 };
 
 class FragmentOutput {
  public:
   // `bonds`: the families as built, before the first step. `adjacency`: the elements that share
   // a face (from the geometry stage); empty: derived from the families as for grid cubes.
-  // `embedded`: the tet meshes of tet bodies (SetupResult::embedded); when not empty, every frame
-  // also splits and moves them and writes crack_mesh_NNNNN.obj and .ply.
+  // `tets`, `voronoi`: the tet meshes of tet bodies (SetupResult::embedded) and the Voronoi
+  // bodies' cells (SetupResult::voronoi); every other particle is a cube of its material's
+  // spacing. Throws std::invalid_argument when the elements do not fit the particles.
   FragmentOutput(const SimulationInput& input, const BondLists& bonds, FragmentOutputOptions options,
-                 ElementAdjacency adjacency = {}, EmbeddedTets embedded = {});
+                 ElementAdjacency adjacency = {}, const EmbeddedTets& tets = {},
+                 const std::vector<VoronoiElements>& voronoi = {});
 
   // Fragments of frame `f` from the engine's current `bonds`: sets f.component, writes the
   // frame's files and returns the component statistics for the log. Throws IoError when a file
@@ -43,10 +47,9 @@ class FragmentOutput {
   ComponentStats process(FrameData& f, const BondLists& bonds);
 
   // Writes <dir>/<name>: the rest-space surfaces of the last processed frame's fragments (OBJ;
-  // the last frame's are the finest, as fragments only split). Returns false, writing nothing,
-  // unless every body is grid cubes. Throws std::logic_error before the first process(),
-  // IoError when the file cannot be written.
-  bool write_meshes(const std::string& name = "fragments.obj") const;
+  // the last frame's are the finest, as fragments only split). Throws std::logic_error before the
+  // first process(), IoError when the file cannot be written.
+  void write_meshes(const std::string& name = "fragments.obj") const;
 
   // The components of `bonds` without writing anything: a resumed run whose checkpoint is its
   // last frame finishes its end-of-run outputs with this (no frame is processed again).
@@ -55,8 +58,8 @@ class FragmentOutput {
   const Components& components() const { return components_; }
   FragmentSmoother& smoother() { return smoother_; }
   const std::vector<Fragment>& fragments() const { return fragments_; }
-  // The embedded tet mesh and its surface at the last processed frame; null without tet bodies.
-  const EmbeddedTetMesh* embedded_mesh() const { return embedded_ ? &*embedded_ : nullptr; }
+  // The embedded mesh and its surface at the last processed frame.
+  const EmbeddedMesh& embedded_mesh() const { return embedded_; }
   const CrackSurface& crack_surface() const { return crack_surface_; }
 
  private:
@@ -68,7 +71,7 @@ class FragmentOutput {
   FragmentSmoother smoother_;
   Components components_;
   std::vector<Fragment> fragments_;
-  std::optional<EmbeddedTetMesh> embedded_;
+  EmbeddedMesh embedded_;
   CrackSurface crack_surface_;
 };
 

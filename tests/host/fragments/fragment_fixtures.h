@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host/engine.h"
+#include "host/fragments/tet_complex.h"
 #include "tests/support/temp_dir.h"
 
 namespace pd::testing {
@@ -49,6 +50,32 @@ inline bool break_bond(BondLists& b, int32_t i, int32_t j) {
     }
   }
   return false;
+}
+
+// An nx x ny x nz block of cubes of side `side` from the origin, each cut into the 6 tets around
+// its diagonal (Kuhn): the tets of neighbouring cubes meet face to face. Tet t is particle t.
+inline EmbeddedTets box_tets(int nx, int ny, int nz, double side) {
+  EmbeddedTets m;
+  auto id = [&](int i, int j, int k) { return int32_t(i + (nx + 1) * (j + (ny + 1) * k)); };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) m.vertices.push_back({i * side, j * side, k * side});
+  const int axes[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        for (const auto& a : axes) {
+          std::array<int, 3> c{i, j, k};
+          std::array<int32_t, 4> t;
+          t[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[size_t(a[s])];
+            t[size_t(s) + 1] = id(c[0], c[1], c[2]);
+          }
+          m.particle.push_back(int32_t(m.tets.size()));
+          m.tets.push_back(t);
+        }
+  return m;
 }
 
 }  // namespace pd::testing

@@ -1,6 +1,7 @@
-// Optional: the files open in the tools users load them in. Blender runs the loading script of
-// docs/fragments.md on a small run and must place each piece where the fragments file says;
-// ParaView's Python opens the points and the pieces. Each test skips when its tool is absent
+// Optional: the files open in the tools users load them in. Blender runs the loading scripts of
+// docs/fragments.md on a small run: the pieces must be placed where the fragments file says, and
+// the crack meshes imported with their faces and crack material; ParaView's Python opens the
+// particle series, points, pieces and crack meshes. Each test skips when its tool is absent
 // (Debian: apt-get install blender python3-paraview).
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 
 #include "host/fragments/fragment_output.h"
 #include "host/fragments/fragments_file.h"
+#include "host/io/vtk_writer.h"
 #include "tests/host/fragments/fragment_fixtures.h"
 #include "tests/support/fixtures.h"
 
@@ -60,6 +62,7 @@ class FragmentTools : public testing::TempDirTest {
     BondLists bonds;
     make_cpu_engine(in)->read_bonds(bonds);
     FragmentOutput out(in, bonds, {dir_.string(), 0, true});
+    PvdSeries series(dir_.string(), "particles");
     for (int frame = 0; frame < 3; ++frame) {
       if (frame == 1) {
         const BondsView v = bonds.view();
@@ -83,14 +86,20 @@ class FragmentTools : public testing::TempDirTest {
         f.damage.push_back(0);
         f.body.push_back(0);
       }
+      f.time = 0.1 * frame;
       out.process(f, bonds);
+      series.add(f.time, frame_file_name(frame, "vtu"));
+      write_vtu(path(frame_file_name(frame, "vtu")), f);
     }
     out.write_meshes();
   }
+
+  // The last frame's crack mesh: both halves, the cut drawn from both sides.
+  CrackSurface last_crack_mesh() const { return read_crack_mesh(path("crack_mesh_00002.ply")); }
 };
 
-// The script marked <!-- blender-fragments-script --> in docs/fragments.md.
-std::string doc_script() {
+// The script marked <!-- `marker` --> in docs/fragments.md.
+std::string doc_script(const std::string& marker) {
   std::ifstream in(std::string(PERIFRAC_SOURCE_DIR) + "/docs/fragments.md");
   std::string line, script;
   bool marked = false, inside = false;
@@ -98,15 +107,30 @@ std::string doc_script() {
     if (inside && line == "```") break;
     if (inside) script += line + "\n";
     if (marked && line == "```python") inside = true;
-    if (line == "<!-- blender-fragments-script -->") marked = true;
+    if (line == "<!-- " + marker + " -->") marked = true;
   }
   return script;
+}
+
+// The words after `tag` on each line of `log` that starts with it.
+std::vector<std::vector<std::string>> tagged(const std::string& log, const std::string& tag) {
+  std::vector<std::vector<std::string>> out;
+  std::istringstream lines(log);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string first, w;
+    if (!(words >> first) || first != tag) continue;
+    out.emplace_back();
+    while (words >> w) out.back().push_back(w);
+  }
+  return out;
 }
 
 TEST_F(FragmentTools, BlenderRunsTheDocScript) {
   const std::string blender = find_program("blender");
   if (blender.empty()) GTEST_SKIP() << "blender is not on PATH (Debian: apt-get install blender)";
-  const std::string script = doc_script();
+  const std::string script = doc_script("blender-fragments-script");
   ASSERT_FALSE(script.empty()) << "no script after <!-- blender-fragments-script --> in docs/fragments.md";
   // The doc script, then the world matrix of every piece at every frame.
   std::ofstream(path("load.py"))
@@ -142,6 +166,47 @@ TEST_F(FragmentTools, BlenderRunsTheDocScript) {
     ++checked;
   }
   EXPECT_EQ(checked, 6) << log;
+}
+
+TEST_F(FragmentTools, BlenderImportsTheCrackMeshes) {
+  const std::string blender = find_program("blender");
+  if (blender.empty()) GTEST_SKIP() << "blender is not on PATH (Debian: apt-get install blender)";
+  const std::string script = doc_script("blender-cracks-script");
+  ASSERT_FALSE(script.empty()) << "no script after <!-- blender-cracks-script --> in docs/fragments.md";
+  // The doc script, then each frame's object: its size, the faces of the crack material and the
+  // frames it is visible at; then the PLY of the last frame through Blender's PLY importer.
+  std::ofstream(path("cracks.py"))
+      << script
+      << "for o in sorted(root.children, key=lambda o: o.name):\n"
+         "    crack = [i for i, m in enumerate(o.data.materials) if m and m.name.startswith('crack')]\n"
+         "    seen = []\n"
+         "    for f in (0, 1, 2):\n"
+         "        bpy.context.scene.frame_set(f)\n"
+         "        if not o.hide_render: seen.append(f)\n"
+         "    print('OBJECT', len(o.data.vertices), len(o.data.polygons),\n"
+         "          sum(p.material_index in crack for p in o.data.polygons), *seen)\n"
+         "bpy.ops.import_mesh.ply(filepath=os.path.join(OUT, 'crack_mesh_00002.ply'))\n"
+         "m = bpy.context.selected_objects[0].data\n"
+         "print('PLY', len(m.vertices), len(m.polygons))\n";
+  const std::string log = run("timeout 300 " + blender + " --background --factory-startup --python " +
+                              path("cracks.py") + " -- " + dir_.string());
+  const auto objects = tagged(log, "OBJECT");
+  ASSERT_EQ(objects.size(), 3u) << log;
+  const CrackSurface last = last_crack_mesh();
+  for (size_t frame = 0; frame < 3; ++frame) {
+    SCOPED_TRACE("frame " + std::to_string(frame));
+    const CrackSurface s = read_crack_mesh(path(crack_mesh_file_name(int64_t(frame), "obj")));
+    ASSERT_EQ(objects[frame].size(), 4u) << log;  // visible at its own frame only
+    EXPECT_EQ(std::stoul(objects[frame][0]), s.vertices.size());
+    EXPECT_EQ(std::stoul(objects[frame][1]), s.triangles.size());
+    EXPECT_EQ(std::stoul(objects[frame][2]), s.crack_count());
+    EXPECT_EQ(std::stoul(objects[frame][3]), frame);
+  }
+  EXPECT_GT(last.crack_count(), 0u);
+  const auto ply = tagged(log, "PLY");
+  ASSERT_EQ(ply.size(), 1u) << log;
+  EXPECT_EQ(std::stoul(ply[0][0]), last.vertices.size());
+  EXPECT_EQ(std::stoul(ply[0][1]), last.triangles.size());
 }
 
 TEST_F(FragmentTools, ParaViewOpensPointsAndPieces) {
@@ -181,6 +246,49 @@ TEST_F(FragmentTools, ParaViewOpensPointsAndPieces) {
     }
   }
   EXPECT_TRUE(points && pieces) << log;
+}
+
+TEST_F(FragmentTools, ParaViewOpensTheSeriesAndCrackMeshes) {
+  const std::string pvpython = find_program("pvpython");
+  if (pvpython.empty()) GTEST_SKIP() << "pvpython is not on PATH (Debian: apt-get install python3-paraview)";
+  std::ofstream(path("series.py"))
+      << "import sys\n"
+         "from paraview.simple import OpenDataFile, UpdatePipeline, servermanager\n"
+         "d = sys.argv[1]\n"
+         "r = OpenDataFile(d + '/particles.pvd')\n"
+         "print('TIMES', *r.TimestepValues)\n"
+         "UpdatePipeline(time=r.TimestepValues[-1], proxy=r)\n"
+         "g = servermanager.Fetch(r)\n"
+         "print('LAST', g.GetFieldData().GetArray('TimeValue').GetValue(0), g.GetNumberOfPoints(),\n"
+         "      *g.GetPointData().GetArray('component').GetRange())\n"
+         "for ext in ('obj', 'ply'):\n"
+         "    m = servermanager.Fetch(OpenDataFile(d + '/crack_mesh_00002.' + ext))\n"
+         "    ids = m.GetCellData().GetArray('GroupIds')\n"
+         "    crack = sum(ids.GetValue(c) == 1 for c in range(m.GetNumberOfCells())) if ids else -1\n"
+         "    print('CRACK', ext, m.GetNumberOfPoints(), m.GetNumberOfCells(), crack)\n";
+  const std::string log = run("timeout 300 " + pvpython + " " + path("series.py") + " " + dir_.string());
+  // The series: three frames 0.1 apart; the last one has both fragments (ids 0 and 4).
+  const auto times = tagged(log, "TIMES");
+  ASSERT_EQ(times.size(), 1u) << log;
+  ASSERT_EQ(times[0].size(), 3u) << log;
+  for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(std::stod(times[0][k]), 0.1 * double(k), 1e-12);
+  const auto last = tagged(log, "LAST");
+  ASSERT_EQ(last.size(), 1u) << log;
+  EXPECT_NEAR(std::stod(last[0][0]), 0.2, 1e-12);
+  EXPECT_EQ(std::stoul(last[0][1]), size_t(kNx * kNy * kNz));
+  EXPECT_EQ(std::stod(last[0][2]), 0);
+  EXPECT_EQ(std::stod(last[0][3]), 4);
+  // The crack mesh: every triangle, and in the OBJ the crack group (GroupIds 1); the PLY reader
+  // keeps no face properties (-1).
+  const CrackSurface s = last_crack_mesh();
+  const auto crack = tagged(log, "CRACK");
+  ASSERT_EQ(crack.size(), 2u) << log;
+  for (const auto& c : crack) {
+    SCOPED_TRACE(c[0]);
+    EXPECT_EQ(std::stoul(c[1]), s.vertices.size());
+    EXPECT_EQ(std::stoul(c[2]), s.triangles.size());
+    EXPECT_EQ(std::stol(c[3]), c[0] == "obj" ? long(s.crack_count()) : -1L);
+  }
 }
 
 }  // namespace

@@ -1,8 +1,6 @@
 // The frame-loop object end to end on engine families: a block that is cut and whose right half
 // turns away writes the expected components, transforms, points and piece surfaces.
 #include "host/fragments/fragment_output.h"
-#include "host/scene/scene.h"
-#include "host/scene/scene_setup.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +10,10 @@
 
 #include "host/fragments/fragments_file.h"
 #include "host/fragments/ply_points.h"
+#include "host/scene/scene.h"
+#include "host/scene/scene_setup.h"
 #include "tests/host/fragments/fragment_fixtures.h"
+#include "tests/host/fragments/mesh_checks.h"
 #include "tests/support/fixtures.h"
 
 namespace pd {
@@ -64,12 +65,20 @@ TEST_F(FragmentOutputTest, CutBlockWritesTwoFragments) {
   FrameData f0 = frame(in, 0, 0);
   EXPECT_EQ(format_component_stats(out.process(f0, bonds)), "fragments 1 (64-127:1)");
   EXPECT_EQ(f0.component, std::vector<int32_t>(f0.size(), 0));
+  // The crack mesh (its adjacency derived from the families, in their order): nothing split.
+  EXPECT_EQ(out.embedded_mesh().vertex_count(), out.embedded_mesh().original_vertex_count());
+  EXPECT_EQ(out.crack_surface().crack_count(), 0u);
 
   // Frame 1: cut, right half turned by 0.3 rad.
   cut(bonds);
   FrameData f1 = frame(in, 1, 0.3);
   EXPECT_EQ(format_component_stats(out.process(f1, bonds)), "fragments 2 (32-63:2)");
   for (size_t i = 0; i < f1.size(); ++i) EXPECT_EQ(f1.component[i], i % kNx < 4 ? 0 : 4);
+  // The crack mesh: every cube face on the cut cracked and opened, two closed halves.
+  EXPECT_EQ(out.embedded_mesh().crack_face_count(), size_t(kNy * kNz));
+  EXPECT_EQ(out.embedded_mesh().open_crack_face_count(), size_t(kNy * kNz));
+  EXPECT_EQ(read_crack_mesh(path(crack_mesh_file_name(1, "ply"))).crack_count(), size_t(2 * 2 * kNy * kNz));
+  EXPECT_EQ(testing::closed_piece_volumes(out.crack_surface()).size(), 2u);
 
   // Files: the fragments and points of both frames, then the piece surfaces.
   const FragmentsFrame back = read_fragments_file(path(fragments_file_name(1)));
@@ -116,9 +125,9 @@ TEST_F(FragmentOutputTest, BlendingStartsBothPiecesAtTheWholePose) {
   EXPECT_THROW(out.process(wrong, bonds), std::invalid_argument);
 }
 
-}  // namespace
 // A Voronoi body at rest: its particles sit closer than the nominal spacing, yet it neither
-// collides with itself nor breaks, and the geometry's cell adjacency makes it one fragment.
+// collides with itself nor breaks, and the geometry's cell adjacency makes it one fragment, whose
+// piece and crack mesh are the cells' outer surface.
 TEST_F(FragmentOutputTest, VoronoiBodyAtRestIsOneFragment) {
   const Scene scene = parse_scene(R"(
 [world]
@@ -136,14 +145,15 @@ material = "stone"
 )",
                                   "voronoi.toml");
   const SetupResult setup = setup_scene(scene, {});
-  ASSERT_FALSE(setup.all_cubes);
+  ASSERT_EQ(setup.voronoi.size(), 1u);
   ASSERT_EQ(setup.adjacency.size(), setup.input.particles.size());
   auto engine = make_cpu_engine(setup.input);
   engine->advance(200);
   EXPECT_EQ(engine->broken_bonds(), 0);
   BondLists bonds;
   engine->read_bonds(bonds);
-  FragmentOutput out(setup.input, bonds, {dir_.string(), 0, false, setup.all_cubes}, setup.adjacency);
+  FragmentOutput out(setup.input, bonds, {dir_.string(), 0, false}, setup.adjacency, setup.embedded,
+                     {{setup.voronoi[0].first_particle, &setup.voronoi[0].geometry}});
   FrameData f;
   f.position = setup.input.particles.rest;
   f.velocity.assign(f.position.size(), Vec3{0, 0, 0});
@@ -151,7 +161,16 @@ material = "stone"
   f.body = setup.input.particles.body;
   out.process(f, bonds);
   EXPECT_EQ(out.components().count(), 1u);
-  EXPECT_FALSE(out.write_meshes());
+  out.write_meshes();
+  std::ifstream obj(path("fragments.obj"));
+  std::string line;
+  size_t objects = 0;
+  while (std::getline(obj, line)) objects += line.rfind("o ", 0) == 0;
+  EXPECT_EQ(objects, 1u);
+  const CrackSurface s = read_crack_mesh(path("crack_mesh_00000.ply"));
+  EXPECT_EQ(s.crack_count(), 0u);
+  EXPECT_EQ(testing::closed_piece_volumes(s).size(), 1u);
 }
 
+}  // namespace
 }  // namespace pd

@@ -1,13 +1,11 @@
-#include "cube_mesh.h"
+#include "cube_complex.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <cstdio>
-#include <numeric>
-#include <ostream>
 #include <stdexcept>
-
-#include "../io/atomic_file.h"
+#include <string>
+#include <utility>
 
 namespace pd {
 
@@ -24,14 +22,22 @@ struct Lattice {
   std::vector<std::array<int32_t, 6>> face;
 };
 
-Lattice walk_lattice(const ElementAdjacency& adj, const std::vector<Vec3>& rest) {
+Lattice walk_lattice(const ElementAdjacency& adj, const std::vector<Vec3>& rest,
+                     const std::vector<int32_t>& cubes) {
   const size_t n = rest.size();
   Lattice g;
   g.region.assign(n, -1);
   g.cell.assign(n, LatticeCell{0, 0, 0});
   g.face.assign(n, {-1, -1, -1, -1, -1, -1});
+  std::vector<uint8_t> is_cube(n, 0);
+  for (int32_t p : cubes) {
+    if (p < 0 || size_t(p) >= n)
+      throw std::invalid_argument("cube_complex: particle " + std::to_string(p) + " out of range");
+    is_cube[size_t(p)] = 1;
+  }
   std::vector<int32_t> queue;
-  for (size_t s = 0; s < n; ++s) {
+  for (int32_t start : cubes) {
+    const size_t s = size_t(start);
     if (g.region[s] >= 0) continue;
     g.region[s] = int32_t(s);
     queue.assign(1, int32_t(s));
@@ -39,6 +45,9 @@ Lattice walk_lattice(const ElementAdjacency& adj, const std::vector<Vec3>& rest)
       const int32_t i = queue[head];
       for (int64_t e = adj.offset[size_t(i)]; e < adj.offset[size_t(i) + 1]; ++e) {
         const int32_t j = adj.neighbor[size_t(e)];
+        if (!is_cube[size_t(j)])
+          throw std::invalid_argument("particle " + std::to_string(i) + " is a cube, its neighbour " +
+                                      std::to_string(j) + " is not");
         // The face that j lies across: the dominant axis of the rest offset.
         const Vec3 d = rest[size_t(j)] - rest[size_t(i)];
         const double ad[3] = {std::abs(d.x), std::abs(d.y), std::abs(d.z)};
@@ -69,14 +78,15 @@ Lattice walk_lattice(const ElementAdjacency& adj, const std::vector<Vec3>& rest)
 // Corners: cube i's corner b (bits x y z) is at lattice point cell + bits. Corners with the same
 // region and lattice point are one corner, placed at the mean of the cubes' own corners.
 struct Corners {
-  std::vector<int32_t> of_cube;  // 8 per cube: corner number
-  std::vector<Eigen::Vector3d> position;
+  std::vector<int32_t> of_cube;  // 8 per cube of the list: corner number
+  std::vector<Vec3d> position;
 };
 
-Corners merge_corners(const Lattice& g, const std::vector<Vec3>& rest, const std::vector<real>& spacing) {
-  const size_t n = rest.size();
-  // Key of cube corner e = 8 i + b: region, then the lattice point, each coordinate offset to be
-  // unsigned; sorting the 8n keys brings equal corners together.
+Corners merge_corners(const Lattice& g, const std::vector<Vec3>& rest, const std::vector<real>& spacing,
+                      const std::vector<int32_t>& cubes) {
+  const size_t n = cubes.size();
+  // Key of corner e = 8 k + b of cube k: region, then the lattice point, each coordinate offset to
+  // be unsigned; sorting the 8n keys brings equal corners together.
   struct Key {
     uint64_t high, low;  // region | x, y | z
     int64_t e;
@@ -86,7 +96,7 @@ Corners merge_corners(const Lattice& g, const std::vector<Vec3>& rest, const std
   auto biased = [](int32_t v) { return uint64_t(uint32_t(v) ^ 0x80000000u); };
   std::vector<Key> keys(8 * n);
   for (size_t e = 0; e < keys.size(); ++e) {
-    const size_t i = e / 8, b = e % 8;
+    const size_t i = size_t(cubes[e / 8]), b = e % 8;
     const LatticeCell& c = g.cell[i];
     keys[e] = {uint64_t(uint32_t(g.region[i])) << 32 | biased(c[0] + int32_t(b & 1)),
                biased(c[1] + int32_t((b >> 1) & 1)) << 32 | biased(c[2] + int32_t((b >> 2) & 1)), int64_t(e)};
@@ -97,15 +107,15 @@ Corners merge_corners(const Lattice& g, const std::vector<Vec3>& rest, const std
   out.of_cube.resize(8 * n);
   for (size_t at = 0; at < keys.size();) {
     size_t end = at;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Vec3d sum{0, 0, 0};
     for (; end < keys.size() && keys[end].same(keys[at]); ++end) {
-      const size_t e = size_t(keys[end].e), i = e / 8, b = e % 8;
+      const size_t e = size_t(keys[end].e), i = size_t(cubes[e / 8]), b = e % 8;
       const double h = 0.5 * double(spacing[i]);
-      sum += Eigen::Vector3d(rest[i].x, rest[i].y, rest[i].z) +
-             Eigen::Vector3d(b & 1 ? h : -h, (b >> 1) & 1 ? h : -h, (b >> 2) & 1 ? h : -h);
+      sum = sum + Vec3d{double(rest[i].x) + (b & 1 ? h : -h), double(rest[i].y) + ((b >> 1) & 1 ? h : -h),
+                        double(rest[i].z) + ((b >> 2) & 1 ? h : -h)};
       out.of_cube[e] = int32_t(out.position.size());
     }
-    out.position.push_back(sum / double(end - at));
+    out.position.push_back((1.0 / double(end - at)) * sum);
     at = end;
   }
   return out;
@@ -127,68 +137,28 @@ std::array<int, 4> face_corners(int a, bool up) {
 
 }  // namespace
 
-FragmentMesh cube_fragment_mesh(const ElementAdjacency& adjacency, const std::vector<Vec3>& rest,
-                                const std::vector<real>& spacing, const Components& c) {
-  const size_t n = rest.size();
-  if (adjacency.size() != n || spacing.size() != n || c.id.size() != n)
-    throw std::invalid_argument(
-        "cube_fragment_mesh: adjacency, rest positions, spacings and components differ in length");
-  const Lattice g = walk_lattice(adjacency, rest);
-  const Corners corners = merge_corners(g, rest, spacing);
+ElementComplex cube_complex(const ElementAdjacency& adjacency, const std::vector<Vec3>& rest,
+                            const std::vector<real>& spacing, const std::vector<int32_t>& cubes) {
+  if (adjacency.size() != rest.size() || spacing.size() != rest.size())
+    throw std::invalid_argument("cube_complex: adjacency, rest positions and spacings differ in length");
+  const Lattice g = walk_lattice(adjacency, rest, cubes);
+  Corners corners = merge_corners(g, rest, spacing, cubes);
 
-  // Each fragment: the faces of its cubes not shared with a cube of the same fragment, with the
-  // corners renumbered per object in order of first use.
-  FragmentMesh mesh;
-  std::vector<int32_t> local(corners.position.size(), -1);
-  std::vector<int32_t> used;
-  for (size_t k = 0; k < c.count(); ++k) {
-    for (int32_t m = c.start[k]; m < c.start[k + 1]; ++m) {
-      const size_t i = size_t(c.members[size_t(m)]);
-      for (int f = 0; f < 6; ++f) {
-        const int32_t j = g.face[i][size_t(f)];
-        if (j >= 0 && c.index[size_t(j)] == int32_t(k)) continue;
-        std::array<int32_t, 4> quad{};
-        const std::array<int, 4> bits = face_corners(f / 2, f % 2 == 1);
-        for (int q = 0; q < 4; ++q) {
-          const int32_t corner = corners.of_cube[8 * i + size_t(bits[size_t(q)])];
-          if (local[size_t(corner)] < 0) {
-            local[size_t(corner)] = int32_t(mesh.vertices.size());
-            mesh.vertices.push_back(corners.position[size_t(corner)]);
-            used.push_back(corner);
-          }
-          quad[size_t(q)] = local[size_t(corner)];
-        }
-        mesh.quads.push_back(quad);
-      }
+  // Each cube: its 8 corners, then its 6 faces, bordering the cube across each (or nothing).
+  ElementComplex c;
+  c.vertices = std::move(corners.position);
+  for (size_t k = 0; k < cubes.size(); ++k) {
+    const size_t i = size_t(cubes[k]);
+    c.begin_element(int32_t(i));
+    const int32_t first = int32_t(c.corner_vertex.size());
+    for (size_t b = 0; b < 8; ++b) c.add_corner(corners.of_cube[8 * k + b]);
+    for (int f = 0; f < 6; ++f) {
+      const std::array<int, 4> bits = face_corners(f / 2, f % 2 == 1);
+      const int32_t quad[4] = {first + bits[0], first + bits[1], first + bits[2], first + bits[3]};
+      c.add_face(quad, 4, g.face[i][size_t(f)]);
     }
-    for (int32_t corner : used) local[size_t(corner)] = -1;
-    used.clear();
-    mesh.ids.push_back(c.component_id(k));
-    mesh.vertex_start.push_back(int64_t(mesh.vertices.size()));
-    mesh.quad_start.push_back(int64_t(mesh.quads.size()));
   }
-  return mesh;
-}
-
-void write_obj(const std::string& path, const FragmentMesh& mesh) {
-  write_file_atomic(path, [&](std::ostream& out) {
-    out << "# perifrac fragment surfaces in rest space [m], one object per fragment;\n"
-           "# fragments_NNNNN.pfg holds each fragment's transform per frame (docs/fragments.md)\n";
-    char line[128];
-    for (size_t o = 0; o < mesh.objects(); ++o) {
-      out << "o fragment_" << mesh.ids[o] << "\n";
-      for (int64_t v = mesh.vertex_start[o]; v < mesh.vertex_start[o + 1]; ++v) {
-        const Eigen::Vector3d& p = mesh.vertices[size_t(v)];
-        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p.x(), p.y(), p.z());
-        out << line;
-      }
-      for (int64_t q = mesh.quad_start[o]; q < mesh.quad_start[o + 1]; ++q) {
-        const auto& f = mesh.quads[size_t(q)];
-        std::snprintf(line, sizeof line, "f %d %d %d %d\n", f[0] + 1, f[1] + 1, f[2] + 1, f[3] + 1);
-        out << line;
-      }
-    }
-  });
+  return c;
 }
 
 }  // namespace pd
