@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace pd {
 
@@ -23,46 +22,51 @@ P3 to_p3(Vec3 v) {
   return {double(v.x), double(v.y), double(v.z)};
 }
 
-// Triangles binned on a grid of cubic cells of side `cell`: each triangle is listed in every cell
-// its bounding box, grown by `cell`, overlaps. A segment of length <= cell from a point in cell c
-// can only cross the triangles listed in c.
-class TriangleGrid {
- public:
-  TriangleGrid(const std::vector<CutTriangle>& cuts, double cell) : inv_(1 / cell) {
-    for (size_t t = 0; t < cuts.size(); ++t) {
-      std::array<int64_t, 3> lo{}, hi{};
-      for (int a = 0; a < 3; ++a) {
-        double mn = cuts[t].corner[0][size_t(a)], mx = mn;
-        for (const P3& c : cuts[t].corner) {
-          mn = std::min(mn, c[size_t(a)]);
-          mx = std::max(mx, c[size_t(a)]);
-        }
-        lo[size_t(a)] = coord(mn - cell);
-        hi[size_t(a)] = coord(mx + cell);
-      }
-      for (int64_t z = lo[2]; z <= hi[2]; ++z)
-        for (int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (int64_t x = lo[0]; x <= hi[0]; ++x) bins_[key(x, y, z)].push_back(int32_t(t));
-    }
-  }
-
-  // The triangles that segments from `p` may cross; null when there are none.
-  const std::vector<int32_t>* near(const P3& p) const {
-    const auto it = bins_.find(key(coord(p[0]), coord(p[1]), coord(p[2])));
-    return it == bins_.end() ? nullptr : &it->second;
-  }
-
- private:
-  int64_t coord(double v) const { return int64_t(std::floor(v * inv_)); }
-  static int64_t key(int64_t x, int64_t y, int64_t z) {
-    return (x & 0x1FFFFF) | ((y & 0x1FFFFF) << 21) | ((z & 0x1FFFFF) << 42);
-  }
-
-  double inv_;
-  std::unordered_map<int64_t, std::vector<int32_t>> bins_;
-};
-
 }  // namespace
+
+CutTester::CutTester(const std::vector<CutTriangle>& cuts, double reach) : cuts_(&cuts), inv_(1 / reach) {
+  for (size_t t = 0; t < cuts.size(); ++t) {
+    std::array<int64_t, 3> lo{}, hi{};
+    for (int a = 0; a < 3; ++a) {
+      double mn = cuts[t].corner[0][size_t(a)], mx = mn;
+      for (const P3& c : cuts[t].corner) {
+        mn = std::min(mn, c[size_t(a)]);
+        mx = std::max(mx, c[size_t(a)]);
+      }
+      lo[size_t(a)] = coord(mn - reach);
+      hi[size_t(a)] = coord(mx + reach);
+    }
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (int64_t x = lo[0]; x <= hi[0]; ++x) bins_[key(x, y, z)].push_back(int32_t(t));
+  }
+}
+
+int64_t CutTester::coord(double v) const {
+  return int64_t(std::floor(v * inv_));
+}
+
+int64_t CutTester::key(int64_t x, int64_t y, int64_t z) {
+  return (x & 0x1FFFFF) | ((y & 0x1FFFFF) << 21) | ((z & 0x1FFFFF) << 42);
+}
+
+const std::vector<int32_t>* CutTester::near(Vec3 p) const {
+  const auto it = bins_.find(key(coord(p.x), coord(p.y), coord(p.z)));
+  return it == bins_.end() ? nullptr : &it->second;
+}
+
+double CutTester::strength(int32_t a, Vec3 pa, int32_t b, Vec3 pb, int32_t body) const {
+  const std::vector<int32_t>* candidates = near(pa);
+  if (!candidates) return 1;
+  const P3 lo = to_p3(a < b ? pa : pb), hi = to_p3(a < b ? pb : pa);
+  double weakest = 1;
+  for (int32_t t : *candidates) {
+    const CutTriangle& tri = (*cuts_)[size_t(t)];
+    if ((tri.body < 0 || tri.body == body) && tri.strength < weakest && segment_crosses_triangle(lo, hi, tri))
+      weakest = tri.strength;
+  }
+  return weakest;
+}
 
 bool segment_crosses_triangle(const P3& p, const P3& q, const CutTriangle& t) {
   const P3 e1 = sub(t.corner[1], t.corner[0]), e2 = sub(t.corner[2], t.corner[0]), d = sub(q, p);
@@ -97,7 +101,7 @@ BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<
       longest = std::max(longest, std::sqrt(dot3(d, d)));
     }
   if (!(longest > 0)) return report;
-  const TriangleGrid grid(cuts, longest);
+  const CutTester tester(cuts, longest);
 
   // Per slot: the strength of the weakest triangle the bond crosses (1 for none); then each
   // family is compacted past its removed bonds, in order.
@@ -105,20 +109,12 @@ BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<
   int64_t removed = 0, weakened = 0;
 #pragma omp parallel for reduction(+ : removed, weakened) schedule(dynamic, 256)
   for (int32_t i = 0; i < n; ++i) {
-    const std::vector<int32_t>* near = grid.near(to_p3(rest[size_t(i)]));
-    if (!near) continue;
+    if (tester.clear(rest[size_t(i)])) continue;
     int32_t kept = 0;
     for (int32_t k = 0; k < b.count[i]; ++k) {
       const int64_t slot = b.slot(i, k);
       const int32_t j = bond_partner(b.neighbor[slot]);
-      const P3 lo = to_p3(rest[size_t(std::min(i, j))]), hi = to_p3(rest[size_t(std::max(i, j))]);
-      double weakest = 1;
-      for (int32_t t : *near) {
-        const CutTriangle& tri = cuts[size_t(t)];
-        if ((tri.body < 0 || tri.body == body[size_t(i)]) && tri.strength < weakest &&
-            segment_crosses_triangle(lo, hi, tri))
-          weakest = tri.strength;
-      }
+      const double weakest = tester.strength(i, rest[size_t(i)], j, rest[size_t(j)], body[size_t(i)]);
       if (weakest <= 0) {
         ++removed;
         continue;

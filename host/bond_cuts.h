@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "cut_triangle.h"
@@ -28,5 +29,26 @@ BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<
 // True when the open segment p -> q meets the closed triangle (Moller-Trumbore, double).
 bool segment_crosses_triangle(const std::array<double, 3>& p, const std::array<double, 3>& q,
                               const CutTriangle& t);
+
+// The crossing test for many bonds of length at most `reach`: the triangles binned on a grid of
+// cells of side `reach`, so a bond is tested only against those near its first end.
+class CutTester {
+ public:
+  CutTester(const std::vector<CutTriangle>& cuts, double reach);
+  // The smallest strength among the triangles the bond between particle a at `pa` and particle b
+  // at `pb` of body `body` crosses; 1 when it crosses none. The segment runs from the lower index.
+  double strength(int32_t a, Vec3 pa, int32_t b, Vec3 pb, int32_t body) const;
+  // True when no triangle lies near `p`: no bond from there is cut.
+  bool clear(Vec3 p) const { return near(p) == nullptr; }
+
+ private:
+  const std::vector<int32_t>* near(Vec3 p) const;
+  int64_t coord(double v) const;
+  static int64_t key(int64_t x, int64_t y, int64_t z);
+
+  const std::vector<CutTriangle>* cuts_;
+  double inv_;
+  std::unordered_map<int64_t, std::vector<int32_t>> bins_;
+};
 
 }  // namespace pd

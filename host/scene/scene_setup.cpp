@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "../bond_cuts.h"
 #include "../geometry/box_grid.h"
 #include "../geometry/grid_particles.h"
 #include "../geometry/mesh_check.h"
@@ -157,6 +158,25 @@ real scattered_limit(double tau, double sigma, Random& rng) {
   return real(tau * std::fmax(0.05, 1.0 + sigma * z));
 }
 
+// Elements whose shared face a pre-crack cuts are not adjacent: the engine removes the bond
+// between their particles (the same test on the same positions), so fragments and crack meshes
+// see a crack there from the start.
+void remove_cut_pairs(const std::vector<CutTriangle>& cuts, const ParticleSet& ps,
+                      std::vector<std::pair<int32_t, int32_t>>& pairs) {
+  if (cuts.empty() || pairs.empty()) return;
+  double reach = 0;
+  for (const auto& [a, b] : pairs)
+    reach = std::max(reach, double(length(ps.rest[size_t(a)] - ps.rest[size_t(b)])));
+  const CutTester tester(cuts, 1.001 * reach);
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                             [&](const std::pair<int32_t, int32_t>& p) {
+                               return tester.strength(p.first, ps.rest[size_t(p.first)], p.second,
+                                                      ps.rest[size_t(p.second)],
+                                                      ps.body[size_t(p.first)]) <= 0;
+                             }),
+              pairs.end());
+}
+
 double median_nearest_distance(const ParticleGeometry& g) {
   std::vector<double> d = g.lambda;
   if (d.empty()) return 0;
@@ -272,6 +292,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     if (geometry.kind == ElementKind::voronoi) result.voronoi.push_back({base, std::move(geometry)});
   }
 
+  remove_cut_pairs(in.cuts, ps, adjacency_pairs);
   result.adjacency = adjacency_from_pairs(ps.size(), std::move(adjacency_pairs));
 
   // Step parameters.

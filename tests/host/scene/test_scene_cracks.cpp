@@ -166,6 +166,16 @@ corners = [[0, -1, -1], [0, 1, -1], [0, 1, 1], [0, -1, 1]]
       EXPECT_EQ(r.input.particles.rest[size_t(i)].x < 0, r.input.particles.rest[size_t(j)].x < 0);
     }
   EXPECT_GT(e->family_stats().cuts.removed, 0);
+  // The element faces on the cut are no longer adjacent: fragments and crack meshes see the crack.
+  const ElementAdjacency& adj = r.adjacency;
+  int64_t pairs = 0;
+  for (size_t i = 0; i < adj.size(); ++i)
+    for (int64_t k = adj.offset[i]; k < adj.offset[i + 1]; ++k) {
+      const int32_t j = adj.neighbor[size_t(k)];
+      EXPECT_EQ(r.input.particles.rest[i].x < 0, r.input.particles.rest[size_t(j)].x < 0) << i << "-" << j;
+      ++pairs;
+    }
+  EXPECT_GT(pairs, 0);
 }
 
 }  // namespace
