@@ -13,6 +13,8 @@
 # the entries. Needs the perifrac binary of scripts/setup.sh (or PERIFRAC_BIN).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Optional programs staged by scripts/stage-deps.sh (tetgen on a machine without the package).
+[[ -d .deps/bin ]] && export PATH="$PWD/.deps/bin:$PATH" LD_LIBRARY_PATH="$PWD/.deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
 # name | scene | paper figure | overrides (;-separated) | GPU scale | CPU scale | frames | still frame
 ENTRIES=(

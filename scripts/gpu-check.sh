@@ -6,6 +6,8 @@
 # out/gpu-check). Header-only dependencies missing there travel in .deps (scripts/stage-deps.sh).
 set -uo pipefail
 cd "$(dirname "$0")/.."
+# Optional programs staged by scripts/stage-deps.sh (tetgen on a machine without the package).
+[[ -d .deps/bin ]] && export PATH="$PWD/.deps/bin:$PATH" LD_LIBRARY_PATH="$PWD/.deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 export PATH="$PATH:/usr/local/cuda/bin"
 OUT=${OUT:-out}/gpu-check
 mkdir -p "$OUT"
@@ -33,6 +35,15 @@ walls=scenes/chen_four_walls.toml
 step equiv-walls-cpu "$bin" run "$walls" --backend cpu --scale 0.02 --frames 4 --out "$OUT/equiv-walls-cpu"
 step equiv-walls-gpu "$bin" run "$walls" --backend cuda --scale 0.02 --frames 4 --out "$OUT/equiv-walls-gpu"
 step equiv-walls-compare "$bin" compare "$OUT/equiv-walls-cpu" "$OUT/equiv-walls-gpu"
+# Scripted anchors (a turning grip) and pre-cracks with moving grips, state-based.
+for extra in chen_bar_twist:0.3 chen_thin_sheet_tear:0.1; do
+  name=${extra%%:*} scale=${extra#*:}
+  step "equiv-$name-cpu" "$bin" run "scenes/$name.toml" --backend cpu --scale "$scale" --frames 3 \
+    --out "$OUT/equiv-$name-cpu"
+  step "equiv-$name-gpu" "$bin" run "scenes/$name.toml" --backend cuda --scale "$scale" --frames 3 \
+    --out "$OUT/equiv-$name-gpu"
+  step "equiv-$name-compare" "$bin" compare "$OUT/equiv-$name-cpu" "$OUT/equiv-$name-gpu"
+done
 # Determinism (two runs, identical files) and checkpoint/resume (bit for bit) on the GPU.
 same_files() {
   local a=$1 b=$2; shift 2
@@ -61,9 +72,13 @@ for model in bond_based state_based anisotropic plastic; do
 done
 step glass-full "$bin" run "$scene" --backend cuda --out "$OUT/glass-full"
 
+{
+  echo "gpu-check on $(cat "$OUT/device.txt"), $(date -u +%Y-%m-%dT%H:%M:%SZ), git ${PERIFRAC_GIT_REV:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)}"
+  printf '%s\n' "${rows[@]}"
+  grep -h "equivalence" "$OUT/gpu-tests.log" || true
+  grep -h "ERROR SUMMARY" "$OUT"/sanitizer-*.log || true
+} >"$OUT/summary.txt"
 echo
-echo "gpu-check on $(cat "$OUT/device.txt"), $(date -u +%Y-%m-%dT%H:%M:%SZ), git ${PERIFRAC_GIT_REV:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)}"
-printf '%s\n' "${rows[@]}"
-grep -h "equivalence" "$OUT/gpu-tests.log" || true
+cat "$OUT/summary.txt"
 for row in "${rows[@]}"; do [[ "$row" == *" FAIL "* ]] && exit 1; done
 exit 0
