@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "camera.h"
+#include "environment.h"
 #include "image.h"
 #include "kdtree.h"
 #include "primitive_set.h"
@@ -37,6 +38,9 @@ struct RenderSettings {
   int width = 1280, height = 720;
   int spp = 1;  // samples (primary rays) per pixel, fixed stratified pattern (camera.h)
   Sky sky;
+  // An .hdr environment in place of the sky (light and background; no sun highlight); null: the
+  // sky.
+  std::shared_ptr<const EnvironmentMap> environment;
   real specular = real(0.04), shininess = 60;  // Blinn-Phong
   bool floor = true;
   real floor_y = 0;

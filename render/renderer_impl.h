@@ -63,7 +63,7 @@ PD_HD inline Hit nearest(const PixelKernelParams& p, const Ray& ray, real* floor
 PD_HD inline Vec3 shade_surface(const PixelKernelParams& p, const Ray& ray, const Hit& hit, real floor_t) {
   const ShadingParams& s = p.shading;
   if (floor_t > 0) return shade_floor(s, ray.o + floor_t * ray.d, ray.d, floor_t);
-  if (hit.prim < 0) return sky_radiance(s.sky, s.sun, ray.d);
+  if (hit.prim < 0) return background_radiance(s, ray.d);
   // Shade the side facing the eye (an eye inside a primitive sees the exit face).
   const Vec3 n = dot(hit.normal, ray.d) > 0 ? -hit.normal : hit.normal;
   return shade_opaque(s, n, -ray.d, p.albedo[hit.prim]);
@@ -83,8 +83,7 @@ PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, Ray ray) {
     real floor_t;
     const Hit hit = nearest(p, ray, &floor_t);
     if (!is_glass(p, hit.prim) || floor_t > 0) return radiance + weight * shade_surface(p, ray, hit, floor_t);
-    if (piece == kMaxGlassPieces)
-      return radiance + weight * sky_radiance(p.shading.sky, p.shading.sun, ray.d);
+    if (piece == kMaxGlassPieces) return radiance + weight * background_radiance(p.shading, ray.d);
     // Entry into the collection: the face turned towards the ray.
     const Vec3 n = dot(hit.normal, ray.d) > 0 ? -hit.normal : hit.normal;
     const Vec3 x = ray.o + hit.t * ray.d;
@@ -93,13 +92,13 @@ PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, Ray ray) {
     real mirror_floor;
     const Hit seen = nearest(p, mirror, &mirror_floor);
     radiance += (weight * f.reflect) * (is_glass(p, seen.prim) && !(mirror_floor > 0)
-                                            ? sky_radiance(p.shading.sky, p.shading.sun, mirror.d)
+                                            ? background_radiance(p.shading, mirror.d)
                                             : shade_surface(p, mirror, seen, mirror_floor));
     if (!(f.transmit > 0)) return radiance;
     const GlassTransit g = glass_transit(p.tree, p.prims, x, refract(ray.d, n, real(1), p.ior, f.cos_t),
                                          hit.prim, p.ior, p.join_gap);
     weight *= f.transmit * g.weight;
-    if (g.last < 0) return radiance + weight * sky_radiance(p.shading.sky, p.shading.sun, g.dir);
+    if (g.last < 0) return radiance + weight * background_radiance(p.shading, g.dir);
     ray = make_ray(g.point, g.dir, real(0.01) * p.join_gap, INFINITY);
   }
 }
@@ -158,15 +157,21 @@ class RendererImpl final : public Renderer {
     auto trim_tri_start = upload(ps.trim_tri_start);
     auto trim_tri_vertex = upload(ps.trim_tri_vertex);
     auto trim_box = upload(ps.trim_box);
+    auto ocube_center = upload(ps.ocube_center);
+    auto ocube_half = upload(ps.ocube_half);
+    auto ocube_axis = upload(ps.ocube_axis);
     auto albedo = upload(scene.albedo);
     auto material = upload(scene.material);
+    auto env = upload(s.environment ? s.environment->texel : std::vector<Vec3>());
     auto nodes = upload(scene.tree.nodes);
     auto prim_index = upload(scene.tree.prim_index);
 
     // Kernel parameters.
     PixelKernelParams p;
     p.camera = camera_frame(camera, s.width, s.height);
-    p.prims = {ps.size(), kind.data(), slot.data(), cube_center.data(), cube_half.data(), tet_vertex.data()};
+    p.prims = {
+        ps.size(),         kind.data(),         slot.data(),       cube_center.data(), cube_half.data(),
+        tet_vertex.data(), ocube_center.data(), ocube_half.data(), ocube_axis.data(),  {}};
     p.prims.trim = {trim_site.data(),         trim_plane_start.data(), trim_plane_normal.data(),
                     trim_plane_offset.data(), trim_tri_start.data(),   trim_tri_vertex.data(),
                     trim_box.data()};
@@ -178,6 +183,7 @@ class RendererImpl final : public Renderer {
     p.spp = s.spp;
     p.exposure = s.exposure;
     p.shading = make_shading_params(s);
+    if (s.environment) p.shading.env = {env.data(), s.environment->width, s.environment->height};
     p.tiles_x = (s.width + kTileWidth - 1) / kTileWidth;
     p.tiles = int64_t(p.tiles_x) * ((s.height + kTileHeight - 1) / kTileHeight);
     p.tile_step = std::max<int64_t>(1, std::llround(0.618 * double(p.tiles)));

@@ -128,6 +128,22 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--width", render.width, "image width")->check(CLI::Range(16, 16384));
   render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(16, 16384));
   render_cmd->add_option("--spp", render.spp, "samples per pixel")->check(CLI::Range(1, 1024));
+  std::vector<double> eye, look_at;
+  render_cmd->add_option("--eye", eye, "camera position x,y,z (default: a 3/4 view of the rest box)")
+      ->delimiter(',')
+      ->expected(3);
+  render_cmd
+      ->add_option("--look-at", look_at, "point the camera looks at x,y,z (default: the rest box centre)")
+      ->delimiter(',')
+      ->expected(3);
+  render_cmd->add_option("--vfov", render.vfov_degrees, "vertical field of view in degrees")
+      ->check(CLI::Range(0.1, 179.9));
+  render_cmd->add_option("--material", render.material, "opaque | glass: the material of every body")
+      ->check(CLI::IsMember({"opaque", "glass"}));
+  render_cmd->add_option("--ior", render.ior, "glass index of refraction")->check(CLI::Range(1.0, 4.0));
+  render_cmd->add_option("--environment", render.environment,
+                         "sky (procedural) or a Radiance .hdr latitude-longitude map");
+  render_cmd->add_flag("!--no-movie", render.movie, "no movie.mp4 even when ffmpeg is on PATH");
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand("compare", "compare two output folders frame by frame");
@@ -152,7 +168,11 @@ int main(int argc, char** argv) {
     if (*profile_cmd) return profile_command(profile);
     if (*validate_cmd) return validate_command(validate);
     if (*compare_cmd) return compare_command(compare);
-    if (*render_cmd) return render_frames(render);
+    if (*render_cmd) {
+      if (eye.size() == 3) render.eye = Vec3{real(eye[0]), real(eye[1]), real(eye[2])};
+      if (look_at.size() == 3) render.look_at = Vec3{real(look_at[0]), real(look_at[1]), real(look_at[2])};
+      return render_frames(render);
+    }
     if (*info_cmd) {
       std::string why;
       const bool gpu = cuda_device_available(&why);

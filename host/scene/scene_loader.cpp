@@ -442,7 +442,7 @@ class TableReader {
 // ---- Sections ----------------------------------------------------------------------------------
 
 const Keys kTopKeys = {"description", "simulation", "world",       "contact", "materials",
-                       "bodies",      "anchors",    "projectiles", "output"};
+                       "bodies",      "anchors",    "projectiles", "output",  "render"};
 const Keys kSimulationKeys = {"dt", "steps_per_frame", "frames", "seed"};
 const Keys kWorldKeys = {"gravity", "floor", "floor_height", "restitution"};
 const Keys kContactKeys = {"enabled", "stiffness"};
@@ -487,6 +487,8 @@ const Keys kDimensionKeys = {"size",        "width", "depth", "thickness", "radi
 const Keys kAnchorKeys = {"box_min", "box_max", "velocity"};
 const Keys kProjectileKeys = {"center", "velocity", "radius", "strength"};
 const Keys kOutputKeys = {"vtk", "binary"};
+const Keys kRenderKeys = {"eye", "look_at",  "vfov", "width",       "height",
+                          "spp", "material", "ior",  "environment", "every"};
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
 constexpr double kMaxHorizon = 12;  // delta / lambda; beyond this the bond families explode
@@ -761,6 +763,43 @@ SceneProjectile parse_projectile(const TableReader& r) {
   return p;
 }
 
+// [render]: what `perifrac run` renders as it goes. It reads the binary frames, so output.binary
+// must stay on.
+SceneRender parse_render(const TableReader& r, const std::string& file, bool write_binary) {
+  SceneRender s;
+  std::array<double, 3> v{};
+  if (r.vec3("eye", v)) s.eye = v;
+  if (r.vec3("look_at", v)) s.look_at = v;
+  if (s.eye && s.look_at && *s.eye == *s.look_at)
+    r.fail("look_at", "equals eye", "a point other than the eye");
+  r.number("vfov", s.vfov, in_open(0, 180));
+  // Integers with an upper bound too.
+  auto whole = [&](std::string_view key, int64_t& value, int64_t lo, int64_t hi) {
+    if (r.integer(key, value, lo) && value > hi)
+      r.fail(key, std::to_string(value) + " is out of range",
+             "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  };
+  whole("width", s.width, 16, 16384);
+  whole("height", s.height, 16, 16384);
+  whole("spp", s.spp, 1, 1024);
+  r.string("material", s.material, {"opaque", "glass"});
+  r.number("ior", s.ior, in_closed(1, 4));
+  r.string("environment", s.environment);
+  if (s.environment.empty())
+    r.fail("environment", "the path is empty", "\"sky\" or the path of a Radiance .hdr file");
+  if (s.environment != "sky") {
+    // Relative paths start from the scene file's folder.
+    const size_t slash = file.find_last_of('/');
+    s.environment_path = s.environment[0] == '/' || slash == std::string::npos
+                             ? s.environment
+                             : file.substr(0, slash + 1) + s.environment;
+  }
+  r.integer("every", s.every, 1);
+  if (!write_binary)
+    r.fail("", "needs the binary frames it renders", "output.binary = true with a [render] block");
+  return s;
+}
+
 Scene parse_root(const toml::table& root, const std::string& path) {
   Scene scene;
   scene.path = path;
@@ -826,6 +865,10 @@ Scene parse_root(const toml::table& root, const std::string& path) {
   const TableReader output = top.table("output", kOutputKeys);
   output.boolean("vtk", scene.write_vtk);
   output.boolean("binary", scene.write_binary);
+
+  // [render]
+  if (top.has("render"))
+    scene.render = parse_render(top.table("render", kRenderKeys), path, scene.write_binary);
   return scene;
 }
 
