@@ -19,8 +19,7 @@
 
 namespace pd {
 
-constexpr int kRenderStackSize = 4;  // short-stack entries per ray
-constexpr int kMaxGlassPieces = 6;   // separate glass collections one primary ray passes through
+constexpr int kMaxGlassPieces = 6;  // separate glass collections one primary ray passes through
 // Pixels are handed out in tiles of one warp (8 x 4), so neighbouring threads trace
 // neighbouring rays. Tile order is a fixed permutation of the image, so that the equal
 // contiguous thread ranges of a static CPU schedule each get a spread of easy and hard tiles.
@@ -39,7 +38,8 @@ struct PixelKernelParams {
   ShadingParams shading;
   int32_t tiles_x = 0;
   int64_t tiles = 0;
-  int64_t tile_step = 1;  // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
+  int64_t tile_step = 1;          // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
+  uint32_t* ray_count = nullptr;  // per pixel: the rays it traced (nearest-hit queries); null: not kept
 };
 
 // The nearest primitive or floor crossing of `ray`: hit.prim >= 0 for a primitive; else
@@ -76,11 +76,14 @@ PD_HD inline bool is_glass(const PixelKernelParams& p, int32_t prim) {
 // Radiance arriving along a primary ray. Glass: the Fresnel-reflected part is looked up with one
 // more ray (glass seen in a reflection shows the sky behind it), the refracted part crosses the
 // collection (glass.h) and goes on to whatever lies behind, up to kMaxGlassPieces collections.
-PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, Ray ray) {
+// `rays` counts the nearest-hit queries: the primary ray, reflection rays and the rays leaving
+// glass collections.
+PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, Ray ray, uint32_t* rays) {
   Vec3 radiance{0, 0, 0};
   real weight = 1;
   for (int piece = 0;; ++piece) {
     real floor_t;
+    ++*rays;
     const Hit hit = nearest(p, ray, &floor_t);
     if (!is_glass(p, hit.prim) || floor_t > 0) return radiance + weight * shade_surface(p, ray, hit, floor_t);
     if (piece == kMaxGlassPieces) return radiance + weight * background_radiance(p.shading, ray.d);
@@ -90,6 +93,7 @@ PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, Ray ray) {
     const Fresnel f = fresnel_dielectric(-dot(ray.d, n), real(1), p.ior);
     const Ray mirror = make_ray(x, reflect(ray.d, n), real(0.01) * p.join_gap, INFINITY);
     real mirror_floor;
+    ++*rays;
     const Hit seen = nearest(p, mirror, &mirror_floor);
     radiance += (weight * f.reflect) * (is_glass(p, seen.prim) && !(mirror_floor > 0)
                                             ? background_radiance(p.shading, mirror.d)
@@ -111,11 +115,13 @@ PD_HD inline void render_pixel(const PixelKernelParams& p, int64_t i, uint8_t* r
   const int32_t y = int32_t(tile / p.tiles_x) * kTileHeight + lane / kTileWidth;
   if (x >= p.camera.width || y >= p.camera.height) return;
   Vec3 sum{0, 0, 0};
+  uint32_t rays = 0;
   for (int k = 0; k < p.spp; ++k) {
     real u, v;
     pixel_sample(k, p.spp, &u, &v);
-    sum += trace_primary(p, camera_ray(p.camera, real(x) + u, real(y) + v));
+    sum += trace_primary(p, camera_ray(p.camera, real(x) + u, real(y) + v), &rays);
   }
+  if (p.ray_count) p.ray_count[int64_t(y) * p.camera.width + x] = rays;
   const real scale = p.exposure / real(p.spp);
   uint8_t* out = rgb + 3 * (int64_t(y) * p.camera.width + x);
   out[0] = linear_to_srgb8(scale * sum.x);
@@ -191,6 +197,8 @@ class RendererImpl final : public Renderer {
 
     // Render and read back.
     DeviceArray<uint8_t, Exec> image(&exec_, 3 * size_t(s.width) * size_t(s.height));
+    DeviceArray<uint32_t, Exec> ray_count(&exec_, s.count_rays ? size_t(s.width) * size_t(s.height) : 0);
+    if (s.count_rays) p.ray_count = ray_count.data();
     const auto t0 = std::chrono::steady_clock::now();
     launch_render_pixels(exec_, p, image.data());
     exec_.flush_stats();  // waits for the device and reports kernel errors
@@ -200,6 +208,11 @@ class RendererImpl final : public Renderer {
     r.image.width = s.width;
     r.image.height = s.height;
     image.download(r.image.rgb);
+    if (s.count_rays) {
+      std::vector<uint32_t> counts;
+      ray_count.download(counts);
+      for (uint32_t c : counts) r.traced_rays += c;
+    }
     return r;
   }
 
