@@ -20,6 +20,7 @@ struct RenderBenchOptions {
   std::string backend = "auto";
   int repeat = 5;      // timed renders after one warm-up; the best is reported
   bool embree = true;  // Embree baseline (when built in)
+  int fragments = 0;   // > 0: also measure the two-level prototype with this many fragments
   // kd-tree build knobs (KdBuildOptions); negative: the default.
   double kd_intersect_cost = -1;
   int kd_max_depth = -1;

@@ -83,6 +83,10 @@ int main(int argc, char** argv) {
   bench_render_cmd->add_option("--repeat", bench_render.repeat, "timed renders (the best counts)")
       ->check(CLI::Range(1, 1000));
   bench_render_cmd->add_flag("!--no-embree", bench_render.embree, "skip the Embree baseline");
+  bench_render_cmd
+      ->add_option("--fragments", bench_render.fragments,
+                   "also time the two-level prototype with about this many moved fragments (0: no)")
+      ->check(CLI::NonNegativeNumber);
   bench_render_cmd->add_option("--kd-intersect-cost", bench_render.kd_intersect_cost,
                                "kd-tree SAH intersection cost (default 80)");
   bench_render_cmd->add_option("--kd-max-depth", bench_render.kd_max_depth,

@@ -1,5 +1,6 @@
-// `perifrac bench-render` on a small synthetic scene: runs on the CPU, prints its figures and
-// writes a results file with them; bad options are refused.
+// `perifrac bench-render` on small synthetic scenes (tets, cubes, turned cubes; with the two-level
+// prototype): runs on the CPU, prints its figures and writes a results file with them; bad options
+// are refused.
 #include "host/app/bench_render.h"
 
 #include <gtest/gtest.h>
@@ -25,6 +26,7 @@ TEST(BenchRender, SmallRunWritesItsResults) {
     o.height = 48;
     o.backend = "cpu";
     o.repeat = 1;
+    o.fragments = 4;
     o.out = out.string();
     ASSERT_EQ(bench_render_command(o), 0) << scene;
   }
@@ -36,7 +38,7 @@ TEST(BenchRender, SmallRunWritesItsResults) {
     text << in.rdbuf();
     for (const char* key :
          {"\"device\"", "\"date\"", "\"git\"", "\"build_seconds\"", "\"serial_build_seconds\"",
-          "\"primary_rays_per_s\"", "\"all_rays_per_s\"", "\"tests_per_ray\""})
+          "\"primary_rays_per_s\"", "\"all_rays_per_s\"", "\"tests_per_ray\"", "\"two_level\""})
       EXPECT_NE(text.str().find(key), std::string::npos) << e.path() << " lacks " << key;
 #if defined(PERIFRAC_HAS_EMBREE)
     EXPECT_NE(text.str().find("\"embree\""), std::string::npos) << e.path();
