@@ -165,7 +165,8 @@ TEST(KdTree, ParallelBuildIsTheSerialTree) {
     ASSERT_EQ(b.nodes.size(), a.nodes.size()) << threads;
     for (size_t k = 0; k < a.nodes.size(); ++k) {
       ASSERT_EQ(b.nodes[k].bits, a.nodes[k].bits) << "node " << k << ", " << threads << " threads";
-      ASSERT_EQ(b.nodes[k].first_prim, a.nodes[k].first_prim) << "node " << k << ", " << threads << " threads";
+      ASSERT_EQ(b.nodes[k].first_prim, a.nodes[k].first_prim)
+          << "node " << k << ", " << threads << " threads";
     }
     EXPECT_EQ(b.prim_index, a.prim_index);
     EXPECT_EQ(b.stats.leaves, a.stats.leaves);
