@@ -1,5 +1,6 @@
 #include "image.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "../host/io/atomic_file.h"
@@ -27,6 +28,18 @@ std::string encode_png(const ImageRGB8& image) {
                               3 * image.width))
     throw std::runtime_error("encode_png: the PNG encoder failed");
   return bytes;
+}
+
+double psnr(const ImageRGB8& a, const ImageRGB8& b) {
+  if (a.width != b.width || a.height != b.height || a.rgb.size() != b.rgb.size())
+    throw std::invalid_argument("psnr: the images differ in size");
+  double sum = 0;
+  for (size_t i = 0; i < a.rgb.size(); ++i) {
+    const double d = double(a.rgb[i]) - double(b.rgb[i]);
+    sum += d * d;
+  }
+  if (sum == 0) return INFINITY;
+  return 10 * std::log10(255.0 * 255.0 * double(a.rgb.size()) / sum);
 }
 
 void write_png(const std::string& path, const ImageRGB8& image) {

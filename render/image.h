@@ -29,6 +29,10 @@ PD_HD inline uint8_t linear_to_srgb8(real v) {
   return uint8_t(s * 255 + real(0.5));
 }
 
+// Peak signal-to-noise ratio of b against a over all channels, 10 log10(255^2 / MSE) in dB;
+// INFINITY for identical images. Throws std::invalid_argument when the sizes differ.
+double psnr(const ImageRGB8& a, const ImageRGB8& b);
+
 // The image as PNG file bytes (stb_image_write, 8-bit RGB). Throws std::runtime_error if the
 // encoder fails and std::invalid_argument if the pixel buffer does not match the size.
 std::string encode_png(const ImageRGB8& image);

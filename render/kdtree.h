@@ -64,6 +64,7 @@ struct KdBuildOptions {
   double empty_bonus = 0.5;
   int max_leaf_prims = 1;  // nodes with at most this many primitives (at least 1) become leaves
   int max_depth = -1;      // -1: round(8 + 1.3 log2 N); always capped at kKdMaxDepth
+  int threads = 0;         // OpenMP threads of the build (subtrees as tasks); 0: all; the tree is the same
 };
 
 struct KdTreeStats {
@@ -72,6 +73,7 @@ struct KdTreeStats {
   int64_t prim_refs = 0;  // entries of prim_index (a primitive counts once per leaf holding it)
   int depth = 0;          // deepest leaf
   int depth_limit = 0;
+  int threads = 1;  // threads the build used
 };
 
 struct KdTree {

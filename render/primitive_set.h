@@ -21,6 +21,9 @@ struct PrimitiveSet {
   std::vector<int32_t> trim_tri_start{0};
   std::vector<Vec3> trim_tri_vertex;
   std::vector<Box> trim_box;
+  std::vector<Vec3> ocube_center;
+  std::vector<real> ocube_half;
+  std::vector<Vec3> ocube_axis;  // 3 per oriented cube
 
   int32_t size() const { return int32_t(kind.size()); }
 
@@ -30,6 +33,16 @@ struct PrimitiveSet {
     slot.push_back(int32_t(cube_center.size()));
     cube_center.push_back(center);
     cube_half.push_back(half);
+    return size() - 1;
+  }
+  // A cube of half side `half` turned so that its local x, y, z axes are axis[0..2] (orthonormal,
+  // e.g. the columns of a rotation matrix).
+  int32_t add_oriented_cube(Vec3 center, real half, const Vec3 axis[3]) {
+    kind.push_back(kPrimOrientedCube);
+    slot.push_back(int32_t(ocube_center.size()));
+    ocube_center.push_back(center);
+    ocube_half.push_back(half);
+    ocube_axis.insert(ocube_axis.end(), axis, axis + 3);
     return size() - 1;
   }
   int32_t add_tet(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
@@ -56,8 +69,16 @@ struct PrimitiveSet {
 
   // A view of the host arrays (host-side tests and the kd-tree build).
   PrimitivesView view() const {
-    PrimitivesView v{size(),           kind.data(),      slot.data(), cube_center.data(),
-                     cube_half.data(), tet_vertex.data()};
+    PrimitivesView v{size(),
+                     kind.data(),
+                     slot.data(),
+                     cube_center.data(),
+                     cube_half.data(),
+                     tet_vertex.data(),
+                     ocube_center.data(),
+                     ocube_half.data(),
+                     ocube_axis.data(),
+                     {}};
     v.trim = {trim_site.data(),         trim_plane_start.data(), trim_plane_normal.data(),
               trim_plane_offset.data(), trim_tri_start.data(),   trim_tri_vertex.data(),
               trim_box.data()};

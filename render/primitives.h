@@ -1,5 +1,6 @@
-// The raytracer's solid primitives, one per particle: axis-aligned cubes, tetrahedra and
-// trimtopes (Voronoi cells trimmed by the object's surface, trimtope.h).
+// The raytracer's solid primitives, one per particle: axis-aligned cubes, oriented cubes (a cube
+// turned by its fragment's rotation), tetrahedra and trimtopes (Voronoi cells trimmed by the
+// object's surface, trimtope.h).
 // Storage is structure-of-arrays (PrimitivesView: plain pointers passed by value to kernels);
 // primitive i is of kind[i] and its data is entry slot[i] of that kind's arrays.
 //
@@ -15,7 +16,7 @@
 
 namespace pd {
 
-enum PrimKind : uint8_t { kPrimCube = 0, kPrimTet = 1, kPrimTrimtope = 2 };
+enum PrimKind : uint8_t { kPrimCube = 0, kPrimTet = 1, kPrimTrimtope = 2, kPrimOrientedCube = 3 };
 
 struct PrimitivesView {
   int32_t n = 0;
@@ -24,6 +25,9 @@ struct PrimitivesView {
   const Vec3* cube_center = nullptr;
   const real* cube_half = nullptr;   // half the side length
   const Vec3* tet_vertex = nullptr;  // 4 consecutive vertices per tetrahedron
+  const Vec3* ocube_center = nullptr;
+  const real* ocube_half = nullptr;
+  const Vec3* ocube_axis = nullptr;  // 3 consecutive unit axes per oriented cube (orthonormal)
   TrimtopesView trim;
 };
 
@@ -54,6 +58,41 @@ PD_HD inline bool intersect_cube(const Ray& r, Vec3 c, real h, SurfaceHit* hit) 
   const real s = (axis_of(r.d, axis) > 0) == exiting ? real(1) : real(-1);
   hit->normal = {axis == 0 ? s : real(0), axis == 1 ? s : real(0), axis == 2 ? s : real(0)};
   return true;
+}
+
+// The ray in the frame of an oriented cube of centre c and orthonormal axes a[0..2]: origin and
+// direction projected on the axes. The frame is orthonormal, so t is the same in both frames.
+PD_HD inline Ray to_cube_frame(const Ray& r, Vec3 c, const Vec3* a) {
+  const Vec3 q = r.o - c;
+  return make_ray({dot(q, a[0]), dot(q, a[1]), dot(q, a[2])},
+                  {dot(r.d, a[0]), dot(r.d, a[1]), dot(r.d, a[2])}, r.tmin, r.tmax);
+}
+
+// Oriented cube: the slab test in its own frame, where it is the box [-h, h]^3; the normal is
+// the crossed face's axis turned back into the world.
+PD_HD inline bool intersect_oriented_cube(const Ray& r, Vec3 c, real h, const Vec3* a, SurfaceHit* hit) {
+  const Ray l = to_cube_frame(r, c, a);
+  real t0, t1;
+  int entry_axis, exit_axis;
+  if (!line_box_interval(l, {-h, -h, -h}, {h, h, h}, &t0, &t1, &entry_axis, &exit_axis)) return false;
+  bool exiting;
+  if (!first_crossing(l, t0, t1, &exiting, &hit->t)) return false;
+  const int axis = exiting ? exit_axis : entry_axis;
+  const real s = (axis_of(l.d, axis) > 0) == exiting ? real(1) : real(-1);
+  hit->normal = s * a[axis];
+  return true;
+}
+
+// Bounds of an oriented cube: per world axis k, h (|a0_k| + |a1_k| + |a2_k|), widened by a
+// millionth of the coordinates' size so that round-off in the frame change cannot put a hit
+// outside the box the kd-tree holds it in.
+PD_HD inline Box oriented_cube_bounds(Vec3 c, real h, const Vec3* a) {
+  const Vec3 e{h * (std::fabs(a[0].x) + std::fabs(a[1].x) + std::fabs(a[2].x)),
+               h * (std::fabs(a[0].y) + std::fabs(a[1].y) + std::fabs(a[2].y)),
+               h * (std::fabs(a[0].z) + std::fabs(a[1].z) + std::fabs(a[2].z))};
+  const real pad = real(1e-6) * (rmax(std::fabs(c.x), rmax(std::fabs(c.y), std::fabs(c.z))) + 2 * h);
+  const Vec3 w{e.x + pad, e.y + pad, e.z + pad};
+  return {c - w, c + w};
 }
 
 // The parameter interval [t0, t1] of the line inside tetrahedron v[0..3] (either orientation)
@@ -103,6 +142,8 @@ PD_HD inline bool intersect_primitive(const PrimitivesView& p, int32_t i, const 
   const int32_t s = p.slot[i];
   if (p.kind[i] == kPrimCube) return intersect_cube(r, p.cube_center[s], p.cube_half[s], hit);
   if (p.kind[i] == kPrimTrimtope) return intersect_trimtope(p.trim, s, r, hit);
+  if (p.kind[i] == kPrimOrientedCube)
+    return intersect_oriented_cube(r, p.ocube_center[s], p.ocube_half[s], p.ocube_axis + 3 * int64_t(s), hit);
   return intersect_tet(r, p.tet_vertex + 4 * int64_t(s), hit);
 }
 
@@ -114,6 +155,8 @@ PD_HD inline Box primitive_bounds(const PrimitivesView& p, int32_t i) {
     return {{c.x - h, c.y - h, c.z - h}, {c.x + h, c.y + h, c.z + h}};
   }
   if (p.kind[i] == kPrimTrimtope) return p.trim.box[s];
+  if (p.kind[i] == kPrimOrientedCube)
+    return oriented_cube_bounds(p.ocube_center[s], p.ocube_half[s], p.ocube_axis + 3 * int64_t(s));
   const Vec3* v = p.tet_vertex + 4 * int64_t(s);
   return {vmin(vmin(v[0], v[1]), vmin(v[2], v[3])), vmax(vmax(v[0], v[1]), vmax(v[2], v[3]))};
 }
@@ -137,6 +180,14 @@ PD_HD inline bool primitive_exit(const PrimitivesView& p, int32_t i, const Ray& 
       return false;
     const real sign = axis_of(r.d, exit_axis) > 0 ? real(1) : real(-1);
     n = {exit_axis == 0 ? sign : real(0), exit_axis == 1 ? sign : real(0), exit_axis == 2 ? sign : real(0)};
+  } else if (p.kind[i] == kPrimOrientedCube) {
+    const Vec3* a = p.ocube_axis + 3 * int64_t(s);
+    const real h = p.ocube_half[s];
+    const Ray l = to_cube_frame(r, p.ocube_center[s], a);
+    int entry_axis, exit_axis;
+    if (!line_box_interval(l, {-h, -h, -h}, {h, h, h}, &t0, &t1, &entry_axis, &exit_axis) || exit_axis < 0)
+      return false;
+    n = (axis_of(l.d, exit_axis) > 0 ? real(1) : real(-1)) * a[exit_axis];
   } else {
     Vec3 n0;
     if (!tet_interval(r, p.tet_vertex + 4 * int64_t(s), &t0, &t1, &n0, &n)) return false;
@@ -156,6 +207,12 @@ PD_HD inline bool primitive_contains(const PrimitivesView& p, int32_t i, Vec3 x)
     return std::fabs(x.x - c.x) < h && std::fabs(x.y - c.y) < h && std::fabs(x.z - c.z) < h;
   }
   if (p.kind[i] == kPrimTrimtope) return trimtope_contains(p.trim, s, x);
+  if (p.kind[i] == kPrimOrientedCube) {
+    const Vec3* a = p.ocube_axis + 3 * int64_t(s);
+    const Vec3 q = x - p.ocube_center[s];
+    const real h = p.ocube_half[s];
+    return std::fabs(dot(q, a[0])) < h && std::fabs(dot(q, a[1])) < h && std::fabs(dot(q, a[2])) < h;
+  }
   const Vec3* v = p.tet_vertex + 4 * int64_t(s);
   for (int f = 0; f < 4; ++f) {
     const Vec3 a = v[(f + 1) & 3], b = v[(f + 2) & 3], c = v[(f + 3) & 3];

@@ -1,18 +1,15 @@
-// `perifrac render DIR`: turn the frames of a run into images. A particle of a Voronoi body
-// becomes its trimtope (DIR/trimtopes.ptm), placed by its fragment's rigid transform
-// (DIR/fragments_NNNNN.pfg) or, without one, moved by the particle's displacement; every other
-// particle becomes a cube of side cbrt(rest volume) at its current position (axis-aligned).
-// Colour by body, tinted by damage; the camera frames the rest configuration.
+// `perifrac render DIR`: turn the frames of a run into images (frame_primitives.h says what each
+// particle becomes) and, when ffmpeg is on PATH, a movie. RunRenderer renders one frame file at a
+// time, so that `perifrac run` can render as it goes (live_render.h).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "../host/fragments/fragments_file.h"
-#include "../host/io/frame.h"
+#include "frame_primitives.h"
 #include "renderer.h"
-#include "voronoi_trimtopes.h"
 
 namespace pd {
 
@@ -29,29 +26,55 @@ struct RenderOptions {
   std::optional<real> floor_y;      // default: bottom of the lowest cube of the rest and last frames
   std::string material = "opaque";  // opaque | glass: the material of every body
   real ior = real(1.5);             // glass index of refraction
+  std::string environment = "sky";  // "sky" (procedural) or the path of a Radiance .hdr map
+  bool movie = true;                // DIR/render/movie.mp4 when ffmpeg is on PATH
+};
+
+// Throws std::invalid_argument naming the option and what is allowed when `o` holds a bad value
+// (image size, spp, field of view, material, ior, eye at look-at).
+void check_render_options(const RenderOptions& o);
+
+// What one rendered frame took.
+struct FrameRenderReport {
+  std::string png;
+  KdTreeStats tree;
+  double render_seconds = 0;
+  int64_t rays = 0;
+};
+
+// The renderer of one run folder: rest.pfr, trimtopes.ptm and tets.ptt are read once, the
+// environment loaded and the backend chosen at construction; each render() call draws one frame
+// file. Throws IoError for unreadable inputs and std::invalid_argument for bad options (an
+// unreadable .hdr included) or frames that do not match the rest file.
+class RunRenderer {
+ public:
+  // `last_frame`: a frame file whose lowest cube sets the default floor (empty: the rest only).
+  RunRenderer(const RenderOptions& options, const std::string& last_frame);
+  ~RunRenderer();
+
+  FrameRenderReport render(const std::string& frame_file);
+  const std::string& image_dir() const { return out_; }
+  std::string device() const;         // "<device name> [<backend>]"
+  std::string scene_summary() const;  // counts of each primitive kind and the material
+  const std::string& backend_note() const { return backend_note_; }
+
+ private:
+  RenderOptions options_;
+  std::string out_, backend_note_;
+  RestData rest_;
+  std::optional<RestTrimtopes> trimtopes_;
+  std::optional<EmbeddedTets> tets_;
+  Camera camera_;
+  RenderSettings settings_;
+  std::unique_ptr<Renderer> renderer_;
+  std::string backend_name_;
 };
 
 // Renders DIR/render/frame_NNNNN.png for every frame file, printing one line per frame with
-// the rays per second. Returns kExitOk; throws IoError for unreadable or missing inputs and
-// std::invalid_argument for bad options or frames that do not match the rest file.
+// the rays per second, then the movie. Returns kExitOk; throws as RunRenderer does.
 int render_frames(const RenderOptions& options);
 
 // The frame files of DIR (frame_*.pfr), in name order.
 std::vector<std::string> list_frame_files(const std::string& dir);
-
-// Linear RGB albedo of a particle of `body` with the given damage in [0, 1].
-Vec3 particle_color(int32_t body, float damage);
-
-// Primitives and albedos of one frame (not yet a kd-tree): the trimtope of each particle listed
-// in `trimtopes` (may be null), placed by the transform of its fragment in `fragments` (may be
-// null; then, or when the frame has no component ids, moved by its displacement); a cube for
-// every other particle. Throws std::invalid_argument when the frame, the trimtopes or the
-// fragments do not match the rest file.
-void frame_primitives(const RestData& rest, const FrameData& frame, PrimitiveSet* prims,
-                      std::vector<Vec3>* albedo, const RestTrimtopes* trimtopes = nullptr,
-                      const FragmentsFrame* fragments = nullptr);
-
-// Bounding box of the cubes of side cbrt(volume) centred at `positions`.
-Box cube_bounds(const std::vector<Vec3>& positions, const std::vector<float>& volume);
 
 }  // namespace pd

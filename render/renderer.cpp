@@ -38,8 +38,8 @@ ShadingParams make_shading_params(const RenderSettings& s) {
   ShadingParams p;
   p.sky = s.sky;
   p.sun = normalize(s.sky.sun_direction);
-  p.sky_sh = sky_sh9(s.sky);
-  p.specular = s.specular;
+  p.sky_sh = s.environment ? s.environment->sh : sky_sh9(s.sky);
+  p.specular = s.environment ? real(0) : s.specular;  // the highlight is the sky's sun
   p.shininess = s.shininess;
   p.floor = s.floor ? 1 : 0;
   p.floor_y = s.floor_y;

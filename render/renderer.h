@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "camera.h"
+#include "environment.h"
 #include "image.h"
 #include "kdtree.h"
 #include "primitive_set.h"
@@ -37,6 +38,9 @@ struct RenderSettings {
   int width = 1280, height = 720;
   int spp = 1;  // samples (primary rays) per pixel, fixed stratified pattern (camera.h)
   Sky sky;
+  // An .hdr environment in place of the sky (light and background; no sun highlight); null: the
+  // sky.
+  std::shared_ptr<const EnvironmentMap> environment;
   real specular = real(0.04), shininess = 60;  // Blinn-Phong
   bool floor = true;
   real floor_y = 0;
@@ -44,6 +48,7 @@ struct RenderSettings {
   real fade_distance = real(100);  // floor fade into the horizon [m]
   real exposure = real(0.85);      // linear scale before the sRGB encoding
   real ior = real(1.5);            // index of refraction of glass elements
+  bool count_rays = false;         // count every traced ray (RenderResult::traced_rays)
 };
 
 // The kernel's shading parameters for `s` (projects the sky to SH).
@@ -53,6 +58,9 @@ struct RenderResult {
   ImageRGB8 image;
   double seconds = 0;  // kernel time (upload and download excluded)
   int64_t rays = 0;    // primary rays traced
+  // With RenderSettings::count_rays: all nearest-hit rays (primary, Fresnel reflections, rays
+  // leaving glass collections); the steps of the walk inside glass are not rays here.
+  int64_t traced_rays = 0;
 };
 
 class Renderer {

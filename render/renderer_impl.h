@@ -19,8 +19,7 @@
 
 namespace pd {
 
-constexpr int kRenderStackSize = 4;  // short-stack entries per ray
-constexpr int kMaxGlassPieces = 6;   // separate glass collections one primary ray passes through
+constexpr int kMaxGlassPieces = 6;  // separate glass collections one primary ray passes through
 // Pixels are handed out in tiles of one warp (8 x 4), so neighbouring threads trace
 // neighbouring rays. Tile order is a fixed permutation of the image, so that the equal
 // contiguous thread ranges of a static CPU schedule each get a spread of easy and hard tiles.
@@ -39,7 +38,8 @@ struct PixelKernelParams {
   ShadingParams shading;
   int32_t tiles_x = 0;
   int64_t tiles = 0;
-  int64_t tile_step = 1;  // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
+  int64_t tile_step = 1;          // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
+  uint32_t* ray_count = nullptr;  // per pixel: the rays it traced (nearest-hit queries); null: not kept
 };
 
 // The nearest primitive or floor crossing of `ray`: hit.prim >= 0 for a primitive; else
@@ -63,7 +63,7 @@ PD_HD inline Hit nearest(const PixelKernelParams& p, const Ray& ray, real* floor
 PD_HD inline Vec3 shade_surface(const PixelKernelParams& p, const Ray& ray, const Hit& hit, real floor_t) {
   const ShadingParams& s = p.shading;
   if (floor_t > 0) return shade_floor(s, ray.o + floor_t * ray.d, ray.d, floor_t);
-  if (hit.prim < 0) return sky_radiance(s.sky, s.sun, ray.d);
+  if (hit.prim < 0) return background_radiance(s, ray.d);
   // Shade the side facing the eye (an eye inside a primitive sees the exit face).
   const Vec3 n = dot(hit.normal, ray.d) > 0 ? -hit.normal : hit.normal;
   return shade_opaque(s, n, -ray.d, p.albedo[hit.prim]);
@@ -76,30 +76,33 @@ PD_HD inline bool is_glass(const PixelKernelParams& p, int32_t prim) {
 // Radiance arriving along a primary ray. Glass: the Fresnel-reflected part is looked up with one
 // more ray (glass seen in a reflection shows the sky behind it), the refracted part crosses the
 // collection (glass.h) and goes on to whatever lies behind, up to kMaxGlassPieces collections.
-PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, Ray ray) {
+// `rays` counts the nearest-hit queries: the primary ray, reflection rays and the rays leaving
+// glass collections.
+PD_HD inline Vec3 trace_primary(const PixelKernelParams& p, Ray ray, uint32_t* rays) {
   Vec3 radiance{0, 0, 0};
   real weight = 1;
   for (int piece = 0;; ++piece) {
     real floor_t;
+    ++*rays;
     const Hit hit = nearest(p, ray, &floor_t);
     if (!is_glass(p, hit.prim) || floor_t > 0) return radiance + weight * shade_surface(p, ray, hit, floor_t);
-    if (piece == kMaxGlassPieces)
-      return radiance + weight * sky_radiance(p.shading.sky, p.shading.sun, ray.d);
+    if (piece == kMaxGlassPieces) return radiance + weight * background_radiance(p.shading, ray.d);
     // Entry into the collection: the face turned towards the ray.
     const Vec3 n = dot(hit.normal, ray.d) > 0 ? -hit.normal : hit.normal;
     const Vec3 x = ray.o + hit.t * ray.d;
     const Fresnel f = fresnel_dielectric(-dot(ray.d, n), real(1), p.ior);
     const Ray mirror = make_ray(x, reflect(ray.d, n), real(0.01) * p.join_gap, INFINITY);
     real mirror_floor;
+    ++*rays;
     const Hit seen = nearest(p, mirror, &mirror_floor);
     radiance += (weight * f.reflect) * (is_glass(p, seen.prim) && !(mirror_floor > 0)
-                                            ? sky_radiance(p.shading.sky, p.shading.sun, mirror.d)
+                                            ? background_radiance(p.shading, mirror.d)
                                             : shade_surface(p, mirror, seen, mirror_floor));
     if (!(f.transmit > 0)) return radiance;
     const GlassTransit g = glass_transit(p.tree, p.prims, x, refract(ray.d, n, real(1), p.ior, f.cos_t),
                                          hit.prim, p.ior, p.join_gap);
     weight *= f.transmit * g.weight;
-    if (g.last < 0) return radiance + weight * sky_radiance(p.shading.sky, p.shading.sun, g.dir);
+    if (g.last < 0) return radiance + weight * background_radiance(p.shading, g.dir);
     ray = make_ray(g.point, g.dir, real(0.01) * p.join_gap, INFINITY);
   }
 }
@@ -112,11 +115,13 @@ PD_HD inline void render_pixel(const PixelKernelParams& p, int64_t i, uint8_t* r
   const int32_t y = int32_t(tile / p.tiles_x) * kTileHeight + lane / kTileWidth;
   if (x >= p.camera.width || y >= p.camera.height) return;
   Vec3 sum{0, 0, 0};
+  uint32_t rays = 0;
   for (int k = 0; k < p.spp; ++k) {
     real u, v;
     pixel_sample(k, p.spp, &u, &v);
-    sum += trace_primary(p, camera_ray(p.camera, real(x) + u, real(y) + v));
+    sum += trace_primary(p, camera_ray(p.camera, real(x) + u, real(y) + v), &rays);
   }
+  if (p.ray_count) p.ray_count[int64_t(y) * p.camera.width + x] = rays;
   const real scale = p.exposure / real(p.spp);
   uint8_t* out = rgb + 3 * (int64_t(y) * p.camera.width + x);
   out[0] = linear_to_srgb8(scale * sum.x);
@@ -158,15 +163,21 @@ class RendererImpl final : public Renderer {
     auto trim_tri_start = upload(ps.trim_tri_start);
     auto trim_tri_vertex = upload(ps.trim_tri_vertex);
     auto trim_box = upload(ps.trim_box);
+    auto ocube_center = upload(ps.ocube_center);
+    auto ocube_half = upload(ps.ocube_half);
+    auto ocube_axis = upload(ps.ocube_axis);
     auto albedo = upload(scene.albedo);
     auto material = upload(scene.material);
+    auto env = upload(s.environment ? s.environment->texel : std::vector<Vec3>());
     auto nodes = upload(scene.tree.nodes);
     auto prim_index = upload(scene.tree.prim_index);
 
     // Kernel parameters.
     PixelKernelParams p;
     p.camera = camera_frame(camera, s.width, s.height);
-    p.prims = {ps.size(), kind.data(), slot.data(), cube_center.data(), cube_half.data(), tet_vertex.data()};
+    p.prims = {
+        ps.size(),         kind.data(),         slot.data(),       cube_center.data(), cube_half.data(),
+        tet_vertex.data(), ocube_center.data(), ocube_half.data(), ocube_axis.data(),  {}};
     p.prims.trim = {trim_site.data(),         trim_plane_start.data(), trim_plane_normal.data(),
                     trim_plane_offset.data(), trim_tri_start.data(),   trim_tri_vertex.data(),
                     trim_box.data()};
@@ -178,6 +189,7 @@ class RendererImpl final : public Renderer {
     p.spp = s.spp;
     p.exposure = s.exposure;
     p.shading = make_shading_params(s);
+    if (s.environment) p.shading.env = {env.data(), s.environment->width, s.environment->height};
     p.tiles_x = (s.width + kTileWidth - 1) / kTileWidth;
     p.tiles = int64_t(p.tiles_x) * ((s.height + kTileHeight - 1) / kTileHeight);
     p.tile_step = std::max<int64_t>(1, std::llround(0.618 * double(p.tiles)));
@@ -185,6 +197,8 @@ class RendererImpl final : public Renderer {
 
     // Render and read back.
     DeviceArray<uint8_t, Exec> image(&exec_, 3 * size_t(s.width) * size_t(s.height));
+    DeviceArray<uint32_t, Exec> ray_count(&exec_, s.count_rays ? size_t(s.width) * size_t(s.height) : 0);
+    if (s.count_rays) p.ray_count = ray_count.data();
     const auto t0 = std::chrono::steady_clock::now();
     launch_render_pixels(exec_, p, image.data());
     exec_.flush_stats();  // waits for the device and reports kernel errors
@@ -194,6 +208,11 @@ class RendererImpl final : public Renderer {
     r.image.width = s.width;
     r.image.height = s.height;
     image.download(r.image.rgb);
+    if (s.count_rays) {
+      std::vector<uint32_t> counts;
+      ray_count.download(counts);
+      for (uint32_t c : counts) r.traced_rays += c;
+    }
     return r;
   }
 

@@ -1,8 +1,10 @@
-// Surface shading (Levine et al. 2014, section 5): diffuse light from the sky's 9-coefficient
-// SH irradiance (sh.h), a normalised Blinn-Phong specular highlight from the sun, opaque
-// materials, and a floor plane with a procedural wood texture. No shadows yet.
+// Surface shading (Levine et al. 2014, section 5): diffuse light from the environment's
+// 9-coefficient SH irradiance (sh.h; the procedural sky or an .hdr map), a normalised Blinn-Phong
+// specular highlight from the sky's sun, opaque materials, and a floor plane with a procedural
+// wood texture. No shadows.
 #pragma once
 
+#include "environment.h"
 #include "sky.h"
 
 namespace pd {
@@ -12,7 +14,8 @@ namespace pd {
 struct ShadingParams {
   Sky sky;
   Vec3 sun{0, 1, 0};           // normalised sun direction
-  Sh9 sky_sh;                  // SH coefficients of the sky radiance
+  Sh9 sky_sh;                  // SH coefficients of the environment's radiance
+  EnvironmentView env;         // an .hdr map in place of the sky; texel == nullptr: the sky
   real specular = real(0.04);  // Blinn-Phong k_s
   real shininess = 60;         // Blinn-Phong exponent m
   uint8_t floor = 1;           // draw the floor plane y = floor_y
@@ -41,6 +44,19 @@ PD_HD inline Vec3 shade_opaque(const ShadingParams& p, Vec3 normal, Vec3 view, V
     out += (f * n_dot_l) * p.sky.sun_irradiance;
   }
   return out;
+}
+
+// What a ray leaving the scene along unit direction w sees: the .hdr map, else the sky.
+PD_HD inline Vec3 background_radiance(const ShadingParams& p, Vec3 w) {
+  if (p.env.texel) return environment_radiance(p.env, w);
+  return sky_radiance(p.sky, p.sun, w);
+}
+
+// The colour the floor fades into far away along `dir`: the background at the horizon.
+PD_HD inline Vec3 horizon_radiance(const ShadingParams& p, Vec3 dir) {
+  if (!p.env.texel) return p.sky.horizon;
+  const real l = std::sqrt(dir.x * dir.x + dir.z * dir.z);
+  return environment_radiance(p.env, l > 0 ? Vec3{dir.x / l, 0, dir.z / l} : Vec3{1, 0, 0});
 }
 
 // A 32-bit integer hash (Wang / Jenkins style mixing) mapped to [0, 1).
@@ -94,7 +110,7 @@ PD_HD inline Vec3 shade_floor(const ShadingParams& sp, Vec3 p, Vec3 dir, real t)
   const Vec3 normal = dir.y < 0 ? up : -up;
   const Vec3 lit = shade_opaque(sp, normal, -dir, wood_albedo(p.x, p.z, sp.plank_width));
   const real fade = 1 - std::exp(-t / sp.fade_distance);
-  return lerp(lit, sp.sky.horizon, fade);
+  return lerp(lit, horizon_radiance(sp, dir), fade);
 }
 
 }  // namespace pd

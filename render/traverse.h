@@ -16,6 +16,8 @@
 
 namespace pd {
 
+constexpr int kRenderStackSize = 4;  // short-stack entries per ray in the renderer
+
 struct Hit {
   int32_t prim = -1;  // -1: no hit
   real t = 0;

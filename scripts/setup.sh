@@ -15,8 +15,10 @@ needs=(
   "hdr:gtest/gtest.h:libgtest-dev" "hdr:eigen3/Eigen/Dense:libeigen3-dev" "hdr:toml++/toml.h:libtomlplusplus-dev"
   "hdr:CLI/CLI.hpp:libcli11-dev" "hdr:stb/stb_image_write.h:libstb-dev"
 )
-# Optional: tetrahedral particles run the TetGen program (AGPL, kept as a separate program).
-optional=("cmd:tetgen:tetgen")
+# Optional: tetrahedral particles run the TetGen program (AGPL, kept as a separate program);
+# ffmpeg turns rendered frames into movie.mp4; Embree (Apache-2.0) is the renderer's test oracle
+# and benchmark baseline, built only when present.
+optional=("cmd:tetgen:tetgen" "cmd:ffmpeg:ffmpeg" "hdr:embree3/rtcore.h:libembree-dev")
 have() {
   local kind=$1 name=$2
   if [ "$kind" = cmd ]; then command -v "$name" >/dev/null 2>&1; return; fi
@@ -44,7 +46,7 @@ for need in "${optional[@]}"; do
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "$package" >/dev/null 2>&1 ||
-    echo "setup: optional $package not installed: scenes that need it will say so"
+    echo "setup: optional $package not installed: what needs it will say so or skip"
 done
 
 # Preset: CUDA only where a GPU answers (a CUDA build without a device would only skip).

@@ -10,6 +10,8 @@
 #include <optional>
 #include <sstream>
 
+#include "../../render/live_render.h"
+#include "../../render/tet_file.h"
 #include "../../render/trimtope_file.h"
 #include "../engine.h"
 #include "../fragments/fragment_output.h"
@@ -203,6 +205,12 @@ int run_command(const RunOptions& options) {
       append(trimtopes, rest_trimtopes(v.geometry, v.first_particle));
     write_trimtopes_file(out + "/" + kTrimtopesFileName, trimtopes);
   }
+  // The tet bodies' tetrahedra in rest space, for `perifrac render`.
+  if (scene.write_binary && !setup.embedded.empty())
+    write_tets_file(out + "/" + kTetsFileName, setup.embedded);
+  // [render]: frames rendered as the run writes them.
+  std::unique_ptr<LiveRender> live;
+  if (scene.render) live = std::make_unique<LiveRender>(scene, out, backend_name(backend));
   PvdSeries series(out, "particles");
   BondLists bonds;
   engine->read_bonds(bonds);
@@ -222,6 +230,7 @@ int run_command(const RunOptions& options) {
       write_vtu(out + "/" + name, f);
       series.add(f.time, name);
     }
+    if (live) live->frame(frame);
   };
 
   // A fresh run writes frame 0; a resumed one restores the state after its checkpointed frame.
@@ -345,6 +354,7 @@ int run_command(const RunOptions& options) {
   const int64_t steps = (scene.frames - first_frame + 1) * scene.steps_per_frame;
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(backend));
   print_kernel_table(std::cout, kernel_rows(engine->stats(), "pd/", fam.bonds, steps));
+  if (live) live->finish();
   fragments.write_meshes();
   std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", out.c_str(),
               (long long)scene.frames + 1, fragments.components().count());

@@ -6,6 +6,7 @@
 #include "host/app/bench.h"
 #include "host/app/bench_fragments.h"
 #include "host/app/bench_geometry.h"
+#include "host/app/bench_render.h"
 #include "host/app/checkpoint.h"
 #include "host/app/compare.h"
 #include "host/app/profile.h"
@@ -68,6 +69,35 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--steps", bench.steps, "timed steps");
   bench_cmd->add_option("--warmup", bench.warmup, "untimed steps first");
   bench_cmd->add_option("--out", bench.out, "results folder");
+
+  RenderBenchOptions bench_render;
+  CLI::App* bench_render_cmd = app.add_subcommand(
+      "bench-render", "time the raytracer on a synthetic scene (kd-tree build, rays/s, Embree baseline)");
+  bench_render_cmd->add_option("--scene", bench_render.scene, "slab (tetrahedra) | cubes | turned-cubes")
+      ->check(CLI::IsMember({"slab", "cubes", "turned-cubes"}));
+  bench_render_cmd->add_option("--count", bench_render.count, "primitives wanted")
+      ->check(CLI::PositiveNumber);
+  bench_render_cmd->add_option("--width", bench_render.width, "image width")->check(CLI::Range(16, 16384));
+  bench_render_cmd->add_option("--height", bench_render.height, "image height")->check(CLI::Range(16, 16384));
+  bench_render_cmd->add_option("--spp", bench_render.spp, "samples per pixel")->check(CLI::Range(1, 1024));
+  bench_render_cmd->add_option("--material", bench_render.material, "opaque | glass")
+      ->check(CLI::IsMember({"opaque", "glass"}));
+  bench_render_cmd->add_option("--backend", bench_render.backend, "auto | cpu | cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  bench_render_cmd->add_option("--repeat", bench_render.repeat, "timed renders (the best counts)")
+      ->check(CLI::Range(1, 1000));
+  bench_render_cmd->add_flag("!--no-embree", bench_render.embree, "skip the Embree baseline");
+  bench_render_cmd
+      ->add_option("--fragments", bench_render.fragments,
+                   "also time the two-level prototype with about this many moved fragments (0: no)")
+      ->check(CLI::NonNegativeNumber);
+  bench_render_cmd->add_option("--kd-intersect-cost", bench_render.kd_intersect_cost,
+                               "kd-tree SAH intersection cost (default 80)");
+  bench_render_cmd->add_option("--kd-max-depth", bench_render.kd_max_depth,
+                               "kd-tree depth limit (default round(8 + 1.3 log2 N))");
+  bench_render_cmd->add_option("--kd-leaf-prims", bench_render.kd_leaf_prims,
+                               "nodes with at most this many primitives become leaves (default 1)");
+  bench_render_cmd->add_option("--out", bench_render.out, "results folder");
 
   RenderOptions render;
   ProfileOptions profile;
@@ -151,6 +181,22 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--width", render.width, "image width")->check(CLI::Range(16, 16384));
   render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(16, 16384));
   render_cmd->add_option("--spp", render.spp, "samples per pixel")->check(CLI::Range(1, 1024));
+  std::vector<double> eye, look_at;
+  render_cmd->add_option("--eye", eye, "camera position x,y,z (default: a 3/4 view of the rest box)")
+      ->delimiter(',')
+      ->expected(3);
+  render_cmd
+      ->add_option("--look-at", look_at, "point the camera looks at x,y,z (default: the rest box centre)")
+      ->delimiter(',')
+      ->expected(3);
+  render_cmd->add_option("--vfov", render.vfov_degrees, "vertical field of view in degrees")
+      ->check(CLI::Range(0.1, 179.9));
+  render_cmd->add_option("--material", render.material, "opaque | glass: the material of every body")
+      ->check(CLI::IsMember({"opaque", "glass"}));
+  render_cmd->add_option("--ior", render.ior, "glass index of refraction")->check(CLI::Range(1.0, 4.0));
+  render_cmd->add_option("--environment", render.environment,
+                         "sky (procedural) or a Radiance .hdr latitude-longitude map");
+  render_cmd->add_flag("!--no-movie", render.movie, "no movie.mp4 even when ffmpeg is on PATH");
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand("compare", "compare two output folders frame by frame");
@@ -173,10 +219,15 @@ int main(int argc, char** argv) {
     if (*bench_cmd) return bench_command(bench);
     if (*geometry_cmd) return bench_geometry_command(geometry);
     if (*fragments_cmd) return bench_fragments_command(fragments);
+    if (*bench_render_cmd) return bench_render_command(bench_render);
     if (*profile_cmd) return profile_command(profile);
     if (*validate_cmd) return validate_command(validate);
     if (*compare_cmd) return compare_command(compare);
-    if (*render_cmd) return render_frames(render);
+    if (*render_cmd) {
+      if (eye.size() == 3) render.eye = Vec3{real(eye[0]), real(eye[1]), real(eye[2])};
+      if (look_at.size() == 3) render.look_at = Vec3{real(look_at[0]), real(look_at[1]), real(look_at[2])};
+      return render_frames(render);
+    }
     if (*info_cmd) {
       std::string why;
       const bool gpu = cuda_device_available(&why);

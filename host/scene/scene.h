@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "scene_render.h"
+
 namespace pd {
 
 using Vec3d = std::array<double, 3>;
@@ -179,6 +181,8 @@ struct Scene {
   // [output]
   bool write_vtk = true;
   bool write_binary = true;
+
+  std::optional<SceneRender> render;  // [render]: render frames while running
 };
 
 // Reads and validates a scene file. Throws SceneError for every user mistake (unreadable

@@ -469,7 +469,7 @@ class TableReader {
 // ---- Sections ----------------------------------------------------------------------------------
 
 const Keys kTopKeys = {"description", "simulation",  "world",  "contact", "materials", "bodies",
-                       "anchors",     "projectiles", "cracks", "regions", "output"};
+                       "anchors",     "projectiles", "cracks", "regions", "output",    "render"};
 const Keys kSimulationKeys = {"dt", "steps_per_frame", "frames", "seed"};
 const Keys kWorldKeys = {"gravity", "floor", "floor_height", "restitution"};
 const Keys kContactKeys = {"enabled", "stiffness"};
@@ -537,6 +537,8 @@ const Keys kRegionShapes = {"box", "sphere", "mesh"};
 const Keys kRegionShapeKeys[] = {
     {"box_min", "box_max"}, {"center", "radius"}, {"mesh", "scale", "translate"}};
 const Keys kOutputKeys = {"vtk", "binary"};
+const Keys kRenderKeys = {"eye", "look_at",  "vfov", "width",       "height",
+                          "spp", "material", "ior",  "environment", "every"};
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
 constexpr double kMaxHorizon = 12;  // delta / lambda; beyond this the bond families explode
@@ -947,6 +949,37 @@ SceneRegion parse_region(const TableReader& r, const std::vector<SceneBody>& bod
   return g;
 }
 
+// [render]: what `perifrac run` renders as it goes. It reads the binary frames, so output.binary
+// must stay on.
+SceneRender parse_render(const TableReader& r, const std::string& file, bool write_binary) {
+  SceneRender s;
+  std::array<double, 3> v{};
+  if (r.vec3("eye", v)) s.eye = v;
+  if (r.vec3("look_at", v)) s.look_at = v;
+  if (s.eye && s.look_at && *s.eye == *s.look_at)
+    r.fail("look_at", "equals eye", "a point other than the eye");
+  r.number("vfov", s.vfov, in_open(0, 180));
+  // Integers with an upper bound too.
+  auto whole = [&](std::string_view key, int64_t& value, int64_t lo, int64_t hi) {
+    if (r.integer(key, value, lo) && value > hi)
+      r.fail(key, std::to_string(value) + " is out of range",
+             "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  };
+  whole("width", s.width, 16, 16384);
+  whole("height", s.height, 16, 16384);
+  whole("spp", s.spp, 1, 1024);
+  r.string("material", s.material, {"opaque", "glass"});
+  r.number("ior", s.ior, in_closed(1, 4));
+  r.string("environment", s.environment);
+  if (s.environment.empty())
+    r.fail("environment", "the path is empty", "\"sky\" or the path of a Radiance .hdr file");
+  if (s.environment != "sky") s.environment_path = resolve_path(file, s.environment);
+  r.integer("every", s.every, 1);
+  if (!write_binary)
+    r.fail("", "needs the binary frames it renders", "output.binary = true with a [render] block");
+  return s;
+}
+
 Scene parse_root(const toml::table& root, const std::string& path) {
   Scene scene;
   scene.path = path;
@@ -1021,6 +1054,10 @@ Scene parse_root(const toml::table& root, const std::string& path) {
   const TableReader output = top.table("output", kOutputKeys);
   output.boolean("vtk", scene.write_vtk);
   output.boolean("binary", scene.write_binary);
+
+  // [render]
+  if (top.has("render"))
+    scene.render = parse_render(top.table("render", kRenderKeys), path, scene.write_binary);
   return scene;
 }
 

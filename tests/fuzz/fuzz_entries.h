@@ -103,6 +103,19 @@ inline void require_valid_scene(const Scene& s) {
     require(finite3(p.center) && finite3(p.velocity) && std::isfinite(p.radius) && p.radius > 0 &&
                 std::isfinite(p.strength) && p.strength >= 0,
             "projectile");
+  if (s.render) {
+    const SceneRender& r = *s.render;
+    require((!r.eye || finite3(*r.eye)) && (!r.look_at || finite3(*r.look_at)), "render camera");
+    require(!(r.eye && r.look_at && *r.eye == *r.look_at), "render eye at look_at");
+    require(r.vfov > 0 && r.vfov < 180, "render vfov");
+    require(r.width >= 16 && r.width <= 16384 && r.height >= 16 && r.height <= 16384, "render size");
+    require(r.spp >= 1 && r.spp <= 1024 && r.every >= 1, "render spp, every");
+    require(r.material == "opaque" || r.material == "glass", "render material");
+    require(r.ior >= 1 && r.ior <= 4, "render ior");
+    require(!r.environment.empty() && (r.environment == "sky") == r.environment_path.empty(),
+            "render environment");
+    require(s.write_binary, "render without binary frames");
+  }
 }
 
 // Parses `bytes` as a scene file. Returns "" for a valid scene, else the clean error's message.

@@ -1,6 +1,7 @@
 // Test scenes and the brute-force nearest-hit oracle shared by the render suites.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "host/random.h"
@@ -35,6 +36,32 @@ inline Vec3 random_direction(Random& rng) {
     const Vec3 v = uniform_point(rng, -1, 1);
     const real l = length(v);
     if (l > real(0.1) && l <= 1) return (1 / l) * v;
+  }
+}
+
+// The columns of a uniformly random rotation (from a random unit quaternion): orthonormal axes.
+inline void random_axes(Random& rng, Vec3 axis[3]) {
+  double q[4], n = 0;
+  do {
+    n = 0;
+    for (double& c : q) {
+      c = 2 * rng.uniform() - 1;
+      n += c * c;
+    }
+  } while (n > 1 || n < 0.01);
+  const double w = q[0] / std::sqrt(n), x = q[1] / std::sqrt(n), y = q[2] / std::sqrt(n),
+               z = q[3] / std::sqrt(n);
+  axis[0] = {real(1 - 2 * (y * y + z * z)), real(2 * (x * y + w * z)), real(2 * (x * z - w * y))};
+  axis[1] = {real(2 * (x * y - w * z)), real(1 - 2 * (x * x + z * z)), real(2 * (y * z + w * x))};
+  axis[2] = {real(2 * (x * z + w * y)), real(2 * (y * z - w * x)), real(1 - 2 * (x * x + y * y))};
+}
+
+// Randomly turned cubes of assorted sizes in [-1, 1]^3.
+inline void add_random_oriented_cubes(PrimitiveSet& s, Random& rng, int count) {
+  for (int i = 0; i < count; ++i) {
+    Vec3 axis[3];
+    random_axes(rng, axis);
+    s.add_oriented_cube(uniform_point(rng, -1, 1), uniform(rng, 0.01, 0.15), axis);
   }
 }
 
@@ -94,6 +121,18 @@ inline PrimitiveSet random_trimtope_scene(uint64_t seed, int trimtopes, int cube
   PrimitiveSet s = random_scene(seed + 1000, cubes, tets);
   for (int i = 0; i < trimtopes; ++i)
     add_random_trimtope(s, rng, uniform_point(rng, -1, 1), uniform(rng, 0.03, 0.15), rng.uniform() < 0.2);
+  return s;
+}
+
+// An nx x ny x nz block of face-adjacent cubes of side `spacing` turned as one piece by `axis`
+// about the origin (the faces of neighbours coincide up to round-off).
+inline PrimitiveSet oriented_lattice_scene(int nx, int ny, int nz, real spacing, const Vec3 axis[3]) {
+  PrimitiveSet s;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        s.add_oriented_cube((i * spacing) * axis[0] + (j * spacing) * axis[1] + (k * spacing) * axis[2],
+                            spacing / 2, axis);
   return s;
 }
 

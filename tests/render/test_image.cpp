@@ -82,5 +82,20 @@ TEST(Png, WritesTheFileAndRejectsMismatchedBuffers) {
   EXPECT_THROW(encode_png(bad), std::invalid_argument);
 }
 
+TEST(Psnr, KnownValues) {
+  const ImageRGB8 a = test_image(8, 4);
+  EXPECT_EQ(psnr(a, a), INFINITY);
+  // Every channel off by 1: MSE 1, PSNR 20 log10(255) = 48.13 dB.
+  ImageRGB8 b = a;
+  for (uint8_t& v : b.rgb) v = v == 255 ? 254 : uint8_t(v + 1);
+  EXPECT_NEAR(psnr(a, b), 20 * std::log10(255.0), 1e-9);
+  // One channel of 96 off by 255: MSE 255^2 / 96, PSNR 10 log10(96) = 19.82 dB.
+  ImageRGB8 c = a;
+  ASSERT_EQ(c.rgb[0], 0);
+  c.rgb[0] = 255;
+  EXPECT_NEAR(psnr(a, c), 10 * std::log10(96.0), 1e-9);
+  EXPECT_THROW(psnr(a, test_image(4, 8)), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pd

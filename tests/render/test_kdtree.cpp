@@ -149,5 +149,31 @@ TEST(KdTree, SahVisitsFewerNodesThanMedianSplitOnClusteredScene) {
   EXPECT_LT(double(sah.nodes), 0.8 * double(med.nodes)) << sah.nodes << " vs " << med.nodes;
 }
 
+// The parallel build (subtrees and per-axis work as OpenMP tasks) gives the serial build's tree
+// node for node, whatever the thread count.
+TEST(KdTree, ParallelBuildIsTheSerialTree) {
+  const PrimitiveSet scene = testing::random_scene(11, 20000, 10000);
+  KdBuildOptions serial;
+  serial.threads = 1;
+  const KdTree a = build_kdtree(scene.bounds(), serial);
+  EXPECT_EQ(a.stats.threads, 1);
+  for (int threads : {2, 3, 8}) {
+    KdBuildOptions o;
+    o.threads = threads;
+    const KdTree b = build_kdtree(scene.bounds(), o);
+    EXPECT_EQ(b.stats.threads, threads);
+    ASSERT_EQ(b.nodes.size(), a.nodes.size()) << threads;
+    for (size_t k = 0; k < a.nodes.size(); ++k) {
+      ASSERT_EQ(b.nodes[k].bits, a.nodes[k].bits) << "node " << k << ", " << threads << " threads";
+      ASSERT_EQ(b.nodes[k].first_prim, a.nodes[k].first_prim)
+          << "node " << k << ", " << threads << " threads";
+    }
+    EXPECT_EQ(b.prim_index, a.prim_index);
+    EXPECT_EQ(b.stats.leaves, a.stats.leaves);
+    EXPECT_EQ(b.stats.empty_leaves, a.stats.empty_leaves);
+    EXPECT_EQ(b.stats.depth, a.stats.depth);
+  }
+}
+
 }  // namespace
 }  // namespace pd

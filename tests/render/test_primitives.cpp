@@ -1,10 +1,10 @@
-// Cube and tetrahedron intersection against analytic cases.
+// Cube, oriented cube and tetrahedron intersection against analytic cases.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "host/random.h"
-#include "render/primitives.h"
+#include "render/primitive_set.h"
 
 namespace pd {
 namespace {
@@ -120,6 +120,51 @@ TEST(TetIntersection, MissesAndVertexOrderDoesNotMatter) {
   expect_vec(b.normal, a.normal);
 }
 
+// A cube turned by 30 degrees about y: axes x' = (c, 0, -s), y' = y, z' = (s, 0, c).
+const real kC = std::cos(real(0.5235987755982988)), kS = std::sin(real(0.5235987755982988));
+const Vec3 kTurned[3] = {{kC, 0, -kS}, {0, 1, 0}, {kS, 0, kC}};
+
+TEST(OrientedCubeIntersection, EntryFaceIsTheTurnedFace) {
+  SurfaceHit h;
+  // Along -x' from outside: enters through the +x' face at distance 5 - 1.
+  const Vec3 c{1, 2, 3};
+  ASSERT_TRUE(intersect_oriented_cube(ray(c + 5 * kTurned[0], -kTurned[0]), c, 1, kTurned, &h));
+  EXPECT_NEAR(h.t, 4, 1e-5);
+  expect_vec(h.normal, kTurned[0]);
+  // Down the y axis: the top face, normal +y.
+  ASSERT_TRUE(intersect_oriented_cube(ray(c + Vec3{real(0.2), 4, 0}, {0, -1, 0}), c, 1, kTurned, &h));
+  EXPECT_NEAR(h.t, 3, 1e-5);
+  expect_vec(h.normal, {0, 1, 0});
+  // Along world x through the centre: the slanted face -x' at distance 1 / cos 30 from the centre.
+  ASSERT_TRUE(intersect_oriented_cube(ray(c - Vec3{5, 0, 0}, {1, 0, 0}), c, 1, kTurned, &h));
+  EXPECT_NEAR(h.t, 5 - 1 / kC, 1e-5);
+  expect_vec(h.normal, -kTurned[0]);
+}
+
+TEST(OrientedCubeIntersection, InsideExitContainmentAndBounds) {
+  SurfaceHit h;
+  PrimitiveSet s;
+  s.add_oriented_cube({0, 0, 0}, 1, kTurned);
+  const PrimitivesView v = s.view();
+  // From the centre along z': the exit face +z' at t = 1, for intersect and primitive_exit alike.
+  ASSERT_TRUE(intersect_primitive(v, 0, ray(kOrigin, kTurned[2]), &h));
+  EXPECT_NEAR(h.t, 1, 1e-6);
+  expect_vec(h.normal, kTurned[2]);
+  ASSERT_TRUE(primitive_exit(v, 0, ray(kOrigin, kTurned[2]), &h));
+  EXPECT_NEAR(h.t, 1, 1e-6);
+  expect_vec(h.normal, kTurned[2]);
+  // (1.1, 0, 0) lies outside the axis-aligned unit cube but inside the turned one (|x'| = 0.95);
+  // (0.9, 0, 0.9) inside the axis-aligned one, outside the turned one (z' = 1.23).
+  EXPECT_TRUE(primitive_contains(v, 0, {real(1.1), 0, 0}));
+  EXPECT_FALSE(primitive_contains(v, 0, {real(0.9), 0, real(0.9)}));
+  // Bounds: the turned cube reaches cos 30 + sin 30 along x and z, 1 along y.
+  const Box b = primitive_bounds(v, 0);
+  EXPECT_NEAR(b.hi.x, kC + kS, 1e-5);
+  EXPECT_NEAR(b.lo.z, -(kC + kS), 1e-5);
+  EXPECT_NEAR(b.hi.y, 1, 1e-5);
+  EXPECT_GE(b.hi.x, kC + kS);  // never narrower than the exact extent
+}
+
 // Random rays: a reported hit lies on the surface, and the normal's face is the one crossed.
 TEST(PrimitiveIntersection, RandomHitsLieOnTheSurface) {
   Random rng(3);
@@ -134,6 +179,13 @@ TEST(PrimitiveIntersection, RandomHitsLieOnTheSurface) {
       const real linf = rmax(std::fabs(p.x), rmax(std::fabs(p.y), std::fabs(p.z)));
       EXPECT_NEAR(linf, real(0.8), 1e-5);
       EXPECT_NEAR(dot(p, h.normal), real(0.8), 1e-5);  // on the face the normal names
+    }
+    if (intersect_oriented_cube(r, {real(0.1), real(-0.2), real(0.3)}, real(0.8), kTurned, &h)) {
+      ++hits;
+      const Vec3 p = r.o + h.t * r.d - Vec3{real(0.1), real(-0.2), real(0.3)};
+      const Vec3 q{dot(p, kTurned[0]), dot(p, kTurned[1]), dot(p, kTurned[2])};
+      EXPECT_NEAR(rmax(std::fabs(q.x), rmax(std::fabs(q.y), std::fabs(q.z))), real(0.8), 1e-5);
+      EXPECT_NEAR(dot(p, h.normal), real(0.8), 1e-5);
     }
     if (intersect_tet(r, kTet, &h)) {
       ++hits;

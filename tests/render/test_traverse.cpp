@@ -143,6 +143,23 @@ TEST(ShortStackTraversal, MatchesBruteForceOnRandomTrimtopeScenes) {
   EXPECT_GT(check_scene(testing::random_trimtope_scene(6, 500, 300, 300), 106, 300), 0);
 }
 
+TEST(ShortStackTraversal, MatchesBruteForceOnRandomOrientedCubes) {
+  Random rng(8);
+  PrimitiveSet alone;
+  testing::add_random_oriented_cubes(alone, rng, 700);
+  EXPECT_GT(check_scene(alone, 107, 400), 0);
+  PrimitiveSet mixed = testing::random_scene(9, 300, 300);
+  testing::add_random_oriented_cubes(mixed, rng, 400);
+  EXPECT_GT(check_scene(mixed, 108, 300), 0);
+}
+
+TEST(ShortStackTraversal, MatchesBruteForceOnATurnedLattice) {
+  Random rng(10);
+  Vec3 axis[3];
+  testing::random_axes(rng, axis);
+  check_scene(testing::oriented_lattice_scene(10, 8, 7, real(0.125), axis), 109, 400);
+}
+
 TEST(ShortStackTraversal, FullStackVisitsNoMoreNodesThanRestarts) {
   const PrimitiveSet scene = testing::random_scene(3, 2000, 0);
   const KdTree tree = build_kdtree(scene.bounds());

@@ -1,0 +1,24 @@
+// The [render] block of a scene: `perifrac run` renders frames as it goes (render/live_render.h).
+// Parsed by parse_render in scene_loader.cpp; documented in docs/scene-reference.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace pd {
+
+struct SceneRender {
+  std::optional<std::array<double, 3>> eye, look_at;  // default: a 3/4 view framing the rest box
+  double vfov = 35;                                   // vertical field of view [degrees], in (0, 180)
+  int64_t width = 1280, height = 720;                 // [pixels], in [16, 16384]
+  int64_t spp = 4;                                    // samples per pixel, in [1, 1024]
+  std::string material = "opaque";                    // "opaque" | "glass": every body
+  double ior = 1.5;                                   // glass index of refraction, in [1, 4]
+  std::string environment = "sky";                    // "sky" or a Radiance .hdr file, as written
+  std::string environment_path;  // the .hdr path resolved against the scene file's folder
+  int64_t every = 1;             // render every N-th output frame (frame 0 included), >= 1
+};
+
+}  // namespace pd

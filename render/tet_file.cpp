@@ -1,0 +1,97 @@
+#include "tet_file.h"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "../host/io/atomic_file.h"
+
+namespace pd {
+
+namespace {
+
+constexpr size_t kHeaderBytes = 32;
+
+template <class T>
+void put(std::string& out, T v) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  out.append(b, sizeof(T));
+}
+
+// Reads little-endian values from the file's bytes; every shortfall is an IoError.
+class Reader {
+ public:
+  Reader(const std::string& path, std::string bytes) : path_(path), bytes_(std::move(bytes)) {}
+  template <class T>
+  T get() {
+    if (bytes_.size() - at_ < sizeof(T)) fail("truncated");
+    T v;
+    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  size_t left() const { return bytes_.size() - at_; }
+  [[noreturn]] void fail(const std::string& why) const { throw io_error("read", path_, why); }
+
+ private:
+  std::string path_;
+  std::string bytes_;
+  size_t at_ = 0;
+};
+
+}  // namespace
+
+void write_tets_file(const std::string& path, const EmbeddedTets& t) {
+  const uint64_t vertices = t.vertices.size(), tets = t.tets.size();
+  std::string out;
+  out.reserve(kHeaderBytes + vertices * 12 + tets * 20);
+  out.append(kTetsMagic, 8);
+  put(out, kTetsVersion);
+  put(out, uint32_t(0));
+  put(out, vertices);
+  put(out, tets);
+  for (const Vec3d& v : t.vertices)
+    for (double x : v) put(out, float(x));
+  for (const auto& c : t.tets)
+    for (int32_t k : c) put(out, k);
+  for (int32_t p : t.particle) put(out, p);
+  write_file_atomic(path, out);
+}
+
+EmbeddedTets read_tets_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw io_error("read", path, "cannot open");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Reader r(path, std::move(bytes));
+  char magic[8];
+  for (char& c : magic) c = r.get<char>();
+  if (std::memcmp(magic, kTetsMagic, 8) != 0) r.fail("not a tetrahedra file (wrong magic)");
+  const uint32_t version = r.get<uint32_t>();
+  if (version != kTetsVersion) r.fail("unknown version " + std::to_string(version));
+  r.get<uint32_t>();
+  const uint64_t vertices = r.get<uint64_t>(), tets = r.get<uint64_t>();
+  // The counts against the file length before anything is allocated.
+  const long double expect = 12.0L * vertices + 20.0L * tets;
+  if (vertices > (uint64_t(1) << 31) || tets > (uint64_t(1) << 31) || expect != (long double)r.left())
+    r.fail("counts (" + std::to_string(vertices) + " vertices, " + std::to_string(tets) +
+           " tetrahedra) do not match the file length");
+  EmbeddedTets t;
+  t.vertices.resize(vertices);
+  for (Vec3d& v : t.vertices)
+    for (double& x : v) x = r.get<float>();
+  t.tets.resize(tets);
+  for (auto& c : t.tets)
+    for (int32_t& k : c) {
+      k = r.get<int32_t>();
+      if (k < 0 || uint64_t(k) >= vertices) r.fail("vertex index " + std::to_string(k) + " out of range");
+    }
+  t.particle.resize(tets);
+  for (int32_t& p : t.particle) {
+    p = r.get<int32_t>();
+    if (p < 0) r.fail("negative particle index");
+  }
+  return t;
+}
+
+}  // namespace pd
