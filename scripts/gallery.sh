@@ -85,6 +85,33 @@ link_frame() {
   done
 }
 
+# The index: rows of this run, and of entries not run this time as the index had them.
+write_index() {
+  local line key entry name
+  if [[ -f $DOCS/README.md ]]; then
+    while IFS= read -r line; do
+      key=$(echo "$line" | cut -d'|' -f2 | tr -d ' ')
+      [[ -n $key && -z ${rows[$key]+x} ]] && rows[$key]=$line
+    done < <(grep '^| [a-z]' "$DOCS/README.md" | grep -v '^| entry ')
+  fi
+  {
+    echo "# Gallery"
+    echo
+    echo "Every shipped scene and the papers' parameter sweeps, made by \`scripts/gallery.sh\` on"
+    echo "$(date -u +%Y-%m-%d) (last run: backend $BACKEND, git ${PERIFRAC_GIT_REV:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)})."
+    echo "Time per step: all kernels of a step, from the run's kernel table. Stills are ${WIDTH}x${HEIGHT},"
+    echo "$SPP samples per pixel, rendered by \`perifrac render\` on the same backend."
+    echo
+    echo "| entry | figure | scene and overrides | particles | bonds | ms per step | device | still |"
+    echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+    for entry in "${ENTRIES[@]}"; do
+      name=${entry%%|*}
+      [[ -z ${rows[$name]+x} ]] || echo "${rows[$name]}"
+    done
+  } >"$DOCS/README.md.tmp"
+  mv "$DOCS/README.md.tmp" "$DOCS/README.md"
+}
+
 declare -A rows
 for entry in "${ENTRIES[@]}"; do
   IFS='|' read -r name scene figure sets gpu_scale cpu_scale frames still <<<"$entry"
@@ -101,6 +128,7 @@ for entry in "${ENTRIES[@]}"; do
   if ! "$BIN" "${args[@]}" >"$OUT/$name.log" 2>&1; then
     echo "   failed (exit $?): $(grep -m1 'error' "$OUT/$name.log" || tail -1 "$OUT/$name.log")"
     rows[$name]="| $name | $figure | failed: see $OUT/$name.log | | | | | |"
+    write_index
     continue
   fi
   # The still: the chosen frame alone, rendered on the same backend.
@@ -124,30 +152,7 @@ for entry in "${ENTRIES[@]}"; do
   [[ $sets == - ]] || desc+=" --set ${sets//;/ --set }"
   [[ $scale == 1 ]] || desc+=" --scale $scale"
   rows[$name]="| $name | $figure | $desc | $particles | $bonds | $step_ms | $device | ![$name]($name.png) |"
+  write_index
 done
-
-# Rows of entries not run this time stay as the index had them.
-if [[ -f $DOCS/README.md ]]; then
-  while IFS= read -r line; do
-    key=$(echo "$line" | cut -d'|' -f2 | tr -d ' ')
-    [[ -n $key && -z ${rows[$key]+x} ]] && rows[$key]=$line
-  done < <(grep '^| [a-z]' "$DOCS/README.md" | grep -v '^| entry ')
-fi
-
-{
-  echo "# Gallery"
-  echo
-  echo "Every shipped scene and the papers' parameter sweeps, made by \`scripts/gallery.sh\` on"
-  echo "$(date -u +%Y-%m-%d) (last run: backend $BACKEND, git $(git rev-parse --short HEAD 2>/dev/null || echo unknown))."
-  echo "Time per step: all kernels of a step, from the run's kernel table. Stills are ${WIDTH}x${HEIGHT},"
-  echo "$SPP samples per pixel, rendered by \`perifrac render\` on the same backend."
-  echo
-  echo "| entry | figure | scene and overrides | particles | bonds | ms per step | device | still |"
-  echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
-  for entry in "${ENTRIES[@]}"; do
-    name=${entry%%|*}
-    [[ -z ${rows[$name]+x} ]] || echo "${rows[$name]}"
-  done
-} >"$DOCS/README.md.tmp"
-mv "$DOCS/README.md.tmp" "$DOCS/README.md"
+write_index
 echo "gallery: $DOCS/README.md"
