@@ -219,6 +219,11 @@ int run_command(const RunOptions& options) {
   for (const VoronoiBody& v : setup.voronoi) voronoi_elements.push_back({v.first_particle, &v.geometry});
   FragmentOutput fragments(setup.input, bonds, {out, opt.blend_frames}, setup.adjacency, setup.embedded,
                            voronoi_elements);
+  if (const FaceLinks& links = fragments.face_links(); links.indirect() + links.unlinked() > 0)
+    std::printf(
+        "elements   %zu touching pairs farther apart than the horizon: %zu hold through common "
+        "neighbours, %zu have no bond path (cracks from the start)\n",
+        links.indirect() + links.unlinked(), links.indirect(), links.unlinked());
   std::string fragment_log;
   auto write_frame = [&](int64_t frame) {
     FrameData f = frame_data(*engine, setup.input.particles, count, frame);

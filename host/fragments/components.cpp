@@ -1,6 +1,7 @@
 #include "components.h"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <stdexcept>
 
@@ -42,32 +43,18 @@ Components components_from_ids(std::vector<int32_t> id) {
   return c;
 }
 
-ComponentFinder::ComponentFinder(const ElementAdjacency& adjacency, const BondLists& bonds)
-    : n_(bonds.count.size()), slots_(bonds.neighbor.size()) {
-  if (adjacency.size() != n_)
+namespace {
+
+// The undirected pairs a < b of a symmetric adjacency. Throws std::invalid_argument where it is not
+// symmetric or does not cover n particles.
+std::vector<std::array<int32_t, 2>> undirected_pairs(const ElementAdjacency& adjacency, size_t n) {
+  if (adjacency.size() != n)
     throw std::invalid_argument("element adjacency has " + std::to_string(adjacency.size()) +
-                                " particles, the families " + std::to_string(n_));
-  const BondsView v = bonds.view();
+                                " particles, the families " + std::to_string(n));
   const auto& off = adjacency.offset;
   const auto& nb = adjacency.neighbor;
-
-  // Slot of each directed adjacency entry in its particle's family (-1 until found).
-  std::vector<int64_t> entry_slot(nb.size(), -1);
-#pragma omp parallel for schedule(static)
-  for (int32_t i = 0; i < v.n; ++i)
-    for (int32_t k = 0; k < v.count[i]; ++k) {
-      const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
-      for (int64_t e = off[size_t(i)]; e < off[size_t(i) + 1]; ++e)
-        if (nb[size_t(e)] == j) entry_slot[size_t(e)] = v.slot(i, k);
-    }
-  for (size_t i = 0; i < n_; ++i)
-    for (int64_t e = off[i]; e < off[i + 1]; ++e)
-      if (entry_slot[size_t(e)] < 0)
-        throw std::invalid_argument("adjacent particles " + std::to_string(i) + " and " +
-                                    std::to_string(nb[size_t(e)]) + " share no family bond");
-
-  // Undirected pairs a < b with both slots; the reverse entry is looked up in b's list.
-  for (size_t i = 0; i < n_; ++i)
+  std::vector<std::array<int32_t, 2>> pairs;
+  for (size_t i = 0; i < n; ++i)
     for (int64_t e = off[i]; e < off[i + 1]; ++e) {
       const int32_t j = nb[size_t(e)];
       if (size_t(j) <= i) continue;
@@ -76,12 +63,18 @@ ComponentFinder::ComponentFinder(const ElementAdjacency& adjacency, const BondLi
       if (back == off[size_t(j) + 1])
         throw std::invalid_argument("element adjacency is not symmetric: " + std::to_string(j) +
                                     " is adjacent to " + std::to_string(i) + " but not the reverse");
-      a_.push_back(int32_t(i));
-      b_.push_back(j);
-      slot_a_.push_back(entry_slot[size_t(e)]);
-      slot_b_.push_back(entry_slot[size_t(back)]);
+      pairs.push_back({int32_t(i), j});
     }
+  return pairs;
 }
+
+}  // namespace
+
+ComponentFinder::ComponentFinder(const ElementAdjacency& adjacency, const BondLists& bonds)
+    : n_(bonds.count.size()),
+      slots_(bonds.neighbor.size()),
+      pairs_(undirected_pairs(adjacency, bonds.count.size())),
+      links_(pairs_, bonds) {}
 
 void ComponentFinder::find(const BondLists& bonds, Components& out) {
   if (bonds.count.size() != n_ || bonds.neighbor.size() != slots_)
@@ -89,11 +82,10 @@ void ComponentFinder::find(const BondLists& bonds, Components& out) {
   const int32_t* nb = bonds.neighbor.data();
 
   // Which pairs are still bonded from both ends (independent reads, in parallel).
-  const int64_t pairs = int64_t(a_.size());
+  const int64_t pairs = int64_t(pairs_.size());
   intact_.resize(size_t(pairs));
 #pragma omp parallel for schedule(static)
-  for (int64_t p = 0; p < pairs; ++p)
-    intact_[size_t(p)] = bond_intact(nb[slot_a_[size_t(p)]]) && bond_intact(nb[slot_b_[size_t(p)]]);
+  for (int64_t p = 0; p < pairs; ++p) intact_[size_t(p)] = links_.intact(size_t(p), nb);
 
   // Union-find with path halving; the larger root is linked under the smaller, so every parent
   // index is below its child and each root is the smallest particle of its set.
@@ -105,7 +97,7 @@ void ComponentFinder::find(const BondLists& bonds, Components& out) {
   };
   for (int64_t p = 0; p < pairs; ++p) {
     if (!intact_[size_t(p)]) continue;
-    const int32_t ra = root(a_[size_t(p)]), rb = root(b_[size_t(p)]);
+    const int32_t ra = root(pairs_[size_t(p)][0]), rb = root(pairs_[size_t(p)][1]);
     if (ra < rb) parent_[size_t(rb)] = ra;
     if (rb < ra) parent_[size_t(ra)] = rb;
   }

@@ -1,14 +1,18 @@
 // Connected components of the unbroken element adjacency: the fragments of a frame. A pair of
 // adjacent particles stays connected while their bond is intact in both families (a bond broken
-// in either direction separates them). Bonds never heal, so components only ever split.
+// in either direction separates them), or, for touching elements farther apart than the horizon,
+// while a common neighbour is still bonded to both (face_links.h). Bonds never heal, so
+// components only ever split.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "../engine.h"
 #include "adjacency.h"
+#include "face_links.h"
 
 namespace pd {
 
@@ -34,23 +38,24 @@ Components components_from_ids(std::vector<int32_t> id);
 // Finds components every frame for one family layout.
 class ComponentFinder {
  public:
-  // Binds each adjacent pair to its bond slot in both families. Throws std::invalid_argument
-  // when the sizes differ or a pair is not a family bond in both directions.
+  // Binds each adjacent pair to the bond slots that hold it (face_links.h). Throws
+  // std::invalid_argument when the sizes differ or the adjacency is not symmetric.
   ComponentFinder(const ElementAdjacency& adjacency, const BondLists& bonds);
 
   // Components of `bonds` (the same families, as the engine holds them now) into `out`, whose
   // storage is reused from frame to frame like the finder's own scratch arrays.
   void find(const BondLists& bonds, Components& out);
 
-  size_t pairs() const { return a_.size(); }
+  size_t pairs() const { return pairs_.size(); }
+  const FaceLinks& links() const { return links_; }
 
  private:
   size_t n_ = 0;
   size_t slots_ = 0;
-  std::vector<int32_t> a_, b_;            // adjacent pairs, a < b
-  std::vector<int64_t> slot_a_, slot_b_;  // bond slot of the pair in a's and b's family
-  std::vector<uint8_t> intact_;           // scratch: pair still bonded
-  std::vector<int32_t> parent_;           // scratch: union-find forest
+  std::vector<std::array<int32_t, 2>> pairs_;  // adjacent pairs, a < b
+  FaceLinks links_;                            // what holds each pair
+  std::vector<uint8_t> intact_;                // scratch: pair still bonded
+  std::vector<int32_t> parent_;                // scratch: union-find forest
 };
 
 // Component count and sizes for the frame log: histogram[b] counts the components of

@@ -10,13 +10,6 @@ namespace pd {
 
 namespace {
 
-// Slot of the bond to j in i's family; -1 when there is none.
-int64_t bond_slot(const BondsView& v, int32_t i, int32_t j) {
-  for (int32_t k = 0; k < v.count[i]; ++k)
-    if (bond_partner(v.neighbor[v.slot(i, k)]) == j) return v.slot(i, k);
-  return -1;
-}
-
 int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
   while (parent[size_t(i)] != i) i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
   return i;
@@ -67,26 +60,14 @@ EmbeddedMesh::EmbeddedMesh(ElementComplex complex, const ElementAdjacency& adjac
     face_pair_[size_t(key[i].second)] = int64_t(pair_element_.size() - 1);
   }
 
-  // Bond slots of adjacent pairs in both families; pairs that are not adjacent are cracks for good.
-  const BondsView view = bonds.view();
+  // What holds each pair (face_links.h); pairs that are not adjacent, or that no bond links, are
+  // cracks for good.
   const int64_t np = int64_t(pair_element_.size());
-  pair_slot_.resize(size_t(np));
-#pragma omp parallel for schedule(static)
-  for (int64_t p = 0; p < np; ++p) {
-    const auto [a, b] = pair_element_[size_t(p)];
-    pair_slot_[size_t(p)] = adjacent(adjacency, a, b)
-                                ? std::array<int64_t, 2>{bond_slot(view, a, b), bond_slot(view, b, a)}
-                                : std::array<int64_t, 2>{-1, -1};
-  }
+  links_ = FaceLinks(pair_element_, bonds);
   pair_state_.assign(size_t(np), 0);
   for (int64_t p = 0; p < np; ++p) {
     const auto [a, b] = pair_element_[size_t(p)];
-    if (!adjacent(adjacency, a, b))
-      pair_state_[size_t(p)] = 1;
-    else if (pair_slot_[size_t(p)][0] < 0 || pair_slot_[size_t(p)][1] < 0)
-      throw std::invalid_argument(
-          "elements " + std::to_string(a) + " and " + std::to_string(b) +
-          " share a face but their particles share no family bond in both directions");
+    if (!adjacent(adjacency, a, b) || !links_.linked(size_t(p))) pair_state_[size_t(p)] = 1;
   }
   slots_ = bonds.neighbor.size();
 
@@ -160,9 +141,7 @@ void EmbeddedMesh::update(const BondLists& bonds, const std::vector<Vec3>& posit
   newly_.resize(size_t(np));
 #pragma omp parallel for schedule(static)
   for (int64_t p = 0; p < np; ++p)
-    newly_[size_t(p)] =
-        pair_state_[size_t(p)] == 0 && !(bond_intact(bonds.neighbor[size_t(pair_slot_[size_t(p)][0])]) &&
-                                         bond_intact(bonds.neighbor[size_t(pair_slot_[size_t(p)][1])]));
+    newly_[size_t(p)] = pair_state_[size_t(p)] == 0 && !links_.intact(size_t(p), bonds.neighbor.data());
   for (size_t p = 0; p < pair_state_.size(); ++p) {
     if (!newly_[p]) continue;
     pair_state_[p] = 1;

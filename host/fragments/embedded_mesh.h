@@ -14,6 +14,7 @@
 #include "components.h"
 #include "crack_mesh_file.h"
 #include "element_complex.h"
+#include "face_links.h"
 #include "tet_complex.h"  // EmbeddedTets, which the scene set-up keeps for tet bodies
 
 namespace pd {
@@ -23,8 +24,9 @@ class EmbeddedMesh {
   // `complex`: the elements, element p standing for particle p (assemble()). `adjacency`: the
   // adjacent elements whose bond holds fragments together (components.h); faces between elements
   // that are not adjacent there never hold (a crack from the start). `bonds`: the families as
-  // built; `rest`, `mass`: the particles' rest positions and masses. Throws std::invalid_argument
-  // when sizes differ or two adjacent elements share faces but no family bond in both directions.
+  // built; `rest`, `mass`: the particles' rest positions and masses. Touching elements farther apart
+  // than the horizon are held by their common neighbours (face_links.h). Throws
+  // std::invalid_argument when sizes differ.
   EmbeddedMesh(ElementComplex complex, const ElementAdjacency& adjacency, const BondLists& bonds,
                std::vector<Vec3> rest, std::vector<real> mass);
 
@@ -64,10 +66,10 @@ class EmbeddedMesh {
   std::vector<int64_t> incident_;
   std::vector<int32_t> incident_element_, incident_copy_;
   std::vector<double> incident_weight_;
-  // Element pairs that share faces: the two elements, the bond slots of the pair in both families
-  // (-1: not adjacent, never holds), and the state: 0 intact, 1 crack, 2 crack opened by a split.
+  // Element pairs that share faces: the two elements, what holds them, and the state: 0 intact,
+  // 1 crack, 2 crack opened by a split.
   std::vector<std::array<int32_t, 2>> pair_element_;
-  std::vector<std::array<int64_t, 2>> pair_slot_;
+  FaceLinks links_;
   std::vector<uint8_t> pair_state_;
   std::vector<int64_t> face_pair_;  // per face: its pair, -1 on the object's surface
   // The pairs of element e: element_pair_[element_pair_start_[e] .. [e + 1]).

@@ -51,6 +51,9 @@ class FragmentOutput {
   // first process(), IoError when the file cannot be written.
   void write_meshes(const std::string& name = "fragments.obj") const;
 
+  // What holds the touching elements together (how many hold through common neighbours).
+  const FaceLinks& face_links() const { return finder_.links(); }
+
   // The components of `bonds` without writing anything: a resumed run whose checkpoint is its
   // last frame finishes its end-of-run outputs with this (no frame is processed again).
   void find_components(const BondLists& bonds) { finder_.find(bonds, components_); }

@@ -205,9 +205,8 @@ TEST(Components, UnionFindEqualsBreadthFirstSearchOnRandomGraphs) {
   }
 }
 
-TEST(Components, RejectsAdjacencyThatIsNotBonded) {
+TEST(Components, RejectsAdjacencyOfOtherSizeOrOneWay) {
   const BondLists bonds = bond_lists({{1}, {0, 2}, {1}});
-  EXPECT_THROW(ComponentFinder(adjacency_from_pairs(3, {{0, 2}}), bonds), std::invalid_argument);
   EXPECT_THROW(ComponentFinder(adjacency_from_pairs(4, {{0, 1}}), bonds), std::invalid_argument);
   ElementAdjacency one_way;  // 0 lists 1, 1 lists nobody
   one_way.offset = {0, 1, 1, 1};
@@ -216,6 +215,22 @@ TEST(Components, RejectsAdjacencyThatIsNotBonded) {
   ComponentFinder finder(adjacency_from_pairs(3, {{0, 1}}), bonds);
   Components c;
   EXPECT_THROW(finder.find(bond_lists({{1}, {0}}), c), std::invalid_argument);
+}
+
+// Touching elements farther apart than the horizon: 0 and 2 share no bond but 1 is bonded to both,
+// so they stay together until a bond of that path breaks; 3 touches 0 with no bond path at all, a
+// fragment of its own from the start.
+TEST(Components, TouchingParticlesWithoutABondHoldThroughACommonNeighbour) {
+  BondLists bonds = bond_lists({{1}, {0, 2}, {1}, {}});
+  ComponentFinder finder(adjacency_from_pairs(4, {{0, 2}, {0, 3}}), bonds);
+  EXPECT_EQ(finder.links().indirect(), 1u);
+  EXPECT_EQ(finder.links().unlinked(), 1u);
+  Components c;
+  finder.find(bonds, c);
+  EXPECT_EQ(c.id, (std::vector<int32_t>{0, 1, 0, 3}));
+  break_bond(bonds, 2, 1);
+  finder.find(bonds, c);
+  EXPECT_EQ(c.id, (std::vector<int32_t>{0, 1, 2, 3}));
 }
 
 TEST(Components, FromIdsNumbersByFirstAppearance) {

@@ -391,18 +391,51 @@ TEST(EmbeddedMesh, VoronoiSphereSplitsAlongItsCellFaces) {
   EXPECT_NEAR(std::max(a, c), std::max(left, right), 1e-11 * left);
 }
 
-TEST(EmbeddedMesh, RejectsFaceNeighboursWithoutABond) {
+// Touching tets with no bond path between them (families left empty): their faces never held,
+// so each tet is a closed piece of its own from the start.
+TEST(EmbeddedMesh, FaceNeighboursWithNoBondPathAreCracksFromTheStart) {
   const EmbeddedTets box = testing::box_tets(2, 1, 1, kSide);
-  SimulationInput in = tet_input(box);
-  in.materials.m[0] = testing::glass_material(kSide, 0.1);  // horizon shorter than the tets
-  BondLists bonds;
-  make_cpu_engine(in)->read_bonds(bonds);
+  const SimulationInput in = tet_input(box);
+  const BondLists bonds = testing::bond_lists(std::vector<std::vector<int32_t>>(box.tets.size()));
   ElementComplex c = assemble(box.tets.size(), {tet_complex(box)});
   const ElementAdjacency adjacency = face_adjacency(c);
-  EXPECT_THROW(EmbeddedMesh(c, adjacency, bonds, in.particles.rest, in.particles.mass),
-               std::invalid_argument);
-  // Elements that are not in particle order.
+  const EmbeddedMesh mesh(c, adjacency, bonds, in.particles.rest, in.particles.mass);
+  EXPECT_EQ(testing::closed_piece_volumes(mesh.surface()).size(), box.tets.size());
+}
+
+// Voronoi cells at delta = 2 lambda: some touching cells are farther apart than the horizon and
+// hold through common neighbours, so the sphere is still one closed piece; cut across x = 0 it
+// splits in two, those cells' faces included.
+TEST(EmbeddedMesh, VoronoiCellsBeyondTheHorizonHoldThroughCommonNeighbours) {
+  const ParticleGeometry g = voronoi_particles(sphere_mesh(0.02, 0.003), 0.004, 3, 100000, "sphere");
+  Block b;
+  b.in.materials.count = 1;
+  b.in.materials.m[0] = testing::glass_material(0.004, 1.5);
+  for (size_t i = 0; i < g.size(); ++i)
+    b.in.particles.add({real(g.position[i][0]), real(g.position[i][1]), real(g.position[i][2])}, {0, 0, 0},
+                       real(g.volume[i]), real(2440 * g.volume[i]), real(1e-3), 0, 0);
+  b.in.step.dt = real(0x1p-23);
+  make_cpu_engine(b.in)->read_bonds(b.bonds);
+  b.adjacency = g.adjacency;
+  const FaceLinks links = ComponentFinder(b.adjacency, b.bonds).links();
+  EXPECT_GT(links.indirect(), 0u);
+  EXPECT_EQ(links.unlinked(), 0u);
+  b.mesh.emplace(voronoi_complex(g), b.adjacency, b.bonds, b.in.particles.rest, b.in.particles.mass);
+  b.update();
+  ASSERT_EQ(testing::closed_piece_volumes(b.mesh->surface()).size(), 1u);
+  cut(b.bonds, b.in.particles.rest, 0, 0.0);
+  b.update();
+  EXPECT_EQ(testing::closed_piece_volumes(b.mesh->surface()).size(), 2u);
+}
+
+// Elements that are not in particle order are refused.
+TEST(EmbeddedMesh, RejectsElementsOutOfParticleOrder) {
+  const EmbeddedTets box = testing::box_tets(2, 1, 1, kSide);
+  SimulationInput in = tet_input(box);
+  BondLists bonds;
+  make_cpu_engine(in)->read_bonds(bonds);
   ElementComplex shuffled = tet_complex(box);
+  const ElementAdjacency adjacency = face_adjacency(assemble(box.tets.size(), {tet_complex(box)}));
   std::swap(shuffled.particle[0], shuffled.particle[1]);
   EXPECT_THROW(EmbeddedMesh(shuffled, adjacency, bonds, in.particles.rest, in.particles.mass),
                std::invalid_argument);
