@@ -9,6 +9,7 @@
 #include "host/app/bench_render.h"
 #include "host/app/checkpoint.h"
 #include "host/app/compare.h"
+#include "host/app/export_shapes.h"
 #include "host/app/profile.h"
 #include "host/app/run.h"
 #include "host/engine.h"
@@ -121,6 +122,19 @@ int main(int argc, char** argv) {
   geometry_cmd->add_option("--seed", geometry.seed, "Poisson-disk seed");
   geometry_cmd->add_option("--csv", geometry.csv, "append a row to this CSV file");
 
+  ShapeExportOptions shapes;
+  CLI::App* shapes_cmd = app.add_subcommand(
+      "shapes", "write each body's solid (procedural shape or checked mesh) as a mesh file");
+  shapes_cmd->add_option("scene", shapes.scene, "scene file (.toml)")->required();
+  shapes_cmd->add_option("--out", shapes.out, "folder for the files (default: shapes)");
+  shapes_cmd->add_option("--format", shapes.format, "obj | ply | stl")
+      ->check(CLI::IsMember({"obj", "ply", "stl"}));
+  shapes_cmd
+      ->add_option("--edge", shapes.edge,
+                   "vertex spacing of curved surfaces in m (default: the body's spacing)")
+      ->check(CLI::PositiveNumber);
+  shapes_cmd->add_option("--set", shapes.overrides, "KEY=VALUE: change one scene key (repeatable)");
+
   FragmentsBenchOptions fragments;
   CLI::App* fragments_cmd = app.add_subcommand(
       "bench-fragments", "time the per-frame fragment outputs (components, fits, crack and piece meshes)");
@@ -218,6 +232,7 @@ int main(int argc, char** argv) {
     }
     if (*bench_cmd) return bench_command(bench);
     if (*geometry_cmd) return bench_geometry_command(geometry);
+    if (*shapes_cmd) return export_shapes_command(shapes);
     if (*fragments_cmd) return bench_fragments_command(fragments);
     if (*bench_render_cmd) return bench_render_command(bench_render);
     if (*profile_cmd) return profile_command(profile);

@@ -104,30 +104,6 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   return m;
 }
 
-// The solid of a body, placed with its bounding-box centre at `center`. Curved surfaces get
-// about one vertex per `edge`; mesh files are checked (and repaired as the scene asks).
-TriMesh body_solid(const SceneBody& body, double edge, const std::string& key) {
-  TriMesh mesh;
-  if (body.shape == "box") mesh = box_mesh(body.size);
-  if (body.shape == "plate") mesh = box_mesh({body.width, body.thickness, body.depth});
-  if (body.shape == "sphere") mesh = sphere_mesh(body.radius, edge);
-  if (body.shape == "cylinder") mesh = cylinder_mesh(body.radius, body.height, edge);
-  if (body.shape == "torus") mesh = torus_mesh(body.radius, body.tube_radius, edge);
-  if (body.shape == "vase")
-    mesh = body.particles == "shell" ? vase_sheet(body.radius, body.height, edge)
-                                     : vase_mesh(body.radius, body.height, body.wall, edge);
-  if (body.shape == "mesh") {
-    mesh = read_mesh(body.mesh_path);
-    const MeshReport report = check_solid(mesh, body.mesh_path, {body.repair == "fill_holes"});
-    for (const std::string& note : report.notes)
-      std::fprintf(stderr, "note: %s.mesh: %s: %s\n", key.c_str(), body.mesh_path.c_str(), note.c_str());
-    transform(mesh, body.scale, {0, 0, 0});
-    transform(mesh, 1, -1.0 * bounds(mesh).center());
-  }
-  transform(mesh, 1, body.center);
-  return mesh;
-}
-
 // Particles of one body at `spacing`: the box grid of box and plate bodies (the layout of
 // box_grid.h), else grid, tet, fattened-shell or Voronoi particles of the body's solid.
 ParticleGeometry body_particles(const SceneBody& body, double spacing, double spacing_factor, uint64_t seed,
@@ -185,6 +161,28 @@ double median_nearest_distance(const ParticleGeometry& g) {
 }
 
 }  // namespace
+
+TriMesh body_solid(const SceneBody& body, double edge, const std::string& key) {
+  TriMesh mesh;
+  if (body.shape == "box") mesh = box_mesh(body.size);
+  if (body.shape == "plate") mesh = box_mesh({body.width, body.thickness, body.depth});
+  if (body.shape == "sphere") mesh = sphere_mesh(body.radius, edge);
+  if (body.shape == "cylinder") mesh = cylinder_mesh(body.radius, body.height, edge);
+  if (body.shape == "torus") mesh = torus_mesh(body.radius, body.tube_radius, edge);
+  if (body.shape == "vase")
+    mesh = body.particles == "shell" ? vase_sheet(body.radius, body.height, edge)
+                                     : vase_mesh(body.radius, body.height, body.wall, edge);
+  if (body.shape == "mesh") {
+    mesh = read_mesh(body.mesh_path);
+    const MeshReport report = check_solid(mesh, body.mesh_path, {body.repair == "fill_holes"});
+    for (const std::string& note : report.notes)
+      std::fprintf(stderr, "note: %s.mesh: %s: %s\n", key.c_str(), body.mesh_path.c_str(), note.c_str());
+    transform(mesh, body.scale, {0, 0, 0});
+    transform(mesh, 1, -1.0 * bounds(mesh).center());
+  }
+  transform(mesh, 1, body.center);
+  return mesh;
+}
 
 SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale) || options.scale > 1e3)

@@ -8,6 +8,7 @@
 #include "../engine.h"
 #include "../fragments/embedded_mesh.h"
 #include "../geometry/particle_geometry.h"
+#include "../geometry/tri_mesh.h"
 #include "../particle_set.h"
 #include "scene.h"
 
@@ -58,6 +59,11 @@ struct SetupResult {
 // Throws SceneError for problems that only show once sizes are known (too many particles,
 // too many material/spacing combinations, a scale out of range).
 SetupResult setup_scene(const Scene& scene, const SetupOptions& options);
+
+// The solid of a body, placed with its bounding-box centre at `center`: its procedural shape with
+// about one vertex per `edge` on curved surfaces, or its mesh file, checked (and repaired as the
+// scene asks; notes go to stderr under `key`, e.g. "bodies[0]"). Throws MeshError for a bad file.
+TriMesh body_solid(const SceneBody& body, double edge, const std::string& key);
 
 // Options for a run on `backend`: the particle budget (memory_budget.h) follows from the
 // machine's free memory, the largest horizon and whether a material is plastic.
