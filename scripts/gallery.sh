@@ -30,7 +30,7 @@ ENTRIES=(
   "ring|torus_voronoi_drop|Levine Fig. 3 (delta = 6 lambda)|-|1|0.1|120|100"
   "ring_delta_2|torus_voronoi_drop|Levine Fig. 7, delta = 2 lambda|materials.ceramic.horizon=2|1|0.1|120|100"
   "ring_delta_3|torus_voronoi_drop|Levine Fig. 7, delta = 3 lambda|materials.ceramic.horizon=3|1|0.1|120|100"
-  "four_walls|chen_four_walls|Chen Fig. 1|-|1|0.05|60|60"
+  "four_walls|chen_four_walls|Chen Fig. 1|-|1|0.05|60|20"
   "elastic_vs_plastic|chen_elastic_vs_plastic_wall|Chen Fig. 4|-|1|0.1|60|60"
   "ductile_gamma_0.1|chen_ductile_gamma|Chen Fig. 5, gamma = 0.1|-|1|0.05|60|60"
   "ductile_gamma_0.15|chen_ductile_gamma|Chen Fig. 5, gamma = 0.15|materials.ductile.plastic.limit=0.15|1|0.05|60|60"
