@@ -142,6 +142,8 @@ for entry in "${ENTRIES[@]}"; do
     if command -v ffmpeg >/dev/null; then
       ffmpeg -loglevel error -y -framerate 12 -i "$OUT/$name/render/frame_%05d.png" -pix_fmt yuv420p \
         -c:v libx264 -crf 30 "$DOCS/$name.mp4"
+    else
+      echo "   no ffmpeg: the clip's frames are in $OUT/$name/render/"
     fi
   fi
   particles=$(sed -n 's/^particles  \([0-9]*\) .*/\1/p' "$OUT/$name.log")
