@@ -18,9 +18,7 @@ int export_shapes_command(const ShapeExportOptions& o) {
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     const SceneBody& body = scene.bodies[b];
     const std::string key = "bodies[" + std::to_string(b) + "]";
-    // The edge the run uses for its particles (tet bodies mesh at twice the spacing).
-    const bool tets = body.particles == "tets" || body.particles == "shell";
-    const double edge = o.edge > 0 ? o.edge : (tets ? 2 : 1) * body.spacing;
+    const double edge = o.edge > 0 ? o.edge : body_solid_edge(body, body.spacing);
     TriMesh mesh;
     try {
       mesh = body_solid(body, edge, key);

@@ -110,9 +110,7 @@ ParticleGeometry body_particles(const SceneBody& body, double spacing, double sp
                                 int64_t max_particles, const std::string& key) {
   if ((body.shape == "box" || body.shape == "plate") && body.particles == "grid")
     return box_grid_particles(body.center, body.size, spacing);
-  // Tets are about twice the spacing on a side (one tet per spacing^3 or so).
-  const bool tets = body.particles == "tets" || body.particles == "shell";
-  const TriMesh solid = body_solid(body, tets ? 2 * spacing : spacing, key);
+  const TriMesh solid = body_solid(body, body_solid_edge(body, spacing), key);
   const std::string name = body.shape == "mesh" ? body.mesh_path : key;
   if (body.particles == "grid") return grid_particles(solid, spacing, max_particles, name);
   if (body.particles == "voronoi") return voronoi_particles(solid, spacing, seed, max_particles, name);
@@ -182,6 +180,11 @@ TriMesh body_solid(const SceneBody& body, double edge, const std::string& key) {
   }
   transform(mesh, 1, body.center);
   return mesh;
+}
+
+double body_solid_edge(const SceneBody& body, double spacing) {
+  const bool tets = body.particles == "tets" || body.particles == "shell";
+  return tets ? 2 * spacing : spacing;
 }
 
 SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {

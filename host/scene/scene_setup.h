@@ -65,6 +65,10 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options);
 // scene asks; notes go to stderr under `key`, e.g. "bodies[0]"). Throws MeshError for a bad file.
 TriMesh body_solid(const SceneBody& body, double edge, const std::string& key);
 
+// The edge a body's solid is meshed at for particles of `spacing`: the spacing, twice it for tet
+// and shell bodies (a tet is about twice the spacing on a side).
+double body_solid_edge(const SceneBody& body, double spacing);
+
 // Options for a run on `backend`: the particle budget (memory_budget.h) follows from the
 // machine's free memory, the largest horizon and whether a material is plastic.
 SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend);
