@@ -30,6 +30,30 @@ std::vector<std::string> list_frame_files(const std::string& dir) {
   return files;
 }
 
+std::vector<std::string> select_frame_files(const std::string& dir, const std::vector<int64_t>& wanted) {
+  std::vector<std::string> all = list_frame_files(dir);
+  if (wanted.empty()) return all;
+  auto number = [](const std::string& file) -> int64_t {  // the digits after "frame_"; -1 if none
+    const std::string digits = fs::path(file).stem().string().substr(6);
+    const bool ok = !digits.empty() && digits.size() <= 18 &&
+                    std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+    return ok ? std::stoll(digits) : -1;
+  };
+  std::vector<std::string> chosen;
+  for (int64_t f : wanted) {
+    const auto it =
+        std::find_if(all.begin(), all.end(), [&](const std::string& x) { return number(x) == f; });
+    if (it == all.end())
+      throw std::invalid_argument(
+          "render: --frames " + std::to_string(f) + ": no such frame in '" + dir + "' (allowed: " +
+          (all.empty() ? std::string("none, the folder has no frame_*.pfr files")
+                       : std::to_string(number(all.front())) + " to " + std::to_string(number(all.back()))) +
+          ")");
+    chosen.push_back(*it);
+  }
+  return chosen;
+}
+
 void check_render_options(const RenderOptions& o) {
   auto bad = [](const std::string& what) { throw std::invalid_argument("render: " + what); };
   if (o.width <= 0 || o.height <= 0) bad("image size must be positive");
@@ -121,7 +145,7 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
 
 int render_frames(const RenderOptions& o) {
   check_render_options(o);
-  const std::vector<std::string> frames = list_frame_files(o.dir);
+  const std::vector<std::string> frames = select_frame_files(o.dir, o.frames);
   if (frames.empty()) {
     read_rest_file((fs::path(o.dir) / kRestFileName).string());  // a missing folder says so first
     throw io_error("read", o.dir, "no frame_*.pfr files");
@@ -144,7 +168,8 @@ int render_frames(const RenderOptions& o) {
   }
   std::printf("rendered   %zu frames, %.2f Mrays/s overall\n", frames.size(),
               1e-6 * double(rays) / ray_seconds);
-  if (o.movie) std::printf("movie      %s\n", make_movie(renderer.image_dir()).message.c_str());
+  if (o.movie && o.frames.empty())
+    std::printf("movie      %s\n", make_movie(renderer.image_dir()).message.c_str());
   return kExitOk;
 }
 

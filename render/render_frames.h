@@ -27,8 +27,14 @@ struct RenderOptions {
   std::string material = "opaque";  // opaque | glass: the material of every body
   real ior = real(1.5);             // glass index of refraction
   std::string environment = "sky";  // "sky" (procedural) or the path of a Radiance .hdr map
-  bool movie = true;                // DIR/render/movie.mp4 when ffmpeg is on PATH
+  bool movie = true;                // DIR/render/movie.mp4 when ffmpeg is on PATH (all frames only)
+  std::vector<int64_t> frames;      // frame numbers to render; empty: every frame of the run
 };
+
+// The run's frame files frame_NNNNN.pfr, in order; with `wanted` (frame numbers), only those.
+// Throws IoError when the folder cannot be listed, std::invalid_argument naming a wanted frame the
+// run does not have (and the range it has).
+std::vector<std::string> select_frame_files(const std::string& dir, const std::vector<int64_t>& wanted);
 
 // Throws std::invalid_argument naming the option and what is allowed when `o` holds a bad value
 // (image size, spp, field of view, material, ior, eye at look-at).

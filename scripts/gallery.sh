@@ -72,19 +72,6 @@ fi
 mkdir -p "$OUT" "$DOCS"
 WIDTH=480 HEIGHT=270 SPP=4
 
-# Links the files of run folder $1 that frame $2 needs into $3: everything but the other frames.
-link_frame() {
-  local run=$1 frame=$2 dest=$3 f name tag
-  tag=$(printf '%05d' "$frame")
-  rm -rf "$dest" && mkdir -p "$dest"
-  for f in "$run"/*; do
-    name=$(basename "$f")
-    [[ -f $f ]] || continue
-    if [[ $name =~ _[0-9]{5}\. ]] && [[ $name != *_"$tag".* ]]; then continue; fi
-    ln -s "$(realpath "$f")" "$dest/$name"
-  done
-}
-
 # The index: rows of this run, and of entries not run this time as the index had them.
 write_index() {
   local line key entry name
@@ -132,10 +119,9 @@ for entry in "${ENTRIES[@]}"; do
     continue
   fi
   # The still: the chosen frame alone, rendered on the same backend.
-  link_frame "$OUT/$name" "$still" "$OUT/$name.still"
-  "$BIN" render "$OUT/$name.still" --backend "$BACKEND" --out "$OUT/$name.still/render" --width $WIDTH \
+  "$BIN" render "$OUT/$name" --frames "$still" --backend "$BACKEND" --out "$OUT/$name.still" --width $WIDTH \
     --height $HEIGHT --spp $SPP >"$OUT/$name.render.log" 2>&1
-  cp "$OUT/$name.still/render/frame_$(printf '%05d' "$still").png" "$DOCS/$name.png"
+  cp "$OUT/$name.still/frame_$(printf '%05d' "$still").png" "$DOCS/$name.png"
   if [[ $CLIPS == 1 ]]; then
     "$BIN" render "$OUT/$name" --backend "$BACKEND" --width $WIDTH --height $HEIGHT --spp $SPP \
       >>"$OUT/$name.render.log" 2>&1

@@ -211,6 +211,10 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--environment", render.environment,
                          "sky (procedural) or a Radiance .hdr latitude-longitude map");
   render_cmd->add_flag("!--no-movie", render.movie, "no movie.mp4 even when ffmpeg is on PATH");
+  render_cmd
+      ->add_option("--frames", render.frames, "frame numbers to render, e.g. 20,60 (default: all; no movie)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand("compare", "compare two output folders frame by frame");

@@ -84,6 +84,30 @@ TEST_F(RenderFramesTest, WritesOnePngPerFrame) {
   }
 }
 
+// --frames renders only the frames asked for (and makes no movie of them); a frame the run does
+// not have is refused with the range it has.
+TEST_F(RenderFramesTest, RendersOnlyTheChosenFrames) {
+  RenderOptions o;
+  o.dir = dir_.string();
+  o.width = 32;
+  o.height = 24;
+  o.spp = 1;
+  o.backend = "cpu";
+  o.frames = {1};
+  EXPECT_EQ(render_frames(o), 0);
+  EXPECT_TRUE(fs::exists(path("render/frame_00001.png")));
+  EXPECT_FALSE(fs::exists(path("render/frame_00000.png")));
+  EXPECT_FALSE(fs::exists(path("render/movie.mp4")));
+  o.frames = {0, 7};
+  try {
+    render_frames(o);
+    FAIL() << "frame 7 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--frames 7"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("0 to 1"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(RenderFramesTest, FramedCameraSeesTheBlockInTheMiddle) {
   PrimitiveSet prims;
   std::vector<Vec3> albedo;
