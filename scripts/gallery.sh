@@ -4,7 +4,10 @@
 # index docs/gallery/README.md: scene, paper figure, particles, bonds, time per step on the device.
 #
 #   scripts/gallery.sh [--backend auto|cpu|cuda] [--only "NAME ..."] [--clips] [--out DIR] [--docs DIR]
-#                      [--list]
+#                      [--list] [--encode]
+#
+# --encode runs nothing: it makes the clips of frames rendered earlier by --clips (DIR/NAME/render/,
+# copied from a GPU machine without ffmpeg, say) and adds them to the index.
 #
 # On a GPU (--backend cuda, or auto with one) the scenes run at full size, sweeps of the two
 # 600k-particle scenes at a quarter; on the CPU every entry runs at its scene's CPU preview scale
@@ -17,6 +20,7 @@ cd "$(dirname "$0")/.."
 [[ -d .deps/bin ]] && export PATH="$PWD/.deps/bin:$PATH" LD_LIBRARY_PATH="$PWD/.deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
 # name | scene | paper figure | overrides (;-separated) | GPU scale | CPU scale | frames | still frame
+# [| camera: `perifrac render` options, where the default 3/4 view of the rest box misses the action]
 ENTRIES=(
   "glass_plate|glass_plate_projectile|Levine Fig. 2|-|1|0.05|40|24"
   "glass_plate_ks_1e6|glass_plate_projectile|Levine Fig. 5, K_S = 1e6|projectiles[0].strength=1e6|1|0.05|24|24"
@@ -30,14 +34,14 @@ ENTRIES=(
   "ring|torus_voronoi_drop|Levine Fig. 3 (delta = 6 lambda)|-|1|0.1|120|100"
   "ring_delta_2|torus_voronoi_drop|Levine Fig. 7, delta = 2 lambda|materials.ceramic.horizon=2|1|0.1|120|100"
   "ring_delta_3|torus_voronoi_drop|Levine Fig. 7, delta = 3 lambda|materials.ceramic.horizon=3|1|0.1|120|100"
-  "four_walls|chen_four_walls|Chen Fig. 1|-|1|0.05|60|20"
+  "four_walls|chen_four_walls|Chen Fig. 1|-|1|0.05|60|40|--eye 0.35,0.25,-0.75 --look-at 0,-0.03,-0.02"
   "elastic_vs_plastic|chen_elastic_vs_plastic_wall|Chen Fig. 4|-|1|0.1|60|60"
-  "ductile_gamma_0.1|chen_ductile_gamma|Chen Fig. 5, gamma = 0.1|-|1|0.05|60|60"
-  "ductile_gamma_0.15|chen_ductile_gamma|Chen Fig. 5, gamma = 0.15|materials.ductile.plastic.limit=0.15|1|0.05|60|60"
-  "ductile_gamma_0.2|chen_ductile_gamma|Chen Fig. 5, gamma = 0.2|materials.ductile.plastic.limit=0.2|1|0.05|60|60"
-  "glass_alpha_0|chen_glass_wall_alpha|Chen Fig. 7, alpha = 0|-|1|0.05|60|60"
-  "glass_alpha_2|chen_glass_wall_alpha|Chen Fig. 7, alpha = 2|materials.glass.damage_alpha=2|1|0.05|60|60"
-  "glass_alpha_8|chen_glass_wall_alpha|Chen Fig. 7, alpha = 8|materials.glass.damage_alpha=8|1|0.05|60|60"
+  "ductile_gamma_0.1|chen_ductile_gamma|Chen Fig. 5, gamma = 0.1|-|1|0.05|60|40|--eye 0.12,0.12,-0.35 --look-at 0,0,-0.01"
+  "ductile_gamma_0.15|chen_ductile_gamma|Chen Fig. 5, gamma = 0.15|materials.ductile.plastic.limit=0.15|1|0.05|60|40|--eye 0.12,0.12,-0.35 --look-at 0,0,-0.01"
+  "ductile_gamma_0.2|chen_ductile_gamma|Chen Fig. 5, gamma = 0.2|materials.ductile.plastic.limit=0.2|1|0.05|60|40|--eye 0.12,0.12,-0.35 --look-at 0,0,-0.01"
+  "glass_alpha_0|chen_glass_wall_alpha|Chen Fig. 7, alpha = 0|-|1|0.05|60|60|--eye 0.12,0.12,-0.35 --look-at 0,0,-0.01"
+  "glass_alpha_2|chen_glass_wall_alpha|Chen Fig. 7, alpha = 2|materials.glass.damage_alpha=2|1|0.05|60|60|--eye 0.12,0.12,-0.35 --look-at 0,0,-0.01"
+  "glass_alpha_4|chen_glass_wall_alpha|Chen Fig. 7, alpha = 4|materials.glass.damage_alpha=4|1|0.05|60|60|--eye 0.12,0.12,-0.35 --look-at 0,0,-0.01"
   "jello|chen_jello_bullet|Chen Fig. 8|-|1|0.1|60|40"
   "beams_poisson|chen_beams_poisson|Chen Fig. 9|-|1|0.3|150|150"
   "beams_bend|chen_beams_bend|Chen Fig. 10|-|1|0.2|60|20"
@@ -45,17 +49,18 @@ ENTRIES=(
   "bar_twist|chen_bar_twist|Chen Fig. 12|-|1|0.3|36|36"
   "stretch_tear|chen_stretch_tear|Chen Fig. 14|-|1|0.1|60|50"
   "glass_pressed|chen_glass_wall_pressed|Chen Fig. 15|-|1|0.05|50|50"
-  "elastic_drop|chen_elastic_drop|Chen Fig. 16|-|1|0.1|60|40"
+  "elastic_drop|chen_elastic_drop|Chen Fig. 16|-|1|0.1|60|60|--eye 0.9,0.6,1.4 --look-at 0.1,0.05,0"
   "thin_sheet|chen_thin_sheet_tear|Chen Fig. 17|-|1|0.1|60|50"
 )
 
-usage() { sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
-BACKEND=auto ONLY="" CLIPS=0 OUT=out/gallery DOCS=docs/gallery
+usage() { sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+BACKEND=auto ONLY="" CLIPS=0 ENCODE=0 OUT=out/gallery DOCS=docs/gallery
 while [[ $# -gt 0 ]]; do
   case $1 in
     --backend) BACKEND=$2; shift 2 ;;
     --only) ONLY=$2; shift 2 ;;
     --clips) CLIPS=1; shift ;;
+    --encode) ENCODE=1; shift ;;
     --out) OUT=$2; shift 2 ;;
     --docs) DOCS=$2; shift 2 ;;
     --list) printf '%s\n' "${ENTRIES[@]}" | cut -d'|' -f1-3 | tr '|' '\t'; exit 0 ;;
@@ -93,15 +98,47 @@ write_index() {
     echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
     for entry in "${ENTRIES[@]}"; do
       name=${entry%%|*}
-      [[ -z ${rows[$name]+x} ]] || echo "${rows[$name]}"
+      [[ -n ${rows[$name]+x} ]] || continue
+      line=${rows[$name]% |}
+      line=${line% \[clip\]($name.mp4)}
+      [[ -f $DOCS/$name.mp4 ]] && line+=" [clip]($name.mp4)"
+      echo "$line |"
     done
+    # Sections written by hand after the table (## ...) are kept.
+    if [[ -f $DOCS/README.md ]] && grep -q '^## ' "$DOCS/README.md"; then
+      echo
+      sed -n '/^## /,$p' "$DOCS/README.md"
+    fi
   } >"$DOCS/README.md.tmp"
   mv "$DOCS/README.md.tmp" "$DOCS/README.md"
 }
 
+# The clip of entry $1 from its rendered frames, where ffmpeg is present.
+make_clip() {
+  if command -v ffmpeg >/dev/null; then
+    ffmpeg -loglevel error -y -framerate 12 -i "$OUT/$1/render/frame_%05d.png" -pix_fmt yuv420p \
+      -c:v libx264 -crf 30 "$DOCS/$1.mp4"
+  else
+    echo "   no ffmpeg: the clip's frames are in $OUT/$1/render/ (make it later with --encode)"
+  fi
+}
+
 declare -A rows
+if [[ $ENCODE == 1 ]]; then
+  for entry in "${ENTRIES[@]}"; do
+    name=${entry%%|*}
+    if [[ -n $ONLY ]] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
+    [[ -f $OUT/$name/render/frame_00000.png ]] || continue
+    echo "== $name: clip from $OUT/$name/render/"
+    make_clip "$name"
+  done
+  write_index
+  echo "gallery: $DOCS/README.md"
+  exit 0
+fi
 for entry in "${ENTRIES[@]}"; do
-  IFS='|' read -r name scene figure sets gpu_scale cpu_scale frames still <<<"$entry"
+  IFS='|' read -r name scene figure sets gpu_scale cpu_scale frames still camera <<<"$entry"
+  read -ra cam <<<"${camera:-}"
   if [[ -n $ONLY ]] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
   scale=$gpu_scale
   [[ $BACKEND == cpu ]] && scale=$cpu_scale
@@ -119,18 +156,13 @@ for entry in "${ENTRIES[@]}"; do
     continue
   fi
   # The still: the chosen frame alone, rendered on the same backend.
-  "$BIN" render "$OUT/$name" --frames "$still" --backend "$BACKEND" --out "$OUT/$name.still" --width $WIDTH \
+  "$BIN" render "$OUT/$name" --frames "$still" --backend "$BACKEND" --out "$OUT/$name.still" "${cam[@]}" --width $WIDTH \
     --height $HEIGHT --spp $SPP >"$OUT/$name.render.log" 2>&1
   cp "$OUT/$name.still/frame_$(printf '%05d' "$still").png" "$DOCS/$name.png"
   if [[ $CLIPS == 1 ]]; then
-    "$BIN" render "$OUT/$name" --backend "$BACKEND" --width $WIDTH --height $HEIGHT --spp $SPP \
+    "$BIN" render "$OUT/$name" --backend "$BACKEND" "${cam[@]}" --width $WIDTH --height $HEIGHT --spp $SPP \
       >>"$OUT/$name.render.log" 2>&1
-    if command -v ffmpeg >/dev/null; then
-      ffmpeg -loglevel error -y -framerate 12 -i "$OUT/$name/render/frame_%05d.png" -pix_fmt yuv420p \
-        -c:v libx264 -crf 30 "$DOCS/$name.mp4"
-    else
-      echo "   no ffmpeg: the clip's frames are in $OUT/$name/render/"
-    fi
+    make_clip "$name"
   fi
   particles=$(sed -n 's/^particles  \([0-9]*\) .*/\1/p' "$OUT/$name.log")
   bonds=$(sed -n 's/^bonds      \([0-9]*\) .*/\1/p' "$OUT/$name.log")

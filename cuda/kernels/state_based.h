@@ -46,9 +46,13 @@ PD_HD inline real lps_bond_energy(const BondGeometry& g, real theta, real inv_mw
          volume_fraction(g.r0, m) * g.volume_j * vol_i;
 }
 
-// Chen eq. 18: s^omega = (1 + alpha phi) (e - e^p) / delta.
+// Chen eq. 18 as the paper's text means it: s^omega = (e - e^p) / delta against a limit that
+// grows with the particle's damage phi, tau (1 + alpha phi). Eq. 18 as printed multiplies
+// s^omega by (1 + alpha phi), which makes damaged material weaker and, for alpha > 0, more
+// dust, where the text says alpha "increases the crack threshold as the material gets damaged"
+// and "mitigates the shattering effect" (docs/design-decisions.md, measured there).
 PD_HD inline real chen_stretch(real e, real ep, real damage, const Material& m) {
-  return (real(1) + m.damage_alpha * damage) * (e - ep) * (real(1) / m.horizon);
+  return (e - ep) / ((real(1) + m.damage_alpha * damage) * m.horizon);
 }
 
 // m_i over the initial family (all bonds intact), once at set-up; state[i].y holds 1/m_i.

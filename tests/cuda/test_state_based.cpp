@@ -246,5 +246,18 @@ TEST(StateBased, IsotropicInstantiationMatchesTheGeneralOne) {
   EXPECT_TRUE(f.anisotropic && f.state_based && f.contact && !f.plastic);
 }
 
+// Chen's criterion (eq. 18): s^omega = (e - e^p) / delta against tau (1 + alpha phi), so a
+// damaged particle's bonds hold more; alpha = 0 or an undamaged particle is the plain s^omega.
+TEST(StateBased, DamageRaisesTheBreakingLimit) {
+  Material m = state_material(1e9, 0.3);
+  m.horizon = real(3e-3);
+  m.damage_alpha = 0;
+  EXPECT_NEAR(chen_stretch(real(6e-6), real(1.5e-6), real(0.5), m), 1.5e-3, 1e-3 * 1.5e-3);
+  m.damage_alpha = 2;
+  EXPECT_NEAR(chen_stretch(real(6e-6), real(1.5e-6), real(0), m), 1.5e-3, 1e-3 * 1.5e-3);
+  EXPECT_NEAR(chen_stretch(real(6e-6), real(1.5e-6), real(0.5), m), 0.75e-3, 1e-3 * 0.75e-3);
+  EXPECT_LT(chen_stretch(real(6e-6), real(0), real(1), m), chen_stretch(real(6e-6), real(0), real(0.2), m));
+}
+
 }  // namespace
 }  // namespace pd
