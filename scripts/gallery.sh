@@ -127,12 +127,14 @@ make_clip() {
   fi
 }
 
+# Whether entry $1 is one of --only (all without it).
+selected() { [[ -z $ONLY || " $ONLY " == *" $1 "* ]]; }
+
 declare -A rows
 if [[ $ENCODE == 1 ]]; then
   for entry in "${ENTRIES[@]}"; do
     name=${entry%%|*}
-    if [[ -n $ONLY ]] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
-    [[ -f $OUT/$name/render/frame_00000.png ]] || continue
+    selected "$name" && [[ -f $OUT/$name/render/frame_00000.png ]] || continue
     echo "== $name: clip from $OUT/$name/render/"
     make_clip "$name"
   done
@@ -143,7 +145,7 @@ fi
 for entry in "${ENTRIES[@]}"; do
   IFS='|' read -r name scene figure sets gpu_scale cpu_scale frames still camera <<<"$entry"
   read -ra cam <<<"${camera:-}"
-  if [[ -n $ONLY ]] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
+  selected "$name" || continue
   scale=$gpu_scale
   [[ $BACKEND == cpu ]] && scale=$cpu_scale
   args=(run "scenes/$scene.toml" --backend "$BACKEND" --scale "$scale" --frames "$frames" --out "$OUT/$name"
