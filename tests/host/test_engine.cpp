@@ -160,7 +160,7 @@ TEST(EngineBreaking, DamageFactorLeavesFewerLooseParticles) {
                 long(e->broken_bonds()));
     return int64_t(loose);
   };
-  const int64_t loose0 = punch(0), loose8 = punch(8);  // 215 and 32 (eq. 18 as printed, at ccc3845^: 312)
+  const int64_t loose0 = punch(0), loose8 = punch(8);  // 215 and 32 (eq. 18 as printed: 312)
   ASSERT_GT(loose0, 50);
   EXPECT_LT(loose8, loose0 / 3);
 }
