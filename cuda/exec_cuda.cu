@@ -37,12 +37,7 @@ void cuda_check(cudaError_t err, const char* what) {
                            cuda_hint(err));
 }
 
-CudaExec::CudaExec(KernelStats* stats) : stats_(stats) {
-  int device = 0;
-  cuda_check(cudaGetDevice(&device), "cudaGetDevice");
-  cuda_check(cudaDeviceGetAttribute(&sm_count_, cudaDevAttrMultiProcessorCount, device),
-             "cudaDeviceGetAttribute");
-}
+CudaExec::CudaExec(KernelStats* stats) : stats_(stats) {}
 
 CudaExec::~CudaExec() {
   cudaDeviceSynchronize();
@@ -54,19 +49,19 @@ CudaExec::~CudaExec() {
   for (void* s : scratch_) cudaFree(s);
 }
 
-void CudaExec::describe(KernelStat* s, const void* kernel, int block) {
+void CudaExec::describe(KernelStat* s, const void* kernel) {
   cudaFuncAttributes attr{};
   cuda_check(cudaFuncGetAttributes(&attr, kernel), "cudaFuncGetAttributes");
   int blocks_per_sm = 0;
-  cuda_check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, kernel, block, 0),
+  cuda_check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, kernel, kBlockSize, 0),
              "cudaOccupancyMaxActiveBlocksPerMultiprocessor");
   int device = 0, max_threads_per_sm = 0;
   cuda_check(cudaGetDevice(&device), "cudaGetDevice");
   cuda_check(cudaDeviceGetAttribute(&max_threads_per_sm, cudaDevAttrMaxThreadsPerMultiProcessor, device),
              "cudaDeviceGetAttribute");
   s->registers = attr.numRegs;
-  s->block_size = block;
-  s->occupancy = double(blocks_per_sm * block) / double(max_threads_per_sm);
+  s->block_size = kBlockSize;
+  s->occupancy = double(blocks_per_sm * kBlockSize) / double(max_threads_per_sm);
 }
 
 cudaEvent_t CudaExec::take_event() {

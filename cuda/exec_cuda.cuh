@@ -1,8 +1,5 @@
 // CUDA backend: parallel_for launches one thread per item on a grid; every launch is timed
 // with CUDA events and resolved in flush_stats(). Sorting, scans and reductions use CUB.
-// Blocks are 256 threads, smaller for small launches so that every SM gets work: a small
-// scene's particles each walk ~100 bonds, and 15 blocks of 256 would leave 117 of an H100's
-// 132 SMs idle while 15 issue every instruction.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -35,7 +32,7 @@ __global__ void transform_kernel(int64_t n, F f, T* out) {
 class CudaExec {
  public:
   static constexpr bool kDevice = true;
-  static constexpr int kMaxBlockSize = 256, kMinBlockSize = 32;
+  static constexpr int kBlockSize = 256;
 
   explicit CudaExec(KernelStats* stats);
   ~CudaExec();
@@ -45,12 +42,11 @@ class CudaExec {
   template <class F>
   void parallel_for(const char* name, int64_t n, F f) {
     if (n <= 0) return;
-    const int block = block_size(n);
     KernelStat* s = stats_ ? &stats_->entry(name) : nullptr;
-    if (s && s->registers < 0) describe(s, reinterpret_cast<const void*>(&parallel_for_kernel<F>), block);
-    const int64_t blocks = (n + block - 1) / block;
+    if (s && s->registers < 0) describe(s, reinterpret_cast<const void*>(&parallel_for_kernel<F>));
+    const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
     cudaEvent_t start = begin_timing();
-    parallel_for_kernel<<<unsigned(blocks), block>>>(n, f);
+    parallel_for_kernel<<<unsigned(blocks), kBlockSize>>>(n, f);
     cuda_check(cudaGetLastError(), name);
     end_timing(name, start);
   }
@@ -59,10 +55,9 @@ class CudaExec {
   T reduce_sum(const char* name, int64_t n, F f) {
     if (n <= 0) return T{};
     T* values = static_cast<T*>(scratch(0, sizeof(T) * size_t(n)));
-    const int block = block_size(n);
-    const int64_t blocks = (n + block - 1) / block;
+    const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
     cudaEvent_t start = begin_timing();
-    transform_kernel<T><<<unsigned(blocks), block>>>(n, f, values);
+    transform_kernel<T><<<unsigned(blocks), kBlockSize>>>(n, f, values);
     cuda_check(cudaGetLastError(), name);
     T* total = static_cast<T*>(scratch(1, sizeof(T)));
     size_t temp_bytes = 0;
@@ -94,21 +89,13 @@ class CudaExec {
     const char* name;
     cudaEvent_t start, stop;
   };
-  // Threads per block for n items: the largest power of two up to 256 that still gives every
-  // SM two blocks, at least 32.
-  int block_size(int64_t n) const {
-    int block = kMaxBlockSize;
-    while (block > kMinBlockSize && (n + block - 1) / block < 2 * int64_t(sm_count_)) block /= 2;
-    return block;
-  }
-  void describe(KernelStat* s, const void* kernel, int block);
+  void describe(KernelStat* s, const void* kernel);
   cudaEvent_t begin_timing();
   void end_timing(const char* name, cudaEvent_t start);
   cudaEvent_t take_event();
   void* scratch(int slot, size_t bytes);
 
   KernelStats* stats_;
-  int sm_count_ = 1;
   std::vector<Pending> pending_;
   std::vector<cudaEvent_t> free_events_;
   void* scratch_[3] = {nullptr, nullptr, nullptr};
