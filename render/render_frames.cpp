@@ -39,17 +39,18 @@ std::vector<std::string> select_frame_files(const std::string& dir, const std::v
                     std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
     return ok ? std::stoll(digits) : -1;
   };
+  std::vector<int64_t> numbers(all.size());
+  std::transform(all.begin(), all.end(), numbers.begin(), number);
   std::vector<std::string> chosen;
   for (int64_t f : wanted) {
-    const auto it =
-        std::find_if(all.begin(), all.end(), [&](const std::string& x) { return number(x) == f; });
-    if (it == all.end())
+    const auto it = std::find(numbers.begin(), numbers.end(), f);
+    if (it == numbers.end())
       throw std::invalid_argument(
           "render: --frames " + std::to_string(f) + ": no such frame in '" + dir + "' (allowed: " +
           (all.empty() ? std::string("none, the folder has no frame_*.pfr files")
-                       : std::to_string(number(all.front())) + " to " + std::to_string(number(all.back()))) +
+                       : std::to_string(numbers.front()) + " to " + std::to_string(numbers.back())) +
           ")");
-    chosen.push_back(*it);
+    chosen.push_back(all[size_t(it - numbers.begin())]);
   }
   return chosen;
 }

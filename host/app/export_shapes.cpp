@@ -29,7 +29,7 @@ int export_shapes_command(const ShapeExportOptions& o) {
     if (o.format == "obj") write_obj(mesh, path);
     if (o.format == "ply") write_ply(mesh, path, true);
     if (o.format == "stl") write_stl(mesh, path, true);
-    const bool sheet = body.shape == "vase" && body.particles == "shell";
+    const bool sheet = body_solid_is_sheet(body);
     std::printf("%-16s %-9s %8zu triangles  %s %.6g m%s  %s\n", body.name.c_str(), body.shape.c_str(),
                 mesh.triangles.size(), sheet ? "area  " : "volume",
                 sheet ? surface_area(mesh) : signed_volume(mesh),

@@ -168,7 +168,7 @@ TriMesh body_solid(const SceneBody& body, double edge, const std::string& key) {
   if (body.shape == "cylinder") mesh = cylinder_mesh(body.radius, body.height, edge);
   if (body.shape == "torus") mesh = torus_mesh(body.radius, body.tube_radius, edge);
   if (body.shape == "vase")
-    mesh = body.particles == "shell" ? vase_sheet(body.radius, body.height, edge)
+    mesh = body_solid_is_sheet(body) ? vase_sheet(body.radius, body.height, edge)
                                      : vase_mesh(body.radius, body.height, body.wall, edge);
   if (body.shape == "mesh") {
     mesh = read_mesh(body.mesh_path);
@@ -180,6 +180,10 @@ TriMesh body_solid(const SceneBody& body, double edge, const std::string& key) {
   }
   transform(mesh, 1, body.center);
   return mesh;
+}
+
+bool body_solid_is_sheet(const SceneBody& body) {
+  return body.shape == "vase" && body.particles == "shell";
 }
 
 double body_solid_edge(const SceneBody& body, double spacing) {

@@ -65,6 +65,10 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options);
 // scene asks; notes go to stderr under `key`, e.g. "bodies[0]"). Throws MeshError for a bad file.
 TriMesh body_solid(const SceneBody& body, double edge, const std::string& key);
 
+// Whether body_solid gives an open sheet, not a closed solid: a vase of fattened-shell particles
+// (its outer surface; the shell grows inward from it).
+bool body_solid_is_sheet(const SceneBody& body);
+
 // The edge a body's solid is meshed at for particles of `spacing`: the spacing, twice it for tet
 // and shell bodies (a tet is about twice the spacing on a side).
 double body_solid_edge(const SceneBody& body, double spacing);
