@@ -1,6 +1,7 @@
 // Host-side owner of a primitive scene: the arrays behind a PrimitivesView.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "primitives.h"
@@ -13,6 +14,7 @@ struct PrimitiveSet {
   std::vector<Vec3> cube_center;
   std::vector<real> cube_half;
   std::vector<Vec3> tet_vertex;
+  std::vector<TetPlane> tet_plane;  // 4 per tetrahedron (tet_planes)
   // Trimtopes (trimtope.h): CSR lists of face planes and surface triangles.
   std::vector<Vec3> trim_site;
   std::vector<int32_t> trim_plane_start{0};
@@ -45,10 +47,19 @@ struct PrimitiveSet {
     ocube_axis.insert(ocube_axis.end(), axis, axis + 3);
     return size() - 1;
   }
+  // The four vertices are stored in lexicographic (x, y, z) order: tet_interval then computes a
+  // face shared by two tetrahedra from the same vertices in the same order in both, so the two
+  // get the same plane bit for bit and no ray slips between them.
   int32_t add_tet(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
     kind.push_back(kPrimTet);
     slot.push_back(int32_t(tet_vertex.size() / 4));
-    tet_vertex.insert(tet_vertex.end(), {a, b, c, d});
+    Vec3 v[4] = {a, b, c, d};
+    std::sort(v, v + 4, [](Vec3 p, Vec3 q) {
+      return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+    });
+    tet_vertex.insert(tet_vertex.end(), v, v + 4);
+    tet_plane.resize(tet_plane.size() + 4);
+    tet_planes(v, &tet_plane[tet_plane.size() - 4]);
     return size() - 1;
   }
   // A trimtope: site V, the cell's planes dot(normal[k], x) <= offset[k], `triangles` surface
@@ -75,6 +86,7 @@ struct PrimitiveSet {
                      cube_center.data(),
                      cube_half.data(),
                      tet_vertex.data(),
+                     tet_plane.data(),
                      ocube_center.data(),
                      ocube_half.data(),
                      ocube_axis.data(),

@@ -18,13 +18,20 @@ namespace pd {
 
 enum PrimKind : uint8_t { kPrimCube = 0, kPrimTet = 1, kPrimTrimtope = 2, kPrimOrientedCube = 3 };
 
+// A tetrahedron's face plane: dot(n, x) = w, n unnormalised and outward.
+struct alignas(4 * sizeof(real)) TetPlane {
+  Vec3 n;
+  real w;
+};
+
 struct PrimitivesView {
   int32_t n = 0;
   const uint8_t* kind = nullptr;  // PrimKind
   const int32_t* slot = nullptr;  // index into the arrays of that kind
   const Vec3* cube_center = nullptr;
-  const real* cube_half = nullptr;   // half the side length
-  const Vec3* tet_vertex = nullptr;  // 4 consecutive vertices per tetrahedron
+  const real* cube_half = nullptr;      // half the side length
+  const Vec3* tet_vertex = nullptr;     // 4 consecutive vertices per tetrahedron
+  const TetPlane* tet_plane = nullptr;  // its 4 face planes (tet_planes)
   const Vec3* ocube_center = nullptr;
   const real* ocube_half = nullptr;
   const Vec3* ocube_axis = nullptr;  // 3 consecutive unit axes per oriented cube (orthonormal)
@@ -95,43 +102,74 @@ PD_HD inline Box oriented_cube_bounds(Vec3 c, real h, const Vec3* a) {
   return {c - w, c + w};
 }
 
-// The parameter interval [t0, t1] of the line inside tetrahedron v[0..3] (either orientation)
-// with the unnormalised outward normals of the entry and exit faces: the line clipped against
-// the four face planes. A line parallel to a face plane must lie strictly inside it.
-PD_HD inline bool tet_interval(const Ray& r, const Vec3* v, real* t0, real* t1, Vec3* n0, Vec3* n1) {
+// Face f of tetrahedron v[0..3], the one opposite vertex f: the other three vertices in
+// ascending index order. With the vertices stored in one global order (PrimitiveSet::add_tet),
+// two tetrahedra sharing a face compute its plane from the same points in the same order, and
+// the ray's crossing of it is the same float in both: no crack between them.
+PD_HD inline void tet_face(const Vec3* v, int f, Vec3* a, Vec3* b, Vec3* c) {
+  *a = v[f == 0 ? 1 : 0];
+  *b = v[f <= 1 ? 2 : 1];
+  *c = v[f <= 2 ? 3 : 2];
+}
+
+// The four face planes of tetrahedron v[0..3] (either orientation), face f opposite vertex f,
+// computed from tet_face's points: two tetrahedra sharing a face get the same plane up to an
+// exact sign flip, so a ray crosses it at the same t in both.
+PD_HD inline void tet_planes(const Vec3* v, TetPlane* plane) {
+  for (int f = 0; f < 4; ++f) {
+    Vec3 a, b, c;
+    tet_face(v, f, &a, &b, &c);
+    Vec3 n = cross(b - a, c - a);
+    if (dot(n, v[f] - a) > 0) n = -n;
+    plane[f] = {n, dot(n, a)};
+  }
+}
+
+// dist / denom, the ray's crossing of a face plane. On the GPU the fast division (2 ulp, a
+// reciprocal and a product): it is odd in both arguments like the exact one, so a face shared by
+// two tetrahedra, whose plane differs between them by an exact sign flip, is still crossed at the
+// same t in both.
+PD_HD inline real face_crossing(real dist, real denom) {
+#if defined(__CUDA_ARCH__)
+  if constexpr (sizeof(real) == sizeof(float)) return __fdividef(dist, denom);
+#endif
+  return dist / denom;
+}
+
+// The parameter interval [t0, t1] of the line inside the tetrahedron of face planes
+// plane[0..3], with the unnormalised outward normals of the entry and exit faces: the line
+// clipped against the four planes. A line parallel to a face plane must lie strictly inside it.
+PD_HD inline bool tet_interval(const Ray& r, const TetPlane* plane, real* t0, real* t1, Vec3* n0, Vec3* n1) {
   *t0 = -INFINITY;
   *t1 = INFINITY;
   *n0 = *n1 = Vec3{0, 0, 0};
   for (int f = 0; f < 4; ++f) {
-    // Face f is opposite vertex f.
-    const Vec3 a = v[(f + 1) & 3], b = v[(f + 2) & 3], c = v[(f + 3) & 3];
-    Vec3 n = cross(b - a, c - a);
-    if (dot(n, v[f] - a) > 0) n = -n;
-    const real denom = dot(n, r.d);
-    const real dist = dot(n, a) - dot(n, r.o);  // > 0 when the origin is inside this face
+    const TetPlane pl = plane[f];
+    const real denom = dot(pl.n, r.d);
+    const real dist = pl.w - dot(pl.n, r.o);  // > 0 when the origin is inside this face
     if (denom == 0) {
       if (dist <= 0) return false;
       continue;
     }
-    const real t = dist / denom;
+    const real t = face_crossing(dist, denom);
     if (denom < 0) {
       if (t > *t0) {
         *t0 = t;
-        *n0 = n;
+        *n0 = pl.n;
       }
     } else if (t < *t1) {
       *t1 = t;
-      *n1 = n;
+      *n1 = pl.n;
     }
   }
   return *t0 <= *t1;
 }
 
-// Tetrahedron v[0..3]: the first crossing of its faces.
-PD_HD inline bool intersect_tet(const Ray& r, const Vec3* v, SurfaceHit* hit) {
+// The tetrahedron of face planes plane[0..3]: the first crossing of its faces.
+PD_HD inline bool intersect_tet(const Ray& r, const TetPlane* plane, SurfaceHit* hit) {
   real t0, t1;
   Vec3 n0, n1;
-  if (!tet_interval(r, v, &t0, &t1, &n0, &n1)) return false;
+  if (!tet_interval(r, plane, &t0, &t1, &n0, &n1)) return false;
   bool exiting;
   if (!first_crossing(r, t0, t1, &exiting, &hit->t)) return false;
   hit->normal = normalize(exiting ? n1 : n0);
@@ -144,7 +182,7 @@ PD_HD inline bool intersect_primitive(const PrimitivesView& p, int32_t i, const 
   if (p.kind[i] == kPrimTrimtope) return intersect_trimtope(p.trim, s, r, hit);
   if (p.kind[i] == kPrimOrientedCube)
     return intersect_oriented_cube(r, p.ocube_center[s], p.ocube_half[s], p.ocube_axis + 3 * int64_t(s), hit);
-  return intersect_tet(r, p.tet_vertex + 4 * int64_t(s), hit);
+  return intersect_tet(r, p.tet_plane + 4 * int64_t(s), hit);
 }
 
 PD_HD inline Box primitive_bounds(const PrimitivesView& p, int32_t i) {
@@ -190,7 +228,7 @@ PD_HD inline bool primitive_exit(const PrimitivesView& p, int32_t i, const Ray& 
     n = (axis_of(l.d, exit_axis) > 0 ? real(1) : real(-1)) * a[exit_axis];
   } else {
     Vec3 n0;
-    if (!tet_interval(r, p.tet_vertex + 4 * int64_t(s), &t0, &t1, &n0, &n)) return false;
+    if (!tet_interval(r, p.tet_plane + 4 * int64_t(s), &t0, &t1, &n0, &n)) return false;
   }
   if (!(t1 > r.tmin) || !(t1 < INFINITY)) return false;
   hit->t = t1;
@@ -213,14 +251,9 @@ PD_HD inline bool primitive_contains(const PrimitivesView& p, int32_t i, Vec3 x)
     const real h = p.ocube_half[s];
     return std::fabs(dot(q, a[0])) < h && std::fabs(dot(q, a[1])) < h && std::fabs(dot(q, a[2])) < h;
   }
-  const Vec3* v = p.tet_vertex + 4 * int64_t(s);
-  for (int f = 0; f < 4; ++f) {
-    const Vec3 a = v[(f + 1) & 3], b = v[(f + 2) & 3], c = v[(f + 3) & 3];
-    const Vec3 n = cross(b - a, c - a);
-    // x and the opposite vertex on the same side of the face's plane.
-    const real sx = dot(n, x - a), sv = dot(n, v[f] - a);
-    if (!(sx * sv > 0)) return false;
-  }
+  const TetPlane* plane = p.tet_plane + 4 * int64_t(s);
+  for (int f = 0; f < 4; ++f)
+    if (!(dot(plane[f].n, x) < plane[f].w)) return false;
   return true;
 }
 

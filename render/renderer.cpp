@@ -1,6 +1,8 @@
 // Backend choice and the host-side preparation shared by both renderers.
 #include "renderer.h"
 
+#include "hidden_tets.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <utility>
@@ -8,7 +10,7 @@
 namespace pd {
 
 RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo, std::vector<uint8_t> material,
-                              const KdBuildOptions& options) {
+                              const KdBuildOptions& options, HiddenElements elements) {
   if (albedo.size() != prims.kind.size())
     throw std::invalid_argument("render scene: " + std::to_string(albedo.size()) + " albedos for " +
                                 std::to_string(prims.size()) + " primitives");
@@ -27,7 +29,24 @@ RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo, std:
     std::nth_element(sides.begin(), sides.begin() + long(sides.size() / 2), sides.end());
     scene.join_gap = kJoinGapFraction * sides[sides.size() / 2];
   }
-  scene.tree = build_kdtree(boxes, options);
+  // The kd-tree holds the primitives a ray can reach first (hidden_tets.h); its primitive
+  // indices are those of the whole set, so albedo and material stay per primitive.
+  const std::vector<uint8_t> hidden =
+      elements == HiddenElements::kCull ? find_hidden_tets(prims, material) : std::vector<uint8_t>();
+  std::vector<uint32_t> visible;
+  std::vector<Box> visible_boxes;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    if (hidden.empty() || !hidden[i]) {
+      visible.push_back(uint32_t(i));
+      visible_boxes.push_back(boxes[i]);
+    }
+  scene.hidden = int64_t(boxes.size() - visible.size());
+  if (scene.hidden == 0) {
+    scene.tree = build_kdtree(boxes, options);
+  } else {
+    scene.tree = build_kdtree(visible_boxes, options);
+    for (uint32_t& p : scene.tree.prim_index) p = visible[p];
+  }
   scene.prims = std::move(prims);
   scene.albedo = std::move(albedo);
   scene.material = std::move(material);

@@ -22,9 +22,14 @@ struct RenderScene {
   std::vector<Vec3> albedo;       // linear RGB, one per primitive
   std::vector<uint8_t> material;  // SurfaceMaterial per primitive; empty: all opaque
   real join_gap =
-      0;  // elements closer than this touch (union_walk.h): kJoinGapFraction of the median element
-  KdTree tree;
+      0;        // elements closer than this touch (union_walk.h): kJoinGapFraction of the median element
+  KdTree tree;  // over the primitives that are not hidden
+  int64_t hidden = 0;  // tetrahedra left out of the tree (hidden_tets.h)
 };
+
+// kCull leaves the tetrahedra that no ray from outside can reach first out of the kd-tree
+// (hidden_tets.h): the same image, a smaller tree. kKeep puts every primitive in (benchmarks).
+enum class HiddenElements { kCull, kKeep };
 
 // The union tolerance as a fraction of the median element's smallest box side.
 constexpr real kJoinGapFraction = real(0.005);
@@ -32,7 +37,8 @@ constexpr real kJoinGapFraction = real(0.005);
 // Builds the kd-tree and the union tolerance; throws std::invalid_argument unless there is one
 // albedo per primitive and no material or one per primitive.
 RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo,
-                              std::vector<uint8_t> material = {}, const KdBuildOptions& options = {});
+                              std::vector<uint8_t> material = {}, const KdBuildOptions& options = {},
+                              HiddenElements elements = HiddenElements::kCull);
 
 struct RenderSettings {
   int width = 1280, height = 720;

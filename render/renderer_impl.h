@@ -156,6 +156,7 @@ class RendererImpl final : public Renderer {
     auto cube_center = upload(ps.cube_center);
     auto cube_half = upload(ps.cube_half);
     auto tet_vertex = upload(ps.tet_vertex);
+    auto tet_plane = upload(ps.tet_plane);
     auto trim_site = upload(ps.trim_site);
     auto trim_plane_start = upload(ps.trim_plane_start);
     auto trim_plane_normal = upload(ps.trim_plane_normal);
@@ -175,9 +176,17 @@ class RendererImpl final : public Renderer {
     // Kernel parameters.
     PixelKernelParams p;
     p.camera = camera_frame(camera, s.width, s.height);
-    p.prims = {
-        ps.size(),         kind.data(),         slot.data(),       cube_center.data(), cube_half.data(),
-        tet_vertex.data(), ocube_center.data(), ocube_half.data(), ocube_axis.data(),  {}};
+    p.prims = {ps.size(),
+               kind.data(),
+               slot.data(),
+               cube_center.data(),
+               cube_half.data(),
+               tet_vertex.data(),
+               tet_plane.data(),
+               ocube_center.data(),
+               ocube_half.data(),
+               ocube_axis.data(),
+               {}};
     p.prims.trim = {trim_site.data(),         trim_plane_start.data(), trim_plane_normal.data(),
                     trim_plane_offset.data(), trim_tri_start.data(),   trim_tri_vertex.data(),
                     trim_box.data()};

@@ -25,6 +25,7 @@ struct RenderBenchOptions {
   double kd_intersect_cost = -1;
   int kd_max_depth = -1;
   int kd_leaf_prims = -1;
+  bool keep_hidden = false;  // every tetrahedron in the kd-tree (HiddenElements::kKeep)
   std::string out = "bench/results";
 };
 

@@ -98,6 +98,8 @@ int main(int argc, char** argv) {
                                "kd-tree depth limit (default round(8 + 1.3 log2 N))");
   bench_render_cmd->add_option("--kd-leaf-prims", bench_render.kd_leaf_prims,
                                "nodes with at most this many primitives become leaves (default 1)");
+  bench_render_cmd->add_flag("--keep-hidden", bench_render.keep_hidden,
+                             "put the tetrahedra no ray can reach first in the kd-tree too");
   bench_render_cmd->add_option("--out", bench_render.out, "results folder");
 
   RenderOptions render;

@@ -1,6 +1,7 @@
 // Cube, oriented cube and tetrahedron intersection against analytic cases.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "host/random.h"
@@ -82,13 +83,20 @@ TEST(CubeIntersection, RaysInAFacePlaneFollowTheHalfOpenRule) {
 
 const Vec3 kTet[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
+// The face planes intersect_tet takes.
+std::array<TetPlane, 4> planes(const Vec3* v) {
+  std::array<TetPlane, 4> p;
+  tet_planes(v, p.data());
+  return p;
+}
+
 TEST(TetIntersection, EntryThroughAnAxisFaceAndTheSlantedFace) {
   SurfaceHit h;
-  ASSERT_TRUE(intersect_tet(ray({real(0.1), real(0.1), -1}, {0, 0, 1}), kTet, &h));
+  ASSERT_TRUE(intersect_tet(ray({real(0.1), real(0.1), -1}, {0, 0, 1}), planes(kTet).data(), &h));
   EXPECT_NEAR(h.t, 1, 1e-6);
   expect_vec(h.normal, {0, 0, -1});
   // From (1,1,1) towards the origin: enters x + y + z = 1 at (1/3, 1/3, 1/3).
-  ASSERT_TRUE(intersect_tet(ray({1, 1, 1}, {-1, -1, -1}), kTet, &h));
+  ASSERT_TRUE(intersect_tet(ray({1, 1, 1}, {-1, -1, -1}), planes(kTet).data(), &h));
   EXPECT_NEAR(h.t, 2 / std::sqrt(real(3)), 1e-6);
   const real s = 1 / std::sqrt(real(3));
   expect_vec(h.normal, {s, s, s});
@@ -96,25 +104,25 @@ TEST(TetIntersection, EntryThroughAnAxisFaceAndTheSlantedFace) {
 
 TEST(TetIntersection, RayStartingInsideHitsTheExitFace) {
   SurfaceHit h;
-  ASSERT_TRUE(intersect_tet(ray({real(0.1), real(0.1), real(0.1)}, {0, 0, 1}), kTet, &h));
+  ASSERT_TRUE(intersect_tet(ray({real(0.1), real(0.1), real(0.1)}, {0, 0, 1}), planes(kTet).data(), &h));
   EXPECT_NEAR(h.t, real(0.7), 1e-6);
   const real s = 1 / std::sqrt(real(3));
   expect_vec(h.normal, {s, s, s});
-  ASSERT_TRUE(intersect_tet(ray({real(0.2), real(0.1), real(0.1)}, {-1, 0, 0}), kTet, &h));
+  ASSERT_TRUE(intersect_tet(ray({real(0.2), real(0.1), real(0.1)}, {-1, 0, 0}), planes(kTet).data(), &h));
   EXPECT_NEAR(h.t, real(0.2), 1e-6);
   expect_vec(h.normal, {-1, 0, 0});
 }
 
 TEST(TetIntersection, MissesAndVertexOrderDoesNotMatter) {
   SurfaceHit h;
-  EXPECT_FALSE(intersect_tet(ray({2, 2, -1}, {0, 0, 1}), kTet, &h));
-  EXPECT_FALSE(intersect_tet(ray({real(0.1), real(0.1), 2}, {0, 0, 1}), kTet, &h));  // behind
+  EXPECT_FALSE(intersect_tet(ray({2, 2, -1}, {0, 0, 1}), planes(kTet).data(), &h));
+  EXPECT_FALSE(intersect_tet(ray({real(0.1), real(0.1), 2}, {0, 0, 1}), planes(kTet).data(), &h));  // behind
   // Mirrored orientation (two vertices swapped) gives the same hit.
   const Vec3 swapped[4] = {kTet[1], kTet[0], kTet[2], kTet[3]};
   SurfaceHit a, b;
   const Ray r = ray({real(0.3), real(-2), real(0.2)}, {real(0.05), 1, real(0.1)});
-  ASSERT_TRUE(intersect_tet(r, kTet, &a));
-  ASSERT_TRUE(intersect_tet(r, swapped, &b));
+  ASSERT_TRUE(intersect_tet(r, planes(kTet).data(), &a));
+  ASSERT_TRUE(intersect_tet(r, planes(swapped).data(), &b));
   EXPECT_EQ(a.t, b.t);
   expect_vec(a.normal, {0, -1, 0});
   expect_vec(b.normal, a.normal);
@@ -187,7 +195,7 @@ TEST(PrimitiveIntersection, RandomHitsLieOnTheSurface) {
       EXPECT_NEAR(rmax(std::fabs(q.x), rmax(std::fabs(q.y), std::fabs(q.z))), real(0.8), 1e-5);
       EXPECT_NEAR(dot(p, h.normal), real(0.8), 1e-5);
     }
-    if (intersect_tet(r, kTet, &h)) {
+    if (intersect_tet(r, planes(kTet).data(), &h)) {
       ++hits;
       const Vec3 p = r.o + h.t * r.d;
       // On the plane of the face named by the normal, inside the tet's closure.
