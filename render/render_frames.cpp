@@ -139,6 +139,7 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
   report.png = (fs::path(out_) / fs::path(frame_file).filename().replace_extension(".png")).string();
   write_png(report.png, r.image);
   report.tree = scene.tree.stats;
+  report.hidden = scene.hidden;
   report.render_seconds = r.seconds;
   report.rays = r.rays;
   return report;
@@ -162,9 +163,11 @@ int render_frames(const RenderOptions& o) {
     const FrameRenderReport r = renderer.render(frames[k]);
     ray_seconds += r.render_seconds;
     rays += r.rays;
-    std::printf("frame %zu/%zu  kd-tree %.2f s (%lld nodes, depth %d)  render %.3f s  %.2f Mrays/s  %s\n",
-                k + 1, frames.size(), r.tree.build_seconds, (long long)r.tree.nodes, r.tree.depth,
-                r.render_seconds, 1e-6 * double(r.rays) / r.render_seconds, r.png.c_str());
+    std::printf(
+        "frame %zu/%zu  kd-tree %.2f s (%lld nodes, depth %d, %lld hidden)  render %.3f s  %.2f Mrays/s  "
+        "%s\n",
+        k + 1, frames.size(), r.tree.build_seconds, (long long)r.tree.nodes, r.tree.depth,
+        (long long)r.hidden, r.render_seconds, 1e-6 * double(r.rays) / r.render_seconds, r.png.c_str());
     std::fflush(stdout);
   }
   std::printf("rendered   %zu frames, %.2f Mrays/s overall\n", frames.size(),

@@ -44,6 +44,7 @@ void check_render_options(const RenderOptions& o);
 struct FrameRenderReport {
   std::string png;
   KdTreeStats tree;
+  int64_t hidden = 0;  // tetrahedra left out of the kd-tree (hidden_tets.h)
   double render_seconds = 0;
   int64_t rays = 0;
 };
