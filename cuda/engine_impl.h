@@ -177,6 +177,7 @@ class EngineImpl final : public Engine {
     h.sorted = sorted ? ids_sorted_.data() : ids_.data();
     h.bin_start = bin_start_.data();
     h.bin_end = bin_end_.data();
+    h.record = sorted ? record_.data() : nullptr;
     return h;
   }
 
@@ -219,6 +220,15 @@ class EngineImpl final : public Engine {
     bin_end_ = make<int32_t>(bins_);
   }
 
+  // Collision cells of side max(lambda), twice the largest contact distance, and the sorted
+  // partner records.
+  void allocate_contact_hash() {
+    real spacing = 0;
+    for (int m = 0; m < materials_.count; ++m) spacing = std::max(spacing, materials_.m[m].contact_spacing);
+    allocate_hash(spacing);
+    record_ = make<Vec4>(n_);
+  }
+
   template <class T>
   void drop(DeviceArray<T, Exec>& a) {
     allocated_ -= a.bytes();
@@ -232,6 +242,7 @@ class EngineImpl final : public Engine {
     drop(ids_sorted_);
     drop(bin_start_);
     drop(bin_end_);
+    drop(record_);
     bins_ = 0;
   }
 
@@ -344,13 +355,6 @@ class EngineImpl final : public Engine {
     launch_reverse_bonds(exec_, bonds(), reverse_.data());
   }
 
-  // Collision cells of side max(lambda), twice the largest contact distance.
-  void allocate_contact_hash() {
-    real spacing = 0;
-    for (int m = 0; m < materials_.count; ++m) spacing = std::max(spacing, materials_.m[m].contact_spacing);
-    allocate_hash(spacing);
-  }
-
   // Kernels 1-5: the forces at the current positions.
   void compute_forces() {
     const ParticlesView p = particles();
@@ -358,8 +362,8 @@ class EngineImpl final : public Engine {
     launch_init(exec_, p, b, hash_view(true), materials_, features_);
     if (features_.plastic) launch_plasticity(exec_, p, b, materials_, features_);
     if (contact_) {
-      launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true));
-      launch_collisions(exec_, p, hash_view(true), materials_, step_params_.contact_stiffness);
+      launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true), materials_);
+      launch_collisions(exec_, p, hash_view(true), step_params_.contact_stiffness);
     }
     launch_springforces(exec_, p, b, materials_, features_);
     if (body_forces_) launch_bodyforces(exec_, p, step_params_);
@@ -400,6 +404,7 @@ class EngineImpl final : public Engine {
   real inv_cell_ = 0;
   DeviceArray<uint32_t, Exec> key_, key_sorted_;
   DeviceArray<int32_t, Exec> ids_, ids_sorted_, bin_start_, bin_end_;
+  DeviceArray<Vec4, Exec> record_;  // collisions: sorted partner records
 };
 
 }  // namespace pd

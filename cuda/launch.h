@@ -52,24 +52,31 @@ void launch_reset_bins(Exec& ex, const char* name, HashView h) {
 }
 
 // Kernel 2: bin keys, a stable sort, then bin bounds. kCurrent hashes current positions
-// (collisions), otherwise reference positions (family build).
+// (collisions) and also writes each sorted entry's record (position, a quarter of the contact
+// spacing); otherwise reference positions (family build).
 template <bool kCurrent, class Exec>
-void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView unsorted, HashView sorted) {
+void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView unsorted, HashView sorted,
+                       MaterialTable mt = {}) {
   ex.parallel_for(name, p.n, [=] PD_HD(int64_t i) {
     const Vec3 x = kCurrent ? p.position(int32_t(i)) : xyz(p.rest[i]);
     hash_particle(int32_t(i), x, unsorted);
   });
   ex.sort_by_key("pd/collection_sort", unsorted.key, unsorted.sorted, sorted.key, sorted.sorted, p.n,
                  sorted.bins);
-  ex.parallel_for("pd/collection_bins", p.n,
-                  [=] PD_HD(int64_t s) { mark_bin_bounds(int32_t(s), p.n, sorted); });
+  ex.parallel_for("pd/collection_bins", p.n, [=] PD_HD(int64_t s) {
+    mark_bin_bounds(int32_t(s), p.n, sorted);
+    if constexpr (kCurrent) {
+      const int32_t i = sorted.sorted[s];
+      sorted.record[s] = with_w(p.position(i), real(0.25) * mt.m[p.material[i]].contact_spacing);
+    }
+  });
 }
 
-// Kernel 3.
+// Kernel 3, over the sorted entries.
 template <class Exec>
-void launch_collisions(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, real stiffness) {
+void launch_collisions(Exec& ex, ParticlesView p, HashView h, real stiffness) {
   ex.parallel_for("pd/collisions", p.n,
-                  [=] PD_HD(int64_t i) { collision_forces(int32_t(i), p, h, mt, stiffness); });
+                  [=] PD_HD(int64_t s) { collision_forces(int32_t(s), p, h, stiffness); });
 }
 
 // Kernel 4, one instantiation per feature set so a scene pays only for what it uses.

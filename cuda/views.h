@@ -88,6 +88,9 @@ struct HashView {
   int32_t* sorted = nullptr;     // particle ids in bin order
   int32_t* bin_start = nullptr;  // first sorted entry of each bin, -1 when empty
   int32_t* bin_end = nullptr;    // one past the last sorted entry
+  // Collisions only: per sorted entry, the particle's position and a quarter of its contact
+  // spacing, so the partners of a cell are read in one contiguous run (launch_collection).
+  Vec4* record = nullptr;
 };
 
 struct Cell {

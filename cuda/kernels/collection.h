@@ -42,16 +42,38 @@ PD_HD inline void for_each_nearby(Vec3 x, HashView h, PositionFn pos, Visit visi
       for (int dx = -1; dx <= 1; ++dx) for_each_in_cell({c.x + dx, c.y + dy, c.z + dz}, h, pos, visit);
 }
 
-// Every particle within half a cell side of `x` (and some farther): on each axis only x's
-// cell and the neighbour on the side of x's half of it, 8 cells instead of 27.
-template <class PositionFn, class Visit>
-PD_HD inline void for_each_within_half_cell(Vec3 x, HashView h, PositionFn pos, Visit visit) {
+// The 8 cells that hold every particle within half a cell side of `x` (and some farther): on
+// each axis x's cell and the neighbour on the side of x's half of it.
+template <class CellFn>
+PD_HD inline void for_each_half_cell_neighbourhood(Vec3 x, HashView h, CellFn cell_fn) {
   const Cell c = cell_of(x, h.inv_cell);
   auto low = [&](real v, int32_t cell) { return v * h.inv_cell - real(cell) < real(0.5) ? cell - 1 : cell; };
   const Cell lo{low(x.x, c.x), low(x.y, c.y), low(x.z, c.z)};
   for (int dz = 0; dz <= 1; ++dz)
     for (int dy = 0; dy <= 1; ++dy)
-      for (int dx = 0; dx <= 1; ++dx) for_each_in_cell({lo.x + dx, lo.y + dy, lo.z + dz}, h, pos, visit);
+      for (int dx = 0; dx <= 1; ++dx) cell_fn(Cell{lo.x + dx, lo.y + dy, lo.z + dz});
+}
+
+// Every particle within half a cell side of `x` (and some farther), 8 cells instead of 27.
+template <class PositionFn, class Visit>
+PD_HD inline void for_each_within_half_cell(Vec3 x, HashView h, PositionFn pos, Visit visit) {
+  for_each_half_cell_neighbourhood(x, h, [&](Cell c) { for_each_in_cell(c, h, pos, visit); });
+}
+
+// The same search over the sorted records (HashView::record): visit(s, record) per sorted
+// entry s of a particle within half a cell side of `x`, reading each cell's run contiguously.
+template <class Visit>
+PD_HD inline void for_each_record_within_half_cell(Vec3 x, HashView h, Visit visit) {
+  for_each_half_cell_neighbourhood(x, h, [&](Cell nc) {
+    const uint32_t b = cell_bin(nc, h.bins);
+    const int32_t begin = h.bin_start[b];
+    if (begin < 0) return;
+    const int32_t end = h.bin_end[b];
+    for (int32_t s = begin; s < end; ++s) {
+      const Vec4 r = h.record[s];
+      if (same_cell(cell_of(xyz(r), h.inv_cell), nc)) visit(s, r);
+    }
+  });
 }
 
 }  // namespace pd

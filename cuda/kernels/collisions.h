@@ -2,7 +2,8 @@
 // distance (Levine eq. 6): f_i = K_c (|x_i - x_j| - r_c)^2 (x_i - x_j)/|x_i - x_j|, with
 // r_c = (lambda_i + lambda_j)/4, i.e. lambda/2 for equal spacings. Cells have the side of
 // the largest spacing, twice the largest contact distance, so 8 cells hold every partner.
-// Writes (not adds) the force, so it runs first among the force kernels.
+// Writes (not adds) the force, so it runs first among the force kernels. Runs over the hash's
+// sorted records (position and quarter contact spacing per entry, written by `collection`).
 #pragma once
 
 #include "../views.h"
@@ -19,18 +20,17 @@ PD_HD inline Vec3 contact_force(Vec3 xi, Vec3 xj, real contact_distance, real st
   return (stiffness * gap * gap / r) * d;
 }
 
-PD_HD inline void collision_forces(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt,
-                                   real stiffness) {
-  auto pos = [&](int32_t j) { return p.position(j); };
-  const Vec3 xi = pos(i);
-  const real quarter_i = real(0.25) * mt.m[p.material[i]].contact_spacing;
+// Sorted entry s of the hash (threads in bin order, so a warp's particles share cells): the
+// contact force on its particle from every other particle within the contact distance.
+PD_HD inline void collision_forces(int32_t s, ParticlesView p, HashView h, real stiffness) {
+  const Vec4 ri = h.record[s];
+  const Vec3 xi = xyz(ri);
   Vec3 f{0, 0, 0};
-  for_each_within_half_cell(xi, h, pos, [&](int32_t j) {
-    if (j == i) return;
-    const real rc = quarter_i + real(0.25) * mt.m[p.material[j]].contact_spacing;
-    f += contact_force(xi, pos(j), rc, stiffness);
+  for_each_record_within_half_cell(xi, h, [&](int32_t t, Vec4 rj) {
+    if (t == s) return;
+    f += contact_force(xi, xyz(rj), ri.w + rj.w, stiffness);
   });
-  p.force[i] = f;
+  p.force[h.sorted[s]] = f;
 }
 
 }  // namespace pd

@@ -28,7 +28,8 @@ TEST(Collisions, NoForceAtOrBeyondTheContactDistance) {
   EXPECT_EQ(contact_force({0, 0, 0}, {0, 0, 0}, real(1e-3), real(1e8)).x, 0);  // coincident: no direction
 }
 
-// The 8-cell search finds every point within half a cell side, like the 27-cell one.
+// The 8-cell search finds every point within half a cell side, like the 27-cell one, and the
+// search over the sorted records finds the same points.
 TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
   Random rng(17);
   std::vector<Vec3> pts(3000);
@@ -51,13 +52,22 @@ TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
   h.bin_start = start.data();
   h.bin_end = end.data();
   for (int32_t s = 0; s < int32_t(pts.size()); ++s) mark_bin_bounds(s, int32_t(pts.size()), h);
+  // The sorted records the collisions kernel reads (w: a tag to check the entry).
+  std::vector<Vec4> record(pts.size());
+  for (size_t s = 0; s < pts.size(); ++s) record[s] = with_w(pts[size_t(sorted[s])], real(sorted[s]));
+  h.record = record.data();
   auto pos = [&](int32_t j) { return pts[j]; };
   for (size_t i = 0; i < pts.size(); i += 7) {
-    std::set<int32_t> half, brute;
+    std::set<int32_t> half, from_records, brute;
     for_each_within_half_cell(pts[i], h, pos, [&](int32_t j) { half.insert(j); });
+    for_each_record_within_half_cell(pts[i], h, [&](int32_t s, Vec4 r) {
+      EXPECT_EQ(int32_t(r.w), sorted[size_t(s)]);
+      from_records.insert(sorted[size_t(s)]);
+    });
     for (size_t j = 0; j < pts.size(); ++j)
       if (length(pts[j] - pts[i]) < real(0.5) * cell) brute.insert(int32_t(j));
     for (int32_t j : brute) EXPECT_TRUE(half.count(j)) << i << " misses " << j;
+    EXPECT_EQ(from_records, half);
   }
 }
 
