@@ -66,6 +66,8 @@ for tool in memcheck racecheck; do
     "$bin" render "$OUT/sanitizer" --backend cuda --width 64 --height 48 --spp 1
 done
 step bench-glass "$bin" bench --scene "$scene" --backend cuda --steps 2000 --warmup 200 --out "$OUT/bench"
+# The issue-5 full-step workload: the glass plate at 1M particles, the projectile arriving.
+step bench-glass-1m "$bin" bench --scene "$scene" --scale 8 --backend cuda --steps 1000 --warmup 100 --out "$OUT/bench"
 for model in bond_based state_based anisotropic plastic; do
   step "bench-lattice-$model" "$bin" bench --lattice 100 --model "$model" --backend cuda --steps 300 --warmup 30 \
     --out "$OUT/bench"
