@@ -65,7 +65,7 @@ void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView uns
                  sorted.bins);
   ex.parallel_for("pd/collection_bins", p.n, [=] PD_HD(int64_t s) {
     mark_bin_bounds(int32_t(s), p.n, sorted);
-    if constexpr (kCurrent) {
+    if (kCurrent) {  // (not constexpr: an extended lambda cannot first-capture there)
       const int32_t i = sorted.sorted[s];
       sorted.record[s] = with_w(p.position(i), real(0.25) * mt.m[p.material[i]].contact_spacing);
     }
