@@ -110,9 +110,22 @@ PD_HD inline Cell cell_of(Vec3 p, real inv_cell) {
 PD_HD inline bool same_cell(Cell a, Cell b) {
   return a.x == b.x && a.y == b.y && a.z == b.z;
 }
+// The bin of a cell. Blocks of 4 x 4 x 4 cells keep 64 consecutive bins: the block is hashed
+// (Teschner et al. 2003) and the cell's place in its block, in Morton order, gives the low 6
+// bits. Entries sorted by bin are then in space-filling order within each block, so a warp of
+// consecutive entries (collisions run one thread per entry) works on one neighbourhood and
+// reads the same cells; a plain hash of the cell scatters neighbours across the bins.
+constexpr int kHashBlockBits = 2;  // log2 of the block side
+
 PD_HD inline uint32_t cell_bin(Cell c, uint32_t bins) {
-  const uint32_t h = (uint32_t(c.x) * 73856093u) ^ (uint32_t(c.y) * 19349663u) ^ (uint32_t(c.z) * 83492791u);
-  return h & (bins - 1u);
+  const uint32_t h = (uint32_t(c.x >> kHashBlockBits) * 73856093u) ^
+                     (uint32_t(c.y >> kHashBlockBits) * 19349663u) ^
+                     (uint32_t(c.z >> kHashBlockBits) * 83492791u);
+  uint32_t local = 0;
+  for (int b = 0; b < kHashBlockBits; ++b)
+    local |= ((uint32_t(c.x) >> b & 1u) << (3 * b)) | ((uint32_t(c.y) >> b & 1u) << (3 * b + 1)) |
+             ((uint32_t(c.z) >> b & 1u) << (3 * b + 2));
+  return ((h << (3 * kHashBlockBits)) | local) & (bins - 1u);
 }
 
 enum MaterialModel : uint8_t {

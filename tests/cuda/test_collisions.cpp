@@ -71,6 +71,27 @@ TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
   }
 }
 
+// A block of 4 x 4 x 4 cells, wherever it lies (negative coordinates too), fills 64 consecutive
+// bins in Morton order; its neighbouring block starts elsewhere.
+TEST(Collisions, CellBinsKeepBlocksOfCellsTogether) {
+  const uint32_t bins = 1u << 16;
+  for (const Cell origin : {Cell{0, 0, 0}, Cell{-8, 12, -4}, Cell{400, -4000, 36}}) {
+    const uint32_t first = cell_bin(origin, bins);
+    EXPECT_EQ(first % 64, 0u);
+    std::set<uint32_t> seen;
+    for (int z = 0; z < 4; ++z)
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+          const uint32_t b = cell_bin({origin.x + x, origin.y + y, origin.z + z}, bins);
+          EXPECT_EQ(b - first, uint32_t(x & 1) | uint32_t(y & 1) << 1 | uint32_t(z & 1) << 2 |
+                                   uint32_t(x >> 1) << 3 | uint32_t(y >> 1) << 4 | uint32_t(z >> 1) << 5);
+          seen.insert(b);
+        }
+    EXPECT_EQ(seen.size(), 64u);
+    EXPECT_NE(cell_bin({origin.x + 4, origin.y, origin.z}, bins), first + 64);
+  }
+}
+
 // Runaway positions (a blow-up in progress) map to valid cells whose neighbours do not overflow.
 TEST(Collisions, CellOfARunawayPositionIsClamped) {
   const real inf = std::numeric_limits<real>::infinity();
