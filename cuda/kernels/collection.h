@@ -19,18 +19,24 @@ PD_HD inline void mark_bin_bounds(int32_t s, int32_t n, HashView h) {
   if (s == n - 1 || h.key[s + 1] != k) h.bin_end[k] = s + 1;
 }
 
-// Visit every particle hashed into cell `nc`. `pos(j)` must return the same position that
-// was hashed, so the cell comparison is exact.
-template <class PositionFn, class Visit>
-PD_HD inline void for_each_in_cell(Cell nc, HashView h, PositionFn pos, Visit visit) {
+// Calls visit(s) for every sorted entry s in the bin of cell `nc` (other cells may share it).
+template <class Visit>
+PD_HD inline void for_each_entry_in_bin(Cell nc, HashView h, Visit visit) {
   const uint32_t b = cell_bin(nc, h.bins);
   const int32_t begin = h.bin_start[b];
   if (begin < 0) return;
   const int32_t end = h.bin_end[b];
-  for (int32_t s = begin; s < end; ++s) {
+  for (int32_t s = begin; s < end; ++s) visit(s);
+}
+
+// Visit every particle hashed into cell `nc`. `pos(j)` must return the same position that
+// was hashed, so the cell comparison is exact.
+template <class PositionFn, class Visit>
+PD_HD inline void for_each_in_cell(Cell nc, HashView h, PositionFn pos, Visit visit) {
+  for_each_entry_in_bin(nc, h, [&](int32_t s) {
     const int32_t j = h.sorted[s];
     if (same_cell(cell_of(pos(j), h.inv_cell), nc)) visit(j);
-  }
+  });
 }
 
 // Every particle within one cell side of `x`: the 27 cells around x's cell.
@@ -65,14 +71,10 @@ PD_HD inline void for_each_within_half_cell(Vec3 x, HashView h, PositionFn pos, 
 template <class Visit>
 PD_HD inline void for_each_record_within_half_cell(Vec3 x, HashView h, Visit visit) {
   for_each_half_cell_neighbourhood(x, h, [&](Cell nc) {
-    const uint32_t b = cell_bin(nc, h.bins);
-    const int32_t begin = h.bin_start[b];
-    if (begin < 0) return;
-    const int32_t end = h.bin_end[b];
-    for (int32_t s = begin; s < end; ++s) {
+    for_each_entry_in_bin(nc, h, [&](int32_t s) {
       const Vec4 r = h.record[s];
       if (same_cell(cell_of(xyz(r), h.inv_cell), nc)) visit(s, r);
-    }
+    });
   });
 }
 
