@@ -50,7 +50,8 @@ bool opposite_sides(const Vec3* v, int f, Vec3 w) {
 
 }  // namespace
 
-std::vector<uint8_t> find_hidden_tets(const PrimitiveSet& prims, const std::vector<uint8_t>& material) {
+std::vector<uint8_t> find_hidden_tets(const PrimitiveSet& prims, const std::vector<uint8_t>& material,
+                                      int max_skin_vertices) {
   const int64_t n = prims.size();
   std::vector<uint8_t> hidden(size_t(n), 0);
   auto is_opaque_tet = [&](int64_t i) {
@@ -104,7 +105,7 @@ std::vector<uint8_t> find_hidden_tets(const PrimitiveSet& prims, const std::vect
         skin.push_back(points_hash(&p, 1));
   __gnu_parallel::sort(skin.begin(), skin.end());
   skin.erase(std::unique(skin.begin(), skin.end()), skin.end());
-  // Hidden: four covered faces and at most one vertex on the skin.
+  // Hidden: four covered faces and at most max_skin_vertices vertices on the skin.
 #pragma omp parallel for schedule(static)
   for (int64_t i = 0; i < n; ++i) {
     if (covered[size_t(i)] != 15) continue;
@@ -112,7 +113,7 @@ std::vector<uint8_t> find_hidden_tets(const PrimitiveSet& prims, const std::vect
     int on_skin = 0;
     for (int c = 0; c < 4; ++c)
       on_skin += std::binary_search(skin.begin(), skin.end(), points_hash(v + c, 1));
-    hidden[size_t(i)] = on_skin <= 1;
+    hidden[size_t(i)] = on_skin <= max_skin_vertices;
   }
   return hidden;
 }
