@@ -5,11 +5,13 @@
 
 #include <Eigen/Geometry>
 #include <cstdlib>
+#include <memory>
 
 #include "host/engine.h"
 #include "host/geometry/shapes.h"
 #include "host/geometry/voronoi_particles.h"
 #include "render/renderer.h"
+#include "render/tet_lattice.h"
 #include "render/voronoi_trimtopes.h"
 #include "render_scenes.h"
 
@@ -86,6 +88,44 @@ TEST(CudaRenderer, GlassBlockMatchesTheCpu) {
   camera.eye = {real(0.6), real(1.2), real(2.4)};
   camera.look_at = {real(0.6), real(0.1), real(0.4)};
   expect_same_image(scene, camera, s, "glass block");
+}
+
+// Pixels of `a` and `b` whose channels differ by more than `levels` anywhere.
+int64_t differing_pixels(const ImageRGB8& a, const ImageRGB8& b, int levels) {
+  int64_t n = 0;
+  for (size_t p = 0; p + 2 < a.rgb.size(); p += 3) {
+    bool differs = false;
+    for (size_t c = 0; c < 3; ++c) differs |= std::abs(int(a.rgb[p + c]) - int(b.rgb[p + c])) > levels;
+    n += differs;
+  }
+  return n;
+}
+
+// A jittered block of tetrahedra, one colour: leaving the hidden ones out of the kd-tree
+// (hidden_tets.h) gives the image of the whole set on each backend, so no ray slips through the
+// skin with the GPU's face crossings either; and the GPU image matches the CPU's.
+TEST(CudaRenderer, HiddenTetrahedraLeaveTheImageAsItWas) {
+  PrimitiveSet prims;
+  add_tet_lattice(&prims, 14, 6, 12, 0.1, 0.2);
+  const std::vector<Vec3> albedo(size_t(prims.size()), {real(0.7), real(0.6), real(0.5)});
+  const RenderScene culled = make_render_scene(prims, albedo);
+  const RenderScene all = make_render_scene(prims, albedo, {}, {}, HiddenElements::kKeep);
+  ASSERT_GT(culled.hidden, prims.size() / 5);
+  RenderSettings s = settings();
+  Camera camera;
+  camera.eye = {real(1.1), real(1.4), real(1.6)};
+  camera.look_at = {0, real(0.3), 0};
+  const bool gpu = cuda_device_available(nullptr);
+  for (bool on_gpu : {false, true}) {
+    if (on_gpu && !gpu) continue;
+    const std::unique_ptr<Renderer> r = make_renderer(on_gpu);
+    const ImageRGB8 a = r->render_frame(culled, camera, s).image, b = r->render_frame(all, camera, s).image;
+    const int64_t differ = differing_pixels(a, b, 2);
+    std::printf("%s: %lld of %d pixels differ by more than 2 levels with the hidden tetrahedra left out\n",
+                on_gpu ? "GPU" : "CPU", (long long)differ, s.width * s.height);
+    EXPECT_EQ(differ, 0) << (on_gpu ? "GPU" : "CPU");
+  }
+  if (gpu) expect_same_image(culled, camera, s, "tetrahedra, hidden ones left out");
 }
 
 TEST(CudaRenderer, VoronoiTrimtopesMatchTheCpuOpaqueAndGlass) {
