@@ -300,4 +300,19 @@ KdTree build_kdtree(const std::vector<Box>& boxes, const KdBuildOptions& options
   return tree;
 }
 
+KdTree build_kdtree_without(const std::vector<Box>& boxes, const std::vector<uint8_t>& leave_out,
+                            const KdBuildOptions& options) {
+  std::vector<uint32_t> kept;
+  std::vector<Box> kept_boxes;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    if (leave_out.empty() || !leave_out[i]) {
+      kept.push_back(uint32_t(i));
+      kept_boxes.push_back(boxes[i]);
+    }
+  if (kept.size() == boxes.size()) return build_kdtree(boxes, options);
+  KdTree tree = build_kdtree(kept_boxes, options);
+  for (uint32_t& p : tree.prim_index) p = kept[p];
+  return tree;
+}
+
 }  // namespace pd

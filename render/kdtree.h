@@ -89,4 +89,9 @@ struct KdTree {
 // nodes or primitive references (the node encoding's limit).
 KdTree build_kdtree(const std::vector<Box>& boxes, const KdBuildOptions& options = {});
 
+// The tree over the primitives whose `leave_out` flag is 0 (an empty `leave_out`: all), with
+// prim_index holding their indices among all of `boxes`.
+KdTree build_kdtree_without(const std::vector<Box>& boxes, const std::vector<uint8_t>& leave_out,
+                            const KdBuildOptions& options = {});
+
 }  // namespace pd

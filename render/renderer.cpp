@@ -33,20 +33,8 @@ RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo, std:
   // indices are those of the whole set, so albedo and material stay per primitive.
   const std::vector<uint8_t> hidden =
       elements == HiddenElements::kCull ? find_hidden_tets(prims, material) : std::vector<uint8_t>();
-  std::vector<uint32_t> visible;
-  std::vector<Box> visible_boxes;
-  for (size_t i = 0; i < boxes.size(); ++i)
-    if (hidden.empty() || !hidden[i]) {
-      visible.push_back(uint32_t(i));
-      visible_boxes.push_back(boxes[i]);
-    }
-  scene.hidden = int64_t(boxes.size() - visible.size());
-  if (scene.hidden == 0) {
-    scene.tree = build_kdtree(boxes, options);
-  } else {
-    scene.tree = build_kdtree(visible_boxes, options);
-    for (uint32_t& p : scene.tree.prim_index) p = visible[p];
-  }
+  scene.hidden = std::count(hidden.begin(), hidden.end(), uint8_t(1));
+  scene.tree = build_kdtree_without(boxes, hidden, options);
   scene.prims = std::move(prims);
   scene.albedo = std::move(albedo);
   scene.material = std::move(material);

@@ -125,16 +125,7 @@ SlipCount count_slipping_rays(const PrimitiveSet& prims, const std::vector<uint8
   const RenderScene scene =
       make_render_scene(prims, std::vector<Vec3>(size_t(prims.size())), {}, {}, HiddenElements::kKeep);
   // The same tree the renderer builds, over the kept tetrahedra.
-  std::vector<Box> kept_boxes;
-  std::vector<uint32_t> kept;
-  const std::vector<Box> boxes = prims.bounds();
-  for (size_t i = 0; i < boxes.size(); ++i)
-    if (!hidden[i]) {
-      kept.push_back(uint32_t(i));
-      kept_boxes.push_back(boxes[i]);
-    }
-  KdTree tree = build_kdtree(kept_boxes);
-  for (uint32_t& p : tree.prim_index) p = kept[p];
+  const KdTree tree = build_kdtree_without(prims.bounds(), hidden);
   const PrimitivesView view = scene.prims.view();
   Random rng(7);
   SlipCount c;
