@@ -11,6 +11,7 @@
 
 #include "../host/bond_cuts.h"
 #include "../host/engine.h"
+#include "../host/lattice_families.h"
 #include "../host/memory_budget.h"
 #include "device_array.h"
 #include "launch.h"
@@ -40,6 +41,7 @@ class EngineImpl final : public Engine {
     upload_particles(ps);
     build_families();
     if (!in.cuts.empty()) apply_cuts(in);
+    if (in.lattice_families) build_lattice_families(in.particles);
     compute_critical_time_step();
     if (features_.state_based) allocate_state();
     if (contact_) allocate_contact_hash();
@@ -118,10 +120,17 @@ class EngineImpl final : public Engine {
         throw std::invalid_argument(std::string("snapshot ") + what + " has " + std::to_string(host.size()) +
                                     " entries, the engine " + std::to_string(array.size()));
     });
+    if (!lattice_.stencils.empty()) {  // the intact bits follow the restored families
+      BondLists lists;
+      read_bonds(lists);
+      lists.neighbor = in.neighbor;
+      refresh_lattice_intact(lattice_, lists);
+    }
     step_ = in.step;
     time_ = in.time;
     motion_.apply(time_, step_params_);
     for_each_state_array(snapshot, [](const char*, auto& array, auto& host) { array.upload(host); });
+    if (!lattice_.stencils.empty()) lattice_intact_.upload(lattice_.intact);
   }
 
  private:
@@ -166,6 +175,12 @@ class EngineImpl final : public Engine {
     b.plastic = plastic_ext_.data();
     b.reverse = reverse_.data();
     b.strength = bond_strength_.data();
+    b.lattice.words = lattice_.words;
+    b.lattice.stencil = lattice_stencil_.data();
+    b.lattice.stencils = stencils_.data();
+    b.lattice.entries = stencil_entries_.data();
+    b.lattice.present = lattice_present_.data();
+    b.lattice.intact = lattice_intact_.data();
     return b;
   }
 
@@ -301,6 +316,21 @@ class EngineImpl final : public Engine {
     features_.weak_bonds = true;
   }
 
+  // Box-grid bodies find their partners by offset (host/lattice_families.h); the host keeps
+  // the tables to check and refresh the intact bits of a restored snapshot.
+  void build_lattice_families(const ParticleSet& ps) {
+    BondLists lists;
+    read_bonds(lists);
+    lattice_ = lattice_families(ps, lists);
+    family_.lattice_particles = lattice_.particles();
+    if (lattice_.stencils.empty()) return;
+    lattice_stencil_ = make_from(lattice_.stencil);
+    stencils_ = make_from(lattice_.stencils);
+    stencil_entries_ = make_from(lattice_.entries);
+    lattice_present_ = make_from(lattice_.present);
+    lattice_intact_ = make_from(lattice_.intact);
+  }
+
   // The arrays a run changes, paired with their snapshot vectors (save, restore).
   template <class F>
   void for_each_state_array(EngineSnapshot& s, F f) {
@@ -399,6 +429,11 @@ class EngineImpl final : public Engine {
   DeviceArray<real, Exec> plastic_ext_;
   DeviceArray<uint16_t, Exec> reverse_;
   DeviceArray<uint8_t, Exec> bond_strength_;
+  LatticeFamilies lattice_;
+  DeviceArray<int16_t, Exec> lattice_stencil_;
+  DeviceArray<Stencil, Exec> stencils_;
+  DeviceArray<StencilEntry, Exec> stencil_entries_;
+  DeviceArray<uint32_t, Exec> lattice_present_, lattice_intact_;
 
   uint32_t bins_ = 0;
   real inv_cell_ = 0;

@@ -144,7 +144,10 @@ void launch_slice_length(Exec& ex, int32_t n, const int32_t* count, int64_t* len
 
 template <class Exec>
 void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, BondsView b) {
-  ex.parallel_for("family/fill", p.n, [=] PD_HD(int64_t i) { fill_family(int32_t(i), p, h, mt, b); });
+  ex.parallel_for("family/fill", p.n, [=] PD_HD(int64_t i) {
+    fill_family(int32_t(i), p, h, mt, b);
+    sort_family(int32_t(i), b);
+  });
 }
 
 // State-based set-up: weighted volumes, and the reverse bond positions for plasticity.

@@ -54,6 +54,39 @@ struct ParticlesView {
 // warp read consecutive words for the same k. A broken bond keeps its partner as ~j (< 0).
 constexpr int kSliceWidth = 32;
 
+// Lattice families (implicit neighbours, host/lattice_families.h). A body laid out as a full
+// box grid (x fastest, then y, z) with one material and volume has one stencil: the bond
+// offsets its families use, in ascending partner order. A particle of such a body finds
+// bond q's partner at its own index + offset[q] and its reference bond vector in the table,
+// so the force loops read no partner index and no partner reference position. Its stored
+// family lists the same bonds in the same (stencil) order, so per-bond state, reverse positions
+// and every other reader of `neighbor` see the same slots.
+struct StencilEntry {
+  Vec4 xi;         // xyz: reference bond vector [m]; w: |xi|
+  real inv_r0;     // 1 / |xi|
+  int32_t offset;  // partner index minus own index
+  real pad[2];
+};
+
+struct Stencil {
+  int32_t first = 0;  // first entry in LatticeView::entries
+  int32_t size = 0;   // entries (<= 32 kLatticeWords)
+  real volume = 0;    // every particle's volume [m^3]
+};
+
+constexpr int kLatticeWords = 16;  // stencils of up to 512 bonds (delta + lambda/2 <= 4.5 lambda)
+
+struct LatticeView {
+  int32_t words = 0;                 // mask words per particle (the largest stencil's)
+  const int16_t* stencil = nullptr;  // per particle: its stencil, or -1 (explicit family)
+  const Stencil* stencils = nullptr;
+  const StencilEntry* entries = nullptr;
+  // Per particle, bit q of word w (stored at w * n + i) for stencil entry 32 w + q: the bond is
+  // in the family (present; cuts remove bonds) and not broken (intact).
+  const uint32_t* present = nullptr;
+  uint32_t* intact = nullptr;
+};
+
 struct BondsView {
   int32_t n = 0;                          // particles
   const int64_t* slice_offset = nullptr;  // n_slices + 1 entries
@@ -65,6 +98,8 @@ struct BondsView {
   // Scenes with weakened bonds only (null otherwise): per slot, the factor q/255 on the bond's
   // strain limit (host/bond_cuts.h), the same in both stored directions.
   const uint8_t* strength = nullptr;
+  // Scenes with box-grid bodies (null `lattice.stencil` otherwise).
+  LatticeView lattice;
 
   PD_HD int64_t slot(int32_t i, int32_t k) const {
     return slice_offset[i / kSliceWidth] + int64_t(k) * kSliceWidth + (i % kSliceWidth);

@@ -25,7 +25,8 @@ struct FamilyStats {
   int64_t bonds = 0;  // stored bonds, each pair counted once per direction
   int32_t min = 0, max = 0;
   double mean = 0;
-  int64_t slots = 0;  // sliced-ELL storage, padding included
+  int64_t slots = 0;              // sliced-ELL storage, padding included
+  int64_t lattice_particles = 0;  // particles whose partners are found by offset (lattice_families.h)
   BondCutCounts cuts;
 };
 

@@ -36,6 +36,7 @@ struct SimulationInput {
   MotionScript motion;            // anchors and keyframed projectiles, applied to `step` every step
   std::vector<CutTriangle> cuts;  // pre-cracks and weakened surfaces (bond_cuts.h)
   bool contact = false;           // launch `collection` and `collisions`
+  bool lattice_families = true;   // box-grid bodies find partners by offset (lattice_families.h)
 };
 
 }  // namespace pd

@@ -68,9 +68,14 @@ done
 step bench-glass "$bin" bench --scene "$scene" --backend cuda --steps 2000 --warmup 200 --out "$OUT/bench"
 # The issue-5 full-step workload: the glass plate at 1M particles, the projectile arriving.
 step bench-glass-1m "$bin" bench --scene "$scene" --scale 8 --backend cuda --steps 1000 --warmup 100 --out "$OUT/bench"
+# What lattice families save: the same workloads with every partner found through its index.
+step bench-glass-1m-explicit "$bin" bench --scene "$scene" --scale 8 --backend cuda --steps 1000 --warmup 100 \
+  --explicit-families --out "$OUT/bench"
 for model in bond_based state_based anisotropic plastic; do
   step "bench-lattice-$model" "$bin" bench --lattice 100 --model "$model" --backend cuda --steps 300 --warmup 30 \
     --out "$OUT/bench"
+  step "bench-lattice-$model-explicit" "$bin" bench --lattice 100 --model "$model" --backend cuda --steps 300 \
+    --warmup 30 --explicit-families --out "$OUT/bench"
 done
 step glass-full "$bin" run "$scene" --backend cuda --out "$OUT/glass-full"
 

@@ -1,6 +1,8 @@
 // Per-bond quantities shared by the bond-based and state-based force kernels.
 #pragma once
 
+#include <type_traits>
+
 #include "../views.h"
 
 namespace pd {
@@ -69,13 +71,25 @@ PD_HD inline real bond_strength(const BondsView& b, int64_t slot) {
     return real(1);
 }
 
-// Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order. The
-// next bond's partner index is loaded before this bond is visited: a visit may write its own
-// slot (a bond breaking), which keeps the compiler from hoisting the next load over it, and
-// without the early load every bond waits for two dependent loads in turn (index, then the
+// Calls visit(slot, j, geometry) and returns whether the bond holds: a visitor that may break
+// bonds returns bool (false: it broke now, and the caller records it), others return nothing.
+template <class Visit>
+PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const BondGeometry& g) {
+  if constexpr (std::is_same_v<decltype(visit(slot, j, g)), bool>) {
+    return visit(slot, j, g);
+  } else {
+    visit(slot, j, g);
+    return true;
+  }
+}
+
+// Explicit families: the next bond's partner index is loaded before this bond is visited: a
+// visit may break its own slot, which keeps the compiler from hoisting the next load over it,
+// and without the early load every bond waits for two dependent loads in turn (index, then the
 // partner's records). Measured on the H100 (bench/NOTES.md): +10-17% on springforces.
 template <class Visit>
-PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b, Visit&& visit) {
+PD_HD inline void for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
+                                              Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   const int32_t count = b.count[i];
   int32_t next = count > 0 ? b.neighbor[b.slot(i, 0)] : 0;
@@ -85,10 +99,69 @@ PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const 
     const int32_t j = next;
     if (k + 1 < count) next = b.neighbor[b.slot(i, k + 1)];
     if (!bond_intact(j)) continue;
-    visit(slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j]));
+    if (!visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j])))
+      b.neighbor[slot] = ~j;
   }
 }
 
-// `inv_mw` is 1/m of the particle whose state this is.
+// Geometry of a lattice bond: the reference vector and lengths from the stencil entry.
+PD_HD inline BondGeometry lattice_bond_geometry(const StencilEntry& s, real volume, Vec4 disp_i,
+                                                Vec4 disp_j) {
+  BondGeometry g;
+  g.xi = xyz(s.xi);
+  const Vec3 eta = xyz(disp_j) - xyz(disp_i);
+  g.y = g.xi + eta;
+  const real r2 = dot(g.y, g.y);
+  g.r0 = s.xi.w;
+  g.inv_r0 = s.inv_r0;
+  g.inv_r = r2 > real(0) ? fast_rsqrt(r2) : real(0);
+  g.r = r2 * g.inv_r;
+  g.e = bond_elongation(g.xi, eta, g.r0, g.r);
+  g.volume_j = volume;
+  g.tau_j = disp_j.w;
+  return g;
+}
+
+// Lattice families: the warp's threads walk the same stencil entries together (one broadcast
+// load of the entry, partners at the same offset: one contiguous gather), each skipping the
+// entries its own bits leave out. Slots are counted over the present entries.
+template <class Visit>
+PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
+                                               const BondsView& b, Visit& visit) {
+  const LatticeView& l = b.lattice;
+  const Stencil st = l.stencils[stencil];
+  const Vec4 disp_i = p.disp[i];
+  int64_t slot = b.slot(i, 0);
+  for (int32_t w = 0; 32 * w < st.size; ++w) {
+    const int64_t word = int64_t(w) * b.n + i;
+    const uint32_t present = l.present[word];
+    const uint32_t before = l.intact[word];
+    uint32_t intact = before;
+    const int32_t bits = st.size - 32 * w < 32 ? st.size - 32 * w : 32;
+    for (int32_t q = 0; q < bits; ++q) {
+      if (!(present >> q & 1u)) continue;
+      const int64_t this_slot = slot;
+      slot += kSliceWidth;
+      if (!(intact >> q & 1u)) continue;
+      const StencilEntry& e = l.entries[st.first + 32 * w + q];
+      const int32_t j = i + e.offset;
+      if (!visit_bond(visit, this_slot, j, lattice_bond_geometry(e, st.volume, disp_i, p.disp[j]))) {
+        b.neighbor[this_slot] = ~j;
+        intact &= ~(1u << q);
+      }
+    }
+    if (intact != before) l.intact[word] = intact;
+  }
+}
+
+// Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order.
+template <class Visit>
+PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b, Visit&& visit) {
+  const int32_t stencil = b.lattice.stencil ? b.lattice.stencil[i] : -1;
+  if (stencil >= 0)
+    for_each_intact_lattice_bond(i, stencil, p, b, visit);
+  else
+    for_each_intact_listed_bond(i, p, b, visit);
+}
 
 }  // namespace pd

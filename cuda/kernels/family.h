@@ -2,8 +2,7 @@
 // body whose reference distance is at most the family radius of particle i (delta, or
 // delta + lambda/2 with partial volumes). Two passes over
 // a spatial hash of reference positions with cells of side >= delta: count, then fill.
-// Neighbours are visited in a fixed order (cell by cell, bin entries by particle id), so
-// families are identical on CPU and GPU.
+// Families are then sorted by partner index, so they are identical on CPU and GPU.
 #pragma once
 
 #include "../views.h"
@@ -48,6 +47,18 @@ PD_HD inline void slice_length(int32_t s, int32_t n, const int32_t* count, int64
 PD_HD inline void fill_family(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt, BondsView b) {
   int32_t k = 0;
   for_each_family_member(i, p, h, mt, [&](int32_t j) { b.neighbor[b.slot(i, k++)] = j; });
+}
+
+// Families are kept in ascending partner order (an insertion sort of the few hundred slots, once
+// at set-up): the order lattice families walk their stencils in (host/lattice_families.h).
+PD_HD inline void sort_family(int32_t i, BondsView b) {
+  for (int32_t k = 1; k < b.count[i]; ++k) {
+    const int32_t j = b.neighbor[b.slot(i, k)];
+    int32_t q = k;
+    for (; q > 0 && b.neighbor[b.slot(i, q - 1)] > j; --q)
+      b.neighbor[b.slot(i, q)] = b.neighbor[b.slot(i, q - 1)];
+    b.neighbor[b.slot(i, q)] = j;
+  }
 }
 
 // Position of bond (i, k) in the partner's family, for reading the partner's per-bond state.

@@ -31,9 +31,8 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
                                               chen_stretch(g.e, ep_ji, state_j.z, m) > w * tau_j
                                         : s > (tau_i > tau_j ? tau_i : tau_j) * w;
     if (breaks) {
-      b.neighbor[slot] = ~j;
       p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
-      return;
+      return false;  // broken: for_each_intact_bond records it
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
@@ -41,6 +40,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const real t = force_state(omega, g.r0, g.e, theta_i, inv_mw_i, ep_ij, m) +
                    force_state(omega, g.r0, g.e, state_j.x, state_j.y, ep_ji, m);
     f += (t * volume_fraction(g.r0, m) * g.volume_j * g.inv_r) * g.y;
+    return true;
   });
   f = vol_i * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;

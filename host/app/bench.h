@@ -14,6 +14,7 @@ struct BenchOptions {
   int64_t lattice = 100;             // particles per side of the synthetic cube
   double horizon = 3.0;              // delta / lambda of the lattice
   bool contact = false;              // lattice: launch collection + collisions
+  bool explicit_families = false;    // box-grid bodies read partner indices as other bodies do
   std::string model = "bond_based";  // lattice material: bond_based | state_based | plastic
   std::string backend = "auto";
   int64_t steps = 200;

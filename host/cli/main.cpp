@@ -61,6 +61,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--lattice", bench.lattice, "lattice particles per side");
   bench_cmd->add_option("--horizon", bench.horizon, "lattice delta / lambda");
   bench_cmd->add_flag("--contact", bench.contact, "lattice: include collection + collisions");
+  bench_cmd->add_flag(
+      "--explicit-families", bench.explicit_families,
+      "find every partner through its stored index (box-grid bodies otherwise use lattice offsets)");
   bench_cmd
       ->add_option("--model", bench.model,
                    "lattice material: bond_based | state_based | plastic | anisotropic")

@@ -1,0 +1,213 @@
+#include "lattice_families.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace pd {
+
+namespace {
+
+// A body's particles [first, first + nx ny nz) on the grid origin + (ix, iy, iz) h.
+struct BoxGrid {
+  int32_t first = 0;
+  std::array<int32_t, 3> n{};
+  std::array<double, 3> origin{}, h{};
+  std::array<int32_t, 3> coords(int32_t i) const {
+    const int32_t r = i - first;
+    return {r % n[0], (r / n[0]) % n[1], r / (n[0] * n[1])};
+  }
+};
+
+double axis(const Vec3& v, int a) {
+  return a == 0 ? v.x : (a == 1 ? v.y : v.z);
+}
+
+// The box grid of the contiguous particles [first, end), if they form one (see the header).
+bool find_box_grid(const ParticleSet& ps, int32_t first, int32_t end, BoxGrid& g) {
+  const int32_t count = end - first;
+  const Vec3 p0 = ps.rest[size_t(first)];
+  int32_t nx = 1, ny = 1;
+  while (nx < count && ps.rest[size_t(first + nx)].y == p0.y && ps.rest[size_t(first + nx)].z == p0.z) ++nx;
+  while (int64_t(ny) * nx < count && ps.rest[size_t(first + ny * nx)].z == p0.z) ++ny;
+  if (count % (nx * ny) != 0) return false;
+  g.first = first;
+  g.n = {nx, ny, count / (nx * ny)};
+  if (g.n[0] < 2 || g.n[1] < 2 || g.n[2] < 2) return false;
+  const int32_t last_along[3] = {first + nx - 1, first + (ny - 1) * nx, first + (g.n[2] - 1) * nx * ny};
+  for (int a = 0; a < 3; ++a) {
+    g.origin[a] = axis(p0, a);
+    g.h[a] = (axis(ps.rest[size_t(last_along[a])], a) - g.origin[a]) / (g.n[a] - 1);
+    if (!(g.h[a] > 0)) return false;
+  }
+  const double tol = 1e-3 * std::min({g.h[0], g.h[1], g.h[2]});
+  for (int32_t i = first; i < end; ++i) {
+    if (ps.material[size_t(i)] != ps.material[size_t(first)] ||
+        ps.volume[size_t(i)] != ps.volume[size_t(first)])
+      return false;
+    const auto c = g.coords(i);
+    for (int a = 0; a < 3; ++a)
+      if (std::abs(axis(ps.rest[size_t(i)], a) - (g.origin[a] + c[a] * g.h[a])) > tol) return false;
+  }
+  return true;
+}
+
+// Offsets d (in cells) of the bonds of a box-grid body, within +-reach per axis.
+struct OffsetCube {
+  std::array<int32_t, 3> reach{};
+  int32_t side(int a) const { return 2 * reach[a] + 1; }
+  int32_t index(const std::array<int32_t, 3>& d) const {
+    for (int a = 0; a < 3; ++a)
+      if (d[a] < -reach[a] || d[a] > reach[a]) return -1;
+    return (d[0] + reach[0]) + side(0) * ((d[1] + reach[1]) + side(1) * (d[2] + reach[2]));
+  }
+  std::array<int32_t, 3> offset_of(int32_t idx) const {
+    return {idx % side(0) - reach[0], (idx / side(0)) % side(1) - reach[1],
+            idx / (side(0) * side(1)) - reach[2]};
+  }
+};
+
+// Builds body `g`'s stencil from its families and sets its particles' bits; false (nothing
+// changed) when the families do not fit a stencil.
+bool add_stencil(const ParticleSet& ps, const BondLists& bonds, const BoxGrid& g, LatticeFamilies& lf) {
+  const BondsView v = bonds.view();
+  const int32_t end = g.first + g.n[0] * g.n[1] * g.n[2];
+  // Reach: the longest bond along each axis, in cells.
+  OffsetCube cube;
+  for (int32_t i = g.first; i < end; ++i) {
+    const auto ci = g.coords(i);
+    int32_t previous = -1;
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
+      if (j < g.first || j >= end || j <= previous) return false;  // another body, or not ascending
+      previous = j;
+      const auto cj = g.coords(j);
+      for (int a = 0; a < 3; ++a) cube.reach[a] = std::max(cube.reach[a], std::abs(cj[a] - ci[a]));
+    }
+  }
+  // Offsets must tell bonds apart: the grid wider than the stencil along x and y.
+  if (g.n[0] <= 2 * cube.reach[0] || g.n[1] <= 2 * cube.reach[1]) return false;
+  std::vector<uint8_t> used(size_t(cube.side(0)) * cube.side(1) * cube.side(2), 0);
+  for (int32_t i = g.first; i < end; ++i) {
+    const auto ci = g.coords(i);
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const auto cj = g.coords(bond_partner(v.neighbor[v.slot(i, k)]));
+      used[size_t(cube.index({cj[0] - ci[0], cj[1] - ci[1], cj[2] - ci[2]}))] = 1;
+    }
+  }
+  // The stencil in ascending offset, the order of ascending partners.
+  std::map<int32_t, int32_t> by_offset;  // offset -> cube index
+  for (int32_t idx = 0; idx < int32_t(used.size()); ++idx) {
+    if (!used[size_t(idx)]) continue;
+    const auto d = cube.offset_of(idx);
+    by_offset[d[0] + g.n[0] * (d[1] + g.n[1] * d[2])] = idx;
+  }
+  const int32_t size = int32_t(by_offset.size());
+  if (size > 32 * kLatticeWords || lf.stencils.size() >= size_t(std::numeric_limits<int16_t>::max()))
+    return false;
+
+  Stencil st;
+  st.first = int32_t(lf.entries.size());
+  st.size = size;
+  st.volume = ps.volume[size_t(g.first)];
+  std::vector<int32_t> entry_of(used.size(), -1);
+  for (const auto& [offset, idx] : by_offset) {
+    const auto d = cube.offset_of(idx);
+    StencilEntry e{};
+    e.xi = {real(d[0] * g.h[0]), real(d[1] * g.h[1]), real(d[2] * g.h[2]), 0};
+    const double r0 = std::sqrt(double(e.xi.x) * e.xi.x + double(e.xi.y) * e.xi.y + double(e.xi.z) * e.xi.z);
+    e.xi.w = real(r0);
+    e.inv_r0 = real(1.0 / r0);
+    e.offset = offset;
+    entry_of[size_t(idx)] = int32_t(lf.entries.size()) - st.first;
+    lf.entries.push_back(e);
+  }
+  const int16_t id = int16_t(lf.stencils.size());
+  lf.stencils.push_back(st);
+
+  // Per particle: grow the masks to the stencil's words, then set its bits.
+  const int32_t words = (size + 31) / 32;
+  if (words > lf.words) {
+    const size_t n = lf.stencil.size();
+    lf.present.resize(size_t(words) * n, 0);
+    lf.intact.resize(size_t(words) * n, 0);
+    lf.words = words;
+  }
+  const size_t n = lf.stencil.size();
+  for (int32_t i = g.first; i < end; ++i) {
+    lf.stencil[size_t(i)] = id;
+    const auto ci = g.coords(i);
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int32_t nb = v.neighbor[v.slot(i, k)];
+      const auto cj = g.coords(bond_partner(nb));
+      const int32_t q = entry_of[size_t(cube.index({cj[0] - ci[0], cj[1] - ci[1], cj[2] - ci[2]}))];
+      const size_t word = size_t(q / 32) * n + size_t(i);
+      lf.present[word] |= 1u << (q % 32);
+      if (bond_intact(nb)) lf.intact[word] |= 1u << (q % 32);
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int64_t LatticeFamilies::particles() const {
+  return std::count_if(stencil.begin(), stencil.end(), [](int16_t s) { return s >= 0; });
+}
+
+LatticeFamilies lattice_families(const ParticleSet& ps, const BondLists& bonds) {
+  LatticeFamilies lf;
+  const int32_t n = int32_t(ps.size());
+  lf.stencil.assign(size_t(n), -1);
+  // Each body's range; a body seen again after another one is not contiguous.
+  std::map<int32_t, std::pair<int32_t, int32_t>> range;  // body -> [first, end)
+  std::map<int32_t, bool> contiguous;
+  for (int32_t i = 0; i < n; ++i) {
+    const int32_t body = ps.body[size_t(i)];
+    auto it = range.find(body);
+    if (it == range.end()) {
+      range[body] = {i, i + 1};
+      contiguous[body] = true;
+    } else if (it->second.second == i) {
+      it->second.second = i + 1;
+    } else {
+      contiguous[body] = false;
+    }
+  }
+  for (const auto& [body, r] : range) {
+    BoxGrid g;
+    if (contiguous[body] && find_box_grid(ps, r.first, r.second, g)) add_stencil(ps, bonds, g, lf);
+  }
+  return lf;
+}
+
+void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds) {
+  const BondsView v = bonds.view();
+  const size_t n = lf.stencil.size();
+  for (int32_t i = 0; i < int32_t(n); ++i) {
+    const int32_t s = lf.stencil[size_t(i)];
+    if (s < 0) continue;
+    const Stencil& st = lf.stencils[size_t(s)];
+    int32_t k = 0;
+    for (int32_t q = 0; q < st.size; ++q) {
+      const size_t word = size_t(q / 32) * n + size_t(i);
+      const uint32_t bit = 1u << (q % 32);
+      if (!(lf.present[word] & bit)) continue;
+      const int32_t nb = k < v.count[i] ? v.neighbor[v.slot(i, k)] : -1;
+      if (k >= v.count[i] || bond_partner(nb) != i + lf.entries[size_t(st.first + q)].offset)
+        throw std::invalid_argument("the restored families differ from the engine's at particle " +
+                                    std::to_string(i) + " (a snapshot of another scene or version)");
+      lf.intact[word] = bond_intact(nb) ? lf.intact[word] | bit : lf.intact[word] & ~bit;
+      ++k;
+    }
+    if (k != v.count[i])
+      throw std::invalid_argument("the restored families differ from the engine's at particle " +
+                                  std::to_string(i) + " (a snapshot of another scene or version)");
+  }
+}
+
+}  // namespace pd
