@@ -321,9 +321,10 @@ class EngineImpl final : public Engine {
   void build_lattice_families(const ParticleSet& ps) {
     BondLists lists;
     read_bonds(lists);
-    lattice_ = lattice_families(ps, lists);
+    lattice_ = lattice_families(ps, materials_, lists);
     family_.lattice_particles = lattice_.particles();
     if (lattice_.stencils.empty()) return;
+    features_.lattice = true;
     lattice_stencil_ = make_from(lattice_.stencil);
     stencils_ = make_from(lattice_.stencils);
     stencil_entries_ = make_from(lattice_.entries);

@@ -16,6 +16,7 @@ struct KernelFeatures {
   bool plastic = false;      // some state-based material is plastic
   bool anisotropic = false;  // some state-based material has an anisotropy matrix G
   bool weak_bonds = false;   // some bonds carry a strength factor (pre-cracks and weakening)
+  bool lattice = false;      // some bodies have lattice families (host/lattice_families.h)
 };
 
 inline KernelFeatures features_of(const MaterialTable& mt, bool contact) {

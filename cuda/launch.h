@@ -17,33 +17,39 @@
 namespace pd {
 
 // Kernel 1. Threads past the particle count only reset bins (and vice versa).
-template <bool kStateBased, bool kAnisotropic, class Exec>
+template <bool kStateBased, bool kAnisotropic, bool kLattice, class Exec>
 void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt) {
   const int64_t n = p.n > int64_t(h.bins) ? p.n : int64_t(h.bins);
   ex.parallel_for("pd/init", n, [=] PD_HD(int64_t i) {
-    if (i < p.n) init_particle<kStateBased, kAnisotropic>(int32_t(i), p, b, mt);
+    if (i < p.n) init_particle<kStateBased, kAnisotropic, kLattice>(int32_t(i), p, b, mt);
     if (i < int64_t(h.bins)) reset_bin(uint32_t(i), h);
   });
 }
 
 template <class Exec>
 void launch_init(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt, KernelFeatures f) {
-  if (!f.state_based) return launch_init_variant<false, false>(ex, p, b, h, mt);
-  if (f.anisotropic) return launch_init_variant<true, true>(ex, p, b, h, mt);
-  launch_init_variant<true, false>(ex, p, b, h, mt);
+  if (!f.state_based) return launch_init_variant<false, false, false>(ex, p, b, h, mt);
+  static_bools(
+      [&](auto anisotropic, auto lattice) {
+        launch_init_variant<true, decltype(anisotropic)::value, decltype(lattice)::value>(ex, p, b, h, mt);
+      },
+      f.anisotropic, f.lattice);
 }
 
 // Plastic state-based materials: the return mapping, after `init` computed theta.
-template <bool kAnisotropic, class Exec>
+template <bool kAnisotropic, bool kLattice, class Exec>
 void launch_plasticity_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   ex.parallel_for("pd/plasticity", p.n,
-                  [=] PD_HD(int64_t i) { plastic_update<kAnisotropic>(int32_t(i), p, b, mt); });
+                  [=] PD_HD(int64_t i) { plastic_update<kAnisotropic, kLattice>(int32_t(i), p, b, mt); });
 }
 
 template <class Exec>
 void launch_plasticity(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
-  if (f.anisotropic) return launch_plasticity_variant<true>(ex, p, b, mt);
-  launch_plasticity_variant<false>(ex, p, b, mt);
+  static_bools(
+      [&](auto anisotropic, auto lattice) {
+        launch_plasticity_variant<decltype(anisotropic)::value, decltype(lattice)::value>(ex, p, b, mt);
+      },
+      f.anisotropic, f.lattice);
 }
 
 template <class Exec>
@@ -81,35 +87,38 @@ void launch_collisions(Exec& ex, ParticlesView p, HashView h, real stiffness) {
 
 // Kernel 4, one instantiation per feature set so a scene pays only for what it uses.
 // kAccumulate adds to the force `collisions` wrote.
-template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak>
+template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice>
 PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
                                     const MaterialTable& mt) {
   if constexpr (kStateBased)
-    state_forces<kAccumulate, kPlastic, kAnisotropic, kWeak>(i, p, b, mt);
+    state_forces<kAccumulate, kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt);
   else
-    spring_forces<kAccumulate, kWeak>(i, p, b, mt);
+    spring_forces<kAccumulate, kWeak, kLattice>(i, p, b, mt);
 }
 
-template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, class Exec>
+template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice,
+          class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   ex.parallel_for("pd/springforces", p.n, [=] PD_HD(int64_t i) {
-    springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic, kWeak>(int32_t(i), p, b, mt);
+    springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic, kWeak, kLattice>(int32_t(i), p, b,
+                                                                                         mt);
   });
 }
 
 template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
   static_bools(
-      [&](auto accumulate, auto state_based, auto plastic, auto anisotropic, auto weak) {
+      [&](auto accumulate, auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice) {
         constexpr bool kState = decltype(state_based)::value;
         constexpr bool kPlastic = kState && decltype(plastic)::value;
         constexpr bool kAniso = kState && decltype(anisotropic)::value;
         // Plasticity and anisotropy exist only for state-based materials: no bond-based copies.
         if constexpr (kState || (!decltype(plastic)::value && !decltype(anisotropic)::value))
           launch_springforces_variant<decltype(accumulate)::value, kState, kPlastic, kAniso,
-                                      decltype(weak)::value>(ex, p, b, mt);
+                                      decltype(weak)::value, decltype(lattice)::value>(ex, p, b, mt);
       },
-      f.contact, f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds);
+      f.contact, f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds,
+      f.lattice);
 }
 
 // Kernel 5.

@@ -64,14 +64,14 @@ constexpr int kSliceWidth = 32;
 struct StencilEntry {
   Vec4 xi;         // xyz: reference bond vector [m]; w: |xi|
   real inv_r0;     // 1 / |xi|
+  real weight;     // beta V_j: the partner's volume inside the horizon (volume_fraction)
   int32_t offset;  // partner index minus own index
-  real pad[2];
+  int32_t pad;
 };
 
 struct Stencil {
   int32_t first = 0;  // first entry in LatticeView::entries
   int32_t size = 0;   // entries (<= 32 kLatticeWords)
-  real volume = 0;    // every particle's volume [m^3]
 };
 
 constexpr int kLatticeWords = 16;  // stencils of up to 512 bonds (delta + lambda/2 <= 4.5 lambda)

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "../cuda/kernels/bond.h"
+
 namespace pd {
 
 namespace {
@@ -73,7 +75,8 @@ struct OffsetCube {
 
 // Builds body `g`'s stencil from its families and sets its particles' bits; false (nothing
 // changed) when the families do not fit a stencil.
-bool add_stencil(const ParticleSet& ps, const BondLists& bonds, const BoxGrid& g, LatticeFamilies& lf) {
+bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bonds, const BoxGrid& g,
+                 LatticeFamilies& lf) {
   const BondsView v = bonds.view();
   const int32_t end = g.first + g.n[0] * g.n[1] * g.n[2];
   // Reach: the longest bond along each axis, in cells.
@@ -113,7 +116,6 @@ bool add_stencil(const ParticleSet& ps, const BondLists& bonds, const BoxGrid& g
   Stencil st;
   st.first = int32_t(lf.entries.size());
   st.size = size;
-  st.volume = ps.volume[size_t(g.first)];
   std::vector<int32_t> entry_of(used.size(), -1);
   for (const auto& [offset, idx] : by_offset) {
     const auto d = cube.offset_of(idx);
@@ -122,6 +124,7 @@ bool add_stencil(const ParticleSet& ps, const BondLists& bonds, const BoxGrid& g
     const double r0 = std::sqrt(double(e.xi.x) * e.xi.x + double(e.xi.y) * e.xi.y + double(e.xi.z) * e.xi.z);
     e.xi.w = real(r0);
     e.inv_r0 = real(1.0 / r0);
+    e.weight = volume_fraction(e.xi.w, m) * ps.volume[size_t(g.first)];  // as bond_geometry computes it
     e.offset = offset;
     entry_of[size_t(idx)] = int32_t(lf.entries.size()) - st.first;
     lf.entries.push_back(e);
@@ -159,7 +162,7 @@ int64_t LatticeFamilies::particles() const {
   return std::count_if(stencil.begin(), stencil.end(), [](int16_t s) { return s >= 0; });
 }
 
-LatticeFamilies lattice_families(const ParticleSet& ps, const BondLists& bonds) {
+LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds) {
   LatticeFamilies lf;
   const int32_t n = int32_t(ps.size());
   lf.stencil.assign(size_t(n), -1);
@@ -180,7 +183,8 @@ LatticeFamilies lattice_families(const ParticleSet& ps, const BondLists& bonds) 
   }
   for (const auto& [body, r] : range) {
     BoxGrid g;
-    if (contiguous[body] && find_box_grid(ps, r.first, r.second, g)) add_stencil(ps, bonds, g, lf);
+    if (contiguous[body] && find_box_grid(ps, r.first, r.second, g))
+      add_stencil(ps, mt.m[ps.material[size_t(g.first)]], bonds, g, lf);
   }
   return lf;
 }

@@ -25,7 +25,7 @@ struct LatticeFamilies {
 // axis (x fastest, then y, z; positions within 1e-3 spacing of the grid), of one material and
 // one volume, whose families are ascending and use offsets that identify their bonds (grid
 // wider than the stencil along x and y), get a stencil; the others keep explicit families.
-LatticeFamilies lattice_families(const ParticleSet& ps, const BondLists& bonds);
+LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds);
 
 // Recomputes the intact bits from `bonds` (a restored snapshot). Throws std::invalid_argument
 // when a lattice particle's listed bonds are not its present stencil bonds in stencil order.

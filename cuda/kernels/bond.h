@@ -42,10 +42,12 @@ PD_HD inline BondLengths bond_lengths(Vec3 xi, Vec3 y) {
 struct BondGeometry {
   Vec3 xi, y;
   real r0, inv_r0, r, inv_r, e;  // reference and current lengths (and reciprocals), extension
-  real volume_j, tau_j;          // the partner's volume and effective strain limit
+  real weight_j;                 // beta V_j: the partner's volume inside the horizon (volume_fraction)
+  real tau_j;                    // the partner's effective strain limit
 };
 
-PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j) {
+PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j,
+                                        const Material& m) {
   BondGeometry g;
   g.xi = xyz(rest_j) - xyz(rest_i);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
@@ -56,7 +58,7 @@ PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, V
   g.r = l.r;
   g.inv_r = l.inv_r;
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
-  g.volume_j = rest_j.w;
+  g.weight_j = volume_fraction(g.r0, m) * rest_j.w;
   g.tau_j = disp_j.w;
   return g;
 }
@@ -89,7 +91,7 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const BondGe
 // partner's records). Measured on the H100 (bench/NOTES.md): +10-17% on springforces.
 template <class Visit>
 PD_HD inline void for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
-                                              Visit& visit) {
+                                              const Material& m, Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   const int32_t count = b.count[i];
   int32_t next = count > 0 ? b.neighbor[b.slot(i, 0)] : 0;
@@ -99,14 +101,13 @@ PD_HD inline void for_each_intact_listed_bond(int32_t i, const ParticlesView& p,
     const int32_t j = next;
     if (k + 1 < count) next = b.neighbor[b.slot(i, k + 1)];
     if (!bond_intact(j)) continue;
-    if (!visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j])))
+    if (!visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j], m)))
       b.neighbor[slot] = ~j;
   }
 }
 
-// Geometry of a lattice bond: the reference vector and lengths from the stencil entry.
-PD_HD inline BondGeometry lattice_bond_geometry(const StencilEntry& s, real volume, Vec4 disp_i,
-                                                Vec4 disp_j) {
+// Geometry of a lattice bond: the reference vector, lengths and weight from the stencil entry.
+PD_HD inline BondGeometry lattice_bond_geometry(const StencilEntry& s, Vec4 disp_i, Vec4 disp_j) {
   BondGeometry g;
   g.xi = xyz(s.xi);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
@@ -117,7 +118,7 @@ PD_HD inline BondGeometry lattice_bond_geometry(const StencilEntry& s, real volu
   g.inv_r = r2 > real(0) ? fast_rsqrt(r2) : real(0);
   g.r = r2 * g.inv_r;
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
-  g.volume_j = volume;
+  g.weight_j = s.weight;
   g.tau_j = disp_j.w;
   return g;
 }
@@ -145,7 +146,7 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
       if (!(intact >> q & 1u)) continue;
       const StencilEntry& e = l.entries[st.first + 32 * w + q];
       const int32_t j = i + e.offset;
-      if (!visit_bond(visit, this_slot, j, lattice_bond_geometry(e, st.volume, disp_i, p.disp[j]))) {
+      if (!visit_bond(visit, this_slot, j, lattice_bond_geometry(e, disp_i, p.disp[j]))) {
         b.neighbor[this_slot] = ~j;
         intact &= ~(1u << q);
       }
@@ -155,13 +156,16 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
 }
 
 // Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order.
-template <class Visit>
-PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b, Visit&& visit) {
-  const int32_t stencil = b.lattice.stencil ? b.lattice.stencil[i] : -1;
-  if (stencil >= 0)
+// kLattice: some bodies have lattice families (else every family is read from its list, and the
+// lattice loop is not compiled in).
+template <bool kLattice = true, class Visit>
+PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
+                                       const Material& m, Visit&& visit) {
+  const int32_t stencil = kLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
+  if (kLattice && stencil >= 0)
     for_each_intact_lattice_bond(i, stencil, p, b, visit);
   else
-    for_each_intact_listed_bond(i, p, b, visit);
+    for_each_intact_listed_bond(i, p, b, m, visit);
 }
 
 }  // namespace pd

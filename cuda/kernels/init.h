@@ -13,14 +13,14 @@ PD_HD inline real effective_strain_limit(real tau0, real alpha, real strain_min)
   return tau0 - alpha * (strain_min < real(0) ? strain_min : real(0));
 }
 
-template <bool kStateBased, bool kAnisotropic>
+template <bool kStateBased, bool kAnisotropic, bool kLattice = true>
 PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   p.disp[i].w = effective_strain_limit(p.strain_limit0[i], m.compression_alpha, p.strain_min[i]);
   if constexpr (kStateBased) {
     const int32_t count = b.count[i];
     Vec4 s = p.state[i];
-    s.x = dilatation<kAnisotropic>(i, p, b, m);
+    s.x = dilatation<kAnisotropic, kLattice>(i, p, b, m);
     s.z = count > 0 ? real(1) - real(p.intact[i]) / real(count) : real(0);
     p.state[i] = s;
   }

@@ -10,27 +10,27 @@
 namespace pd {
 
 // One end's share of a PMB bond's elastic energy: the micropotential c s^2 |xi| / 2 per unit
-// volume squared, halved between the two ends: c s^2 |xi| beta V_i V_j / 4.
-PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real vol_j, const Material& m) {
-  return real(0.25) * m.micromodulus * s * s * r0 * volume_fraction(r0, m) * vol_i * vol_j;
+// volume squared, halved between the two ends: c s^2 |xi| beta V_i V_j / 4 (weight_j = beta V_j).
+PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, const Material& m) {
+  return real(0.25) * m.micromodulus * s * s * r0 * vol_i * weight_j;
 }
 
-template <bool kAccumulate, bool kWeak>
+template <bool kAccumulate, bool kWeak, bool kLattice = true>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};
   real smin = real(0);
   int32_t intact = 0;
-  for_each_intact_bond(i, p, b, [&](int64_t slot, int32_t, const BondGeometry& g) {
+  for_each_intact_bond<kLattice>(i, p, b, m, [&](int64_t slot, int32_t, const BondGeometry& g) {
     const real s = g.e * g.inv_r0;
     if (s > (tau_i > g.tau_j ? tau_i : g.tau_j) * bond_strength<kWeak>(b, slot)) {
-      p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.volume_j, m));
+      p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight_j, m));
       return false;  // broken: for_each_intact_bond records it
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
-    f += (m.micromodulus * s * g.volume_j * volume_fraction(g.r0, m) * g.inv_r) * g.y;
+    f += (m.micromodulus * s * g.weight_j * g.inv_r) * g.y;
     return true;
   });
   f = vol_i * f;

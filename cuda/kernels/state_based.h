@@ -42,8 +42,7 @@ PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_
 PD_HD inline real lps_bond_energy(const BondGeometry& g, real theta, real inv_mw, real ep, real vol_i,
                                   const Material& m) {
   const real ed = g.e - theta * g.r0 * real(1.0 / 3.0) - ep;
-  return real(7.5) * m.shear_modulus * inv_mw * influence(g.xi, g.inv_r0, m) * ed * ed *
-         volume_fraction(g.r0, m) * g.volume_j * vol_i;
+  return real(7.5) * m.shear_modulus * inv_mw * influence(g.xi, g.inv_r0, m) * ed * ed * g.weight_j * vol_i;
 }
 
 // Chen eq. 18 as the paper's text means it: s^omega = (e - e^p) / delta against a limit that
@@ -69,11 +68,11 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
 }
 
 // theta_i over the intact bonds.
-template <bool kAnisotropic = true>
+template <bool kAnisotropic = true, bool kLattice = true>
 PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
   real sum = 0;
-  for_each_intact_bond(i, p, b, [&](int64_t, int32_t, const BondGeometry& g) {
-    sum += influence<kAnisotropic>(g.xi, g.inv_r0, m) * g.r0 * g.e * volume_fraction(g.r0, m) * g.volume_j;
+  for_each_intact_bond<kLattice>(i, p, b, m, [&](int64_t, int32_t, const BondGeometry& g) {
+    sum += influence<kAnisotropic>(g.xi, g.inv_r0, m) * g.r0 * g.e * g.weight_j;
   });
   return real(3) * sum * p.state[i].y;
 }

@@ -3,6 +3,7 @@
 // families (CPU-reference backend; the GPU runs the same kernel bodies, tests/gpu).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -34,13 +35,12 @@ bool bit(const LatticeFamilies& lf, const std::vector<uint32_t>& mask, int32_t i
 TEST(LatticeFamilies, BoxGridBodyGetsItsStencil) {
   const auto in = lattice_block(10, 9, 8, 1e-3);  // delta = 3 lambda with partial volumes
   const BondLists b = bonds_of(in);
-  const LatticeFamilies lf = lattice_families(in.particles, b);
+  const LatticeFamilies lf = lattice_families(in.particles, in.materials, b);
   ASSERT_EQ(lf.stencils.size(), 1u);
   EXPECT_EQ(lf.particles(), int64_t(in.particles.size()));
   const Stencil& st = lf.stencils[0];
   EXPECT_EQ(st.size, 178);  // the cubes overlapping the horizon sphere: |d| <= 3.5 lambda
   EXPECT_EQ(lf.words, 6);
-  EXPECT_EQ(st.volume, in.particles.volume[0]);
   // An interior particle holds every entry; partners at the offsets, bond vectors as the
   // positions say, ascending offsets.
   const int32_t i = 4 + 10 * (4 + 9 * 4);
@@ -55,6 +55,9 @@ TEST(LatticeFamilies, BoxGridBodyGetsItsStencil) {
     EXPECT_NEAR(d.z, e.xi.z, 1e-9);
     EXPECT_NEAR(e.xi.w, length(xyz(e.xi)), 1e-9);
     EXPECT_NEAR(e.xi.w * e.inv_r0, 1.0, 1e-6);
+    // beta V_j: whole cubes well inside the horizon, the overlapped fraction at its edge.
+    const double beta = std::min(1.0, std::max(0.0, (3.5e-3 - e.xi.w) / 1e-3));
+    EXPECT_NEAR(e.weight / in.particles.volume[0], beta, 1e-5) << q;
   }
   // Every particle's present bits, walked in order, are its listed partners.
   const BondsView v = b.view();
@@ -71,7 +74,7 @@ TEST(LatticeFamilies, BoxGridBodyGetsItsStencil) {
 
 TEST(LatticeFamilies, BodiesThatAreNotFullBoxGridsKeepExplicitFamilies) {
   auto none = [](const SimulationInput& in) {
-    return lattice_families(in.particles, bonds_of(in)).stencils.size();
+    return lattice_families(in.particles, in.materials, bonds_of(in)).stencils.size();
   };
   EXPECT_EQ(none(lattice_block(10, 9, 8, 1e-3, 1e-3, 0.2)), 0u);  // jittered
   auto mixed = lattice_block(10, 9, 8, 1e-3);
@@ -97,7 +100,7 @@ TEST(LatticeFamilies, TwoBoxBodiesGetOneStencilEach) {
   for (size_t i = 0; i < other.particles.size(); ++i)
     in.particles.add(other.particles.rest[i] + Vec3{real(0.05), 0, 0}, {0, 0, 0}, other.particles.volume[i],
                      other.particles.mass[i], other.particles.strain_limit0[i], 0, 1);
-  const LatticeFamilies lf = lattice_families(in.particles, bonds_of(in));
+  const LatticeFamilies lf = lattice_families(in.particles, in.materials, bonds_of(in));
   ASSERT_EQ(lf.stencils.size(), 2u);
   EXPECT_EQ(lf.stencil[0], 0);
   EXPECT_EQ(lf.stencil[half], 1);
