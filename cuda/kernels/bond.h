@@ -131,27 +131,29 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
                                                const BondsView& b, Visit& visit) {
   const LatticeView& l = b.lattice;
   const Stencil st = l.stencils[stencil];
+  const StencilEntry* entries = l.entries + st.first;
   const Vec4 disp_i = p.disp[i];
-  int64_t slot = b.slot(i, 0);
-  for (int32_t w = 0; 32 * w < st.size; ++w) {
-    const int64_t word = int64_t(w) * b.n + i;
+  const int64_t first_slot = b.slot(i, 0);
+  int32_t k = 0;  // present bonds so far: the next one's position in the family
+  for (int32_t w0 = 0; w0 < st.size; w0 += 32) {
+    const int64_t word = int64_t(w0 / 32) * b.n + i;
     const uint32_t present = l.present[word];
-    const uint32_t before = l.intact[word];
-    uint32_t intact = before;
-    const int32_t bits = st.size - 32 * w < 32 ? st.size - 32 * w : 32;
+    uint32_t intact = l.intact[word];
+    bool broke = false;
+    const int32_t bits = st.size - w0 < 32 ? st.size - w0 : 32;
     for (int32_t q = 0; q < bits; ++q) {
       if (!(present >> q & 1u)) continue;
-      const int64_t this_slot = slot;
-      slot += kSliceWidth;
+      const int64_t slot = first_slot + int64_t(k++) * kSliceWidth;
       if (!(intact >> q & 1u)) continue;
-      const StencilEntry& e = l.entries[st.first + 32 * w + q];
+      const StencilEntry& e = entries[w0 + q];
       const int32_t j = i + e.offset;
-      if (!visit_bond(visit, this_slot, j, lattice_bond_geometry(e, disp_i, p.disp[j]))) {
-        b.neighbor[this_slot] = ~j;
+      if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j]))) {
+        b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
+        broke = true;
       }
     }
-    if (intact != before) l.intact[word] = intact;
+    if (broke) l.intact[word] = intact;
   }
 }
 
