@@ -39,15 +39,27 @@ PD_HD inline BondLengths bond_lengths(Vec3 xi, Vec3 y) {
 }
 
 // Geometry of one bond at the current positions, with what the partner's records carry.
-struct BondGeometry {
+// weight(m) is beta V_j, the partner's volume inside the horizon: a lattice bond carries it from
+// its stencil entry (kWeighted); a listed bond computes it where it is used, since computing it
+// with the geometry keeps more registers live over the bond loop (56 against 48 for the glass
+// plate's springforces, -27% speed: bench/NOTES.md).
+template <bool kWeighted>
+struct BondGeometryOf {
   Vec3 xi, y;
   real r0, inv_r0, r, inv_r, e;  // reference and current lengths (and reciprocals), extension
-  real weight_j;                 // beta V_j: the partner's volume inside the horizon (volume_fraction)
+  real volume_j;                 // the partner's volume V_j (kWeighted: beta V_j)
   real tau_j;                    // the partner's effective strain limit
+  PD_HD real weight(const Material& m) const {
+    if constexpr (kWeighted)
+      return volume_j;
+    else
+      return volume_fraction(r0, m) * volume_j;
+  }
 };
+using BondGeometry = BondGeometryOf<false>;
+using LatticeBondGeometry = BondGeometryOf<true>;
 
-PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j,
-                                        const Material& m) {
+PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j) {
   BondGeometry g;
   g.xi = xyz(rest_j) - xyz(rest_i);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
@@ -58,7 +70,7 @@ PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, V
   g.r = l.r;
   g.inv_r = l.inv_r;
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
-  g.weight_j = volume_fraction(g.r0, m) * rest_j.w;
+  g.volume_j = rest_j.w;
   g.tau_j = disp_j.w;
   return g;
 }
@@ -75,8 +87,8 @@ PD_HD inline real bond_strength(const BondsView& b, int64_t slot) {
 
 // Calls visit(slot, j, geometry) and returns whether the bond holds: a visitor that may break
 // bonds returns bool (false: it broke now, and the caller records it), others return nothing.
-template <class Visit>
-PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const BondGeometry& g) {
+template <class Visit, class Geometry>
+PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geometry& g) {
   if constexpr (std::is_same_v<decltype(visit(slot, j, g)), bool>) {
     return visit(slot, j, g);
   } else {
@@ -91,7 +103,7 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const BondGe
 // partner's records). Measured on the H100 (bench/NOTES.md): +10-17% on springforces.
 template <class Visit>
 PD_HD inline void for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
-                                              const Material& m, Visit& visit) {
+                                              Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   const int32_t count = b.count[i];
   int32_t next = count > 0 ? b.neighbor[b.slot(i, 0)] : 0;
@@ -101,14 +113,14 @@ PD_HD inline void for_each_intact_listed_bond(int32_t i, const ParticlesView& p,
     const int32_t j = next;
     if (k + 1 < count) next = b.neighbor[b.slot(i, k + 1)];
     if (!bond_intact(j)) continue;
-    if (!visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j], m)))
+    if (!visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j])))
       b.neighbor[slot] = ~j;
   }
 }
 
 // Geometry of a lattice bond: the reference vector, lengths and weight from the stencil entry.
-PD_HD inline BondGeometry lattice_bond_geometry(const StencilEntry& s, Vec4 disp_i, Vec4 disp_j) {
-  BondGeometry g;
+PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Vec4 disp_i, Vec4 disp_j) {
+  LatticeBondGeometry g;
   g.xi = xyz(s.xi);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
   g.y = g.xi + eta;
@@ -118,7 +130,7 @@ PD_HD inline BondGeometry lattice_bond_geometry(const StencilEntry& s, Vec4 disp
   g.inv_r = r2 > real(0) ? fast_rsqrt(r2) : real(0);
   g.r = r2 * g.inv_r;
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
-  g.weight_j = s.weight;
+  g.volume_j = s.weight;
   g.tau_j = disp_j.w;
   return g;
 }
@@ -161,13 +173,12 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
 // kLattice: some bodies have lattice families (else every family is read from its list, and the
 // lattice loop is not compiled in).
 template <bool kLattice = true, class Visit>
-PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
-                                       const Material& m, Visit&& visit) {
+PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b, Visit&& visit) {
   const int32_t stencil = kLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
   if (kLattice && stencil >= 0)
     for_each_intact_lattice_bond(i, stencil, p, b, visit);
   else
-    for_each_intact_listed_bond(i, p, b, m, visit);
+    for_each_intact_listed_bond(i, p, b, visit);
 }
 
 }  // namespace pd

@@ -40,12 +40,12 @@ PD_HD inline double strain_energy(int32_t i, const ParticlesView& p, const Bonds
   const bool state = m.model == kStateBased;
   const Vec4 si = state ? p.state[i] : Vec4{0, 0, 0, 0};
   double sum = 0;
-  for_each_intact_bond(i, p, b, m, [&](int64_t slot, int32_t, const BondGeometry& g) {
+  for_each_intact_bond(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     if (state) {
       const real ep = b.plastic ? b.plastic[slot] : real(0);
       sum += double(lps_bond_energy(g, si.x, si.y, ep, vol_i, m));
     } else {
-      sum += double(pmb_bond_energy(g.e * g.inv_r0, g.r0, vol_i, g.weight_j, m));
+      sum += double(pmb_bond_energy(g.e * g.inv_r0, g.r0, vol_i, g.weight(m), m));
     }
   });
   if (state) sum += 0.5 * double(m.bulk_modulus) * double(si.x) * double(si.x) * double(vol_i);

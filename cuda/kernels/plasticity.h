@@ -22,16 +22,16 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
 
   // Trial norm over the intact family.
   real norm2 = 0;
-  for_each_intact_bond<kLattice>(i, p, b, m, [&](int64_t slot, int32_t, const BondGeometry& g) {
+  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     const real td = alpha * influence<kAnisotropic>(g.xi, g.inv_r0, m) *
                     (g.e - theta * g.r0 * real(1.0 / 3.0) - b.plastic[slot]);
-    norm2 += td * td * g.weight_j;
+    norm2 += td * td * g.weight(m);
   });
   if (norm2 <= real(2) * m.yield_psi0) return;
 
   // Project onto the yield surface and cap the plastic extension.
   const real scale = std::sqrt(real(2) * m.yield_psi0 / norm2);
-  for_each_intact_bond<kLattice>(i, p, b, m, [&](int64_t slot, int32_t, const BondGeometry& g) {
+  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     const real ed = g.e - theta * g.r0 * real(1.0 / 3.0);
     real ep = ed - scale * (ed - b.plastic[slot]);
     if (m.plastic_limit > real(0)) {

@@ -22,15 +22,15 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   Vec3 f{0, 0, 0};
   real smin = real(0);
   int32_t intact = 0;
-  for_each_intact_bond<kLattice>(i, p, b, m, [&](int64_t slot, int32_t, const BondGeometry& g) {
+  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     const real s = g.e * g.inv_r0;
     if (s > (tau_i > g.tau_j ? tau_i : g.tau_j) * bond_strength<kWeak>(b, slot)) {
-      p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight_j, m));
+      p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
       return false;  // broken: for_each_intact_bond records it
     }
     smin = (intact == 0 || s < smin) ? s : smin;
     ++intact;
-    f += (m.micromodulus * s * g.weight_j * g.inv_r) * g.y;
+    f += (m.micromodulus * s * g.weight(m) * g.inv_r) * g.y;
     return true;
   });
   f = vol_i * f;

@@ -20,7 +20,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
   Vec3 f{0, 0, 0};
   real smin = real(0);
   int32_t intact = 0;
-  for_each_intact_bond<kLattice>(i, p, b, m, [&](int64_t slot, int32_t j, const BondGeometry& g) {
+  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t j, const auto& g) {
     const Vec4 state_j = p.state[j];
     const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
     const real ep_ji = kPlastic ? b.plastic[b.slot(j, b.reverse[slot])] : real(0);
@@ -39,7 +39,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m);
     const real t = force_state(omega, g.r0, g.e, theta_i, inv_mw_i, ep_ij, m) +
                    force_state(omega, g.r0, g.e, state_j.x, state_j.y, ep_ji, m);
-    f += (t * g.weight_j * g.inv_r) * g.y;
+    f += (t * g.weight(m) * g.inv_r) * g.y;
     return true;
   });
   f = vol_i * f;

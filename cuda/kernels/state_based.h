@@ -39,10 +39,11 @@ PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_
 
 // The deviatoric elastic energy of particle i's state on one bond (LPS energy density
 // W_i = K theta_i^2 / 2 + (15 mu / (2 m_i)) sum_j omega (e^d - e^p)^2 beta V_j, times V_i).
-PD_HD inline real lps_bond_energy(const BondGeometry& g, real theta, real inv_mw, real ep, real vol_i,
+template <class Geometry>
+PD_HD inline real lps_bond_energy(const Geometry& g, real theta, real inv_mw, real ep, real vol_i,
                                   const Material& m) {
   const real ed = g.e - theta * g.r0 * real(1.0 / 3.0) - ep;
-  return real(7.5) * m.shear_modulus * inv_mw * influence(g.xi, g.inv_r0, m) * ed * ed * g.weight_j * vol_i;
+  return real(7.5) * m.shear_modulus * inv_mw * influence(g.xi, g.inv_r0, m) * ed * ed * g.weight(m) * vol_i;
 }
 
 // Chen eq. 18 as the paper's text means it: s^omega = (e - e^p) / delta against a limit that
@@ -71,8 +72,8 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
 template <bool kAnisotropic = true, bool kLattice = true>
 PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
   real sum = 0;
-  for_each_intact_bond<kLattice>(i, p, b, m, [&](int64_t, int32_t, const BondGeometry& g) {
-    sum += influence<kAnisotropic>(g.xi, g.inv_r0, m) * g.r0 * g.e * g.weight_j;
+  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t, int32_t, const auto& g) {
+    sum += influence<kAnisotropic>(g.xi, g.inv_r0, m) * g.r0 * g.e * g.weight(m);
   });
   return real(3) * sum * p.state[i].y;
 }

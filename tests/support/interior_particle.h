@@ -120,10 +120,10 @@ struct InteriorParticle {
     const BondsView b = bonds();
     for (int32_t k = 0; k < count[0]; ++k) {
       const int64_t slot = b.slot(0, k);
-      const BondGeometry g = bond_geometry(rest[0], disp[0], rest[neighbor[slot]], disp[neighbor[slot]], m);
+      const BondGeometry g = bond_geometry(rest[0], disp[0], rest[neighbor[slot]], disp[neighbor[slot]]);
       const double t =
           force_state(influence(g.xi, g.inv_r0, m), g.r0, g.e, state[0].x, state[0].y, plastic[slot], m);
-      const double w = t * g.weight_j / rest[neighbor[slot]].w * g.inv_r;
+      const double w = t * volume_fraction(g.r0, m) * g.inv_r;
       const double y[3] = {g.y.x, g.y.y, g.y.z}, xi[3] = {g.xi.x, g.xi.y, g.xi.z};
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) s[a][c] += w * y[a] * xi[c];
