@@ -148,12 +148,10 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
   const int64_t first_slot = b.slot(i, 0);
   int32_t k = 0;  // present bonds so far: the next one's position in the family
   for (int32_t w0 = 0; w0 < st.size; w0 += 32) {
-    const int64_t word = int64_t(w0 / 32) * b.n + i;
-    const uint32_t present = l.present[word];
-    uint32_t intact = l.intact[word];
-    bool broke = false;
-    const int32_t bits = st.size - w0 < 32 ? st.size - w0 : 32;
-    for (int32_t q = 0; q < bits; ++q) {
+    const uint32_t present = l.present[int64_t(w0 / 32) * b.n + i];
+    uint32_t intact = l.intact[int64_t(w0 / 32) * b.n + i];
+    for (int32_t q = 0; q < 32;
+         ++q) {  // a constant count (bits past the stencil's end are 0): bench/NOTES.md
       if (!(present >> q & 1u)) continue;
       const int64_t slot = first_slot + int64_t(k++) * kSliceWidth;
       if (!(intact >> q & 1u)) continue;
@@ -162,10 +160,9 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
       if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j]))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
-        broke = true;
+        l.intact[int64_t(w0 / 32) * b.n + i] = intact;  // rare: stored at once, nothing kept for later
       }
     }
-    if (broke) l.intact[word] = intact;
   }
 }
 
