@@ -36,23 +36,26 @@ def main():
     table = OrderedDict()
     for label, m in launches.values():
         t = table.setdefault(label, {"n": 0, "ns": 0.0, "bytes": 0.0, "dram_pct": 0.0, "occ": 0.0,
-                                     "sm_pct": 0.0, "regs": 0})
+                                     "sm_pct": 0.0, "issue": 0.0, "l1": 0.0, "regs": 0})
         t["n"] += 1
         t["ns"] += m.get("gpu__time_duration.sum", 0)
         t["bytes"] += m.get("dram__bytes_read.sum", 0) + m.get("dram__bytes_write.sum", 0)
         t["dram_pct"] += m.get("gpu__dram_throughput.avg.pct_of_peak_sustained_elapsed", 0)
         t["sm_pct"] += m.get("sm__throughput.avg.pct_of_peak_sustained_elapsed", 0)
         t["occ"] += m.get("sm__warps_active.avg.pct_of_peak_sustained_active", 0)
+        t["issue"] += m.get("smsp__issue_active.avg.pct_of_peak_sustained_active", 0)
+        t["l1"] += m.get("l1tex__throughput.avg.pct_of_peak_sustained_active", 0)
         t["regs"] = int(m.get("launch__registers_per_thread", 0))
-    print("| kernel | launches | us/launch | DRAM GB/s | DRAM % of peak | SM % | B per bond | regs | achieved occupancy % |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| kernel | launches | us/launch | DRAM GB/s | DRAM % of peak | SM % | issue % | L1 % | B per bond | regs | "
+          "achieved occupancy % |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for label, t in table.items():
         n = t["n"]
         us = t["ns"] / n / 1e3
         gbs = t["bytes"] / t["ns"] if t["ns"] > 0 else 0
         per_bond = t["bytes"] / n / bonds
         print(f"| {label} | {n} | {us:.1f} | {gbs:.0f} | {t['dram_pct'] / n:.0f} | {t['sm_pct'] / n:.0f} | "
-              f"{per_bond:.2f} | {t['regs']} | {t['occ'] / n:.0f} |")
+              f"{t['issue'] / n:.0f} | {t['l1'] / n:.0f} | {per_bond:.2f} | {t['regs']} | {t['occ'] / n:.0f} |")
 
 
 if __name__ == "__main__":
