@@ -181,6 +181,7 @@ class EngineImpl final : public Engine {
     b.lattice.entries = stencil_entries_.data();
     b.lattice.present = lattice_present_.data();
     b.lattice.intact = lattice_intact_.data();
+    b.lattice.weak = lattice_weak_.data();
     return b;
   }
 
@@ -330,6 +331,11 @@ class EngineImpl final : public Engine {
     stencil_entries_ = make_from(lattice_.entries);
     lattice_present_ = make_from(lattice_.present);
     lattice_intact_ = make_from(lattice_.intact);
+    if (!features_.weak_bonds) return;
+    std::vector<uint8_t> strength;
+    bond_strength_.download(strength);
+    mark_weak_lattice_bonds(lattice_, lists, strength);
+    lattice_weak_ = make_from(lattice_.weak);
   }
 
   // The arrays a run changes, paired with their snapshot vectors (save, restore).
@@ -434,7 +440,7 @@ class EngineImpl final : public Engine {
   DeviceArray<int16_t, Exec> lattice_stencil_;
   DeviceArray<Stencil, Exec> stencils_;
   DeviceArray<StencilEntry, Exec> stencil_entries_;
-  DeviceArray<uint32_t, Exec> lattice_present_, lattice_intact_;
+  DeviceArray<uint32_t, Exec> lattice_present_, lattice_intact_, lattice_weak_;
 
   uint32_t bins_ = 0;
   real inv_cell_ = 0;

@@ -85,6 +85,9 @@ struct LatticeView {
   // in the family (present; cuts remove bonds) and not broken (intact).
   const uint32_t* present = nullptr;
   uint32_t* intact = nullptr;
+  // Scenes with weakened bonds only: the bonds whose strength factor is below 1, so that only
+  // those read it (same layout).
+  const uint32_t* weak = nullptr;
 };
 
 struct BondsView {

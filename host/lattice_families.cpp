@@ -9,6 +9,7 @@
 #include <string>
 
 #include "../cuda/kernels/bond.h"
+#include "bond_cuts.h"
 
 namespace pd {
 
@@ -187,6 +188,24 @@ LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt,
       add_stencil(ps, mt.m[ps.material[size_t(g.first)]], bonds, g, lf);
   }
   return lf;
+}
+
+void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
+                             const std::vector<uint8_t>& strength) {
+  const BondsView v = bonds.view();
+  const size_t n = lf.stencil.size();
+  lf.weak.assign(lf.present.size(), 0);
+  for (int32_t i = 0; i < int32_t(n); ++i) {
+    const int32_t s = lf.stencil[size_t(i)];
+    if (s < 0) continue;
+    int32_t k = 0;
+    for (int32_t q = 0; q < lf.stencils[size_t(s)].size; ++q) {
+      const size_t word = size_t(q / 32) * n + size_t(i);
+      const uint32_t bit = 1u << (q % 32);
+      if (!(lf.present[word] & bit)) continue;
+      if (strength[size_t(v.slot(i, k++))] < kStrengthLevels) lf.weak[word] |= bit;
+    }
+  }
 }
 
 void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds) {

@@ -18,6 +18,7 @@ struct LatticeFamilies {
   std::vector<StencilEntry> entries;  // the stencils' entries, ascending offset within each
   std::vector<uint32_t> present;      // words x n, word w of particle i at w * n + i
   std::vector<uint32_t> intact;       // same layout
+  std::vector<uint32_t> weak;         // same layout; scenes with weakened bonds only
   int64_t particles() const;          // particles with a lattice family
 };
 
@@ -26,6 +27,10 @@ struct LatticeFamilies {
 // one volume, whose families are ascending and use offsets that identify their bonds (grid
 // wider than the stencil along x and y), get a stencil; the others keep explicit families.
 LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds);
+
+// Sets the weak bits: the bonds whose per-slot strength (bond_cuts.h) is below 1.
+void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
+                             const std::vector<uint8_t>& strength);
 
 // Recomputes the intact bits from `bonds` (a restored snapshot). Throws std::invalid_argument
 // when a lattice particle's listed bonds are not its present stencil bonds in stencil order.

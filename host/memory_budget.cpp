@@ -58,8 +58,9 @@ double bonds_per_particle(double horizon_ratio) {
 
 double engine_bytes_per_particle(double horizon_ratio, bool plastic) {
   const double bonds = bonds_per_particle(horizon_ratio);
-  // Lattice families: a stencil id (2 B) and the present and intact bits, in 32-bit words.
-  const double lattice = 2 + 2 * 4 * std::ceil(bonds / 32);
+  // Lattice families: a stencil id (2 B) and the present, intact and (with weakened bonds) weak
+  // bits, in 32-bit words.
+  const double lattice = 2 + 3 * 4 * std::ceil(bonds / 32);
   return kEngineParticleBytes + lattice + bonds * kEllPadding * (plastic ? 10 : 4);
 }
 

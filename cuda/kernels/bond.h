@@ -49,6 +49,7 @@ struct BondGeometryOf {
   real r0, inv_r0, r, inv_r, e;  // reference and current lengths (and reciprocals), extension
   real volume_j;                 // the partner's volume V_j (kWeighted: beta V_j)
   real tau_j;                    // the partner's effective strain limit
+  bool weak;                     // the bond may carry a strength factor (BondsView::strength)
   PD_HD real weight(const Material& m) const {
     if constexpr (kWeighted)
       return volume_j;
@@ -72,15 +73,16 @@ PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, V
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
   g.volume_j = rest_j.w;
   g.tau_j = disp_j.w;
+  g.weak = true;
   return g;
 }
 
-// The factor on a bond's strain limit: its stored strength with kWeak (scenes that weaken bonds),
-// else 1 at no cost.
-template <bool kWeak>
-PD_HD inline real bond_strength(const BondsView& b, int64_t slot) {
+// The factor on a bond's strain limit: its stored strength with kWeak (scenes that weaken bonds)
+// where the geometry says it may have one, else 1 at no cost.
+template <bool kWeak, class Geometry>
+PD_HD inline real bond_strength(const BondsView& b, int64_t slot, const Geometry& g) {
   if constexpr (kWeak)
-    return real(b.strength[slot]) * real(1.0 / 255);
+    return g.weak ? real(b.strength[slot]) * real(1.0 / 255) : real(1);
   else
     return real(1);
 }
@@ -119,7 +121,8 @@ PD_HD inline void for_each_intact_listed_bond(int32_t i, const ParticlesView& p,
 }
 
 // Geometry of a lattice bond: the reference vector, lengths and weight from the stencil entry.
-PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Vec4 disp_i, Vec4 disp_j) {
+PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Vec4 disp_i, Vec4 disp_j,
+                                                       bool weak) {
   LatticeBondGeometry g;
   g.xi = xyz(s.xi);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
@@ -132,6 +135,7 @@ PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Ve
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
   g.volume_j = s.weight;
   g.tau_j = disp_j.w;
+  g.weak = weak;
   return g;
 }
 
@@ -150,6 +154,7 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
   for (int32_t w0 = 0; w0 < st.size; w0 += 32) {
     const uint32_t present = l.present[int64_t(w0 / 32) * b.n + i];
     uint32_t intact = l.intact[int64_t(w0 / 32) * b.n + i];
+    const uint32_t weak = l.weak ? l.weak[int64_t(w0 / 32) * b.n + i] : 0u;
     for (int32_t q = 0; q < 32;
          ++q) {  // a constant count (bits past the stencil's end are 0): bench/NOTES.md
       if (!(present >> q & 1u)) continue;
@@ -157,7 +162,7 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
       if (!(intact >> q & 1u)) continue;
       const StencilEntry& e = entries[w0 + q];
       const int32_t j = i + e.offset;
-      if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j]))) {
+      if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
         l.intact[int64_t(w0 / 32) * b.n + i] = intact;  // rare: stored at once, nothing kept for later

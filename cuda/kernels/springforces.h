@@ -24,7 +24,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   int32_t intact = 0;
   for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     const real s = g.e * g.inv_r0;
-    if (s > (tau_i > g.tau_j ? tau_i : g.tau_j) * bond_strength<kWeak>(b, slot)) {
+    if (s > (tau_i > g.tau_j ? tau_i : g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
       p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
       return false;  // broken: for_each_intact_bond records it
     }

@@ -25,7 +25,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
     const real ep_ji = kPlastic ? b.plastic[b.slot(j, b.reverse[slot])] : real(0);
     const real s = g.e * g.inv_r0;
-    const real w = bond_strength<kWeak>(b, slot);
+    const real w = bond_strength<kWeak>(b, slot, g);
     const real tau_j = g.tau_j;
     const bool breaks = m.chen_fracture ? chen_stretch(g.e, ep_ij, phi_i, m) > w * tau_i &&
                                               chen_stretch(g.e, ep_ji, state_j.z, m) > w * tau_j

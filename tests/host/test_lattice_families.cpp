@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "host/bond_cuts.h"
 #include "host/engine.h"
 #include "host/lattice_families.h"
 #include "tests/support/fixtures.h"
@@ -180,6 +181,17 @@ TEST(LatticeFamilies, CutAndWeakenedBondsKeepTheirSlots) {
   auto e = make_cpu_engine(in);
   EXPECT_GT(e->family_stats().cuts.removed, 0);
   EXPECT_GT(e->family_stats().cuts.weakened, 0);
+  // The weak bits are the weakened slots: only those read their strength.
+  BondLists lists;
+  e->read_bonds(lists);
+  std::vector<uint8_t> strength;
+  cut_bonds(in.cuts, in.particles.rest, in.particles.body, lists,
+            strength);  // lists already cut: weakens only
+  LatticeFamilies lf = lattice_families(in.particles, in.materials, lists);
+  mark_weak_lattice_bonds(lf, lists, strength);
+  int64_t weak = 0;
+  for (uint32_t w : lf.weak) weak += __builtin_popcount(w);
+  EXPECT_EQ(weak, e->family_stats().cuts.weakened);
   expect_same_run(in, 150);
 }
 
