@@ -155,8 +155,8 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
     const uint32_t present = l.present[int64_t(w0 / 32) * b.n + i];
     uint32_t intact = l.intact[int64_t(w0 / 32) * b.n + i];
     const uint32_t weak = l.weak ? l.weak[int64_t(w0 / 32) * b.n + i] : 0u;
-    for (int32_t q = 0; q < 32;
-         ++q) {  // a constant count (bits past the stencil's end are 0): bench/NOTES.md
+    // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
+    for (int32_t q = 0; q < 32; ++q) {
       if (!(present >> q & 1u)) continue;
       const int64_t slot = first_slot + int64_t(k++) * kSliceWidth;
       if (!(intact >> q & 1u)) continue;
