@@ -24,6 +24,11 @@ struct BoxGrid {
     const int32_t r = i - first;
     return {r % n[0], (r / n[0]) % n[1], r / (n[0] * n[1])};
   }
+  // The bond from i to j in cells.
+  std::array<int32_t, 3> offset(int32_t i, int32_t j) const {
+    const auto ci = coords(i), cj = coords(j);
+    return {cj[0] - ci[0], cj[1] - ci[1], cj[2] - ci[2]};
+  }
 };
 
 double axis(const Vec3& v, int a) {
@@ -83,26 +88,21 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
   // Reach: the longest bond along each axis, in cells.
   OffsetCube cube;
   for (int32_t i = g.first; i < end; ++i) {
-    const auto ci = g.coords(i);
     int32_t previous = -1;
     for (int32_t k = 0; k < v.count[i]; ++k) {
       const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
       if (j < g.first || j >= end || j <= previous) return false;  // another body, or not ascending
       previous = j;
-      const auto cj = g.coords(j);
-      for (int a = 0; a < 3; ++a) cube.reach[a] = std::max(cube.reach[a], std::abs(cj[a] - ci[a]));
+      const auto d = g.offset(i, j);
+      for (int a = 0; a < 3; ++a) cube.reach[a] = std::max(cube.reach[a], std::abs(d[a]));
     }
   }
   // Offsets must tell bonds apart: the grid wider than the stencil along x and y.
   if (g.n[0] <= 2 * cube.reach[0] || g.n[1] <= 2 * cube.reach[1]) return false;
   std::vector<uint8_t> used(size_t(cube.side(0)) * cube.side(1) * cube.side(2), 0);
-  for (int32_t i = g.first; i < end; ++i) {
-    const auto ci = g.coords(i);
-    for (int32_t k = 0; k < v.count[i]; ++k) {
-      const auto cj = g.coords(bond_partner(v.neighbor[v.slot(i, k)]));
-      used[size_t(cube.index({cj[0] - ci[0], cj[1] - ci[1], cj[2] - ci[2]}))] = 1;
-    }
-  }
+  for (int32_t i = g.first; i < end; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k)
+      used[size_t(cube.index(g.offset(i, bond_partner(v.neighbor[v.slot(i, k)]))))] = 1;
   // The stencil in ascending offset, the order of ascending partners.
   std::map<int32_t, int32_t> by_offset;  // offset -> cube index
   for (int32_t idx = 0; idx < int32_t(used.size()); ++idx) {
@@ -144,11 +144,9 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
   const size_t n = lf.stencil.size();
   for (int32_t i = g.first; i < end; ++i) {
     lf.stencil[size_t(i)] = id;
-    const auto ci = g.coords(i);
     for (int32_t k = 0; k < v.count[i]; ++k) {
       const int32_t nb = v.neighbor[v.slot(i, k)];
-      const auto cj = g.coords(bond_partner(nb));
-      const int32_t q = entry_of[size_t(cube.index({cj[0] - ci[0], cj[1] - ci[1], cj[2] - ci[2]}))];
+      const int32_t q = entry_of[size_t(cube.index(g.offset(i, bond_partner(nb))))];
       const size_t word = size_t(q / 32) * n + size_t(i);
       lf.present[word] |= 1u << (q % 32);
       if (bond_intact(nb)) lf.intact[word] |= 1u << (q % 32);
@@ -190,46 +188,51 @@ LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt,
   return lf;
 }
 
+// Calls f(q, word, bit, k) for each stencil entry q that lattice particle i's family holds: its
+// mask word's index, the entry's bit in it, and the bond's position k in the family.
+template <class F>
+void for_each_present_bond(const LatticeFamilies& lf, int32_t i, F f) {
+  const size_t n = lf.stencil.size();
+  const Stencil& st = lf.stencils[size_t(lf.stencil[size_t(i)])];
+  int32_t k = 0;
+  for (int32_t q = 0; q < st.size; ++q) {
+    const size_t word = size_t(q / 32) * n + size_t(i);
+    const uint32_t bit = 1u << (q % 32);
+    if (lf.present[word] & bit) f(q, word, bit, k++);
+  }
+}
+
 void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
                              const std::vector<uint8_t>& strength) {
   const BondsView v = bonds.view();
-  const size_t n = lf.stencil.size();
   lf.weak.assign(lf.present.size(), 0);
-  for (int32_t i = 0; i < int32_t(n); ++i) {
-    const int32_t s = lf.stencil[size_t(i)];
-    if (s < 0) continue;
-    int32_t k = 0;
-    for (int32_t q = 0; q < lf.stencils[size_t(s)].size; ++q) {
-      const size_t word = size_t(q / 32) * n + size_t(i);
-      const uint32_t bit = 1u << (q % 32);
-      if (!(lf.present[word] & bit)) continue;
-      if (strength[size_t(v.slot(i, k++))] < kStrengthLevels) lf.weak[word] |= bit;
-    }
+  for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
+    if (lf.stencil[size_t(i)] < 0) continue;
+    for_each_present_bond(lf, i, [&](int32_t, size_t word, uint32_t bit, int32_t k) {
+      if (strength[size_t(v.slot(i, k))] < kStrengthLevels) lf.weak[word] |= bit;
+    });
   }
 }
 
 void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds) {
   const BondsView v = bonds.view();
-  const size_t n = lf.stencil.size();
-  for (int32_t i = 0; i < int32_t(n); ++i) {
+  for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
     const int32_t s = lf.stencil[size_t(i)];
     if (s < 0) continue;
-    const Stencil& st = lf.stencils[size_t(s)];
-    int32_t k = 0;
-    for (int32_t q = 0; q < st.size; ++q) {
-      const size_t word = size_t(q / 32) * n + size_t(i);
-      const uint32_t bit = 1u << (q % 32);
-      if (!(lf.present[word] & bit)) continue;
+    auto differ = [&]() {
+      return std::invalid_argument("the restored families differ from the engine's at particle " +
+                                   std::to_string(i) + " (a snapshot of another scene or version)");
+    };
+    int32_t listed = 0;
+    for_each_present_bond(lf, i, [&](int32_t q, size_t word, uint32_t bit, int32_t k) {
       const int32_t nb = k < v.count[i] ? v.neighbor[v.slot(i, k)] : -1;
-      if (k >= v.count[i] || bond_partner(nb) != i + lf.entries[size_t(st.first + q)].offset)
-        throw std::invalid_argument("the restored families differ from the engine's at particle " +
-                                    std::to_string(i) + " (a snapshot of another scene or version)");
+      if (k >= v.count[i] ||
+          bond_partner(nb) != i + lf.entries[size_t(lf.stencils[size_t(s)].first + q)].offset)
+        throw differ();
       lf.intact[word] = bond_intact(nb) ? lf.intact[word] | bit : lf.intact[word] & ~bit;
-      ++k;
-    }
-    if (k != v.count[i])
-      throw std::invalid_argument("the restored families differ from the engine's at particle " +
-                                  std::to_string(i) + " (a snapshot of another scene or version)");
+      listed = k + 1;
+    });
+    if (listed != v.count[i]) throw differ();
   }
 }
 
