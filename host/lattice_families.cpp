@@ -24,11 +24,6 @@ struct BoxGrid {
     const int32_t r = i - first;
     return {r % n[0], (r / n[0]) % n[1], r / (n[0] * n[1])};
   }
-  // The bond from i to j in cells.
-  std::array<int32_t, 3> offset(int32_t i, int32_t j) const {
-    const auto ci = coords(i), cj = coords(j);
-    return {cj[0] - ci[0], cj[1] - ci[1], cj[2] - ci[2]};
-  }
 };
 
 double axis(const Vec3& v, int a) {
@@ -64,77 +59,71 @@ bool find_box_grid(const ParticleSet& ps, int32_t first, int32_t end, BoxGrid& g
   return true;
 }
 
-// Offsets d (in cells) of the bonds of a box-grid body, within +-reach per axis.
-struct OffsetCube {
-  std::array<int32_t, 3> reach{};
-  int32_t side(int a) const { return 2 * reach[a] + 1; }
-  int32_t index(const std::array<int32_t, 3>& d) const {
-    for (int a = 0; a < 3; ++a)
-      if (d[a] < -reach[a] || d[a] > reach[a]) return -1;
-    return (d[0] + reach[0]) + side(0) * ((d[1] + reach[1]) + side(1) * (d[2] + reach[2]));
-  }
-  std::array<int32_t, 3> offset_of(int32_t idx) const {
-    return {idx % side(0) - reach[0], (idx / side(0)) % side(1) - reach[1],
-            idx / (side(0) * side(1)) - reach[2]};
-  }
-};
-
 // Builds body `g`'s stencil from its families and sets its particles' bits; false (nothing
-// changed) when the families do not fit a stencil.
+// changed) when the families do not fit a stencil. Bonds are identified by their index offset
+// j - i alone (no division per bond): no bond is longer than the family radius, so along each axis
+// it spans at most `bound` cells, and a grid wider than 2 bound along x and y gives every such
+// cell offset its own index offset.
 bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bonds, const BoxGrid& g,
                  LatticeFamilies& lf) {
   const BondsView v = bonds.view();
   const int32_t end = g.first + g.n[0] * g.n[1] * g.n[2];
-  // Reach: the longest bond along each axis, in cells.
-  OffsetCube cube;
+  std::array<int32_t, 3> bound{};
+  for (int a = 0; a < 3; ++a) bound[a] = int32_t(std::floor(double(m.family_radius()) * (1 + 1e-4) / g.h[a]));
+  if (g.n[0] <= 2 * bound[0] || g.n[1] <= 2 * bound[1] || bound[0] > 127 || bound[1] > 127 || bound[2] > 127)
+    return false;
+  const int64_t reach = bound[0] + int64_t(g.n[0]) * (bound[1] + int64_t(g.n[1]) * bound[2]);
+  if (reach > (int64_t(1) << 28)) return false;
+  // The cell offset d of each index offset within reach (offset + reach indexes these arrays).
+  const size_t span = size_t(2 * reach + 1);
+  std::vector<std::array<int8_t, 3>> cells(span);
+  std::vector<uint8_t> is_cell(span, 0), used(span, 0);
+  for (int32_t dz = -bound[2]; dz <= bound[2]; ++dz)
+    for (int32_t dy = -bound[1]; dy <= bound[1]; ++dy)
+      for (int32_t dx = -bound[0]; dx <= bound[0]; ++dx) {
+        const size_t at = size_t(reach + dx + int64_t(g.n[0]) * (dy + int64_t(g.n[1]) * dz));
+        cells[at] = {int8_t(dx), int8_t(dy), int8_t(dz)};
+        is_cell[at] = 1;
+      }
+  // The offsets the families use: partners in the body, ascending, within the bounds.
   for (int32_t i = g.first; i < end; ++i) {
     int32_t previous = -1;
     for (int32_t k = 0; k < v.count[i]; ++k) {
       const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
       if (j < g.first || j >= end || j <= previous) return false;  // another body, or not ascending
       previous = j;
-      const auto d = g.offset(i, j);
-      for (int a = 0; a < 3; ++a) cube.reach[a] = std::max(cube.reach[a], std::abs(d[a]));
+      const int64_t at = reach + (j - i);
+      if (at < 0 || at >= int64_t(span) || !is_cell[size_t(at)]) return false;
+      used[size_t(at)] = 1;
     }
   }
-  // Offsets must tell bonds apart: the grid wider than the stencil along x and y.
-  if (g.n[0] <= 2 * cube.reach[0] || g.n[1] <= 2 * cube.reach[1]) return false;
-  std::vector<uint8_t> used(size_t(cube.side(0)) * cube.side(1) * cube.side(2), 0);
-  for (int32_t i = g.first; i < end; ++i)
-    for (int32_t k = 0; k < v.count[i]; ++k)
-      used[size_t(cube.index(g.offset(i, bond_partner(v.neighbor[v.slot(i, k)]))))] = 1;
-  // The stencil in ascending offset, the order of ascending partners.
-  std::map<int32_t, int32_t> by_offset;  // offset -> cube index
-  for (int32_t idx = 0; idx < int32_t(used.size()); ++idx) {
-    if (!used[size_t(idx)]) continue;
-    const auto d = cube.offset_of(idx);
-    by_offset[d[0] + g.n[0] * (d[1] + g.n[1] * d[2])] = idx;
-  }
-  const int32_t size = int32_t(by_offset.size());
+  const int64_t size = std::count(used.begin(), used.end(), uint8_t(1));
   if (size > 32 * kLatticeWords || lf.stencils.size() >= size_t(std::numeric_limits<int16_t>::max()))
     return false;
 
+  // The stencil in ascending offset, the order of ascending partners.
   Stencil st;
   st.first = int32_t(lf.entries.size());
-  st.size = size;
-  std::vector<int32_t> entry_of(used.size(), -1);
-  for (const auto& [offset, idx] : by_offset) {
-    const auto d = cube.offset_of(idx);
+  st.size = int32_t(size);
+  std::vector<int32_t> entry_of(span, -1);
+  for (size_t at = 0; at < span; ++at) {
+    if (!used[at]) continue;
+    const auto& d = cells[at];
     StencilEntry e{};
     e.xi = {real(d[0] * g.h[0]), real(d[1] * g.h[1]), real(d[2] * g.h[2]), 0};
     const double r0 = std::sqrt(double(e.xi.x) * e.xi.x + double(e.xi.y) * e.xi.y + double(e.xi.z) * e.xi.z);
     e.xi.w = real(r0);
     e.inv_r0 = real(1.0 / r0);
     e.weight = volume_fraction(e.xi.w, m) * ps.volume[size_t(g.first)];  // as bond_geometry computes it
-    e.offset = offset;
-    entry_of[size_t(idx)] = int32_t(lf.entries.size()) - st.first;
+    e.offset = int32_t(int64_t(at) - reach);
+    entry_of[at] = int32_t(lf.entries.size()) - st.first;
     lf.entries.push_back(e);
   }
   const int16_t id = int16_t(lf.stencils.size());
   lf.stencils.push_back(st);
 
   // Per particle: grow the masks to the stencil's words, then set its bits.
-  const int32_t words = (size + 31) / 32;
+  const int32_t words = int32_t(size + 31) / 32;
   if (words > lf.words) {
     const size_t n = lf.stencil.size();
     lf.present.resize(size_t(words) * n, 0);
@@ -146,7 +135,7 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
     lf.stencil[size_t(i)] = id;
     for (int32_t k = 0; k < v.count[i]; ++k) {
       const int32_t nb = v.neighbor[v.slot(i, k)];
-      const int32_t q = entry_of[size_t(cube.index(g.offset(i, bond_partner(nb))))];
+      const int32_t q = entry_of[size_t(reach + (bond_partner(nb) - i))];
       const size_t word = size_t(q / 32) * n + size_t(i);
       lf.present[word] |= 1u << (q % 32);
       if (bond_intact(nb)) lf.intact[word] |= 1u << (q % 32);
