@@ -86,17 +86,23 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
         is_cell[at] = 1;
       }
   // The offsets the families use: partners in the body, ascending, within the bounds.
+  bool fits = true;
+#pragma omp parallel for schedule(static) reduction(&& : fits)
   for (int32_t i = g.first; i < end; ++i) {
     int32_t previous = -1;
-    for (int32_t k = 0; k < v.count[i]; ++k) {
+    for (int32_t k = 0; k < v.count[i] && fits; ++k) {
       const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
-      if (j < g.first || j >= end || j <= previous) return false;  // another body, or not ascending
-      previous = j;
       const int64_t at = reach + (j - i);
-      if (at < 0 || at >= int64_t(span) || !is_cell[size_t(at)]) return false;
-      used[size_t(at)] = 1;
+      // Another body, not ascending, or beyond the bounds.
+      fits = j >= g.first && j < end && j > previous && at >= 0 && at < int64_t(span) && is_cell[size_t(at)];
+      previous = j;
+      if (fits) {
+#pragma omp atomic write
+        used[size_t(at)] = 1;
+      }
     }
   }
+  if (!fits) return false;
   const int64_t size = std::count(used.begin(), used.end(), uint8_t(1));
   if (size > 32 * kLatticeWords || lf.stencils.size() >= size_t(std::numeric_limits<int16_t>::max()))
     return false;
@@ -131,6 +137,7 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
     lf.words = words;
   }
   const size_t n = lf.stencil.size();
+#pragma omp parallel for schedule(static)  // each particle sets only its own words
   for (int32_t i = g.first; i < end; ++i) {
     lf.stencil[size_t(i)] = id;
     for (int32_t k = 0; k < v.count[i]; ++k) {
