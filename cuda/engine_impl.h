@@ -121,8 +121,9 @@ class EngineImpl final : public Engine {
                                     " entries, the engine " + std::to_string(array.size()));
     });
     if (!lattice_.stencils.empty()) {  // the intact bits follow the restored families
-      BondLists lists;
-      read_bonds(lists);
+      BondLists lists;                 // the layout as built, the partners as restored
+      slice_offset_.download(lists.slice_offset);
+      count_.download(lists.count);
       lists.neighbor = in.neighbor;
       refresh_lattice_intact(lattice_, lists);
     }
