@@ -21,7 +21,8 @@ class CpuExec {
 
   explicit CpuExec(KernelStats* stats) : stats_(stats) {}
 
-  template <class F>
+  // kMinBlocks: the GPU backend's occupancy hint (CudaExec::parallel_for); no meaning here.
+  template <int kMinBlocks = 0, class F>
   void parallel_for(const char* name, int64_t n, F f) {
     const auto t0 = std::chrono::steady_clock::now();
 #pragma omp parallel for schedule(static)

@@ -23,6 +23,14 @@ __global__ void parallel_for_kernel(int64_t n, F f) {
   if (i < n) f(i);
 }
 
+// The same with an occupancy floor: at least kMinBlocks blocks of kBlockSize threads per SM,
+// which caps the registers per thread (65536 / (kMinBlocks * 256)).
+template <int kMinBlocks, class F>
+__global__ void __launch_bounds__(256, kMinBlocks) parallel_for_bounded_kernel(int64_t n, F f) {
+  const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < n) f(i);
+}
+
 template <class T, class F>
 __global__ void transform_kernel(int64_t n, F f, T* out) {
   const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -39,14 +47,24 @@ class CudaExec {
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
 
-  template <class F>
+  // kMinBlocks > 0: keep at least that many blocks resident per SM (registers capped to fit),
+  // for kernels whose speed follows their occupancy (bench/NOTES.md).
+  template <int kMinBlocks = 0, class F>
   void parallel_for(const char* name, int64_t n, F f) {
     if (n <= 0) return;
     KernelStat* s = stats_ ? &stats_->entry(name) : nullptr;
-    if (s && s->registers < 0) describe(s, reinterpret_cast<const void*>(&parallel_for_kernel<F>));
     const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
+    if constexpr (kMinBlocks > 0) {
+      if (s && s->registers < 0)
+        describe(s, reinterpret_cast<const void*>(&parallel_for_bounded_kernel<kMinBlocks, F>));
+    } else {
+      if (s && s->registers < 0) describe(s, reinterpret_cast<const void*>(&parallel_for_kernel<F>));
+    }
     cudaEvent_t start = begin_timing();
-    parallel_for_kernel<<<unsigned(blocks), kBlockSize>>>(n, f);
+    if constexpr (kMinBlocks > 0)
+      parallel_for_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize>>>(n, f);
+    else
+      parallel_for_kernel<<<unsigned(blocks), kBlockSize>>>(n, f);
     cuda_check(cudaGetLastError(), name);
     end_timing(name, start);
   }

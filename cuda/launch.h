@@ -99,7 +99,10 @@ PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const Bon
 template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice,
           class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
-  ex.parallel_for("pd/springforces", p.n, [=] PD_HD(int64_t i) {
+  // Bond-based: 5 blocks of 256 per SM (48 registers); the weakened-bond variant would take 56
+  // and run at 4 (bench/NOTES.md). The state-based kernels would spill at 48.
+  constexpr int kMinBlocks = kStateBased ? 0 : 5;
+  ex.template parallel_for<kMinBlocks>("pd/springforces", p.n, [=] PD_HD(int64_t i) {
     springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic, kWeak, kLattice>(int32_t(i), p, b,
                                                                                          mt);
   });

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include "pd_common.h"
 
@@ -55,12 +56,17 @@ PD_HD inline bool is_finite(Vec3 a) {
 }
 
 // Per-bond arithmetic on the GPU uses the hardware reciprocal square root and the fast
-// division (a few ulp; bench/NOTES.md: the IEEE sequences made the bond loops compute-bound).
-// The CPU and double builds compute exactly. Both ends of a bond run the same instructions on
-// the same numbers, so symmetric decisions stay symmetric.
+// division (a few ulp; bench/NOTES.md: the IEEE sequences made the bond loops compute-bound),
+// flushing subnormal arguments and results to zero: without .ftz each of them rescales
+// subnormals around the hardware instruction, 4 to 6 more instructions per call (bench/NOTES.md).
+// A subnormal argument to fast_rsqrt counts as 0 (result +inf): callers treat squared lengths
+// below kMinNormal as zero. The CPU and double builds compute exactly. Both ends of a bond run
+// the same instructions on the same numbers, so symmetric decisions stay symmetric.
 PD_HD inline float fast_rsqrt(float x) {
 #if defined(__CUDA_ARCH__)
-  return rsqrtf(x);
+  float r;
+  asm("rsqrt.approx.ftz.f32 %0, %1;" : "=f"(r) : "f"(x));
+  return r;
 #else
   return 1.0f / std::sqrt(x);
 #endif
@@ -70,13 +76,35 @@ PD_HD inline double fast_rsqrt(double x) {
 }
 PD_HD inline float fast_divide(float a, float b) {
 #if defined(__CUDA_ARCH__)
-  return __fdividef(a, b);
+  float r;
+  asm("div.approx.ftz.f32 %0, %1, %2;" : "=f"(r) : "f"(a), "f"(b));
+  return r;
 #else
   return a / b;
 #endif
 }
 PD_HD inline double fast_divide(double a, double b) {
   return a / b;
+}
+
+// The smallest normal `real`: squared lengths below it count as zero.
+constexpr real kMinNormal = std::numeric_limits<real>::min();
+
+// Larger and smaller of two values that are not NaN: one instruction on the GPU (the
+// conditional form must return b when a is NaN, which keeps the compiler from using it).
+PD_HD inline real max_of(real a, real b) {
+#if defined(__CUDA_ARCH__)
+  return fmax(a, b);
+#else
+  return a > b ? a : b;
+#endif
+}
+PD_HD inline real min_of(real a, real b) {
+#if defined(__CUDA_ARCH__)
+  return fmin(a, b);
+#else
+  return a < b ? a : b;
+#endif
 }
 
 // Four values stored together so a gather is one vector load (16 bytes in float, 32 in

@@ -13,7 +13,7 @@ PD_HD inline real volume_fraction(real r0, const Material& m) {
   if (!m.partial_volumes) return real(1);
   const real half = real(0.5) * m.spacing;
   if (r0 <= m.horizon - half) return real(1);
-  return (m.horizon + half - r0) * (real(1) / m.spacing);
+  return fast_divide(m.horizon + half - r0, m.spacing);
 }
 
 // |y| - |xi| without cancellation: (|y|^2 - |xi|^2) / (|y| + |xi|) with
@@ -23,7 +23,7 @@ PD_HD inline real bond_elongation(Vec3 xi, Vec3 eta, real r0, real r) {
 }
 
 // Lengths of one bond and their reciprocals: reference |xi| and current |y| (0 when the two
-// particles coincide, with reciprocal 0 so the bond exerts no force).
+// particles coincide, |y|^2 below kMinNormal, with reciprocal 0 so the bond exerts no force).
 struct BondLengths {
   real r0, inv_r0, r, inv_r;
 };
@@ -33,7 +33,7 @@ PD_HD inline BondLengths bond_lengths(Vec3 xi, Vec3 y) {
   const real r02 = dot(xi, xi), r2 = dot(y, y);
   l.inv_r0 = fast_rsqrt(r02);
   l.r0 = r02 * l.inv_r0;
-  l.inv_r = r2 > real(0) ? fast_rsqrt(r2) : real(0);
+  l.inv_r = r2 >= kMinNormal ? fast_rsqrt(r2) : real(0);
   l.r = r2 * l.inv_r;
   return l;
 }
@@ -130,7 +130,7 @@ PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Ve
   const real r2 = dot(g.y, g.y);
   g.r0 = s.xi.w;
   g.inv_r0 = s.inv_r0;
-  g.inv_r = r2 > real(0) ? fast_rsqrt(r2) : real(0);
+  g.inv_r = r2 >= kMinNormal ? fast_rsqrt(r2) : real(0);
   g.r = r2 * g.inv_r;
   g.e = bond_elongation(g.xi, eta, g.r0, g.r);
   g.volume_j = s.weight;
@@ -139,9 +139,20 @@ PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Ve
   return g;
 }
 
+// Bits of x set (one instruction on the GPU).
+PD_HD inline int32_t bit_count(uint32_t x) {
+#if defined(__CUDA_ARCH__)
+  return __popc(x);
+#else
+  return __builtin_popcount(x);
+#endif
+}
+
 // Lattice families: the warp's threads walk the same stencil entries together (one broadcast
 // load of the entry, partners at the same offset: one contiguous gather), each skipping the
-// entries its own bits leave out. Slots are counted over the present entries.
+// entries its intact bits leave out (intact bits are a subset of the present ones). A bond's
+// slot is its position among the present entries, counted where a visitor uses it (breaking,
+// weakened and plastic bonds), so the loop itself tests one bit per entry.
 template <class Visit>
 PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
                                                const BondsView& b, Visit& visit) {
@@ -150,24 +161,25 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
   const StencilEntry* entries = l.entries + st.first;
   const Vec4 disp_i = p.disp[i];
   const int64_t first_slot = b.slot(i, 0);
-  int32_t k = 0;  // present bonds so far: the next one's position in the family
+  int32_t k0 = 0;  // present bonds in the words before this one
   for (int32_t w0 = 0; w0 < st.size; w0 += 32) {
-    const uint32_t present = l.present[int64_t(w0 / 32) * b.n + i];
-    uint32_t intact = l.intact[int64_t(w0 / 32) * b.n + i];
-    const uint32_t weak = l.weak ? l.weak[int64_t(w0 / 32) * b.n + i] : 0u;
+    const int64_t word = int64_t(w0 / 32) * b.n + i;
+    const uint32_t present = l.present[word];
+    uint32_t intact = l.intact[word];
+    const uint32_t weak = l.weak ? l.weak[word] : 0u;
     // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
     for (int32_t q = 0; q < 32; ++q) {
-      if (!(present >> q & 1u)) continue;
-      const int64_t slot = first_slot + int64_t(k++) * kSliceWidth;
       if (!(intact >> q & 1u)) continue;
       const StencilEntry& e = entries[w0 + q];
       const int32_t j = i + e.offset;
+      const int64_t slot = first_slot + int64_t(k0 + bit_count(present & ((1u << q) - 1u))) * kSliceWidth;
       if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
-        l.intact[int64_t(w0 / 32) * b.n + i] = intact;  // rare: stored at once, nothing kept for later
+        l.intact[word] = intact;  // rare: stored at once, nothing kept for later
       }
     }
+    k0 += bit_count(present);
   }
 }
 

@@ -5,6 +5,8 @@
 // record the minimum stretch for eq. 5; accumulate f_i = sum_j c s V_i V_j beta_ij y/|y|.
 #pragma once
 
+#include <cmath>
+
 #include "bond.h"
 
 namespace pd {
@@ -19,23 +21,23 @@ template <bool kAccumulate, bool kWeak, bool kLattice = true>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
-  Vec3 f{0, 0, 0};
-  real smin = real(0);
+  Vec3 f{0, 0, 0};  // sum over the intact bonds of s beta V_j y/|y| (c V_i applied once at the end)
+  real smin = real(INFINITY);
   int32_t intact = 0;
   for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     const real s = g.e * g.inv_r0;
-    if (s > (tau_i > g.tau_j ? tau_i : g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
+    if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
       p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
       return false;  // broken: for_each_intact_bond records it
     }
-    smin = (intact == 0 || s < smin) ? s : smin;
+    smin = min_of(s, smin);
     ++intact;
-    f += (m.micromodulus * s * g.weight(m) * g.inv_r) * g.y;
+    f += (s * g.weight(m) * g.inv_r) * g.y;
     return true;
   });
-  f = vol_i * f;
+  f = (m.micromodulus * vol_i) * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;
-  p.strain_min[i] = smin;
+  p.strain_min[i] = intact > 0 ? smin : real(0);
   p.intact[i] = intact;
 }
 

@@ -18,7 +18,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
   const real theta_i = state_i.x, inv_mw_i = state_i.y, phi_i = state_i.z;
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};
-  real smin = real(0);
+  real smin = real(INFINITY);
   int32_t intact = 0;
   for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t j, const auto& g) {
     const Vec4 state_j = p.state[j];
@@ -27,14 +27,14 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const real s = g.e * g.inv_r0;
     const real w = bond_strength<kWeak>(b, slot, g);
     const real tau_j = g.tau_j;
-    const bool breaks = m.chen_fracture ? chen_stretch(g.e, ep_ij, phi_i, m) > w * tau_i &&
-                                              chen_stretch(g.e, ep_ji, state_j.z, m) > w * tau_j
-                                        : s > (tau_i > tau_j ? tau_i : tau_j) * w;
+    const bool breaks = m.chen_fracture ? chen_breaks(g.e, ep_ij, phi_i, w * tau_i, m) &&
+                                              chen_breaks(g.e, ep_ji, state_j.z, w * tau_j, m)
+                                        : s > max_of(tau_i, tau_j) * w;
     if (breaks) {
       p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
       return false;  // broken: for_each_intact_bond records it
     }
-    smin = (intact == 0 || s < smin) ? s : smin;
+    smin = min_of(s, smin);
     ++intact;
     const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m);
     const real t = force_state(omega, g.r0, g.e, theta_i, inv_mw_i, ep_ij, m) +
@@ -44,7 +44,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
   });
   f = vol_i * f;
   p.force[i] = kAccumulate ? p.force[i] + f : f;
-  p.strain_min[i] = smin;
+  p.strain_min[i] = intact > 0 ? smin : real(0);
   p.intact[i] = intact;
 }
 

@@ -51,8 +51,10 @@ PD_HD inline real lps_bond_energy(const Geometry& g, real theta, real inv_mw, re
 // s^omega by (1 + alpha phi), which makes damaged material weaker and, for alpha > 0, more
 // dust, where the text says alpha "increases the crack threshold as the material gets damaged"
 // and "mitigates the shattering effect" (docs/design-decisions.md, measured there).
-PD_HD inline real chen_stretch(real e, real ep, real damage, const Material& m) {
-  return (e - ep) / ((real(1) + m.damage_alpha * damage) * m.horizon);
+// Whether s^omega exceeds `limit` (1 + alpha phi), tested without a division (both ends of a
+// bond evaluate it for both ends on the same numbers).
+PD_HD inline bool chen_breaks(real e, real ep, real damage, real limit, const Material& m) {
+  return e - ep > limit * ((real(1) + m.damage_alpha * damage) * m.horizon);
 }
 
 // m_i over the initial family (all bonds intact), once at set-up; state[i].y holds 1/m_i.

@@ -248,15 +248,21 @@ TEST(StateBased, IsotropicInstantiationMatchesTheGeneralOne) {
 
 // Chen's criterion (eq. 18): s^omega = (e - e^p) / delta against tau (1 + alpha phi), so a
 // damaged particle's bonds hold more; alpha = 0 or an undamaged particle is the plain s^omega.
+// Here s^omega = (6e-6 - 1.5e-6) / 3e-3 = 1.5e-3.
 TEST(StateBased, DamageRaisesTheBreakingLimit) {
   Material m = state_material(1e9, 0.3);
   m.horizon = real(3e-3);
+  const real e = real(6e-6), ep = real(1.5e-6);
   m.damage_alpha = 0;
-  EXPECT_NEAR(chen_stretch(real(6e-6), real(1.5e-6), real(0.5), m), 1.5e-3, 1e-3 * 1.5e-3);
-  m.damage_alpha = 2;
-  EXPECT_NEAR(chen_stretch(real(6e-6), real(1.5e-6), real(0), m), 1.5e-3, 1e-3 * 1.5e-3);
-  EXPECT_NEAR(chen_stretch(real(6e-6), real(1.5e-6), real(0.5), m), 0.75e-3, 1e-3 * 0.75e-3);
-  EXPECT_LT(chen_stretch(real(6e-6), real(0), real(1), m), chen_stretch(real(6e-6), real(0), real(0.2), m));
+  EXPECT_TRUE(chen_breaks(e, ep, real(0.5), real(1.49e-3), m));
+  EXPECT_FALSE(chen_breaks(e, ep, real(0.5), real(1.51e-3), m));
+  m.damage_alpha = 2;  // undamaged: the plain limit; phi = 0.5 doubles it
+  EXPECT_TRUE(chen_breaks(e, ep, real(0), real(1.49e-3), m));
+  EXPECT_FALSE(chen_breaks(e, ep, real(0), real(1.51e-3), m));
+  EXPECT_TRUE(chen_breaks(e, ep, real(0.5), real(0.74e-3), m));
+  EXPECT_FALSE(chen_breaks(e, ep, real(0.5), real(0.76e-3), m));
+  EXPECT_TRUE(chen_breaks(e, real(0), real(0), real(1.9e-3), m));     // 2e-3 against 1.9e-3
+  EXPECT_FALSE(chen_breaks(e, real(0), real(0.2), real(1.9e-3), m));  // against 1.9e-3 x 1.4
 }
 
 }  // namespace
