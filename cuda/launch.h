@@ -17,26 +17,27 @@
 namespace pd {
 
 // Kernel 1. Threads past the particle count only reset bins (and vice versa).
-template <bool kStateBased, bool kAnisotropic, bool kLattice, class Exec>
+template <bool kStateBased, bool kAnisotropic, bool kLattice, bool kPlastic, class Exec>
 void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt) {
   const int64_t n = p.n > int64_t(h.bins) ? p.n : int64_t(h.bins);
   ex.parallel_for("pd/init", n, [=] PD_HD(int64_t i) {
-    if (i < p.n) init_particle<kStateBased, kAnisotropic, kLattice>(int32_t(i), p, b, mt);
+    if (i < p.n) init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(int32_t(i), p, b, mt);
     if (i < int64_t(h.bins)) reset_bin(uint32_t(i), h);
   });
 }
 
 template <class Exec>
 void launch_init(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt, KernelFeatures f) {
-  if (!f.state_based) return launch_init_variant<false, false, false>(ex, p, b, h, mt);
+  if (!f.state_based) return launch_init_variant<false, false, false, false>(ex, p, b, h, mt);
   static_bools(
-      [&](auto anisotropic, auto lattice) {
-        launch_init_variant<true, decltype(anisotropic)::value, decltype(lattice)::value>(ex, p, b, h, mt);
+      [&](auto anisotropic, auto lattice, auto plastic) {
+        launch_init_variant<true, decltype(anisotropic)::value, decltype(lattice)::value,
+                            decltype(plastic)::value>(ex, p, b, h, mt);
       },
-      f.anisotropic, f.lattice);
+      f.anisotropic, f.lattice, f.plastic);
 }
 
-// Plastic state-based materials: the return mapping, after `init` computed theta.
+// Plastic state-based materials: the return mapping, after `init` computed theta and the trial norm.
 template <bool kAnisotropic, bool kLattice, class Exec>
 void launch_plasticity_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   ex.parallel_for("pd/plasticity", p.n,
@@ -99,9 +100,11 @@ PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const Bon
 template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice,
           class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
-  // Bond-based: 5 blocks of 256 per SM (48 registers); the weakened-bond variant would take 56
-  // and run at 4 (bench/NOTES.md). The state-based kernels would spill at 48.
-  constexpr int kMinBlocks = kStateBased ? 0 : 5;
+  // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
+  // with weakened bonds 5 (48 registers; it would take 56 and run 4); state-based 4 (64; the
+  // plastic one would take 71 and run 3, and spills at 48). The plain bond-based kernel has 48
+  // either way and runs 4% slower with the bound.
+  constexpr int kMinBlocks = kStateBased ? 4 : (kWeak ? 5 : 0);
   ex.template parallel_for<kMinBlocks>("pd/springforces", p.n, [=] PD_HD(int64_t i) {
     springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic, kWeak, kLattice>(int32_t(i), p, b,
                                                                                          mt);

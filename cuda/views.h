@@ -41,7 +41,8 @@ struct ParticlesView {
   Ledger* ledger = nullptr;             // energy accounting (see Ledger)
   // State-based materials only (null otherwise): x theta_i (dilatation, set by `init`),
   // y 1/m_i with m_i = sum_j omega |xi|^2 beta V_j over the initial family, z phi_i =
-  // 1 - intact/initial bonds of the last step (damage, set by `init`).
+  // 1 - intact/initial bonds of the last step (damage, set by `init`), w (plastic materials)
+  // the trial deviatoric norm |t^d| that `plasticity` tests (set by `init`).
   Vec4* state = nullptr;
 
   PD_HD Vec3 position(int32_t i) const { return xyz(rest[i]) + xyz(disp[i]); }

@@ -1,6 +1,7 @@
 // Kernel 1, `init`: load the strain limits for this step (Levine eq. 5), empty the collision
 // hash bins, and for state-based materials compute the damage phi_i and the dilatation
-// theta_i at the new positions (Chen eqs. 5, 18), which `springforces` reads from both ends.
+// theta_i at the new positions (Chen eqs. 5, 18), which `springforces` reads from both ends,
+// and for plastic materials the trial deviatoric norm that `plasticity` tests.
 #pragma once
 
 #include "../views.h"
@@ -13,15 +14,17 @@ PD_HD inline real effective_strain_limit(real tau0, real alpha, real strain_min)
   return tau0 - alpha * (strain_min < real(0) ? strain_min : real(0));
 }
 
-template <bool kStateBased, bool kAnisotropic, bool kLattice = true>
+template <bool kStateBased, bool kAnisotropic, bool kLattice = true, bool kPlastic = false>
 PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   p.disp[i].w = effective_strain_limit(p.strain_limit0[i], m.compression_alpha, p.strain_min[i]);
   if constexpr (kStateBased) {
     const int32_t count = b.count[i];
+    const DilatationPass d = dilatation<kAnisotropic, kLattice, kPlastic>(i, p, b, m);
     Vec4 s = p.state[i];
-    s.x = dilatation<kAnisotropic, kLattice>(i, p, b, m);
+    s.x = d.theta;
     s.z = count > 0 ? real(1) - real(p.intact[i]) / real(count) : real(0);
+    if constexpr (kPlastic) s.w = d.trial_norm;
     p.state[i] = s;
   }
 }

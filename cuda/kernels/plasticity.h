@@ -17,20 +17,13 @@ template <bool kAnisotropic = true, bool kLattice = true>
 PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   if (!m.plastic) return;
-  const real theta = p.state[i].x;
-  const real alpha = real(15) * m.shear_modulus * p.state[i].y;
-
-  // Trial norm over the intact family.
-  real norm2 = 0;
-  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
-    const real td = alpha * influence<kAnisotropic>(g.xi, g.inv_r0, m) *
-                    (g.e - theta * g.r0 * real(1.0 / 3.0) - b.plastic[slot]);
-    norm2 += td * td * g.weight(m);
-  });
-  if (norm2 <= real(2) * m.yield_psi0) return;
+  // The trial norm |t^d| over the intact family, summed by `init` (state_based.h: dilatation).
+  const Vec4 state = p.state[i];
+  const real theta = state.x, norm = state.w, yield_norm = std::sqrt(real(2) * m.yield_psi0);
+  if (norm <= yield_norm) return;
 
   // Project onto the yield surface and cap the plastic extension.
-  const real scale = std::sqrt(real(2) * m.yield_psi0 / norm2);
+  const real scale = yield_norm / norm;
   for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     const real ed = g.e - theta * g.r0 * real(1.0 / 3.0);
     real ep = ed - scale * (ed - b.plastic[slot]);

@@ -17,6 +17,8 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
   const Vec4 state_i = p.state[i];
   const real theta_i = state_i.x, inv_mw_i = state_i.y, phi_i = state_i.z;
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
+  const ForceStateCoefficients k_i = force_state_coefficients(theta_i, inv_mw_i, m);
+  const real limit_i = chen_extension_limit(tau_i, phi_i, m);
   Vec3 f{0, 0, 0};
   real smin = real(INFINITY);
   int32_t intact = 0;
@@ -27,8 +29,8 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     const real s = g.e * g.inv_r0;
     const real w = bond_strength<kWeak>(b, slot, g);
     const real tau_j = g.tau_j;
-    const bool breaks = m.chen_fracture ? chen_breaks(g.e, ep_ij, phi_i, w * tau_i, m) &&
-                                              chen_breaks(g.e, ep_ji, state_j.z, w * tau_j, m)
+    const bool breaks = m.chen_fracture ? g.e - ep_ij > w * limit_i &&
+                                              g.e - ep_ji > w * chen_extension_limit(tau_j, state_j.z, m)
                                         : s > max_of(tau_i, tau_j) * w;
     if (breaks) {
       p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
@@ -36,9 +38,9 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     }
     smin = min_of(s, smin);
     ++intact;
-    const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m);
-    const real t = force_state(omega, g.r0, g.e, theta_i, inv_mw_i, ep_ij, m) +
-                   force_state(omega, g.r0, g.e, state_j.x, state_j.y, ep_ji, m);
+    const ForceStateCoefficients k_j = force_state_coefficients(state_j.x, state_j.y, m);
+    const real t = influence<kAnisotropic>(g.xi, g.inv_r0, m) *
+                   ((k_i.a + k_j.a) * g.e - (k_i.a * ep_ij + k_j.a * ep_ji) + (k_i.c + k_j.c) * g.r0);
     f += (t * g.weight(m) * g.inv_r) * g.y;
     return true;
   });

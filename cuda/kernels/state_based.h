@@ -30,11 +30,22 @@ PD_HD inline real influence(Vec3 xi, real inv_r0, const Material& m) {
   return m.horizon * fast_rsqrt(dot(gx, gx));
 }
 
+// One end's force state gathered by what it multiplies: t = omega (a (e - e^p) + c |xi|) with
+// a = 15 mu / m and c = (3 K - 5 mu) theta / m (the dilatational term 3 K theta |xi| / m plus
+// the deviatoric part of e, -5 mu theta |xi| / m), so a bond's two ends add their a and c.
+struct ForceStateCoefficients {
+  real a, c;
+};
+
+PD_HD inline ForceStateCoefficients force_state_coefficients(real theta, real inv_mw, const Material& m) {
+  return {real(15) * m.shear_modulus * inv_mw,
+          (real(3) * m.bulk_modulus - real(5) * m.shear_modulus) * theta * inv_mw};
+}
+
 PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_mw, real ep,
                               const Material& m) {
-  const real dil = real(3) * m.bulk_modulus * theta * r0;
-  const real dev = real(15) * m.shear_modulus * (e - theta * r0 * real(1.0 / 3.0) - ep);
-  return omega * inv_mw * (dil + dev);
+  const ForceStateCoefficients k = force_state_coefficients(theta, inv_mw, m);
+  return omega * (k.a * (e - ep) + k.c * r0);
 }
 
 // The deviatoric elastic energy of particle i's state on one bond (LPS energy density
@@ -51,10 +62,10 @@ PD_HD inline real lps_bond_energy(const Geometry& g, real theta, real inv_mw, re
 // s^omega by (1 + alpha phi), which makes damaged material weaker and, for alpha > 0, more
 // dust, where the text says alpha "increases the crack threshold as the material gets damaged"
 // and "mitigates the shattering effect" (docs/design-decisions.md, measured there).
-// Whether s^omega exceeds `limit` (1 + alpha phi), tested without a division (both ends of a
-// bond evaluate it for both ends on the same numbers).
-PD_HD inline bool chen_breaks(real e, real ep, real damage, real limit, const Material& m) {
-  return e - ep > limit * ((real(1) + m.damage_alpha * damage) * m.horizon);
+// The limit on e - e^p: tau (1 + alpha phi) delta, so that s^omega > tau (1 + alpha phi) is
+// tested without a division (both ends of a bond evaluate it for both ends on the same numbers).
+PD_HD inline real chen_extension_limit(real tau, real damage, const Material& m) {
+  return tau * ((real(1) + m.damage_alpha * damage) * m.horizon);
 }
 
 // m_i over the initial family (all bonds intact), once at set-up; state[i].y holds 1/m_i.
@@ -70,14 +81,46 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
   p.state[i].y = real(1) / sum;
 }
 
-// theta_i over the intact bonds.
-template <bool kAnisotropic = true, bool kLattice = true>
-PD_HD inline real dilatation(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
-  real sum = 0;
-  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t, int32_t, const auto& g) {
-    sum += influence<kAnisotropic>(g.xi, g.inv_r0, m) * g.r0 * g.e * g.weight(m);
+// What `init` sums over particle i's intact bonds: theta_i, and for plastic materials (kPlastic)
+// the norm |t^d| = (sum_j (t^d_j)^2 beta V_j)^(1/2) of the trial deviatoric force state
+// t^d_j = (15 mu / m_i) omega (e_j - theta_i |xi_j| / 3 - e^p_j) that `plasticity` tests against
+// the yield surface (plasticity.h), so the return mapping needs no pass of its own over the
+// bonds of particles that do not yield. theta_i is only known after the pass, so the pass sums
+// around theta_prev (the last step's theta_i): with d = e - e^p - theta_prev |xi| / 3 and
+// D = theta_i - theta_prev, sum omega^2 beta V (d - D |xi| / 3)^2 = S_dd - (2 D / 3) S_dr +
+// (D^2 / 9) S_rr. D is one step's change, so the three terms do not cancel (summing around 0
+// would lose the deviatoric part of a mostly volumetric strain to float round-off). The factor
+// 15 mu / m_i (~1e24 per m^3 at lambda = 1 mm, more for finer lattices) multiplies the square
+// root: its square would overflow float.
+struct DilatationPass {
+  real theta;
+  real trial_norm;  // |t^d| (kPlastic), else 0
+};
+
+template <bool kAnisotropic = true, bool kLattice = true, bool kPlastic = false>
+PD_HD inline DilatationPass dilatation(int32_t i, const ParticlesView& p, const BondsView& b,
+                                       const Material& m) {
+  const real theta_prev = kPlastic ? p.state[i].x : real(0);
+  real sum = 0, s_dd = 0, s_dr = 0, s_rr = 0;
+  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
+    const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m), weight = g.weight(m);
+    sum += omega * g.r0 * g.e * weight;
+    if constexpr (kPlastic) {
+      const real d = g.e - b.plastic[slot] - theta_prev * g.r0 * real(1.0 / 3.0);
+      const real ww = omega * omega * weight;
+      s_dd += ww * d * d;
+      s_dr += ww * d * g.r0;
+      s_rr += ww * g.r0 * g.r0;
+    }
   });
-  return real(3) * sum * p.state[i].y;
+  const real inv_mw = p.state[i].y;
+  DilatationPass out{real(3) * sum * inv_mw, real(0)};
+  if constexpr (kPlastic) {
+    const real shift = out.theta - theta_prev, alpha = real(15) * m.shear_modulus * inv_mw;
+    const real norm2 = s_dd - real(2.0 / 3.0) * shift * s_dr + real(1.0 / 9.0) * shift * shift * s_rr;
+    out.trial_norm = alpha * std::sqrt(norm2 > real(0) ? norm2 : real(0));
+  }
+  return out;
 }
 
 }  // namespace pd

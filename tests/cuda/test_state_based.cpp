@@ -171,6 +171,40 @@ TEST(StateBased, PlasticityIsElasticPerfectlyPlastic) {
   EXPECT_NEAR(stress, plateau, 0.02 * tau_y);
 }
 
+// `init` sums the trial deviatoric norm around the last step's theta (state_based.h): for a
+// mostly volumetric strain with a plastic history it matches the direct sum of
+// (t^d_j)^2 beta V_j at the new theta, done in double (summed around 0 instead, the norm's
+// square came out 21% off here).
+TEST(StateBased, TrialNormSummedAroundTheLastThetaMatchesTheDirectSum) {
+  Material m = state_material(200e9, 0.3, 3);
+  m.plastic = 1;
+  m.yield_psi0 = real(1e30);  // no yielding: only the norm is looked at
+  InteriorParticle a(m, 3);
+  for (int32_t k = 0; k < a.family_size(); ++k) a.plastic[a.bonds().slot(0, k)] = real(2e-6 * std::sin(k));
+  Mat3 g = zero();
+  g[0][0] = g[1][1] = g[2][2] = 1e-3;  // volumetric
+  g[0][1] = g[1][0] = 1e-6;            // and a little shear
+  a.deform(g);
+  const double theta = a.theta();
+  a.state[0].x = real(theta * (1 - 1e-3));  // the last step's theta: one step's change away
+  const DilatationPass d = dilatation<true, true, true>(0, a.view(), a.bonds(), a.m);
+  EXPECT_NEAR(d.theta, theta, 1e-6 * theta);
+
+  const double alpha = 15.0 * a.m.shear_modulus * a.state[0].y;
+  double direct = 0;
+  const BondsView b = a.bonds();
+  for (int32_t k = 0; k < a.family_size(); ++k) {
+    const int64_t slot = b.slot(0, k);
+    const int32_t j = a.neighbor[slot];
+    const BondGeometry bg = bond_geometry(a.rest[0], a.disp[0], a.rest[j], a.disp[j]);
+    const double td = alpha * double(influence(bg.xi, bg.inv_r0, a.m)) *
+                      (double(bg.e) - double(d.theta) * double(bg.r0) / 3.0 - double(a.plastic[slot]));
+    direct += td * td * double(bg.weight(a.m));
+  }
+  EXPECT_GT(direct, 0);
+  EXPECT_NEAR(d.trial_norm, std::sqrt(direct), 5e-4 * std::sqrt(direct));
+}
+
 TEST(StateBased, PlasticLimitCapsThePlasticExtension) {
   Material m = state_material(200e9, 0.3, 3);
   m.plastic = 1;
@@ -247,22 +281,27 @@ TEST(StateBased, IsotropicInstantiationMatchesTheGeneralOne) {
 }
 
 // Chen's criterion (eq. 18): s^omega = (e - e^p) / delta against tau (1 + alpha phi), so a
-// damaged particle's bonds hold more; alpha = 0 or an undamaged particle is the plain s^omega.
-// Here s^omega = (6e-6 - 1.5e-6) / 3e-3 = 1.5e-3.
+// damaged particle's bonds hold more; alpha = 0 or an undamaged particle is the plain limit.
 TEST(StateBased, DamageRaisesTheBreakingLimit) {
   Material m = state_material(1e9, 0.3);
   m.horizon = real(3e-3);
-  const real e = real(6e-6), ep = real(1.5e-6);
+  const real tau = real(1.5e-3);
   m.damage_alpha = 0;
-  EXPECT_TRUE(chen_breaks(e, ep, real(0.5), real(1.49e-3), m));
-  EXPECT_FALSE(chen_breaks(e, ep, real(0.5), real(1.51e-3), m));
+  EXPECT_NEAR(chen_extension_limit(tau, real(0.5), m), 4.5e-6, 1e-6 * 4.5e-6);
   m.damage_alpha = 2;  // undamaged: the plain limit; phi = 0.5 doubles it
-  EXPECT_TRUE(chen_breaks(e, ep, real(0), real(1.49e-3), m));
-  EXPECT_FALSE(chen_breaks(e, ep, real(0), real(1.51e-3), m));
-  EXPECT_TRUE(chen_breaks(e, ep, real(0.5), real(0.74e-3), m));
-  EXPECT_FALSE(chen_breaks(e, ep, real(0.5), real(0.76e-3), m));
-  EXPECT_TRUE(chen_breaks(e, real(0), real(0), real(1.9e-3), m));     // 2e-3 against 1.9e-3
-  EXPECT_FALSE(chen_breaks(e, real(0), real(0.2), real(1.9e-3), m));  // against 1.9e-3 x 1.4
+  EXPECT_NEAR(chen_extension_limit(tau, real(0), m), 4.5e-6, 1e-6 * 4.5e-6);
+  EXPECT_NEAR(chen_extension_limit(tau, real(0.5), m), 9e-6, 1e-6 * 9e-6);
+  EXPECT_LT(chen_extension_limit(tau, real(0.2), m), chen_extension_limit(tau, real(1), m));
+}
+
+// The coefficient form of the force state is the LPS force state (Chen eqs. 7-9) term by term.
+TEST(StateBased, ForceStateCoefficientsSumTheDilatationalAndDeviatoricTerms) {
+  const Material m = state_material(1e9, 0.3);
+  const real theta = real(2e-4), inv_mw = real(3e7), r0 = real(2e-3), e = real(5e-7), ep = real(1e-7);
+  const double dil = 3.0 * m.bulk_modulus * theta * r0;
+  const double dev = 15.0 * m.shear_modulus * (e - theta * r0 / 3.0 - ep);
+  const double expected = 1.5 * inv_mw * (dil + dev);
+  EXPECT_NEAR(force_state(real(1.5), r0, e, theta, inv_mw, ep, m), expected, 1e-5 * std::abs(expected));
 }
 
 }  // namespace

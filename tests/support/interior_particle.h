@@ -109,8 +109,9 @@ struct InteriorParticle {
                  real(grad[1][0] * x.x + grad[1][1] * x.y + grad[1][2] * x.z),
                  real(grad[2][0] * x.x + grad[2][1] * x.y + grad[2][2] * x.z), disp[i].w};
     }
-    const real th = dilatation(0, view(), bonds(), m);
-    for (auto& s : state) s.x = th;
+    const DilatationPass d = dilatation<true, true, true>(0, view(), bonds(), m);
+    for (auto& s : state) s.x = d.theta;
+    state[0].w = d.trial_norm;
     plastic_update(0, view(), bonds(), table);
   }
 
