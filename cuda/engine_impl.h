@@ -132,6 +132,7 @@ class EngineImpl final : public Engine {
     motion_.apply(time_, step_params_);
     for_each_state_array(snapshot, [](const char*, auto& array, auto& host) { array.upload(host); });
     if (!lattice_.stencils.empty()) lattice_intact_.upload(lattice_.intact);
+    if (features_.plastic) launch_mirror_plastic(exec_, bonds());
   }
 
  private:
@@ -175,6 +176,7 @@ class EngineImpl final : public Engine {
     b.neighbor = neighbor_.data();
     b.plastic = plastic_ext_.data();
     b.reverse = reverse_.data();
+    b.plastic_mirror = plastic_mirror_.data();
     b.strength = bond_strength_.data();
     b.lattice.words = lattice_.words;
     b.lattice.stencil = lattice_stencil_.data();
@@ -367,7 +369,7 @@ class EngineImpl final : public Engine {
   // The bond arrays are the bulk of the memory: refused with a clear message, before they are
   // allocated, when the backend has not enough free.
   void check_bond_memory(int64_t slots) const {
-    const double per_slot = sizeof(int32_t) + (features_.plastic ? sizeof(real) + sizeof(uint16_t) : 0);
+    const double per_slot = sizeof(int32_t) + (features_.plastic ? 2 * sizeof(real) + sizeof(uint16_t) : 0);
     const double need = double(slots) * per_slot;
     const double free = double(backend_available_bytes(backend()));
     if (need <= free) return;
@@ -379,7 +381,7 @@ class EngineImpl final : public Engine {
   }
 
   // State-based arrays: the (theta, m, phi) records, m computed once, and for plasticity
-  // the per-bond plastic extension and reverse bond positions.
+  // the per-bond plastic extension, its mirror at the partner's slot and the reverse positions.
   void allocate_state() {
     if (family_.max > 65535) throw std::runtime_error("a family has more than 65535 bonds");
     state_ = make<Vec4>(n_);
@@ -388,6 +390,8 @@ class EngineImpl final : public Engine {
     if (!features_.plastic) return;
     plastic_ext_ = make<real>(neighbor_.size());
     plastic_ext_.zero();
+    plastic_mirror_ = make<real>(neighbor_.size());
+    plastic_mirror_.zero();
     reverse_ = make<uint16_t>(neighbor_.size());
     reverse_.zero();
     launch_reverse_bonds(exec_, bonds(), reverse_.data());
@@ -434,7 +438,7 @@ class EngineImpl final : public Engine {
 
   DeviceArray<int64_t, Exec> slice_offset_;
   DeviceArray<int32_t, Exec> count_, neighbor_;
-  DeviceArray<real, Exec> plastic_ext_;
+  DeviceArray<real, Exec> plastic_ext_, plastic_mirror_;
   DeviceArray<uint16_t, Exec> reverse_;
   DeviceArray<uint8_t, Exec> bond_strength_;
   LatticeFamilies lattice_;

@@ -53,6 +53,12 @@ void launch_plasticity(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt,
       f.anisotropic, f.lattice);
 }
 
+// After a restore: each bond end's e^p copied to its mirror at the partner's slot.
+template <class Exec>
+void launch_mirror_plastic(Exec& ex, BondsView b) {
+  ex.parallel_for("family/mirror_plastic", b.n, [=] PD_HD(int64_t i) { mirror_plastic(int32_t(i), b); });
+}
+
 template <class Exec>
 void launch_reset_bins(Exec& ex, const char* name, HashView h) {
   ex.parallel_for(name, h.bins, [=] PD_HD(int64_t b) { reset_bin(uint32_t(b), h); });

@@ -99,6 +99,9 @@ struct BondsView {
   // Plastic state-based materials only (null otherwise):
   real* plastic = nullptr;            // e^p of this end's state on the bond [m]
   const uint16_t* reverse = nullptr;  // position k of the same bond in the partner's family
+  // e^p of the partner's end of the same bond, kept at this end's slot by `plasticity`, so that
+  // `springforces` reads both ends' history at one slot (no reverse lookup per bond).
+  real* plastic_mirror = nullptr;
   // Scenes with weakened bonds only (null otherwise): per slot, the factor q/255 on the bond's
   // strain limit (host/bond_cuts.h), the same in both stored directions.
   const uint8_t* strength = nullptr;

@@ -61,7 +61,7 @@ double engine_bytes_per_particle(double horizon_ratio, bool plastic) {
   // Lattice families: a stencil id (2 B) and the present, intact and (with weakened bonds) weak
   // bits, in 32-bit words.
   const double lattice = 2 + 3 * 4 * std::ceil(bonds / 32);
-  return kEngineParticleBytes + lattice + bonds * kEllPadding * (plastic ? 10 : 4);
+  return kEngineParticleBytes + lattice + bonds * kEllPadding * (plastic ? 14 : 4);
 }
 
 std::string format_bytes(double bytes) {

@@ -27,7 +27,7 @@ size_t backend_available_bytes(Backend b);
 double bonds_per_particle(double horizon_ratio);
 
 // Engine memory per particle: the particle arrays, the collision hash and the bonds (4 B each,
-// 10 B with a plastic history).
+// 14 B with a plastic history).
 double engine_bytes_per_particle(double horizon_ratio, bool plastic);
 
 // Host memory per particle while a scene is set up and run (particle set, geometry, outputs).

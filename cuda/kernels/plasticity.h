@@ -4,7 +4,8 @@
 // yield function f = |t^d|^2 / 2 - psi_0 with |t^d|^2 = sum_j (t^d_j)^2 beta V_j; when f > 0
 // the trial state is scaled onto the yield surface, e^p_j = e^d_j - s (e^d_j - e^p_j) with
 // s = sqrt(2 psi_0) / |t^d|, and Chen's limit caps |e^p_j| <= gamma |xi_j| (eq. 15).
-// Each particle updates only its own end's history, so there is no race with its partners.
+// Each particle updates only its own end's history and that end's mirror at the partner's slot
+// (BondsView::plastic_mirror), so there is no race with its partners.
 #pragma once
 
 #include <cmath>
@@ -24,7 +25,7 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
 
   // Project onto the yield surface and cap the plastic extension.
   const real scale = yield_norm / norm;
-  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
+  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t j, const auto& g) {
     const real ed = g.e - theta * g.r0 * real(1.0 / 3.0);
     real ep = ed - scale * (ed - b.plastic[slot]);
     if (m.plastic_limit > real(0)) {
@@ -32,7 +33,16 @@ PD_HD inline void plastic_update(int32_t i, ParticlesView p, BondsView b, const 
       ep = ep > cap ? cap : (ep < -cap ? -cap : ep);
     }
     b.plastic[slot] = ep;
+    if (b.plastic_mirror) b.plastic_mirror[b.slot(j, b.reverse[slot])] = ep;
   });
+}
+
+// The mirror of every bond end's e^p at the partner's slot, from the history (after a restore).
+PD_HD inline void mirror_plastic(int32_t i, BondsView b) {
+  for (int32_t k = 0; k < b.count[i]; ++k) {
+    const int64_t slot = b.slot(i, k);
+    b.plastic_mirror[b.slot(bond_partner(b.neighbor[slot]), b.reverse[slot])] = b.plastic[slot];
+  }
 }
 
 }  // namespace pd

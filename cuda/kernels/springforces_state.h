@@ -25,7 +25,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
   for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t j, const auto& g) {
     const Vec4 state_j = p.state[j];
     const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
-    const real ep_ji = kPlastic ? b.plastic[b.slot(j, b.reverse[slot])] : real(0);
+    const real ep_ji = kPlastic ? b.plastic_mirror[slot] : real(0);
     const real s = g.e * g.inv_r0;
     const real w = bond_strength<kWeak>(b, slot, g);
     const real tau_j = g.tau_j;
