@@ -205,6 +205,34 @@ TEST(StateBased, TrialNormSummedAroundTheLastThetaMatchesTheDirectSum) {
   EXPECT_NEAR(d.trial_norm, std::sqrt(direct), 5e-4 * std::sqrt(direct));
 }
 
+// The trial norm of a stiff metal at fine spacing: steel (mu = 77 GPa) at lambda = 0.1 mm is, on
+// this unit-spacing lattice, mu scaled by lambda^-4 (t^d grows as mu strain / delta^4). Its
+// square, the sum of (t^d_j)^2 beta V_j, exceeds the float range; init's norm does not form it.
+TEST(StateBased, TrialNormOfAStiffFineLatticeStaysInFloatRange) {
+  Material m = state_material(200e9 * 1e16, 0.3, 3);
+  m.plastic = 1;
+  InteriorParticle a(m, 3);
+  for (Vec4& u : a.disp) u = {0, 0, 0, u.w};
+  for (size_t i = 0; i < a.rest.size(); ++i) {  // a shear of 2e-3, no plastic history yet
+    a.disp[i].x = real(1e-3 * a.rest[i].y);
+    a.disp[i].y = real(1e-3 * a.rest[i].x);
+  }
+  const DilatationPass d = dilatation<true, true, true>(0, a.view(), a.bonds(), a.m);
+  const double alpha = 15.0 * a.m.shear_modulus * a.state[0].y;
+  double direct = 0;
+  const BondsView b = a.bonds();
+  for (int32_t k = 0; k < a.family_size(); ++k) {
+    const int32_t j = a.neighbor[b.slot(0, k)];
+    const BondGeometry bg = bond_geometry(a.rest[0], a.disp[0], a.rest[j], a.disp[j]);
+    const double td = alpha * double(influence(bg.xi, bg.inv_r0, a.m)) *
+                      (double(bg.e) - double(d.theta) * double(bg.r0) / 3.0);
+    direct += td * td * double(bg.weight(a.m));
+  }
+  EXPECT_GT(direct, double(std::numeric_limits<float>::max()));  // the squared form overflows
+  EXPECT_TRUE(std::isfinite(d.trial_norm));
+  EXPECT_NEAR(d.trial_norm, std::sqrt(direct), 1e-4 * std::sqrt(direct));
+}
+
 TEST(StateBased, PlasticLimitCapsThePlasticExtension) {
   Material m = state_material(200e9, 0.3, 3);
   m.plastic = 1;
