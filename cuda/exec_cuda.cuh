@@ -23,10 +23,12 @@ __global__ void parallel_for_kernel(int64_t n, F f) {
   if (i < n) f(i);
 }
 
-// The same with an occupancy floor: at least kMinBlocks blocks of kBlockSize threads per SM,
-// which caps the registers per thread (65536 / (kMinBlocks * 256)).
+constexpr int kCudaBlockSize = 256;  // threads per block of every launch
+
+// The same with an occupancy floor: at least kMinBlocks blocks per SM, which caps the registers
+// per thread (65536 / (kMinBlocks * kCudaBlockSize)).
 template <int kMinBlocks, class F>
-__global__ void __launch_bounds__(256, kMinBlocks) parallel_for_bounded_kernel(int64_t n, F f) {
+__global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks) parallel_for_bounded_kernel(int64_t n, F f) {
   const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i < n) f(i);
 }
@@ -40,7 +42,7 @@ __global__ void transform_kernel(int64_t n, F f, T* out) {
 class CudaExec {
  public:
   static constexpr bool kDevice = true;
-  static constexpr int kBlockSize = 256;
+  static constexpr int kBlockSize = kCudaBlockSize;
 
   explicit CudaExec(KernelStats* stats);
   ~CudaExec();

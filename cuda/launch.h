@@ -107,9 +107,9 @@ template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, 
           class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
-  // with weakened bonds 5 (48 registers; it would take 56 and run 4); state-based 4 (64; the
-  // plastic one would take 71 and run 3, and spills at 48). The plain bond-based kernel has 48
-  // either way and runs 4% slower with the bound.
+  // with weakened bonds 5 (48 registers; it would take 56 and run 4); state-based 4 (at most 64;
+  // they spill at 48). The plain bond-based kernel has 48 either way and runs 4% slower with
+  // the bound.
   constexpr int kMinBlocks = kStateBased ? 4 : (kWeak ? 5 : 0);
   ex.template parallel_for<kMinBlocks>("pd/springforces", p.n, [=] PD_HD(int64_t i) {
     springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic, kWeak, kLattice>(int32_t(i), p, b,

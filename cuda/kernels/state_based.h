@@ -90,8 +90,8 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
 // D = theta_i - theta_prev, sum omega^2 beta V (d - D |xi| / 3)^2 = S_dd - (2 D / 3) S_dr +
 // (D^2 / 9) S_rr. D is one step's change, so the three terms do not cancel (summing around 0
 // would lose the deviatoric part of a mostly volumetric strain to float round-off). The factor
-// 15 mu / m_i (~1e24 per m^3 at lambda = 1 mm, more for finer lattices) multiplies the square
-// root: its square would overflow float.
+// 15 mu / m_i (~1e24 N/m^7 for steel at lambda = 1 mm, growing as delta^-5) multiplies the
+// square root: the squared norm overflows float for stiff metals at fine spacing.
 struct DilatationPass {
   real theta;
   real trial_norm;  // |t^d| (kPlastic), else 0
