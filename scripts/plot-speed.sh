@@ -45,6 +45,7 @@ with open(os.path.join(out, "runs.dat"), "w") as o:
     for x, run in enumerate(runs):
         o.write('%d 1.2e10 "%s"\n' % (x, run))
 PY
+runs=$(wc -l <"$tmp/runs.dat")
 gnuplot <<GP
 set terminal pngcairo size 1200,700 noenhanced
 set output '$png'
@@ -53,7 +54,7 @@ set ylabel 'bond-updates/s'
 set logscale y
 set yrange [1e10:2e12]
 set xlabel 'benchmark run (date, git revision, device)'
-set xrange [-0.5:*]
+set xrange [-0.5:$runs - 0.5]  # half a run's width on both sides, for the last run's label
 set key outside right
 set grid
 roof = 3.35e12 / 4
