@@ -94,18 +94,19 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
 // square root: the squared norm overflows float for stiff metals at fine spacing.
 struct DilatationPass {
   real theta;
-  real trial_norm;  // |t^d| (kPlastic), else 0
+  real trial_norm;  // |t^d| (kPlastic, plastic materials), else 0
 };
 
 template <bool kAnisotropic = true, bool kLattice = true, bool kPlastic = false>
 PD_HD inline DilatationPass dilatation(int32_t i, const ParticlesView& p, const BondsView& b,
                                        const Material& m) {
-  const real theta_prev = kPlastic ? p.state[i].x : real(0);
+  const bool plastic = kPlastic && m.plastic;  // elastic materials of a plastic scene: theta only
+  const real theta_prev = plastic ? p.state[i].x : real(0);
   real sum = 0, s_dd = 0, s_dr = 0, s_rr = 0;
   for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m), weight = g.weight(m);
     sum += omega * g.r0 * g.e * weight;
-    if constexpr (kPlastic) {
+    if (plastic) {
       const real d = g.e - b.plastic[slot] - theta_prev * g.r0 * real(1.0 / 3.0);
       const real ww = omega * omega * weight;
       s_dd += ww * d * d;
@@ -115,7 +116,7 @@ PD_HD inline DilatationPass dilatation(int32_t i, const ParticlesView& p, const 
   });
   const real inv_mw = p.state[i].y;
   DilatationPass out{real(3) * sum * inv_mw, real(0)};
-  if constexpr (kPlastic) {
+  if (plastic) {
     const real shift = out.theta - theta_prev, alpha = real(15) * m.shear_modulus * inv_mw;
     const real norm2 = s_dd - real(2.0 / 3.0) * shift * s_dr + real(1.0 / 9.0) * shift * shift * s_rr;
     out.trial_norm = alpha * std::sqrt(norm2 > real(0) ? norm2 : real(0));
