@@ -97,16 +97,16 @@ struct DilatationPass {
   real trial_norm;  // |t^d| (kPlastic, plastic materials), else 0
 };
 
-template <bool kAnisotropic = true, bool kLattice = true, bool kPlastic = false>
-PD_HD inline DilatationPass dilatation(int32_t i, const ParticlesView& p, const BondsView& b,
-                                       const Material& m) {
-  const bool plastic = kPlastic && m.plastic;  // elastic materials of a plastic scene: theta only
-  const real theta_prev = plastic ? p.state[i].x : real(0);
+// One pass, with (kNorm) or without the trial norm.
+template <bool kAnisotropic, bool kLattice, bool kNorm>
+PD_HD inline DilatationPass dilatation_pass(int32_t i, const ParticlesView& p, const BondsView& b,
+                                            const Material& m) {
+  const real theta_prev = kNorm ? p.state[i].x : real(0);
   real sum = 0, s_dd = 0, s_dr = 0, s_rr = 0;
   for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
     const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m), weight = g.weight(m);
     sum += omega * g.r0 * g.e * weight;
-    if (plastic) {
+    if constexpr (kNorm) {
       const real d = g.e - b.plastic[slot] - theta_prev * g.r0 * real(1.0 / 3.0);
       const real ww = omega * omega * weight;
       s_dd += ww * d * d;
@@ -116,12 +116,22 @@ PD_HD inline DilatationPass dilatation(int32_t i, const ParticlesView& p, const 
   });
   const real inv_mw = p.state[i].y;
   DilatationPass out{real(3) * sum * inv_mw, real(0)};
-  if (plastic) {
+  if constexpr (kNorm) {
     const real shift = out.theta - theta_prev, alpha = real(15) * m.shear_modulus * inv_mw;
     const real norm2 = s_dd - real(2.0 / 3.0) * shift * s_dr + real(1.0 / 9.0) * shift * shift * s_rr;
     out.trial_norm = alpha * std::sqrt(norm2 > real(0) ? norm2 : real(0));
   }
   return out;
+}
+
+// kPlastic: the scene has plastic materials; their particles also get the trial norm, the
+// elastic bodies of such a scene sum theta alone (one branch per particle, none per bond).
+template <bool kAnisotropic = true, bool kLattice = true, bool kPlastic = false>
+PD_HD inline DilatationPass dilatation(int32_t i, const ParticlesView& p, const BondsView& b,
+                                       const Material& m) {
+  if constexpr (kPlastic)
+    if (m.plastic) return dilatation_pass<kAnisotropic, kLattice, true>(i, p, b, m);
+  return dilatation_pass<kAnisotropic, kLattice, false>(i, p, b, m);
 }
 
 }  // namespace pd
