@@ -44,7 +44,7 @@ class EngineImpl final : public Engine {
     if (in.lattice_families) build_lattice_families(in.particles);
     compute_critical_time_step();
     if (features_.state_based) allocate_state();
-    if (contact_) allocate_contact_hash();
+    if (contact_) allocate_contacts();
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0;
     motion_.apply(time_, step_params_);
@@ -64,7 +64,8 @@ class EngineImpl final : public Engine {
     for (int64_t s = 0; s < steps; ++s) {
       step_params_.time = real(time_ + dt);
       if (scripted_motion_) motion_.apply(time_ + dt, step_params_);
-      launch_position_update(exec_, particles(), step_params_);
+      launch_position_update(exec_, particles(), step_params_, contact_ ? contact_view() : ContactView{});
+      if (contact_) exec_.mark_flag();
       compute_forces();
       launch_velocity_update(exec_, particles(), step_params_);
       time_ += dt;
@@ -92,7 +93,8 @@ class EngineImpl final : public Engine {
   int64_t broken_bonds() override { return reduce_broken_bonds(exec_, bonds(), intact_.data()); }
 
   Energy energy() override {
-    return reduce_energy(exec_, particles(), bonds(), hash_view(true), materials_, step_params_, contact_);
+    if (contact_) refresh_contacts();
+    return reduce_energy(exec_, particles(), bonds(), contact_view(), materials_, step_params_, contact_);
   }
 
   int64_t first_non_finite() override {
@@ -133,6 +135,7 @@ class EngineImpl final : public Engine {
     for_each_state_array(snapshot, [](const char*, auto& array, auto& host) { array.upload(host); });
     if (!lattice_.stencils.empty()) lattice_intact_.upload(lattice_.intact);
     if (features_.plastic) launch_mirror_plastic(exec_, bonds());
+    contacts_built_ = false;  // built again from the restored positions
   }
 
  private:
@@ -239,13 +242,51 @@ class EngineImpl final : public Engine {
     bin_end_ = make<int32_t>(bins_);
   }
 
-  // Collision cells of side max(lambda), twice the largest contact distance, and the sorted
-  // partner records.
-  void allocate_contact_hash() {
+  // Contact lists (kernels/collisions.h): the hash they are built from, with cells twice the
+  // largest reach (contact distance plus skin), its sorted records, and the lists.
+  void allocate_contacts() {
     real spacing = 0;
     for (int m = 0; m < materials_.count; ++m) spacing = std::max(spacing, materials_.m[m].contact_spacing);
-    allocate_hash(spacing);
+    const double contact_distance = 0.5 * double(spacing);
+    contact_skin_ = real(kContactSkin * contact_distance);
+    contact_trigger_ = real(kContactTrigger * double(contact_skin_));
+    allocate_hash(real(2 * (contact_distance + double(contact_skin_))));
     record_ = make<Vec4>(n_);
+    contact_origin_ = make<Vec4>(n_);
+    contact_count_ = make<int64_t>(n_);
+    contact_start_ = make<int64_t>(size_t(n_) + 1);
+    contact_partner_ = make<int32_t>(1);
+    exec_.flag();
+  }
+
+  ContactView contact_view() {
+    ContactView c;
+    c.skin = contact_skin_;
+    c.trigger = contact_trigger_;
+    c.start = contact_start_.data();
+    c.partner = contact_partner_.data();
+    c.origin = contact_origin_.data();
+    c.moved = exec_.flag();
+    return c;
+  }
+
+  // Builds the contact lists at the current positions if a particle has left its skin since
+  // the last build (position_update raised the flag), or if there is none yet.
+  void refresh_contacts() {
+    const bool moved = exec_.take_flag();
+    if (contacts_built_ && !moved) return;
+    const ParticlesView p = particles();
+    launch_reset_bins(exec_, "pd/collection_reset", hash_view(true));
+    launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true), materials_);
+    launch_count_contacts(exec_, p, hash_view(true), contact_view(), contact_count_.data());
+    contact_pairs_ = exec_.exclusive_scan(contact_count_.data(), contact_start_.data(), n_);
+    exec_.upload(contact_start_.data() + n_, &contact_pairs_, sizeof(int64_t));
+    if (size_t(contact_pairs_) > contact_partner_.size()) {  // grown by half again, to build rarely
+      drop(contact_partner_);
+      contact_partner_ = make<int32_t>(size_t(contact_pairs_ + contact_pairs_ / 2));
+    }
+    launch_fill_contacts(exec_, n_, hash_view(true), contact_view(), contact_partner_.data());
+    contacts_built_ = true;
   }
 
   template <class T>
@@ -401,13 +442,14 @@ class EngineImpl final : public Engine {
   void compute_forces() {
     const ParticlesView p = particles();
     const BondsView b = bonds();
-    launch_init(exec_, p, b, hash_view(true), materials_, features_);
+    launch_init(exec_, p, b, materials_, features_);
     if (features_.plastic) launch_plasticity(exec_, p, b, materials_, features_);
-    if (contact_) {
-      launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true), materials_);
-      launch_collisions(exec_, p, hash_view(true), step_params_.contact_stiffness);
-    }
     launch_springforces(exec_, p, b, materials_, features_);
+    if (contact_) {  // after springforces is queued: waiting for position_update's flag idles nothing
+      refresh_contacts();
+      if (contact_pairs_ > 0)
+        launch_collisions(exec_, p, contact_view(), materials_, step_params_.contact_stiffness);
+    }
     if (body_forces_) launch_bodyforces(exec_, p, step_params_);
   }
 
@@ -451,7 +493,14 @@ class EngineImpl final : public Engine {
   real inv_cell_ = 0;
   DeviceArray<uint32_t, Exec> key_, key_sorted_;
   DeviceArray<int32_t, Exec> ids_, ids_sorted_, bin_start_, bin_end_;
-  DeviceArray<Vec4, Exec> record_;  // collisions: sorted partner records
+  DeviceArray<Vec4, Exec> record_;  // contact lists: sorted records for the build
+
+  real contact_skin_ = 0, contact_trigger_ = 0;
+  bool contacts_built_ = false;
+  int64_t contact_pairs_ = 0;  // entries of the lists
+  DeviceArray<Vec4, Exec> contact_origin_;
+  DeviceArray<int64_t, Exec> contact_count_, contact_start_;
+  DeviceArray<int32_t, Exec> contact_partner_;
 };
 
 }  // namespace pd

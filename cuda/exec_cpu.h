@@ -95,6 +95,16 @@ class CpuExec {
   void synchronize() {}
   void flush_stats() {}
 
+  // A flag the kernels raise (raise_flag) and the host reads: mark_flag() after the launches
+  // that may raise it, take_flag() waits for them and returns it, cleared.
+  int32_t* flag() { return &flag_; }
+  void mark_flag() {}
+  bool take_flag() {
+    const bool raised = flag_ != 0;
+    flag_ = 0;
+    return raised;
+  }
+
  private:
   void record(const char* name, std::chrono::steady_clock::time_point t0) {
     if (!stats_) return;
@@ -105,6 +115,7 @@ class CpuExec {
 
   KernelStats* stats_;
   std::vector<int64_t> histogram_;
+  int32_t flag_ = 0;
 };
 
 }  // namespace pd

@@ -47,6 +47,8 @@ CudaExec::~CudaExec() {
   }
   for (auto e : free_events_) cudaEventDestroy(e);
   for (void* s : scratch_) cudaFree(s);
+  if (flag_host_) cudaFreeHost(flag_host_);
+  if (flag_event_) cudaEventDestroy(flag_event_);
 }
 
 void CudaExec::describe(KernelStat* s, const void* kernel) {
@@ -170,6 +172,33 @@ void CudaExec::fill_bytes(void* dst, int value, size_t bytes) {
 }
 void CudaExec::synchronize() {
   cuda_check(cudaDeviceSynchronize(), "synchronize");
+}
+
+int32_t* CudaExec::flag() {
+  if (!flag_host_) {
+    void* host = nullptr;
+    cuda_check(cudaHostAlloc(&host, sizeof(int32_t), cudaHostAllocMapped), "flag");
+    flag_host_ = static_cast<int32_t*>(host);
+    *flag_host_ = 0;
+    void* device = nullptr;
+    cuda_check(cudaHostGetDevicePointer(&device, host, 0), "flag");
+    flag_device_ = static_cast<int32_t*>(device);
+    cuda_check(cudaEventCreateWithFlags(&flag_event_, cudaEventDisableTiming), "flag");
+  }
+  return flag_device_;
+}
+
+void CudaExec::mark_flag() {
+  if (flag_event_) cuda_check(cudaEventRecord(flag_event_), "flag");
+}
+
+bool CudaExec::take_flag() {
+  if (!flag_host_) return false;
+  cuda_check(cudaEventSynchronize(flag_event_), "a kernel before reading the contact flag");
+  volatile int32_t* host = flag_host_;
+  const bool raised = *host != 0;
+  *host = 0;
+  return raised;
 }
 
 }  // namespace pd

@@ -100,6 +100,12 @@ class CudaExec {
   void download(void* dst, const void* src, size_t bytes);
   void fill_bytes(void* dst, int value, size_t bytes);
   void synchronize();
+  // A flag the kernels raise (raise_flag) and the host reads without a copy (mapped host
+  // memory): mark_flag() after the launches that may raise it, take_flag() waits for them
+  // (an event, so later launches keep running) and returns it, cleared.
+  int32_t* flag();
+  void mark_flag();
+  bool take_flag();
   // Waits for the device, adds the timed launches to the stats, and reports any
   // asynchronous kernel error with the name of the kernel family last launched.
   void flush_stats();
@@ -121,6 +127,9 @@ class CudaExec {
   void* scratch_[3] = {nullptr, nullptr, nullptr};
   size_t scratch_bytes_[3] = {0, 0, 0};
   const char* last_name_ = "";
+  int32_t* flag_host_ = nullptr;
+  int32_t* flag_device_ = nullptr;
+  cudaEvent_t flag_event_ = nullptr;
 };
 
 }  // namespace pd

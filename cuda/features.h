@@ -11,7 +11,7 @@ namespace pd {
 
 // The physics of a run.
 struct KernelFeatures {
-  bool contact = false;      // collisions wrote forces that springforces adds to
+  bool contact = false;      // contact lists and collisions
   bool state_based = false;  // some material is state-based: dilatation in `init`
   bool plastic = false;      // some state-based material is plastic
   bool anisotropic = false;  // some state-based material has an anisotropy matrix G

@@ -16,23 +16,21 @@
 
 namespace pd {
 
-// Kernel 1. Threads past the particle count only reset bins (and vice versa).
+// Kernel 1.
 template <bool kStateBased, bool kAnisotropic, bool kLattice, bool kPlastic, class Exec>
-void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt) {
-  const int64_t n = p.n > int64_t(h.bins) ? p.n : int64_t(h.bins);
-  ex.parallel_for("pd/init", n, [=] PD_HD(int64_t i) {
-    if (i < p.n) init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(int32_t(i), p, b, mt);
-    if (i < int64_t(h.bins)) reset_bin(uint32_t(i), h);
+void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+  ex.parallel_for("pd/init", p.n, [=] PD_HD(int64_t i) {
+    init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(int32_t(i), p, b, mt);
   });
 }
 
 template <class Exec>
-void launch_init(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt, KernelFeatures f) {
-  if (!f.state_based) return launch_init_variant<false, false, false, false>(ex, p, b, h, mt);
+void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
+  if (!f.state_based) return launch_init_variant<false, false, false, false>(ex, p, b, mt);
   static_bools(
       [&](auto anisotropic, auto lattice, auto plastic) {
         launch_init_variant<true, decltype(anisotropic)::value, decltype(lattice)::value,
-                            decltype(plastic)::value>(ex, p, b, h, mt);
+                            decltype(plastic)::value>(ex, p, b, mt);
       },
       f.anisotropic, f.lattice, f.plastic);
 }
@@ -65,7 +63,7 @@ void launch_reset_bins(Exec& ex, const char* name, HashView h) {
 }
 
 // Kernel 2: bin keys, a stable sort, then bin bounds. kCurrent hashes current positions
-// (collisions) and also writes each sorted entry's record (position, a quarter of the contact
+// (contact lists) and also writes each sorted entry's record (position, a quarter of the contact
 // spacing); otherwise reference positions (family build).
 template <bool kCurrent, class Exec>
 void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView unsorted, HashView sorted,
@@ -80,31 +78,42 @@ void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView uns
     mark_bin_bounds(int32_t(s), p.n, sorted);
     if (kCurrent) {  // (not constexpr: an extended lambda cannot first-capture there)
       const int32_t i = sorted.sorted[s];
-      sorted.record[s] = with_w(p.position(i), real(0.25) * mt.m[p.material[i]].contact_spacing);
+      sorted.record[s] = with_w(p.position(i), contact_quarter(i, p, mt));
     }
   });
 }
 
-// Kernel 3, over the sorted entries.
+// Kernel 2 for contact: the two passes of the list build over the sorted hash entries.
 template <class Exec>
-void launch_collisions(Exec& ex, ParticlesView p, HashView h, real stiffness) {
-  ex.parallel_for("pd/collisions", p.n,
-                  [=] PD_HD(int64_t s) { collision_forces(int32_t(s), p, h, stiffness); });
+void launch_count_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c, int64_t* count) {
+  ex.parallel_for("pd/contact_count", p.n,
+                  [=] PD_HD(int64_t s) { count_contacts(int32_t(s), p, h, c, count); });
 }
 
-// Kernel 4, one instantiation per feature set so a scene pays only for what it uses.
-// kAccumulate adds to the force `collisions` wrote.
-template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice>
+template <class Exec>
+void launch_fill_contacts(Exec& ex, int32_t n, HashView h, ContactView c, int32_t* partner) {
+  ex.parallel_for("pd/contact_fill", n, [=] PD_HD(int64_t s) { fill_contacts(int32_t(s), h, c, partner); });
+}
+
+// Kernel 3, over the particles' contact lists.
+template <class Exec>
+void launch_collisions(Exec& ex, ParticlesView p, ContactView c, MaterialTable mt, real stiffness) {
+  ex.parallel_for("pd/collisions", p.n,
+                  [=] PD_HD(int64_t i) { collision_forces(int32_t(i), p, c, mt, stiffness); });
+}
+
+// Kernel 4, one instantiation per feature set so a scene pays only for what it uses. Writes the
+// force (the other force kernels add to it).
+template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice>
 PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
                                     const MaterialTable& mt) {
   if constexpr (kStateBased)
-    state_forces<kAccumulate, kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt);
+    state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt);
   else
-    spring_forces<kAccumulate, kWeak, kLattice>(i, p, b, mt);
+    spring_forces<kWeak, kLattice>(i, p, b, mt);
 }
 
-template <bool kAccumulate, bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice,
-          class Exec>
+template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
   // with weakened bonds 5 (48 registers; it would take 56 and run 4); state-based 4 (at most 64;
@@ -112,24 +121,23 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
   // the bound.
   constexpr int kMinBlocks = kStateBased ? 4 : (kWeak ? 5 : 0);
   ex.template parallel_for<kMinBlocks>("pd/springforces", p.n, [=] PD_HD(int64_t i) {
-    springforces_body<kAccumulate, kStateBased, kPlastic, kAnisotropic, kWeak, kLattice>(int32_t(i), p, b,
-                                                                                         mt);
+    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice>(int32_t(i), p, b, mt);
   });
 }
 
 template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
   static_bools(
-      [&](auto accumulate, auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice) {
+      [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice) {
         constexpr bool kState = decltype(state_based)::value;
         constexpr bool kPlastic = kState && decltype(plastic)::value;
         constexpr bool kAniso = kState && decltype(anisotropic)::value;
         // Plasticity and anisotropy exist only for state-based materials: no bond-based copies.
         if constexpr (kState || (!decltype(plastic)::value && !decltype(anisotropic)::value))
-          launch_springforces_variant<decltype(accumulate)::value, kState, kPlastic, kAniso,
-                                      decltype(weak)::value, decltype(lattice)::value>(ex, p, b, mt);
+          launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
+                                      decltype(lattice)::value>(ex, p, b, mt);
       },
-      f.contact, f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds,
+      f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds,
       f.lattice);
 }
 
@@ -140,9 +148,15 @@ void launch_bodyforces(Exec& ex, ParticlesView p, StepParams sp) {
 }
 
 // Kernels 6 and 7.
+// With contact lists (c.moved set), the update also reports a particle that left its skin.
 template <class Exec>
-void launch_position_update(Exec& ex, ParticlesView p, StepParams sp) {
-  ex.parallel_for("pd/position_update", p.n, [=] PD_HD(int64_t i) { position_update(int32_t(i), p, sp); });
+void launch_position_update(Exec& ex, ParticlesView p, StepParams sp, ContactView c) {
+  if (c.moved)
+    ex.parallel_for("pd/position_update", p.n,
+                    [=] PD_HD(int64_t i) { position_update<true>(int32_t(i), p, sp, c); });
+  else
+    ex.parallel_for("pd/position_update", p.n,
+                    [=] PD_HD(int64_t i) { position_update<false>(int32_t(i), p, sp); });
 }
 
 template <class Exec>
@@ -197,10 +211,10 @@ int64_t reduce_broken_bonds(Exec& ex, BondsView b, const int32_t* intact) {
 }
 
 template <class Exec>
-Energy reduce_energy(Exec& ex, ParticlesView p, BondsView b, HashView h, MaterialTable mt, StepParams sp,
+Energy reduce_energy(Exec& ex, ParticlesView p, BondsView b, ContactView c, MaterialTable mt, StepParams sp,
                      bool contact) {
   return ex.template reduce_sum<Energy>("stats/energy", p.n, [=] PD_HD(int64_t i) {
-    return particle_energy(int32_t(i), p, b, h, mt, sp, contact);
+    return particle_energy(int32_t(i), p, b, c, mt, sp, contact);
   });
 }
 

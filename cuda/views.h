@@ -130,10 +130,34 @@ struct HashView {
   int32_t* sorted = nullptr;     // particle ids in bin order
   int32_t* bin_start = nullptr;  // first sorted entry of each bin, -1 when empty
   int32_t* bin_end = nullptr;    // one past the last sorted entry
-  // Collisions only: per sorted entry, the particle's position and a quarter of its contact
+  // Contact lists only: per sorted entry, the particle's position and a quarter of its contact
   // spacing, so the partners of a cell are read in one contiguous run (launch_collection).
   Vec4* record = nullptr;
 };
+
+// Contact pairs kept as Verlet lists (Verlet 1967): per particle, the particles that were
+// closer than their contact distance plus `skin` when the lists were built, in ascending index
+// order. The lists hold every pair in contact for as long as no particle has moved more than
+// half the skin since the build (`origin`); `position_update` raises `moved` when one has, and
+// the engine rebuilds them before the next `collisions`.
+struct ContactView {
+  real skin = 0;                     // [m]
+  real trigger = 0;                  // a move larger than this raises `moved` (below skin / 2)
+  const int64_t* start = nullptr;    // n + 1 entries: particle i's partners are [start[i], start[i+1])
+  const int32_t* partner = nullptr;  // partner indices
+  Vec4* origin = nullptr;            // xyz: each particle's displacement at the last build
+  int32_t* moved = nullptr;          // set to 1 by any particle that moved farther than `trigger`
+};
+
+// Sets a flag (Exec::flag) that many threads may set at once, all to 1. On the GPU the flag lives
+// in host memory: one store per warp (the lowest lane taking this path) rather than per thread.
+PD_HD inline void raise_flag(int32_t* flag) {
+#if defined(__CUDA_ARCH__)
+  if ((threadIdx.x & 31u) == unsigned(__ffs(__activemask()) - 1)) *reinterpret_cast<volatile int32_t*>(flag) = 1;
+#else
+  __atomic_store_n(flag, 1, __ATOMIC_RELAXED);
+#endif
+}
 
 struct Cell {
   int32_t x, y, z;

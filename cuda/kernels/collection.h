@@ -12,6 +12,12 @@ PD_HD inline void hash_particle(int32_t i, Vec3 x, HashView h) {
   h.sorted[i] = i;
 }
 
+// Before hashing: bin b empty.
+PD_HD inline void reset_bin(uint32_t b, HashView h) {
+  h.bin_start[b] = -1;
+  h.bin_end[b] = -1;
+}
+
 // After sorting: record where each bin's run of entries starts and ends.
 PD_HD inline void mark_bin_bounds(int32_t s, int32_t n, HashView h) {
   const uint32_t k = h.key[s];

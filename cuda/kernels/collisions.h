@@ -1,15 +1,24 @@
 // Kernel 3, `collisions`: quadratic repulsion between particles closer than the contact
 // distance (Levine eq. 6): f_i = K_c (|x_i - x_j| - r_c)^2 (x_i - x_j)/|x_i - x_j|, with
-// r_c = (lambda_i + lambda_j)/4, i.e. lambda/2 for equal spacings. Cells have the side of
-// the largest spacing, twice the largest contact distance, so 8 cells hold every partner.
-// Writes (not adds) the force, so it runs first among the force kernels. Runs over the hash's
-// sorted records (position and quarter contact spacing per entry, written by `collection`).
+// r_c = (lambda_i + lambda_j)/4, i.e. lambda/2 for equal spacings. Each particle reads its
+// contact list (ContactView), which `collection` builds from the spatial hash only when some
+// particle has moved more than about half the skin since the last build; between builds a step
+// costs a read of the list, empty for a particle with nobody within reach (an intact lattice:
+// neighbours at lambda, beyond the contact distance plus the skin). Adds to the force
+// `springforces` wrote.
 #pragma once
 
 #include "../views.h"
 #include "collection.h"
 
 namespace pd {
+
+// The skin of the contact lists as a fraction of the largest contact distance r_c: lists reach
+// 1.5 r_c (0.75 lambda), so an intact lattice has none. A particle that has moved more than 0.45
+// of the skin triggers a rebuild (half the skin would do; the rest is a margin for the round-off
+// of float positions).
+constexpr double kContactSkin = 0.5;
+constexpr double kContactTrigger = 0.45;
 
 PD_HD inline Vec3 contact_force(Vec3 xi, Vec3 xj, real contact_distance, real stiffness) {
   const Vec3 d = xi - xj;
@@ -20,17 +29,73 @@ PD_HD inline Vec3 contact_force(Vec3 xi, Vec3 xj, real contact_distance, real st
   return (stiffness * gap * gap / r) * d;
 }
 
-// Sorted entry s of the hash (threads in bin order, so a warp's particles share cells): the
-// contact force on its particle from every other particle within the contact distance.
-PD_HD inline void collision_forces(int32_t s, ParticlesView p, HashView h, real stiffness) {
-  const Vec4 ri = h.record[s];
-  const Vec3 xi = xyz(ri);
-  Vec3 f{0, 0, 0};
-  for_each_record_within_half_cell(xi, h, [&](int32_t t, Vec4 rj) {
-    if (t == s) return;
-    f += contact_force(xi, xyz(rj), ri.w + rj.w, stiffness);
+// A quarter of particle i's contact spacing: the contact distance of a pair is the sum of theirs.
+PD_HD inline real contact_quarter(int32_t i, const ParticlesView& p, const MaterialTable& mt) {
+  return real(0.25) * mt.m[p.material[i]].contact_spacing;
+}
+
+// Whether two hash records (position, quarter contact spacing) are within the contact distance
+// plus the skin: the pairs the lists keep. Symmetric to the last bit.
+PD_HD inline bool within_contact_reach(Vec4 a, Vec4 b, real skin) {
+  const real reach = a.w + b.w + skin;
+  return length_squared(xyz(a) - xyz(b)) < reach * reach;
+}
+
+// visit(t) for every other sorted entry t within reach of sorted entry s. The hash's cells are
+// at least twice the largest reach, so the 8-cell search sees every such entry.
+template <class Visit>
+PD_HD inline void for_each_contact_candidate(int32_t s, HashView h, real skin, Visit visit) {
+  const Vec4 rs = h.record[s];
+  for_each_record_within_half_cell(xyz(rs), h, [&](int32_t t, Vec4 rt) {
+    if (t != s && within_contact_reach(rs, rt, skin)) visit(t);
   });
-  p.force[h.sorted[s]] = f;
+}
+
+// List build, pass 1 (per sorted entry): the length of the particle's list, and the
+// displacement it is built at.
+PD_HD inline void count_contacts(int32_t s, ParticlesView p, HashView h, ContactView c, int64_t* count) {
+  int64_t k = 0;
+  for_each_contact_candidate(s, h, c.skin, [&](int32_t) { ++k; });
+  const int32_t i = h.sorted[s];
+  count[i] = k;
+  c.origin[i] = p.disp[i];
+}
+
+// Pass 2, after the scan of the lengths: the partners, sorted by index, so that a particle's
+// contact forces add up in one order whatever the hash did (CPU and GPU, a resumed run and an
+// uninterrupted one).
+PD_HD inline void fill_contacts(int32_t s, HashView h, ContactView c, int32_t* partner) {
+  const int32_t i = h.sorted[s];
+  const int64_t first = c.start[i];
+  int64_t end = first;
+  for_each_contact_candidate(s, h, c.skin, [&](int32_t t) { partner[end++] = h.sorted[t]; });
+  for (int64_t k = first + 1; k < end; ++k) {
+    const int32_t j = partner[k];
+    int64_t q = k;
+    for (; q > first && partner[q - 1] > j; --q) partner[q] = partner[q - 1];
+    partner[q] = j;
+  }
+}
+
+// Per particle: the contact forces from its list, added to the force on it.
+PD_HD inline void collision_forces(int32_t i, ParticlesView p, ContactView c, const MaterialTable& mt,
+                                   real stiffness) {
+  const int64_t begin = c.start[i], end = c.start[i + 1];
+  if (begin == end) return;
+  const Vec3 xi = p.position(i);
+  const real quarter_i = contact_quarter(i, p, mt);
+  Vec3 f{0, 0, 0};
+  for (int64_t k = begin; k < end; ++k) {
+    const int32_t j = c.partner[k];
+    f += contact_force(xi, p.position(j), quarter_i + contact_quarter(j, p, mt), stiffness);
+  }
+  p.force[i] = p.force[i] + f;
+}
+
+// Whether displacement u has moved farther than the trigger from where the lists were built
+// (a non-finite one counts as moved).
+PD_HD inline bool left_contact_skin(Vec4 u, Vec4 origin, real trigger) {
+  return !(length_squared(xyz(u) - xyz(origin)) <= trigger * trigger);
 }
 
 }  // namespace pd

@@ -52,23 +52,23 @@ PD_HD inline double strain_energy(int32_t i, const ParticlesView& p, const Bonds
   return sum;
 }
 
-// Half of each contact pair's potential K_c (r_c - d)^3 / 3 (the integral of eq. 6).
-PD_HD inline double contact_energy(int32_t i, const ParticlesView& p, HashView h, const MaterialTable& mt,
+// Half of each contact pair's potential K_c (r_c - d)^3 / 3 (the integral of eq. 6), over the
+// particle's contact list (valid for the current positions: the engine refreshes it first).
+PD_HD inline double contact_energy(int32_t i, const ParticlesView& p, ContactView c, const MaterialTable& mt,
                                    real stiffness) {
-  auto pos = [&](int32_t j) { return p.position(j); };
-  const Vec3 xi = pos(i);
-  const real quarter_i = real(0.25) * mt.m[p.material[i]].contact_spacing;
+  const Vec3 xi = p.position(i);
+  const real quarter_i = contact_quarter(i, p, mt);
   double sum = 0;
-  for_each_within_half_cell(xi, h, pos, [&](int32_t j) {
-    if (j == i) return;
-    const double rc = quarter_i + real(0.25) * mt.m[p.material[j]].contact_spacing;
-    const double d = length(xi - pos(j));
+  for (int64_t k = c.start[i]; k < c.start[i + 1]; ++k) {
+    const int32_t j = c.partner[k];
+    const double rc = quarter_i + contact_quarter(j, p, mt);
+    const double d = length(xi - p.position(j));
     if (d < rc) sum += stiffness * (rc - d) * (rc - d) * (rc - d) / 6.0;
-  });
+  }
   return sum;
 }
 
-PD_HD inline Energy particle_energy(int32_t i, const ParticlesView& p, const BondsView& b, HashView h,
+PD_HD inline Energy particle_energy(int32_t i, const ParticlesView& p, const BondsView& b, ContactView c,
                                     const MaterialTable& mt, const StepParams& sp, bool contact) {
   Energy e;
   const double mass = 1.0 / double(p.inv_mass[i]);
@@ -78,7 +78,7 @@ PD_HD inline Energy particle_energy(int32_t i, const ParticlesView& p, const Bon
   // origin cannot resolve small sag.
   e.gravity = -mass * double(dot(sp.gravity, xyz(p.disp[i])));
   e.strain = strain_energy(i, p, b, mt.m[p.material[i]]);
-  if (contact) e.contact = contact_energy(i, p, h, mt, sp.contact_stiffness);
+  if (contact) e.contact = contact_energy(i, p, c, mt, sp.contact_stiffness);
   e.work = p.ledger[i].work;
   e.released = p.ledger[i].released;
   return e;

@@ -1,7 +1,7 @@
-// Kernel 1, `init`: load the strain limits for this step (Levine eq. 5), empty the collision
-// hash bins, and for state-based materials compute the damage phi_i and the dilatation
-// theta_i at the new positions (Chen eqs. 5, 18), which `springforces` reads from both ends,
-// and for plastic materials the trial deviatoric norm that `plasticity` tests.
+// Kernel 1, `init`: load the strain limits for this step (Levine eq. 5), and for state-based
+// materials compute the damage phi_i and the dilatation theta_i at the new positions (Chen
+// eqs. 5, 18), which `springforces` reads from both ends, and for plastic materials the trial
+// deviatoric norm that `plasticity` tests.
 #pragma once
 
 #include "../views.h"
@@ -27,11 +27,6 @@ PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const M
     if constexpr (kPlastic) s.w = d.trial_norm;
     p.state[i] = s;
   }
-}
-
-PD_HD inline void reset_bin(uint32_t b, HashView h) {
-  h.bin_start[b] = -1;
-  h.bin_end[b] = -1;
 }
 
 }  // namespace pd

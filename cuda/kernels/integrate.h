@@ -5,6 +5,7 @@
 #pragma once
 
 #include "../views.h"
+#include "collisions.h"
 
 namespace pd {
 
@@ -14,25 +15,32 @@ PD_HD inline Vec3 rotate_minus_identity(const real* m, Vec3 d) {
           m[6] * d.x + m[7] * d.y + m[8] * d.z};
 }
 
-PD_HD inline void position_update(int32_t i, ParticlesView p, const StepParams& sp) {
+// kContact: also raises c.moved when the particle has left its contact skin (collisions.h).
+template <bool kContact = false>
+PD_HD inline void position_update(int32_t i, ParticlesView p, const StepParams& sp, ContactView c = {}) {
   const real dt = sp.dt;
   Vec4 u = p.disp[i];
   Vec3 v = p.vel[i];
-  if (!held(i, p, sp)) {
-    v += (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
-    p.vel[i] = v;
-  } else if (const AnchorMotion& a = sp.anchor[p.anchor[i]]; a.scripted) {
+  const bool hold = held(i, p, sp);
+  if (hold && sp.anchor[p.anchor[i]].scripted) {
+    const AnchorMotion& a = sp.anchor[p.anchor[i]];
     const Vec3 d = xyz(p.rest[i]) - a.pivot;
     const Vec3 turned = rotate_minus_identity(a.rotation_minus_identity, d);
     const Vec3 offset = a.offset + turned;
-    p.disp[i] = {offset.x, offset.y, offset.z, u.w};
+    u = {offset.x, offset.y, offset.z, u.w};
     p.vel[i] = a.velocity + cross(a.omega, d + turned);
-    return;
+  } else {
+    if (!hold) {
+      v += (real(0.5) * dt * p.inv_mass[i]) * p.force[i];
+      p.vel[i] = v;
+    }
+    u.x += dt * v.x;
+    u.y += dt * v.y;
+    u.z += dt * v.z;
   }
-  u.x += dt * v.x;
-  u.y += dt * v.y;
-  u.z += dt * v.z;
   p.disp[i] = u;
+  if constexpr (kContact)
+    if (left_contact_skin(u, c.origin[i], c.trigger)) raise_flag(c.moved);
 }
 
 // An anchor holds its particle against the force on it: it does work -f.v dt on the body.

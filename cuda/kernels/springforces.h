@@ -17,7 +17,7 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, co
   return real(0.25) * m.micromodulus * s * s * r0 * vol_i * weight_j;
 }
 
-template <bool kAccumulate, bool kWeak, bool kLattice = true>
+template <bool kWeak, bool kLattice = true>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
@@ -36,7 +36,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
     return true;
   });
   f = (m.micromodulus * vol_i) * f;
-  p.force[i] = kAccumulate ? p.force[i] + f : f;
+  p.force[i] = f;
   p.strain_min[i] = intact > 0 ? smin : real(0);
   p.intact[i] = intact;
 }

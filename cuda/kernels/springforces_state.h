@@ -11,7 +11,7 @@
 
 namespace pd {
 
-template <bool kAccumulate, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice = true>
+template <bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice = true>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
   const Vec4 state_i = p.state[i];
@@ -45,7 +45,7 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
     return true;
   });
   f = vol_i * f;
-  p.force[i] = kAccumulate ? p.force[i] + f : f;
+  p.force[i] = f;
   p.strain_min[i] = intact > 0 ? smin : real(0);
   p.intact[i] = intact;
 }

@@ -71,6 +71,79 @@ TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
   }
 }
 
+// The contact lists of a random cloud (cells twice the reach, as the engine sizes them): each
+// list is every other point within its pair's contact distance plus the skin, in ascending
+// order, and the lists are symmetric.
+TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
+  Random rng(23);
+  const int32_t n = 2000;
+  const real quarter = real(0.02), skin = real(kContactSkin * 0.04);
+  std::vector<Vec4> rest(static_cast<size_t>(n)), disp(size_t(n), Vec4{0, 0, 0, 0});
+  for (auto& r : rest) {
+    const real q = rng.uniform() < 0.5 ? quarter : real(0.5) * quarter;  // two contact spacings
+    r = {real(rng.uniform()), real(rng.uniform()), real(rng.uniform()), q};
+  }
+  HashView h;
+  h.bins = 1 << 12;
+  h.inv_cell = real(1) / (2 * (2 * quarter + skin));
+  std::vector<uint32_t> key(static_cast<size_t>(n)), sorted_key(static_cast<size_t>(n));
+  std::vector<int32_t> sorted(static_cast<size_t>(n)), start(h.bins, -1), end(h.bins, -1);
+  for (int32_t i = 0; i < n; ++i) key[size_t(i)] = cell_bin(cell_of(xyz(rest[size_t(i)]), h.inv_cell), h.bins);
+  for (int32_t i = 0; i < n; ++i) sorted[size_t(i)] = i;
+  std::stable_sort(sorted.begin(), sorted.end(), [&](int32_t a, int32_t b) { return key[size_t(a)] < key[size_t(b)]; });
+  std::vector<Vec4> record(static_cast<size_t>(n));
+  for (int32_t s = 0; s < n; ++s) {
+    sorted_key[size_t(s)] = key[size_t(sorted[size_t(s)])];
+    record[size_t(s)] = rest[size_t(sorted[size_t(s)])];  // position and quarter spacing
+  }
+  h.key = sorted_key.data();
+  h.sorted = sorted.data();
+  h.bin_start = start.data();
+  h.bin_end = end.data();
+  h.record = record.data();
+  for (int32_t s = 0; s < n; ++s) mark_bin_bounds(s, n, h);
+
+  ParticlesView p;
+  p.n = n;
+  p.rest = rest.data();
+  p.disp = disp.data();
+  std::vector<Vec4> origin(static_cast<size_t>(n));
+  std::vector<int64_t> count(static_cast<size_t>(n)), first(size_t(n) + 1);
+  ContactView c;
+  c.skin = skin;
+  c.origin = origin.data();
+  for (int32_t s = 0; s < n; ++s) count_contacts(s, p, h, c, count.data());
+  for (int32_t i = 0; i < n; ++i) first[size_t(i) + 1] = first[size_t(i)] + count[size_t(i)];
+  std::vector<int32_t> partner(static_cast<size_t>(first[size_t(n)]));
+  c.start = first.data();
+  for (int32_t s = 0; s < n; ++s) fill_contacts(s, h, c, partner.data());
+
+  int64_t pairs = 0;
+  for (int32_t i = 0; i < n; ++i) {
+    std::vector<int32_t> brute;
+    for (int32_t j = 0; j < n; ++j)
+      if (j != i && within_contact_reach(rest[size_t(i)], rest[size_t(j)], skin)) brute.push_back(j);
+    const std::vector<int32_t> list(partner.begin() + first[size_t(i)], partner.begin() + first[size_t(i) + 1]);
+    EXPECT_EQ(list, brute) << "particle " << i;
+    for (int32_t j : list)
+      EXPECT_TRUE(std::binary_search(partner.begin() + first[size_t(j)], partner.begin() + first[size_t(j) + 1], i));
+    pairs += int64_t(list.size());
+  }
+  EXPECT_GT(pairs, n);  // the cloud is dense enough that most points have partners
+}
+
+// A particle leaves its skin past the trigger distance, in any direction; a non-finite
+// displacement counts as having left.
+TEST(Collisions, LeavingTheSkinIsDetected) {
+  const Vec4 origin{real(1e-3), real(-2e-3), 0, 0};
+  const real trigger = real(1e-4);
+  EXPECT_FALSE(left_contact_skin(origin, origin, trigger));
+  EXPECT_FALSE(left_contact_skin({real(1e-3 + 0.9e-4), real(-2e-3), 0, 0}, origin, trigger));
+  EXPECT_TRUE(left_contact_skin({real(1e-3), real(-2e-3 - 1.1e-4), 0, 0}, origin, trigger));
+  EXPECT_TRUE(left_contact_skin({real(1e-3 + 0.6e-4), real(-2e-3), real(0.9e-4), 0}, origin, trigger));
+  EXPECT_TRUE(left_contact_skin({std::numeric_limits<real>::quiet_NaN(), 0, 0, 0}, origin, trigger));
+}
+
 // A block of 4 x 4 x 4 cells, wherever it lies (negative coordinates too), fills 64 consecutive
 // bins in Morton order; its neighbouring block starts elsewhere.
 TEST(Collisions, CellBinsKeepBlocksOfCellsTogether) {
