@@ -97,7 +97,9 @@ class CpuExec {
 
   // A flag the kernels raise (raise_flag) and the host reads: mark_flag() after the launches
   // that may raise it, take_flag() waits for them and returns it, cleared.
-  int32_t* flag() { return &flag_; }
+  int32_t* flag() {
+    return &flag_;
+  }
   void mark_flag() {}
   bool take_flag() {
     const bool raised = flag_ != 0;

@@ -137,8 +137,7 @@ void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable m
           launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
                                       decltype(lattice)::value>(ex, p, b, mt);
       },
-      f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds,
-      f.lattice);
+      f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds, f.lattice);
 }
 
 // Kernel 5.

@@ -153,7 +153,8 @@ struct ContactView {
 // in host memory: one store per warp (the lowest lane taking this path) rather than per thread.
 PD_HD inline void raise_flag(int32_t* flag) {
 #if defined(__CUDA_ARCH__)
-  if ((threadIdx.x & 31u) == unsigned(__ffs(__activemask()) - 1)) *reinterpret_cast<volatile int32_t*>(flag) = 1;
+  if ((threadIdx.x & 31u) == unsigned(__ffs(__activemask()) - 1))
+    *reinterpret_cast<volatile int32_t*>(flag) = 1;
 #else
   __atomic_store_n(flag, 1, __ATOMIC_RELAXED);
 #endif

@@ -88,9 +88,11 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
   h.inv_cell = real(1) / (2 * (2 * quarter + skin));
   std::vector<uint32_t> key(static_cast<size_t>(n)), sorted_key(static_cast<size_t>(n));
   std::vector<int32_t> sorted(static_cast<size_t>(n)), start(h.bins, -1), end(h.bins, -1);
-  for (int32_t i = 0; i < n; ++i) key[size_t(i)] = cell_bin(cell_of(xyz(rest[size_t(i)]), h.inv_cell), h.bins);
+  for (int32_t i = 0; i < n; ++i)
+    key[size_t(i)] = cell_bin(cell_of(xyz(rest[size_t(i)]), h.inv_cell), h.bins);
   for (int32_t i = 0; i < n; ++i) sorted[size_t(i)] = i;
-  std::stable_sort(sorted.begin(), sorted.end(), [&](int32_t a, int32_t b) { return key[size_t(a)] < key[size_t(b)]; });
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [&](int32_t a, int32_t b) { return key[size_t(a)] < key[size_t(b)]; });
   std::vector<Vec4> record(static_cast<size_t>(n));
   for (int32_t s = 0; s < n; ++s) {
     sorted_key[size_t(s)] = key[size_t(sorted[size_t(s)])];
@@ -123,10 +125,12 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
     std::vector<int32_t> brute;
     for (int32_t j = 0; j < n; ++j)
       if (j != i && within_contact_reach(rest[size_t(i)], rest[size_t(j)], skin)) brute.push_back(j);
-    const std::vector<int32_t> list(partner.begin() + first[size_t(i)], partner.begin() + first[size_t(i) + 1]);
+    const std::vector<int32_t> list(partner.begin() + first[size_t(i)],
+                                    partner.begin() + first[size_t(i) + 1]);
     EXPECT_EQ(list, brute) << "particle " << i;
     for (int32_t j : list)
-      EXPECT_TRUE(std::binary_search(partner.begin() + first[size_t(j)], partner.begin() + first[size_t(j) + 1], i));
+      EXPECT_TRUE(
+          std::binary_search(partner.begin() + first[size_t(j)], partner.begin() + first[size_t(j) + 1], i));
     pairs += int64_t(list.size());
   }
   EXPECT_GT(pairs, n);  // the cloud is dense enough that most points have partners
