@@ -253,17 +253,18 @@ class EngineImpl final : public Engine {
     allocate_hash(real(2 * (contact_distance + double(contact_skin_))));
     record_ = make<Vec4>(n_);
     contact_origin_ = make<Vec4>(n_);
-    contact_count_ = make<int64_t>(n_);
-    contact_start_ = make<int64_t>(size_t(n_) + 1);
-    contact_partner_ = make<int32_t>(1);
+    contact_count_ = make<int32_t>(n_);
+    contact_partner_ = make<int32_t>(size_t(kContactCapacity) * size_t(n_));
     exec_.flag();
   }
 
   ContactView contact_view() {
     ContactView c;
+    c.n = n_;
+    c.capacity = int32_t(contact_partner_.size() / size_t(n_));
     c.skin = contact_skin_;
     c.trigger = contact_trigger_;
-    c.start = contact_start_.data();
+    c.count = contact_count_.data();
     c.partner = contact_partner_.data();
     c.origin = contact_origin_.data();
     c.moved = exec_.flag();
@@ -271,21 +272,23 @@ class EngineImpl final : public Engine {
   }
 
   // Builds the contact lists at the current positions if a particle has left its skin since
-  // the last build (position_update raised the flag), or if there is none yet.
+  // the last build (position_update raised the flag), or if there are none yet. A list that
+  // overflows its room doubles the room of all and builds again.
   void refresh_contacts() {
     const bool moved = exec_.take_flag();
     if (contacts_built_ && !moved) return;
     const ParticlesView p = particles();
     launch_reset_bins(exec_, "pd/collection_reset", hash_view(true));
     launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true), materials_);
-    launch_count_contacts(exec_, p, hash_view(true), contact_view(), contact_count_.data());
-    contact_pairs_ = exec_.exclusive_scan(contact_count_.data(), contact_start_.data(), n_);
-    exec_.upload(contact_start_.data() + n_, &contact_pairs_, sizeof(int64_t));
-    if (size_t(contact_pairs_) > contact_partner_.size()) {  // grown by half again, to build rarely
+    for (;;) {
+      launch_build_contacts(exec_, p, hash_view(true), contact_view(), exec_.flag());
+      exec_.mark_flag();
+      if (!exec_.take_flag()) break;
+      const size_t room = contact_partner_.size() * 2;
       drop(contact_partner_);
-      contact_partner_ = make<int32_t>(size_t(contact_pairs_ + contact_pairs_ / 2));
+      contact_partner_ = make<int32_t>(room);
     }
-    launch_fill_contacts(exec_, n_, hash_view(true), contact_view(), contact_partner_.data());
+    contact_pairs_ = reduce_contact_pairs(exec_, contact_view());
     contacts_built_ = true;
   }
 
@@ -499,8 +502,7 @@ class EngineImpl final : public Engine {
   bool contacts_built_ = false;
   int64_t contact_pairs_ = 0;  // entries of the lists
   DeviceArray<Vec4, Exec> contact_origin_;
-  DeviceArray<int64_t, Exec> contact_count_, contact_start_;
-  DeviceArray<int32_t, Exec> contact_partner_;
+  DeviceArray<int32_t, Exec> contact_count_, contact_partner_;
 };
 
 }  // namespace pd

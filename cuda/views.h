@@ -139,14 +139,19 @@ struct HashView {
 // closer than their contact distance plus `skin` when the lists were built, in ascending index
 // order. The lists hold every pair in contact for as long as no particle has moved more than
 // half the skin since the build (`origin`); `position_update` raises `moved` when one has, and
-// the engine rebuilds them before the next `collisions`.
+// the engine rebuilds them before the next `collisions`. Each particle has room for `capacity`
+// partners, stored like the bonds' slices so that a warp reads partner k of its particles
+// together: partner k of particle i at partner[k * n + i].
 struct ContactView {
-  real skin = 0;                     // [m]
-  real trigger = 0;                  // a move larger than this raises `moved` (below skin / 2)
-  const int64_t* start = nullptr;    // n + 1 entries: particle i's partners are [start[i], start[i+1])
-  const int32_t* partner = nullptr;  // partner indices
-  Vec4* origin = nullptr;            // xyz: each particle's displacement at the last build
-  int32_t* moved = nullptr;          // set to 1 by any particle that moved farther than `trigger`
+  int32_t n = 0;
+  int32_t capacity = 0;
+  real skin = 0;               // [m]
+  real trigger = 0;            // a move larger than this raises `moved` (below skin / 2)
+  int32_t* count = nullptr;    // partners of each particle (above capacity: the list overflowed)
+  int32_t* partner = nullptr;  // capacity x n partner indices
+  Vec4* origin = nullptr;      // xyz: each particle's displacement at the last build
+  int32_t* moved = nullptr;    // set to 1 by any particle that moved farther than `trigger`
+  PD_HD int64_t slot(int32_t i, int32_t k) const { return int64_t(k) * n + i; }
 };
 
 // Sets a flag (Exec::flag) that many threads may set at once, all to 1. On the GPU the flag lives

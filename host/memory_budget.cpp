@@ -24,10 +24,10 @@ size_t capped(const char* variable, size_t bytes) {
 // Particle arrays of EngineImpl: rest, disp, state (16 B each), vel, force (12), inverse mass,
 // strain limit, strain min, intact, count (4), ledger (16), material (2), body (4), flags (1),
 // plus the contact hash (keys, ids, sorted copies: 16 B; sorted records: 16 B; bins: up to 4
-// per particle x 8 B), the contact lists (origin 16 B, lengths and starts 16 B, partners: 4 B
-// each, room for 4) and the reverse-index / slice bookkeeping.
+// per particle x 8 B), the contact lists (origin 16 B, length 4 B, room for 8 partners of 4 B)
+// and the reverse-index / slice bookkeeping.
 constexpr double kEngineParticleBytes =
-    16 * 3 + 12 * 2 + 4 * 5 + 16 + 2 + 4 + 1 + 16 + 16 + 32 + 16 + 16 + 16 + 8;
+    16 * 3 + 12 * 2 + 4 * 5 + 16 + 2 + 4 + 1 + 16 + 16 + 32 + 16 + 4 + 32 + 8;
 // Sliced-ELL padding: slices of 32 particles are as long as their longest family.
 constexpr double kEllPadding = 1.15;
 

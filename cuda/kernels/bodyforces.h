@@ -34,14 +34,14 @@ PD_HD inline Vec3 projectile_force(Vec3 x, const Projectile& pr, real time) {
 }
 
 // The ledger records the work of the projectiles over the step (force times the half-step
-// velocity times dt).
+// velocity times dt), for the particles they push (the others' ledgers are not touched).
 PD_HD inline void body_forces(int32_t i, ParticlesView p, const StepParams& sp) {
   const Vec3 x = p.position(i);
   const real mass = real(1) / p.inv_mass[i];
   Vec3 fp{0, 0, 0};
   for (int32_t k = 0; k < sp.n_projectiles; ++k) fp += projectile_force(x, sp.projectile[k], sp.time);
   p.force[i] = p.force[i] + mass * sp.gravity + fp;
-  if (sp.n_projectiles > 0) p.ledger[i].work += double(sp.dt) * double(dot(fp, p.vel[i]));
+  if (fp.x != 0 || fp.y != 0 || fp.z != 0) p.ledger[i].work += double(sp.dt) * double(dot(fp, p.vel[i]));
 }
 
 }  // namespace pd

@@ -19,6 +19,8 @@ namespace pd {
 // of float positions).
 constexpr double kContactSkin = 0.5;
 constexpr double kContactTrigger = 0.45;
+// Partners each list has room for at first (doubled for all when one overflows).
+constexpr int32_t kContactCapacity = 8;
 
 PD_HD inline Vec3 contact_force(Vec3 xi, Vec3 xj, real contact_distance, real stiffness) {
   const Vec3 d = xi - xj;
@@ -51,42 +53,39 @@ PD_HD inline void for_each_contact_candidate(int32_t s, HashView h, real skin, V
   });
 }
 
-// List build, pass 1 (per sorted entry): the length of the particle's list, and the
-// displacement it is built at.
-PD_HD inline void count_contacts(int32_t s, ParticlesView p, HashView h, ContactView c, int64_t* count) {
-  int64_t k = 0;
-  for_each_contact_candidate(s, h, c.skin, [&](int32_t) { ++k; });
-  const int32_t i = h.sorted[s];
-  count[i] = k;
-  c.origin[i] = p.disp[i];
-}
-
-// Pass 2, after the scan of the lengths: the partners, sorted by index, so that a particle's
+// List build, per sorted entry: the particle's partners (up to the capacity; more raise
+// `overflow`, and the engine builds again with room for more), sorted by index so that its
 // contact forces add up in one order whatever the hash did (CPU and GPU, a resumed run and an
-// uninterrupted one).
-PD_HD inline void fill_contacts(int32_t s, HashView h, ContactView c, int32_t* partner) {
+// uninterrupted one), and the displacement the list is built at.
+PD_HD inline void build_contacts(int32_t s, ParticlesView p, HashView h, ContactView c, int32_t* overflow) {
   const int32_t i = h.sorted[s];
-  const int64_t first = c.start[i];
-  int64_t end = first;
-  for_each_contact_candidate(s, h, c.skin, [&](int32_t t) { partner[end++] = h.sorted[t]; });
-  for (int64_t k = first + 1; k < end; ++k) {
-    const int32_t j = partner[k];
-    int64_t q = k;
-    for (; q > first && partner[q - 1] > j; --q) partner[q] = partner[q - 1];
-    partner[q] = j;
+  int32_t count = 0;
+  for_each_contact_candidate(s, h, c.skin, [&](int32_t t) {
+    if (count < c.capacity) c.partner[c.slot(i, count)] = h.sorted[t];
+    ++count;
+  });
+  c.count[i] = count;
+  c.origin[i] = p.disp[i];
+  if (count > c.capacity) return raise_flag(overflow);
+  for (int32_t k = 1; k < count; ++k) {
+    const int32_t j = c.partner[c.slot(i, k)];
+    int32_t q = k;
+    for (; q > 0 && c.partner[c.slot(i, q - 1)] > j; --q)
+      c.partner[c.slot(i, q)] = c.partner[c.slot(i, q - 1)];
+    c.partner[c.slot(i, q)] = j;
   }
 }
 
 // Per particle: the contact forces from its list, added to the force on it.
 PD_HD inline void collision_forces(int32_t i, ParticlesView p, ContactView c, const MaterialTable& mt,
                                    real stiffness) {
-  const int64_t begin = c.start[i], end = c.start[i + 1];
-  if (begin == end) return;
+  const int32_t count = c.count[i];
+  if (count == 0) return;
   const Vec3 xi = p.position(i);
   const real quarter_i = contact_quarter(i, p, mt);
   Vec3 f{0, 0, 0};
-  for (int64_t k = begin; k < end; ++k) {
-    const int32_t j = c.partner[k];
+  for (int32_t k = 0; k < count; ++k) {
+    const int32_t j = c.partner[c.slot(i, k)];
     f += contact_force(xi, p.position(j), quarter_i + contact_quarter(j, p, mt), stiffness);
   }
   p.force[i] = p.force[i] + f;

@@ -59,8 +59,8 @@ PD_HD inline double contact_energy(int32_t i, const ParticlesView& p, ContactVie
   const Vec3 xi = p.position(i);
   const real quarter_i = contact_quarter(i, p, mt);
   double sum = 0;
-  for (int64_t k = c.start[i]; k < c.start[i + 1]; ++k) {
-    const int32_t j = c.partner[k];
+  for (int32_t k = 0; k < c.count[i]; ++k) {
+    const int32_t j = c.partner[c.slot(i, k)];
     const double rc = quarter_i + contact_quarter(j, p, mt);
     const double d = length(xi - p.position(j));
     if (d < rc) sum += stiffness * (rc - d) * (rc - d) * (rc - d) / 6.0;

@@ -83,6 +83,8 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
     const real q = rng.uniform() < 0.5 ? quarter : real(0.5) * quarter;  // two contact spacings
     r = {real(rng.uniform()), real(rng.uniform()), real(rng.uniform()), q};
   }
+  for (auto& u : disp)
+    u = {real(rng.normal()), real(rng.normal()), real(rng.normal()), 0};  // origin's source
   HashView h;
   h.bins = 1 << 12;
   h.inv_cell = real(1) / (2 * (2 * quarter + skin));
@@ -110,27 +112,41 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
   p.rest = rest.data();
   p.disp = disp.data();
   std::vector<Vec4> origin(static_cast<size_t>(n));
-  std::vector<int64_t> count(static_cast<size_t>(n)), first(size_t(n) + 1);
+  std::vector<int32_t> count(static_cast<size_t>(n));
   ContactView c;
+  c.n = n;
   c.skin = skin;
   c.origin = origin.data();
-  for (int32_t s = 0; s < n; ++s) count_contacts(s, p, h, c, count.data());
-  for (int32_t i = 0; i < n; ++i) first[size_t(i) + 1] = first[size_t(i)] + count[size_t(i)];
-  std::vector<int32_t> partner(static_cast<size_t>(first[size_t(n)]));
-  c.start = first.data();
-  for (int32_t s = 0; s < n; ++s) fill_contacts(s, h, c, partner.data());
+  c.count = count.data();
+  std::vector<int32_t> partner;
+  // Room for 4 partners overflows in this cloud; room for 16 does not.
+  int32_t overflow = 0;
+  for (const int32_t capacity : {4, 16}) {
+    c.capacity = capacity;
+    partner.assign(size_t(capacity) * size_t(n), -1);
+    c.partner = partner.data();
+    overflow = 0;
+    for (int32_t s = 0; s < n; ++s) build_contacts(s, p, h, c, &overflow);
+    EXPECT_EQ(overflow, capacity == 4 ? 1 : 0) << "room for " << capacity;
+  }
+  auto list_of = [&](int32_t i) {
+    std::vector<int32_t> list;
+    for (int32_t k = 0; k < count[size_t(i)]; ++k) list.push_back(partner[size_t(c.slot(i, k))]);
+    return list;
+  };
 
   int64_t pairs = 0;
   for (int32_t i = 0; i < n; ++i) {
     std::vector<int32_t> brute;
     for (int32_t j = 0; j < n; ++j)
       if (j != i && within_contact_reach(rest[size_t(i)], rest[size_t(j)], skin)) brute.push_back(j);
-    const std::vector<int32_t> list(partner.begin() + first[size_t(i)],
-                                    partner.begin() + first[size_t(i) + 1]);
+    const std::vector<int32_t> list = list_of(i);
     EXPECT_EQ(list, brute) << "particle " << i;
-    for (int32_t j : list)
-      EXPECT_TRUE(
-          std::binary_search(partner.begin() + first[size_t(j)], partner.begin() + first[size_t(j) + 1], i));
+    for (int32_t j : list) {
+      const std::vector<int32_t> back = list_of(j);
+      EXPECT_TRUE(std::binary_search(back.begin(), back.end(), i));
+    }
+    EXPECT_EQ(origin[size_t(i)].x, disp[size_t(i)].x);
     pairs += int64_t(list.size());
   }
   EXPECT_GT(pairs, n);  // the cloud is dense enough that most points have partners
