@@ -65,7 +65,7 @@ class EngineImpl final : public Engine {
       step_params_.time = real(time_ + dt);
       if (scripted_motion_) motion_.apply(time_ + dt, step_params_);
       launch_position_update(exec_, particles(), step_params_, contact_ ? contact_view() : ContactView{});
-      if (contact_) exec_.mark_flag();
+      if (contact_) exec_.mark_flags();
       compute_forces();
       launch_velocity_update(exec_, particles(), step_params_);
       time_ += dt;
@@ -255,7 +255,6 @@ class EngineImpl final : public Engine {
     contact_origin_ = make<Vec4>(n_);
     contact_count_ = make<int32_t>(n_);
     contact_partner_ = make<int32_t>(size_t(kContactCapacity) * size_t(n_));
-    exec_.flag();
   }
 
   ContactView contact_view() {
@@ -267,7 +266,7 @@ class EngineImpl final : public Engine {
     c.count = contact_count_.data();
     c.partner = contact_partner_.data();
     c.origin = contact_origin_.data();
-    c.moved = exec_.flag();
+    c.moved = exec_.flag(kFlagMoved);
     return c;
   }
 
@@ -275,20 +274,22 @@ class EngineImpl final : public Engine {
   // the last build (position_update raised the flag), or if there are none yet. A list that
   // overflows its room doubles the room of all and builds again.
   void refresh_contacts() {
-    const bool moved = exec_.take_flag();
+    const bool moved = exec_.take_flags() & (1u << kFlagMoved);
     if (contacts_built_ && !moved) return;
     const ParticlesView p = particles();
     launch_reset_bins(exec_, "pd/collection_reset", hash_view(true));
     launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true), materials_);
     for (;;) {
-      launch_build_contacts(exec_, p, hash_view(true), contact_view(), exec_.flag());
-      exec_.mark_flag();
-      if (!exec_.take_flag()) break;
+      launch_build_contacts(exec_, p, hash_view(true), contact_view(), exec_.flag(kFlagOverflow),
+                            exec_.flag(kFlagPairs));
+      exec_.mark_flags();
+      const uint32_t raised = exec_.take_flags();
+      contact_pairs_ = raised & (1u << kFlagPairs);
+      if (!(raised & (1u << kFlagOverflow))) break;
       const size_t room = contact_partner_.size() * 2;
       drop(contact_partner_);
       contact_partner_ = make<int32_t>(room);
     }
-    contact_pairs_ = reduce_contact_pairs(exec_, contact_view());
     contacts_built_ = true;
   }
 
@@ -450,7 +451,7 @@ class EngineImpl final : public Engine {
     launch_springforces(exec_, p, b, materials_, features_);
     if (contact_) {  // after springforces is queued: waiting for position_update's flag idles nothing
       refresh_contacts();
-      if (contact_pairs_ > 0)
+      if (contact_pairs_)
         launch_collisions(exec_, p, contact_view(), materials_, step_params_.contact_stiffness);
     }
     if (body_forces_) launch_bodyforces(exec_, p, step_params_);
@@ -500,7 +501,7 @@ class EngineImpl final : public Engine {
 
   real contact_skin_ = 0, contact_trigger_ = 0;
   bool contacts_built_ = false;
-  int64_t contact_pairs_ = 0;  // entries of the lists
+  bool contact_pairs_ = false;  // some list is not empty
   DeviceArray<Vec4, Exec> contact_origin_;
   DeviceArray<int32_t, Exec> contact_count_, contact_partner_;
 };

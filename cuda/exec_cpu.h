@@ -95,15 +95,20 @@ class CpuExec {
   void synchronize() {}
   void flush_stats() {}
 
-  // A flag the kernels raise (raise_flag) and the host reads: mark_flag() after the launches
-  // that may raise it, take_flag() waits for them and returns it, cleared.
-  int32_t* flag() {
-    return &flag_;
+  // Flags the kernels raise (raise_flag) and the host reads: flag(k) for k < kFlags;
+  // mark_flags() after the launches that may raise them, take_flags() waits for those launches
+  // and returns the raised flags as bits (bit k: flag k), all cleared.
+  static constexpr int kFlags = 4;
+  int32_t* flag(int k) {
+    return &flags_[k];
   }
-  void mark_flag() {}
-  bool take_flag() {
-    const bool raised = flag_ != 0;
-    flag_ = 0;
+  void mark_flags() {}
+  uint32_t take_flags() {
+    uint32_t raised = 0;
+    for (int k = 0; k < kFlags; ++k) {
+      raised |= uint32_t(flags_[k] != 0) << k;
+      flags_[k] = 0;
+    }
     return raised;
   }
 
@@ -117,7 +122,7 @@ class CpuExec {
 
   KernelStats* stats_;
   std::vector<int64_t> histogram_;
-  int32_t flag_ = 0;
+  int32_t flags_[kFlags] = {0, 0, 0, 0};
 };
 
 }  // namespace pd

@@ -174,30 +174,33 @@ void CudaExec::synchronize() {
   cuda_check(cudaDeviceSynchronize(), "synchronize");
 }
 
-int32_t* CudaExec::flag() {
+int32_t* CudaExec::flag(int k) {
   if (!flag_host_) {
     void* host = nullptr;
-    cuda_check(cudaHostAlloc(&host, sizeof(int32_t), cudaHostAllocMapped), "flag");
+    cuda_check(cudaHostAlloc(&host, kFlags * sizeof(int32_t), cudaHostAllocMapped), "flags");
     flag_host_ = static_cast<int32_t*>(host);
-    *flag_host_ = 0;
+    for (int q = 0; q < kFlags; ++q) flag_host_[q] = 0;
     void* device = nullptr;
-    cuda_check(cudaHostGetDevicePointer(&device, host, 0), "flag");
+    cuda_check(cudaHostGetDevicePointer(&device, host, 0), "flags");
     flag_device_ = static_cast<int32_t*>(device);
-    cuda_check(cudaEventCreateWithFlags(&flag_event_, cudaEventDisableTiming), "flag");
+    cuda_check(cudaEventCreateWithFlags(&flag_event_, cudaEventDisableTiming), "flags");
   }
-  return flag_device_;
+  return flag_device_ + k;
 }
 
-void CudaExec::mark_flag() {
-  if (flag_event_) cuda_check(cudaEventRecord(flag_event_), "flag");
+void CudaExec::mark_flags() {
+  if (flag_event_) cuda_check(cudaEventRecord(flag_event_), "flags");
 }
 
-bool CudaExec::take_flag() {
-  if (!flag_host_) return false;
-  cuda_check(cudaEventSynchronize(flag_event_), "a kernel before reading the contact flag");
+uint32_t CudaExec::take_flags() {
+  if (!flag_host_) return 0;
+  cuda_check(cudaEventSynchronize(flag_event_), "a kernel before reading the kernels' flags");
   volatile int32_t* host = flag_host_;
-  const bool raised = *host != 0;
-  *host = 0;
+  uint32_t raised = 0;
+  for (int k = 0; k < kFlags; ++k) {
+    raised |= uint32_t(host[k] != 0) << k;
+    host[k] = 0;
+  }
   return raised;
 }
 

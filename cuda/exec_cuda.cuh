@@ -100,12 +100,14 @@ class CudaExec {
   void download(void* dst, const void* src, size_t bytes);
   void fill_bytes(void* dst, int value, size_t bytes);
   void synchronize();
-  // A flag the kernels raise (raise_flag) and the host reads without a copy (mapped host
-  // memory): mark_flag() after the launches that may raise it, take_flag() waits for them
-  // (an event, so later launches keep running) and returns it, cleared.
-  int32_t* flag();
-  void mark_flag();
-  bool take_flag();
+  // Flags the kernels raise (raise_flag) and the host reads without a copy (mapped host memory):
+  // flag(k) for k < kFlags; mark_flags() after the launches that may raise them, take_flags()
+  // waits for those launches (an event, so later launches keep running) and returns the raised
+  // flags as bits (bit k: flag k), all cleared.
+  static constexpr int kFlags = 4;
+  int32_t* flag(int k);
+  void mark_flags();
+  uint32_t take_flags();
   // Waits for the device, adds the timed launches to the stats, and reports any
   // asynchronous kernel error with the name of the kernel family last launched.
   void flush_stats();

@@ -85,16 +85,10 @@ void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView uns
 
 // Kernel 2 for contact: the list build over the sorted hash entries.
 template <class Exec>
-void launch_build_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c, int32_t* overflow) {
+void launch_build_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c, int32_t* overflow,
+                           int32_t* pairs) {
   ex.parallel_for("pd/contact_build", p.n,
-                  [=] PD_HD(int64_t s) { build_contacts(int32_t(s), p, h, c, overflow); });
-}
-
-// Entries of the contact lists (after a build without overflow).
-template <class Exec>
-int64_t reduce_contact_pairs(Exec& ex, ContactView c) {
-  return ex.template reduce_sum<int64_t>("pd/contact_pairs", c.n,
-                                         [=] PD_HD(int64_t i) { return int64_t(c.count[i]); });
+                  [=] PD_HD(int64_t s) { build_contacts(int32_t(s), p, h, c, overflow, pairs); });
 }
 
 // Kernel 3, over the particles' contact lists.

@@ -22,6 +22,10 @@ constexpr double kContactTrigger = 0.45;
 // Partners each list has room for at first (doubled for all when one overflows).
 constexpr int32_t kContactCapacity = 8;
 
+// The backend flags (Exec::flag) contact raises: a particle left its skin (position_update); a
+// list outgrew its room, some list is not empty (build_contacts).
+enum ContactFlag : int { kFlagMoved = 0, kFlagOverflow = 1, kFlagPairs = 2 };
+
 PD_HD inline Vec3 contact_force(Vec3 xi, Vec3 xj, real contact_distance, real stiffness) {
   const Vec3 d = xi - xj;
   const real r2 = length_squared(d);
@@ -56,8 +60,10 @@ PD_HD inline void for_each_contact_candidate(int32_t s, HashView h, real skin, V
 // List build, per sorted entry: the particle's partners (up to the capacity; more raise
 // `overflow`, and the engine builds again with room for more), sorted by index so that its
 // contact forces add up in one order whatever the hash did (CPU and GPU, a resumed run and an
-// uninterrupted one), and the displacement the list is built at.
-PD_HD inline void build_contacts(int32_t s, ParticlesView p, HashView h, ContactView c, int32_t* overflow) {
+// uninterrupted one), and the displacement the list is built at. A list with partners raises
+// `pairs` (none anywhere: `collisions` is not launched).
+PD_HD inline void build_contacts(int32_t s, ParticlesView p, HashView h, ContactView c, int32_t* overflow,
+                                 int32_t* pairs) {
   const int32_t i = h.sorted[s];
   int32_t count = 0;
   for_each_contact_candidate(s, h, c.skin, [&](int32_t t) {
@@ -66,6 +72,8 @@ PD_HD inline void build_contacts(int32_t s, ParticlesView p, HashView h, Contact
   });
   c.count[i] = count;
   c.origin[i] = p.disp[i];
+  if (count == 0) return;
+  raise_flag(pairs);
   if (count > c.capacity) return raise_flag(overflow);
   for (int32_t k = 1; k < count; ++k) {
     const int32_t j = c.partner[c.slot(i, k)];

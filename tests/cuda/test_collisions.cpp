@@ -120,14 +120,14 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
   c.count = count.data();
   std::vector<int32_t> partner;
   // Room for 4 partners overflows in this cloud; room for 16 does not.
-  int32_t overflow = 0;
   for (const int32_t capacity : {4, 16}) {
     c.capacity = capacity;
     partner.assign(size_t(capacity) * size_t(n), -1);
     c.partner = partner.data();
-    overflow = 0;
-    for (int32_t s = 0; s < n; ++s) build_contacts(s, p, h, c, &overflow);
+    int32_t overflow = 0, pairs = 0;
+    for (int32_t s = 0; s < n; ++s) build_contacts(s, p, h, c, &overflow, &pairs);
     EXPECT_EQ(overflow, capacity == 4 ? 1 : 0) << "room for " << capacity;
+    EXPECT_EQ(pairs, 1);
   }
   auto list_of = [&](int32_t i) {
     std::vector<int32_t> list;

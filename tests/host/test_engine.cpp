@@ -245,6 +245,19 @@ TEST(EngineContact, ListsThatOutgrowTheirRoomAreBuiltAgain) {
   expect_list_forces_equal_all_pairs(3e-3, 1e6);
 }
 
+// An intact lattice (neighbours at lambda, lists reaching 0.75 lambda) has empty lists: built
+// once, and `collisions` never launched while nothing moves.
+TEST(EngineContact, AnIntactLatticeAtRestBuildsOnceAndSkipsCollisions) {
+  auto in = lattice_block(6, 6, 6, 1e-3);
+  in.contact = true;
+  in.step.contact_stiffness = real(1e8);
+  auto e = make_cpu_engine(in);
+  e->advance(50);
+  EXPECT_EQ(e->stats().entry("pd/contact_build").launches, 1);
+  EXPECT_EQ(e->stats().entry("pd/collisions").launches, 0);
+  EXPECT_EQ(e->energy().contact, 0);
+}
+
 // A moving grip: anchored particles follow their prescribed velocity exactly.
 TEST(EngineAnchors, MovingAnchorsFollowTheirVelocity) {
   auto in = lattice_block(10, 4, 4, 1e-3, 1.0);
