@@ -66,14 +66,9 @@ PD_HD inline void for_each_half_cell_neighbourhood(Vec3 x, HashView h, CellFn ce
       for (int dx = 0; dx <= 1; ++dx) cell_fn(Cell{lo.x + dx, lo.y + dy, lo.z + dz});
 }
 
-// Every particle within half a cell side of `x` (and some farther), 8 cells instead of 27.
-template <class PositionFn, class Visit>
-PD_HD inline void for_each_within_half_cell(Vec3 x, HashView h, PositionFn pos, Visit visit) {
-  for_each_half_cell_neighbourhood(x, h, [&](Cell c) { for_each_in_cell(c, h, pos, visit); });
-}
-
-// The same search over the sorted records (HashView::record): visit(s, record) per sorted
-// entry s of a particle within half a cell side of `x`, reading each cell's run contiguously.
+// Every particle within half a cell side of `x` (and some farther), 8 cells instead of 27, read
+// from the sorted records (HashView::record): visit(s, record) per sorted entry s, each cell's
+// run contiguously.
 template <class Visit>
 PD_HD inline void for_each_record_within_half_cell(Vec3 x, HashView h, Visit visit) {
   for_each_half_cell_neighbourhood(x, h, [&](Cell nc) {
