@@ -67,15 +67,23 @@ PD_HD inline void for_each_half_cell_neighbourhood(Vec3 x, HashView h, CellFn ce
 }
 
 // Every particle within half a cell side of `x` (and some farther), 8 cells instead of 27, read
-// from the sorted records (HashView::record): visit(s, record) per sorted entry s, each cell's
-// run contiguously.
+// from the sorted records (HashView::record): visit(s, record) once per sorted entry s of the
+// bins of those cells, each bin's run contiguously. Entries of other cells that share a bin are
+// visited too (no per-entry cell test: the caller's distance test rejects them, since they lie
+// farther than half a cell side); a bin two of the cells share is read once.
 template <class Visit>
 PD_HD inline void for_each_record_within_half_cell(Vec3 x, HashView h, Visit visit) {
+  uint32_t seen[8];
+  int32_t bins_seen = 0;
   for_each_half_cell_neighbourhood(x, h, [&](Cell nc) {
-    for_each_entry_in_bin(nc, h, [&](int32_t s) {
-      const Vec4 r = h.record[s];
-      if (same_cell(cell_of(xyz(r), h.inv_cell), nc)) visit(s, r);
-    });
+    const uint32_t b = cell_bin(nc, h.bins);
+    for (int32_t k = 0; k < bins_seen; ++k)
+      if (seen[k] == b) return;
+    seen[bins_seen++] = b;
+    const int32_t begin = h.bin_start[b];
+    if (begin < 0) return;
+    const int32_t end = h.bin_end[b];
+    for (int32_t s = begin; s < end; ++s) visit(s, h.record[s]);
   });
 }
 
