@@ -14,10 +14,10 @@
 namespace pd {
 
 // The skin of the contact lists as a fraction of the largest contact distance r_c: lists reach
-// 1.5 r_c (0.75 lambda), so an intact lattice has none. A particle that has moved more than 0.45
-// of the skin triggers a rebuild (half the skin would do; the rest is a margin for the round-off
-// of float positions).
-constexpr double kContactSkin = 0.5;
+// 1.8 r_c (0.9 lambda), so an intact lattice has none (bench/NOTES.md measured 0.3, 0.5 and
+// 0.8). A particle that has moved more than 0.45 of the skin triggers a rebuild (half the skin
+// would do; the rest is a margin for the round-off of float positions).
+constexpr double kContactSkin = 0.8;
 constexpr double kContactTrigger = 0.45;
 // Partners each list has room for at first (doubled for all when one overflows).
 constexpr int32_t kContactCapacity = 8;

@@ -245,7 +245,7 @@ TEST(EngineContact, ListsThatOutgrowTheirRoomAreBuiltAgain) {
   expect_list_forces_equal_all_pairs(3e-3, 1e6);
 }
 
-// An intact lattice (neighbours at lambda, lists reaching 0.75 lambda) has empty lists: built
+// An intact lattice (neighbours at lambda, lists reaching 0.9 lambda) has empty lists: built
 // once, and `collisions` never launched while nothing moves.
 TEST(EngineContact, AnIntactLatticeAtRestBuildsOnceAndSkipsCollisions) {
   auto in = lattice_block(6, 6, 6, 1e-3);
