@@ -25,10 +25,9 @@ PD_HD inline void mark_bin_bounds(int32_t s, int32_t n, HashView h) {
   if (s == n - 1 || h.key[s + 1] != k) h.bin_end[k] = s + 1;
 }
 
-// Calls visit(s) for every sorted entry s in the bin of cell `nc` (other cells may share it).
+// Calls visit(s) for every sorted entry s in bin b (of one cell or several).
 template <class Visit>
-PD_HD inline void for_each_entry_in_bin(Cell nc, HashView h, Visit visit) {
-  const uint32_t b = cell_bin(nc, h.bins);
+PD_HD inline void for_each_entry_in_bin(uint32_t b, HashView h, Visit visit) {
   const int32_t begin = h.bin_start[b];
   if (begin < 0) return;
   const int32_t end = h.bin_end[b];
@@ -39,7 +38,7 @@ PD_HD inline void for_each_entry_in_bin(Cell nc, HashView h, Visit visit) {
 // was hashed, so the cell comparison is exact.
 template <class PositionFn, class Visit>
 PD_HD inline void for_each_in_cell(Cell nc, HashView h, PositionFn pos, Visit visit) {
-  for_each_entry_in_bin(nc, h, [&](int32_t s) {
+  for_each_entry_in_bin(cell_bin(nc, h.bins), h, [&](int32_t s) {
     const int32_t j = h.sorted[s];
     if (same_cell(cell_of(pos(j), h.inv_cell), nc)) visit(j);
   });
@@ -80,10 +79,7 @@ PD_HD inline void for_each_record_within_half_cell(Vec3 x, HashView h, Visit vis
     for (int32_t k = 0; k < bins_seen; ++k)
       if (seen[k] == b) return;
     seen[bins_seen++] = b;
-    const int32_t begin = h.bin_start[b];
-    if (begin < 0) return;
-    const int32_t end = h.bin_end[b];
-    for (int32_t s = begin; s < end; ++s) visit(s, h.record[s]);
+    for_each_entry_in_bin(b, h, [&](int32_t s) { visit(s, h.record[s]); });
   });
 }
 
