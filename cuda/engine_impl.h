@@ -94,7 +94,8 @@ class EngineImpl final : public Engine {
 
   Energy energy() override {
     if (contact_) refresh_contacts();
-    return reduce_energy(exec_, particles(), bonds(), contact_view(), materials_, step_params_, contact_);
+    return reduce_energy(exec_, particles(), bonds(), contact_ ? contact_view() : ContactView{}, materials_,
+                         step_params_, contact_);
   }
 
   int64_t first_non_finite() override {
