@@ -244,14 +244,16 @@ class EngineImpl final : public Engine {
   }
 
   // Contact lists (kernels/collisions.h): the hash they are built from, with cells twice the
-  // largest reach (contact distance plus skin), its sorted records, and the lists.
+  // reach of two particles at rest (contact distance plus their skins), its sorted records, and
+  // the lists.
   void allocate_contacts() {
     real spacing = 0;
     for (int m = 0; m < materials_.count; ++m) spacing = std::max(spacing, materials_.m[m].contact_spacing);
     const double contact_distance = 0.5 * double(spacing);
-    contact_skin_ = real(kContactSkin * contact_distance);
-    contact_trigger_ = real(kContactTrigger * double(contact_skin_));
-    allocate_hash(real(2 * (contact_distance + double(contact_skin_))));
+    contact_quarter_max_ = real(0.25) * spacing;
+    contact_rest_skin_ = real(kContactRestSkin * contact_distance);
+    contact_skin_cap_ = real(kContactSkinCap * contact_distance);
+    allocate_hash(real(2 * (contact_distance + 2 * double(contact_rest_skin_))));
     record_ = make<Vec4>(n_);
     contact_origin_ = make<Vec4>(n_);
     contact_count_ = make<int32_t>(n_);
@@ -262,8 +264,9 @@ class EngineImpl final : public Engine {
     ContactView c;
     c.n = n_;
     c.capacity = int32_t(contact_partner_.size() / size_t(n_));
-    c.skin = contact_skin_;
-    c.trigger = contact_trigger_;
+    c.base = contact_rest_skin_;
+    c.per_speed = real(double(step_params_.dt) * kContactStepsAhead / kContactTrigger);
+    c.cap = contact_skin_cap_;
     c.count = contact_count_.data();
     c.partner = contact_partner_.data();
     c.origin = contact_origin_.data();
@@ -281,8 +284,8 @@ class EngineImpl final : public Engine {
     launch_reset_bins(exec_, "pd/collection_reset", hash_view(true));
     launch_collection<true>(exec_, "pd/collection", p, hash_view(false), hash_view(true), materials_);
     for (;;) {
-      launch_build_contacts(exec_, p, hash_view(true), contact_view(), exec_.flag(kFlagOverflow),
-                            exec_.flag(kFlagPairs));
+      launch_build_contacts(exec_, p, hash_view(true), contact_view(), materials_, contact_quarter_max_,
+                            exec_.flag(kFlagOverflow), exec_.flag(kFlagPairs));
       exec_.mark_flags();
       const uint32_t raised = exec_.take_flags();
       contact_pairs_ = raised & (1u << kFlagPairs);
@@ -500,7 +503,7 @@ class EngineImpl final : public Engine {
   DeviceArray<int32_t, Exec> ids_, ids_sorted_, bin_start_, bin_end_;
   DeviceArray<Vec4, Exec> record_;  // contact lists: sorted records for the build
 
-  real contact_skin_ = 0, contact_trigger_ = 0;
+  real contact_quarter_max_ = 0, contact_rest_skin_ = 0, contact_skin_cap_ = 0;
   bool contacts_built_ = false;
   bool contact_pairs_ = false;  // some list is not empty
   DeviceArray<Vec4, Exec> contact_origin_;

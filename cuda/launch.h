@@ -83,12 +83,16 @@ void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView uns
   });
 }
 
-// Kernel 2 for contact: the list build over the sorted hash entries.
+// Kernel 2 for contact: the list build's three passes (collisions.h).
 template <class Exec>
-void launch_build_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c, int32_t* overflow,
-                           int32_t* pairs) {
+void launch_build_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c, MaterialTable mt,
+                           real quarter_max, int32_t* overflow, int32_t* pairs) {
   ex.parallel_for("pd/contact_build", p.n,
                   [=] PD_HD(int64_t s) { build_contacts(int32_t(s), p, h, c, overflow, pairs); });
+  ex.parallel_for("pd/contact_extend", p.n, [=] PD_HD(int64_t i) {
+    extend_contacts(int32_t(i), p, h, c, mt, quarter_max, overflow, pairs);
+  });
+  ex.parallel_for("pd/contact_sort", p.n, [=] PD_HD(int64_t i) { sort_contacts(int32_t(i), c); });
 }
 
 // Kernel 3, over the particles' contact lists.

@@ -136,23 +136,35 @@ struct HashView {
 };
 
 // Contact pairs kept as Verlet lists (Verlet 1967): per particle, the particles that were
-// closer than their contact distance plus `skin` when the lists were built, in ascending index
-// order. The lists hold every pair in contact for as long as no particle has moved more than
-// half the skin since the build (`origin`); `position_update` raises `moved` when one has, and
-// the engine rebuilds them before the next `collisions`. Each particle has room for `capacity`
-// partners, stored like the bonds' slices so that a warp reads partner k of its particles
-// together: partner k of particle i at partner[k * n + i].
+// closer than the pair's contact distance plus both particles' skins when the lists were built,
+// in ascending index order. A particle's skin is `base` at rest and grows with its speed (up to
+// `cap`), so that a fragment in flight does not force a build every few steps. The lists hold
+// every pair in contact for as long as no particle has moved more than 0.9 of its skin since the
+// build (`origin`); `position_update` raises `moved` when one has, and the engine rebuilds them
+// before the next `collisions`. Each particle has room for `capacity` partners, stored like the
+// bonds' slices so that a warp reads partner k of its particles together: partner k of
+// particle i at partner[k * n + i].
 struct ContactView {
   int32_t n = 0;
   int32_t capacity = 0;
-  real skin = 0;               // [m]
-  real trigger = 0;            // a move larger than this raises `moved` (below skin / 2)
+  real base = 0;               // skin of a particle at rest [m]
+  real per_speed = 0;          // skin per unit speed [s]
+  real cap = 0;                // largest skin [m]
   int32_t* count = nullptr;    // partners of each particle (above capacity: the list overflowed)
   int32_t* partner = nullptr;  // capacity x n partner indices
-  Vec4* origin = nullptr;      // xyz: each particle's displacement at the last build
-  int32_t* moved = nullptr;    // set to 1 by any particle that moved farther than `trigger`
+  Vec4* origin = nullptr;      // xyz: each particle's displacement at the last build; w: its skin
+  int32_t* moved = nullptr;    // set to 1 by any particle that moved farther than 0.9 of its skin
   PD_HD int64_t slot(int32_t i, int32_t k) const { return int64_t(k) * n + i; }
 };
+
+// Adds 1 to a counter many threads may increment at once; returns its value before.
+PD_HD inline int32_t atomic_increment(int32_t* counter) {
+#if defined(__CUDA_ARCH__)
+  return atomicAdd(counter, 1);
+#else
+  return __atomic_fetch_add(counter, 1, __ATOMIC_RELAXED);
+#endif
+}
 
 // Sets a flag (Exec::flag) that many threads may set at once, all to 1. On the GPU the flag lives
 // in host memory: one store per warp (the lowest lane taking this path) rather than per thread.

@@ -13,17 +13,21 @@
 
 namespace pd {
 
-// The skin of the contact lists as a fraction of the largest contact distance r_c: lists reach
-// 1.8 r_c (0.9 lambda), so an intact lattice has none (bench/NOTES.md measured 0.3, 0.5 and
-// 0.8). A particle that has moved more than 0.45 of the skin triggers a rebuild (half the skin
-// would do; the rest is a margin for the round-off of float positions).
-constexpr double kContactSkin = 0.8;
-constexpr double kContactTrigger = 0.45;
+// Skins, in units of the largest contact distance r_c. A particle at rest has 0.4: a pair at
+// rest is listed within 1.8 r_c (0.9 lambda), so an intact lattice has no lists (bench/NOTES.md
+// measured pairs of 0.3, 0.5 and 0.8). A moving particle's skin covers what it travels in
+// kContactStepsAhead steps at its speed at the build, up to 1.6 (so that the wider search around
+// fast particles stays within a few cells). A particle that has moved kContactTrigger of its skin
+// triggers a build (all of it would do; the rest is a margin for the round-off of positions).
+constexpr double kContactRestSkin = 0.4;
+constexpr double kContactSkinCap = 1.6;
+constexpr double kContactStepsAhead = 32;
+constexpr double kContactTrigger = 0.9;
 // Partners each list has room for at first (doubled for all when one overflows).
 constexpr int32_t kContactCapacity = 8;
 
 // The backend flags (Exec::flag) contact raises: a particle left its skin (position_update); a
-// list outgrew its room, some list is not empty (build_contacts).
+// list outgrew its room, some list is not empty (the build).
 enum ContactFlag : int { kFlagMoved = 0, kFlagOverflow = 1, kFlagPairs = 2 };
 
 PD_HD inline Vec3 contact_force(Vec3 xi, Vec3 xj, real contact_distance, real stiffness) {
@@ -57,24 +61,77 @@ PD_HD inline void for_each_contact_candidate(int32_t s, HashView h, real skin, V
   });
 }
 
-// List build, per sorted entry: the particle's partners (up to the capacity; more raise
-// `overflow`, and the engine builds again with room for more), sorted by index so that its
-// contact forces add up in one order whatever the hash did (CPU and GPU, a resumed run and an
-// uninterrupted one), and the displacement the list is built at. A list with partners raises
-// `pairs` (none anywhere: `collisions` is not launched).
+// A particle's skin for the lists built now: what it travels in kContactStepsAhead steps at
+// velocity v, between the skin at rest and the cap.
+PD_HD inline real contact_skin(Vec3 v, const ContactView& c) {
+  return std::fmin(c.cap, std::fmax(c.base, length(v) * c.per_speed));
+}
+
+// Adds j to particle i's list (past its room: raises `overflow`, and the engine builds again
+// with more room).
+PD_HD inline void append_contact(int32_t i, int32_t j, ContactView c, int32_t* overflow) {
+  const int32_t k = atomic_increment(&c.count[i]);
+  if (k < c.capacity)
+    c.partner[c.slot(i, k)] = j;
+  else
+    raise_flag(overflow);
+}
+
+// List build, pass 1 per sorted entry: the partners within the reach of two particles at rest
+// (2 `base`), each particle's skin and the displacement its list is built at. A list with
+// partners raises `pairs` (none anywhere: `collisions` is not launched).
 PD_HD inline void build_contacts(int32_t s, ParticlesView p, HashView h, ContactView c, int32_t* overflow,
                                  int32_t* pairs) {
   const int32_t i = h.sorted[s];
   int32_t count = 0;
-  for_each_contact_candidate(s, h, c.skin, [&](int32_t t) {
+  for_each_contact_candidate(s, h, 2 * c.base, [&](int32_t t) {
     if (count < c.capacity) c.partner[c.slot(i, count)] = h.sorted[t];
     ++count;
   });
   c.count[i] = count;
-  c.origin[i] = p.disp[i];
+  c.origin[i] = with_w(xyz(p.disp[i]), contact_skin(p.vel[i], c));
   if (count == 0) return;
   raise_flag(pairs);
-  if (count > c.capacity) return raise_flag(overflow);
+  if (count > c.capacity) raise_flag(overflow);
+}
+
+// Pass 2 per particle, for the particles whose skin exceeds the one at rest: the pairs beyond the
+// first pass's reach but within the pair's contact distance plus both skins, added to both lists
+// (between two such particles by the one of lower index). The search covers every cell within
+// the largest such reach.
+PD_HD inline void extend_contacts(int32_t f, ParticlesView p, HashView h, ContactView c,
+                                  const MaterialTable& mt, real quarter_max, int32_t* overflow,
+                                  int32_t* pairs) {
+  const real skin_f = c.origin[f].w;
+  if (!(skin_f > c.base)) return;
+  const Vec4 rf = with_w(p.position(f), contact_quarter(f, p, mt));  // its hash record
+  const real radius = rf.w + quarter_max + skin_f + c.cap;
+  const Cell lo = cell_of(xyz(rf) - Vec3{radius, radius, radius}, h.inv_cell);
+  const Cell hi = cell_of(xyz(rf) + Vec3{radius, radius, radius}, h.inv_cell);
+  for (int32_t z = lo.z; z <= hi.z; ++z)
+    for (int32_t y = lo.y; y <= hi.y; ++y)
+      for (int32_t x = lo.x; x <= hi.x; ++x) {
+        const Cell nc{x, y, z};
+        for_each_entry_in_bin(cell_bin(nc, h.bins), h, [&](int32_t t) {
+          const Vec4 rt = h.record[t];
+          if (!same_cell(cell_of(xyz(rt), h.inv_cell), nc)) return;
+          const int32_t j = h.sorted[t];
+          if (j == f || within_contact_reach(rf, rt, 2 * c.base)) return;  // listed by pass 1
+          const real skin_j = c.origin[j].w;
+          if (skin_j > c.base && j < f) return;  // listed from j
+          if (!within_contact_reach(rf, rt, skin_f + skin_j)) return;
+          append_contact(f, j, c, overflow);
+          append_contact(j, f, c, overflow);
+          raise_flag(pairs);
+        });
+      }
+}
+
+// Pass 3 per particle: its list sorted by index, so that its contact forces add up in one order
+// whatever the hash and the appends did (CPU and GPU, a resumed run and an uninterrupted one).
+PD_HD inline void sort_contacts(int32_t i, ContactView c) {
+  const int32_t count = c.count[i];
+  if (count > c.capacity) return;  // overflowed: built again
   for (int32_t k = 1; k < count; ++k) {
     const int32_t j = c.partner[c.slot(i, k)];
     int32_t q = k;
@@ -99,9 +156,10 @@ PD_HD inline void collision_forces(int32_t i, ParticlesView p, ContactView c, co
   p.force[i] = p.force[i] + f;
 }
 
-// Whether displacement u has moved farther than the trigger from where the lists were built
-// (a non-finite one counts as moved).
-PD_HD inline bool left_contact_skin(Vec4 u, Vec4 origin, real trigger) {
+// Whether displacement u has moved farther than kContactTrigger of the particle's skin from where
+// the lists were built (origin: displacement, skin; a non-finite u counts as moved).
+PD_HD inline bool left_contact_skin(Vec4 u, Vec4 origin) {
+  const real trigger = real(kContactTrigger) * origin.w;
   return !(length_squared(xyz(u) - xyz(origin)) <= trigger * trigger);
 }
 

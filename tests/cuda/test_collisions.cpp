@@ -74,34 +74,54 @@ TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
   }
 }
 
-// The contact lists of a random cloud (cells twice the reach, as the engine sizes them): each
-// list is every other point within its pair's contact distance plus the skin, in ascending
-// order, and the lists are symmetric.
+// The contact lists of a random cloud, a third of it moving fast (cells twice the reach of two
+// particles at rest, as the engine sizes them): each list is every other point within the
+// pair's contact distance plus both skins, in ascending order; the lists are symmetric; each
+// particle's origin holds its displacement and its skin.
 TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
   Random rng(23);
   const int32_t n = 2000;
-  const real quarter = real(0.02), skin = real(kContactSkin * 0.04);
-  std::vector<Vec4> rest(static_cast<size_t>(n)), disp(size_t(n), Vec4{0, 0, 0, 0});
-  for (auto& r : rest) {
-    const real q = rng.uniform() < 0.5 ? quarter : real(0.5) * quarter;  // two contact spacings
-    r = {real(rng.uniform()), real(rng.uniform()), real(rng.uniform()), q};
+  MaterialTable mt;
+  mt.count = 2;
+  mt.m[0].contact_spacing = real(0.08);  // two contact spacings: quarters 0.02 and 0.01
+  mt.m[1].contact_spacing = real(0.04);
+  const real quarter_max = real(0.02), rc = real(0.04);
+  std::vector<Vec4> rest(static_cast<size_t>(n)), disp(static_cast<size_t>(n));
+  std::vector<Vec3> vel(static_cast<size_t>(n), Vec3{0, 0, 0});
+  std::vector<uint16_t> material(static_cast<size_t>(n));
+  for (int32_t i = 0; i < n; ++i) {
+    rest[size_t(i)] = {real(rng.uniform()), real(rng.uniform()), real(rng.uniform()), real(1e-6)};
+    disp[size_t(i)] = {real(0.01 * rng.normal()), real(0.01 * rng.normal()), real(0.01 * rng.normal()), 0};
+    material[size_t(i)] = uint16_t(rng.uniform() < 0.5 ? 0 : 1);
+    if (rng.uniform() < 1.0 / 3)
+      vel[size_t(i)] = {real(rng.normal()), real(rng.normal()), real(rng.normal())};
   }
-  for (auto& u : disp)
-    u = {real(rng.normal()), real(rng.normal()), real(rng.normal()), 0};  // origin's source
+  ParticlesView p;
+  p.n = n;
+  p.rest = rest.data();
+  p.disp = disp.data();
+  p.vel = vel.data();
+  p.material = material.data();
+  ContactView c;
+  c.n = n;
+  c.base = real(kContactRestSkin) * rc;
+  c.cap = real(kContactSkinCap) * rc;
+  c.per_speed = real(0.02);  // skins up to the cap for speeds above ~3
+
   HashView h;
   h.bins = 1 << 12;
-  h.inv_cell = real(1) / (2 * (2 * quarter + skin));
+  h.inv_cell = real(1) / (2 * (rc + 2 * c.base));
   std::vector<uint32_t> key(static_cast<size_t>(n)), sorted_key(static_cast<size_t>(n));
   std::vector<int32_t> sorted(static_cast<size_t>(n)), start(h.bins, -1), end(h.bins, -1);
-  for (int32_t i = 0; i < n; ++i)
-    key[size_t(i)] = cell_bin(cell_of(xyz(rest[size_t(i)]), h.inv_cell), h.bins);
+  for (int32_t i = 0; i < n; ++i) key[size_t(i)] = cell_bin(cell_of(p.position(i), h.inv_cell), h.bins);
   for (int32_t i = 0; i < n; ++i) sorted[size_t(i)] = i;
   std::stable_sort(sorted.begin(), sorted.end(),
                    [&](int32_t a, int32_t b) { return key[size_t(a)] < key[size_t(b)]; });
   std::vector<Vec4> record(static_cast<size_t>(n));
   for (int32_t s = 0; s < n; ++s) {
-    sorted_key[size_t(s)] = key[size_t(sorted[size_t(s)])];
-    record[size_t(s)] = rest[size_t(sorted[size_t(s)])];  // position and quarter spacing
+    const int32_t i = sorted[size_t(s)];
+    sorted_key[size_t(s)] = key[size_t(i)];
+    record[size_t(s)] = with_w(p.position(i), contact_quarter(i, p, mt));  // as `collection` writes it
   }
   h.key = sorted_key.data();
   h.sorted = sorted.data();
@@ -110,25 +130,20 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
   h.record = record.data();
   for (int32_t s = 0; s < n; ++s) mark_bin_bounds(s, n, h);
 
-  ParticlesView p;
-  p.n = n;
-  p.rest = rest.data();
-  p.disp = disp.data();
   std::vector<Vec4> origin(static_cast<size_t>(n));
   std::vector<int32_t> count(static_cast<size_t>(n));
-  ContactView c;
-  c.n = n;
-  c.skin = skin;
   c.origin = origin.data();
   c.count = count.data();
   std::vector<int32_t> partner;
-  // Room for 4 partners overflows in this cloud; room for 16 does not.
-  for (const int32_t capacity : {4, 16}) {
+  // Room for 4 partners overflows in this cloud; room for 64 does not.
+  for (const int32_t capacity : {4, 64}) {
     c.capacity = capacity;
     partner.assign(size_t(capacity) * size_t(n), -1);
     c.partner = partner.data();
     int32_t overflow = 0, pairs = 0;
     for (int32_t s = 0; s < n; ++s) build_contacts(s, p, h, c, &overflow, &pairs);
+    for (int32_t i = 0; i < n; ++i) extend_contacts(i, p, h, c, mt, quarter_max, &overflow, &pairs);
+    for (int32_t i = 0; i < n; ++i) sort_contacts(i, c);
     EXPECT_EQ(overflow, capacity == 4 ? 1 : 0) << "room for " << capacity;
     EXPECT_EQ(pairs, 1);
   }
@@ -138,11 +153,19 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
     return list;
   };
 
-  int64_t pairs = 0;
+  int64_t pairs = 0, fast_pairs = 0;
   for (int32_t i = 0; i < n; ++i) {
+    const Vec4 ri = with_w(p.position(i), contact_quarter(i, p, mt));
+    const real skin_i = contact_skin(vel[size_t(i)], c);
     std::vector<int32_t> brute;
-    for (int32_t j = 0; j < n; ++j)
-      if (j != i && within_contact_reach(rest[size_t(i)], rest[size_t(j)], skin)) brute.push_back(j);
+    for (int32_t j = 0; j < n; ++j) {
+      const Vec4 rj = with_w(p.position(j), contact_quarter(j, p, mt));
+      if (j != i && within_contact_reach(ri, rj, skin_i + contact_skin(vel[size_t(j)], c)))
+        brute.push_back(j);
+      if (j != i && within_contact_reach(ri, rj, skin_i + contact_skin(vel[size_t(j)], c)) &&
+          !within_contact_reach(ri, rj, 2 * c.base))
+        ++fast_pairs;
+    }
     const std::vector<int32_t> list = list_of(i);
     EXPECT_EQ(list, brute) << "particle " << i;
     for (int32_t j : list) {
@@ -150,21 +173,36 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
       EXPECT_TRUE(std::binary_search(back.begin(), back.end(), i));
     }
     EXPECT_EQ(origin[size_t(i)].x, disp[size_t(i)].x);
+    EXPECT_EQ(origin[size_t(i)].w, skin_i);
     pairs += int64_t(list.size());
   }
-  EXPECT_GT(pairs, n);  // the cloud is dense enough that most points have partners
+  EXPECT_GT(pairs, n);           // the cloud is dense enough that most points have partners
+  EXPECT_GT(fast_pairs, n / 4);  // and the second pass finds many
 }
 
-// A particle leaves its skin past the trigger distance, in any direction; a non-finite
+// A particle leaves its skin past kContactTrigger of it, in any direction; a non-finite
 // displacement counts as having left.
 TEST(Collisions, LeavingTheSkinIsDetected) {
-  const Vec4 origin{real(1e-3), real(-2e-3), 0, 0};
-  const real trigger = real(1e-4);
-  EXPECT_FALSE(left_contact_skin(origin, origin, trigger));
-  EXPECT_FALSE(left_contact_skin({real(1e-3 + 0.9e-4), real(-2e-3), 0, 0}, origin, trigger));
-  EXPECT_TRUE(left_contact_skin({real(1e-3), real(-2e-3 - 1.1e-4), 0, 0}, origin, trigger));
-  EXPECT_TRUE(left_contact_skin({real(1e-3 + 0.6e-4), real(-2e-3), real(0.9e-4), 0}, origin, trigger));
-  EXPECT_TRUE(left_contact_skin({std::numeric_limits<real>::quiet_NaN(), 0, 0, 0}, origin, trigger));
+  const real skin = real(1e-4 / kContactTrigger);  // moves up to 1e-4 keep the lists
+  const Vec4 origin{real(1e-3), real(-2e-3), 0, skin};
+  EXPECT_FALSE(left_contact_skin(origin, origin));
+  EXPECT_FALSE(left_contact_skin({real(1e-3 + 0.9e-4), real(-2e-3), 0, 0}, origin));
+  EXPECT_TRUE(left_contact_skin({real(1e-3), real(-2e-3 - 1.1e-4), 0, 0}, origin));
+  EXPECT_TRUE(left_contact_skin({real(1e-3 + 0.6e-4), real(-2e-3), real(0.9e-4), 0}, origin));
+  EXPECT_TRUE(left_contact_skin({std::numeric_limits<real>::quiet_NaN(), 0, 0, 0}, origin));
+}
+
+// A particle's skin: the rest skin up to the speed that covers it, then proportional to the
+// speed, then the cap.
+TEST(Collisions, SkinGrowsWithSpeedUpToTheCap) {
+  ContactView c;
+  c.base = real(1e-4);
+  c.per_speed = real(1e-5);
+  c.cap = real(4e-4);
+  EXPECT_EQ(contact_skin({0, 0, 0}, c), c.base);
+  EXPECT_EQ(contact_skin({real(5), 0, 0}, c), c.base);
+  EXPECT_FLOAT_EQ(contact_skin({0, real(-20), 0}, c), real(2e-4));
+  EXPECT_EQ(contact_skin({real(300), 0, 0}, c), c.cap);
 }
 
 // A block of 4 x 4 x 4 cells, wherever it lies (negative coordinates too), fills 64 consecutive
