@@ -2,10 +2,10 @@
 // distance (Levine eq. 6): f_i = K_c (|x_i - x_j| - r_c)^2 (x_i - x_j)/|x_i - x_j|, with
 // r_c = (lambda_i + lambda_j)/4, i.e. lambda/2 for equal spacings. Each particle reads its
 // contact list (ContactView), which `collection` builds from the spatial hash only when some
-// particle has moved more than about half the skin since the last build; between builds a step
-// costs a read of the list, empty for a particle with nobody within reach (an intact lattice:
-// neighbours at lambda, beyond the contact distance plus the skin). Adds to the force
-// `springforces` wrote.
+// particle has moved most of its skin since the last build; between builds a step costs a read
+// of the list, empty for a particle with nobody within reach (an intact lattice: neighbours at
+// lambda, beyond the contact distance plus two skins at rest). Adds to the force `springforces`
+// wrote.
 #pragma once
 
 #include "../views.h"
