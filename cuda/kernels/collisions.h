@@ -51,8 +51,9 @@ PD_HD inline bool within_contact_reach(Vec4 a, Vec4 b, real skin) {
   return length_squared(xyz(a) - xyz(b)) < reach * reach;
 }
 
-// visit(t) for every other sorted entry t within reach of sorted entry s. The hash's cells are
-// at least twice the largest reach, so the 8-cell search sees every such entry.
+// visit(t) for every other sorted entry t within the contact distance plus `skin` of sorted entry
+// s. The hash's cells are at least twice that reach for two skins at rest (the first build pass),
+// so the 8-cell search sees every such entry.
 template <class Visit>
 PD_HD inline void for_each_contact_candidate(int32_t s, HashView h, real skin, Visit visit) {
   const Vec4 rs = h.record[s];
