@@ -179,7 +179,6 @@ class EngineImpl final : public Engine {
     b.count = count_.data();
     b.neighbor = neighbor_.data();
     b.plastic = plastic_ext_.data();
-    b.reverse = reverse_.data();
     b.plastic_mirror = plastic_mirror_.data();
     b.strength = bond_strength_.data();
     b.lattice.words = lattice_.words;
@@ -418,7 +417,7 @@ class EngineImpl final : public Engine {
   // The bond arrays are the bulk of the memory: refused with a clear message, before they are
   // allocated, when the backend has not enough free.
   void check_bond_memory(int64_t slots) const {
-    const double per_slot = sizeof(int32_t) + (features_.plastic ? 2 * sizeof(real) + sizeof(uint16_t) : 0);
+    const double per_slot = sizeof(int32_t) + (features_.plastic ? 2 * sizeof(real) : 0);
     const double need = double(slots) * per_slot;
     const double free = double(backend_available_bytes(backend()));
     if (need <= free) return;
@@ -430,9 +429,8 @@ class EngineImpl final : public Engine {
   }
 
   // State-based arrays: the (theta, m, phi) records, m computed once, and for plasticity
-  // the per-bond plastic extension, its mirror at the partner's slot and the reverse positions.
+  // the per-bond plastic extension and its mirror at the partner's slot.
   void allocate_state() {
-    if (family_.max > 65535) throw std::runtime_error("a family has more than 65535 bonds");
     state_ = make<Vec4>(n_);
     state_.zero();
     launch_weighted_volume(exec_, particles(), bonds(), materials_);
@@ -441,9 +439,6 @@ class EngineImpl final : public Engine {
     plastic_ext_.zero();
     plastic_mirror_ = make<real>(neighbor_.size());
     plastic_mirror_.zero();
-    reverse_ = make<uint16_t>(neighbor_.size());
-    reverse_.zero();
-    launch_reverse_bonds(exec_, bonds(), reverse_.data());
   }
 
   // Kernels 1-5: the forces at the current positions.
@@ -451,7 +446,7 @@ class EngineImpl final : public Engine {
     const ParticlesView p = particles();
     const BondsView b = bonds();
     launch_init(exec_, p, b, materials_, features_);
-    if (features_.plastic) launch_plasticity(exec_, p, b, materials_, features_);
+    if (features_.plastic) launch_plasticity(exec_, p, materials_);
     launch_springforces(exec_, p, b, materials_, features_);
     if (contact_) {  // after springforces is queued: waiting for position_update's flag idles nothing
       refresh_contacts();
@@ -489,7 +484,6 @@ class EngineImpl final : public Engine {
   DeviceArray<int64_t, Exec> slice_offset_;
   DeviceArray<int32_t, Exec> count_, neighbor_;
   DeviceArray<real, Exec> plastic_ext_, plastic_mirror_;
-  DeviceArray<uint16_t, Exec> reverse_;
   DeviceArray<uint8_t, Exec> bond_strength_;
   LatticeFamilies lattice_;
   DeviceArray<int16_t, Exec> lattice_stencil_;

@@ -35,20 +35,11 @@ void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, Kerne
       f.anisotropic, f.lattice, f.plastic);
 }
 
-// Plastic state-based materials: the return mapping, after `init` computed theta and the trial norm.
-template <bool kAnisotropic, bool kLattice, class Exec>
-void launch_plasticity_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
-  ex.parallel_for("pd/plasticity", p.n,
-                  [=] PD_HD(int64_t i) { plastic_update<kAnisotropic, kLattice>(int32_t(i), p, b, mt); });
-}
-
+// Kernel 5 (plastic state-based materials): the yield test of the return mapping, after `init`
+// summed the trial norm; `springforces` applies it to the bonds.
 template <class Exec>
-void launch_plasticity(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
-  static_bools(
-      [&](auto anisotropic, auto lattice) {
-        launch_plasticity_variant<decltype(anisotropic)::value, decltype(lattice)::value>(ex, p, b, mt);
-      },
-      f.anisotropic, f.lattice);
+void launch_plasticity(Exec& ex, ParticlesView p, MaterialTable mt) {
+  ex.parallel_for("pd/plasticity", p.n, [=] PD_HD(int64_t i) { yield_test(int32_t(i), p, mt); });
 }
 
 // After a restore: each bond end's e^p copied to its mirror at the partner's slot.
@@ -184,7 +175,7 @@ void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt,
   });
 }
 
-// State-based set-up: weighted volumes, and the reverse bond positions for plasticity.
+// State-based set-up: weighted volumes.
 template <class Exec>
 void launch_weighted_volume(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
   ex.parallel_for("family/weighted_volume", p.n,
@@ -195,11 +186,6 @@ template <class Exec>
 void launch_stability_rate(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, double* rate) {
   ex.parallel_for("family/stability", p.n,
                   [=] PD_HD(int64_t i) { rate[i] = stability_rate(int32_t(i), p, b, mt); });
-}
-
-template <class Exec>
-void launch_reverse_bonds(Exec& ex, BondsView b, uint16_t* reverse) {
-  ex.parallel_for("family/reverse", b.n, [=] PD_HD(int64_t i) { reverse_bond(int32_t(i), b, reverse); });
 }
 
 // Reductions read once per frame.

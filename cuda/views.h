@@ -60,8 +60,8 @@ constexpr int kSliceWidth = 32;
 // offsets its families use, in ascending partner order. A particle of such a body finds
 // bond q's partner at its own index + offset[q] and its reference bond vector in the table,
 // so the force loops read no partner index and no partner reference position. Its stored
-// family lists the same bonds in the same (stencil) order, so per-bond state, reverse positions
-// and every other reader of `neighbor` see the same slots.
+// family lists the same bonds in the same (stencil) order, so per-bond state and every other
+// reader of `neighbor` see the same slots.
 struct StencilEntry {
   Vec4 xi;         // xyz: reference bond vector [m]; w: |xi|
   real inv_r0;     // 1 / |xi|
@@ -97,10 +97,9 @@ struct BondsView {
   const int32_t* count = nullptr;         // bonds per particle at the start
   int32_t* neighbor = nullptr;            // partner index, or ~partner once broken
   // Plastic state-based materials only (null otherwise):
-  real* plastic = nullptr;            // e^p of this end's state on the bond [m]
-  const uint16_t* reverse = nullptr;  // position k of the same bond in the partner's family
-  // e^p of the partner's end of the same bond, kept at this end's slot by `plasticity`, so that
-  // `springforces` reads both ends' history at one slot (no reverse lookup per bond).
+  real* plastic = nullptr;  // e^p of this end's state on the bond [m]
+  // e^p of the partner's end of the same bond, kept at this end's slot by `springforces`
+  // (plasticity.h), so that it reads and updates both ends' history at its own slots.
   real* plastic_mirror = nullptr;
   // Scenes with weakened bonds only (null otherwise): per slot, the factor q/255 on the bond's
   // strain limit (host/bond_cuts.h), the same in both stored directions.

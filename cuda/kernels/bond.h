@@ -104,10 +104,11 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geomet
 // and without the early load every bond waits for two dependent loads in turn (index, then the
 // partner's records). Measured on the H100 (bench/NOTES.md): +10-17% on springforces.
 template <class Visit>
-PD_HD inline void for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
-                                              Visit& visit) {
+PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
+                                                 Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   const int32_t count = b.count[i];
+  int32_t holding = 0;
   int32_t next = count > 0 ? b.neighbor[b.slot(i, 0)] : 0;
   PD_BOND_LOOP
   for (int32_t k = 0; k < count; ++k) {
@@ -115,9 +116,12 @@ PD_HD inline void for_each_intact_listed_bond(int32_t i, const ParticlesView& p,
     const int32_t j = next;
     if (k + 1 < count) next = b.neighbor[b.slot(i, k + 1)];
     if (!bond_intact(j)) continue;
-    if (!visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j])))
+    if (visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j])))
+      ++holding;
+    else
       b.neighbor[slot] = ~j;
   }
+  return holding;
 }
 
 // Geometry of a lattice bond: the reference vector, lengths and weight from the stencil entry.
@@ -152,22 +156,26 @@ PD_HD inline int32_t bit_count(uint32_t x) {
 // load of the entry, partners at the same offset: one contiguous gather), each skipping the
 // entries its intact bits leave out (intact bits are a subset of the present ones). A bond's
 // slot is its position among the present entries, counted where a visitor uses it (breaking,
-// weakened and plastic bonds), so the loop itself tests one bit per entry.
-template <class Visit>
-PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
-                                               const BondsView& b, Visit& visit) {
+// weakened and plastic bonds), so the loop itself tests one bit per entry; the bonds still
+// intact are counted from the bits after each word. kUnroll: the entry loop unrolled that many
+// times, chosen per kernel as measured (bench/NOTES.md; 2 is what the compiler picks alone).
+template <int kUnroll, class Visit>
+PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
+                                                  const BondsView& b, Visit& visit) {
   const LatticeView& l = b.lattice;
   const Stencil st = l.stencils[stencil];
   const StencilEntry* entries = l.entries + st.first;
   const Vec4 disp_i = p.disp[i];
   const int64_t first_slot = b.slot(i, 0);
   int32_t k0 = 0;  // present bonds in the words before this one
+  int32_t holding = 0;
   for (int32_t w0 = 0; w0 < st.size; w0 += 32) {
     const int64_t word = int64_t(w0 / 32) * b.n + i;
     const uint32_t present = l.present[word];
     uint32_t intact = l.intact[word];
     const uint32_t weak = l.weak ? l.weak[word] : 0u;
     // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
+    PD_UNROLL(kUnroll)
     for (int32_t q = 0; q < 32; ++q) {
       if (!(intact >> q & 1u)) continue;
       const StencilEntry& e = entries[w0 + q];
@@ -180,19 +188,21 @@ PD_HD inline void for_each_intact_lattice_bond(int32_t i, int32_t stencil, const
       }
     }
     k0 += bit_count(present);
+    holding += bit_count(intact);
   }
+  return holding;
 }
 
-// Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order.
-// kLattice: some bodies have lattice families (else every family is read from its list, and the
-// lattice loop is not compiled in).
-template <bool kLattice = true, class Visit>
-PD_HD inline void for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b, Visit&& visit) {
+// Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order, and
+// returns the bonds still intact after the visits. kLattice: some bodies have lattice families
+// (else every family is read from its list, and the lattice loop is not compiled in); kUnroll
+// as for_each_intact_lattice_bond.
+template <bool kLattice = true, int kUnroll = 2, class Visit>
+PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
+                                          Visit&& visit) {
   const int32_t stencil = kLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
-  if (kLattice && stencil >= 0)
-    for_each_intact_lattice_bond(i, stencil, p, b, visit);
-  else
-    for_each_intact_listed_bond(i, p, b, visit);
+  if (kLattice && stencil >= 0) return for_each_intact_lattice_bond<kUnroll>(i, stencil, p, b, visit);
+  return for_each_intact_listed_bond(i, p, b, visit);
 }
 
 }  // namespace pd

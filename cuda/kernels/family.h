@@ -61,16 +61,18 @@ PD_HD inline void sort_family(int32_t i, BondsView b) {
   }
 }
 
-// Position of bond (i, k) in the partner's family, for reading the partner's per-bond state.
-PD_HD inline void reverse_bond(int32_t i, BondsView b, uint16_t* reverse) {
-  for (int32_t k = 0; k < b.count[i]; ++k) {
-    const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
-    for (int32_t q = 0; q < b.count[j]; ++q)
-      if (bond_partner(b.neighbor[b.slot(j, q)]) == i) {
-        reverse[b.slot(i, k)] = uint16_t(q);
-        break;
-      }
+// Position of the bond to particle i in the family of j (-1 when j has none): families are in
+// ascending partner order (sort_family), so a bisection.
+PD_HD inline int32_t position_in_family(const BondsView& b, int32_t j, int32_t i) {
+  int32_t lo = 0, hi = b.count[j];
+  while (lo < hi) {
+    const int32_t mid = (lo + hi) / 2;
+    if (bond_partner(b.neighbor[b.slot(j, mid)]) < i)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
+  return lo < b.count[j] && bond_partner(b.neighbor[b.slot(j, lo)]) == i ? lo : -1;
 }
 
 // The Silling & Askari (2005, eq. 29) stability rate of particle i over its family as built:

@@ -23,18 +23,20 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};  // sum over the intact bonds of s beta V_j y/|y| (c V_i applied once at the end)
   real smin = real(INFINITY);
-  int32_t intact = 0;
-  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
-    const real s = g.e * g.inv_r0;
-    if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
-      p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
-      return false;  // broken: for_each_intact_bond records it
-    }
-    smin = min_of(s, smin);
-    ++intact;
-    f += (s * g.weight(m) * g.inv_r) * g.y;
-    return true;
-  });
+  // The entry loop unrolled 8 times where bonds may be weakened, as the compiler picks (2) else
+  // (bench/NOTES.md: each the faster of the two for its kernel).
+  constexpr int kUnroll = kWeak ? 8 : 2;
+  const int32_t intact =
+      for_each_intact_bond<kLattice, kUnroll>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
+        const real s = g.e * g.inv_r0;
+        if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
+          p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
+          return false;  // broken: for_each_intact_bond records it
+        }
+        smin = min_of(s, smin);
+        f += (s * g.weight(m) * g.inv_r) * g.y;
+        return true;
+      });
   f = (m.micromodulus * vol_i) * f;
   p.force[i] = f;
   p.strain_min[i] = intact > 0 ? smin : real(0);

@@ -4,9 +4,11 @@
 // criterion (eq. 18) evaluated for both ends: the bond is removed when both ends' s^omega
 // exceed their limits, which both threads decide from the same numbers (or, with the
 // stretch criterion, when e/|xi| > max(tau_i, tau_j) as for bond-based materials). A weakened
-// bond's limits are scaled by its strength w.
+// bond's limits are scaled by its strength w. Plastic materials: both ends' e^p first move
+// onto the yield surface where the particle yields (the return mapping, plasticity.h).
 #pragma once
 
+#include "plasticity.h"
 #include "state_based.h"
 
 namespace pd {
@@ -19,31 +21,41 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   const ForceStateCoefficients k_i = force_state_coefficients(theta_i, inv_mw_i, m);
   const real limit_i = chen_extension_limit(tau_i, phi_i, m);
+  const bool flows = kPlastic && m.plastic;  // state.w holds the return mapping's factor
   Vec3 f{0, 0, 0};
   real smin = real(INFINITY);
-  int32_t intact = 0;
-  for_each_intact_bond<kLattice>(i, p, b, [&](int64_t slot, int32_t j, const auto& g) {
-    const Vec4 state_j = p.state[j];
-    const real ep_ij = kPlastic ? b.plastic[slot] : real(0);
-    const real ep_ji = kPlastic ? b.plastic_mirror[slot] : real(0);
-    const real s = g.e * g.inv_r0;
-    const real w = bond_strength<kWeak>(b, slot, g);
-    const real tau_j = g.tau_j;
-    const bool breaks = m.chen_fracture ? g.e - ep_ij > w * limit_i &&
-                                              g.e - ep_ji > w * chen_extension_limit(tau_j, state_j.z, m)
-                                        : s > max_of(tau_i, tau_j) * w;
-    if (breaks) {
-      p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
-      return false;  // broken: for_each_intact_bond records it
-    }
-    smin = min_of(s, smin);
-    ++intact;
-    const ForceStateCoefficients k_j = force_state_coefficients(state_j.x, state_j.y, m);
-    const real t = influence<kAnisotropic>(g.xi, g.inv_r0, m) *
-                   ((k_i.a + k_j.a) * g.e - (k_i.a * ep_ij + k_j.a * ep_ji) + (k_i.c + k_j.c) * g.r0);
-    f += (t * g.weight(m) * g.inv_r) * g.y;
-    return true;
-  });
+  // The entry loop unrolled 8 times: +3% (elastic) to +8% (plastic) against the compiler's 2
+  // (bench/NOTES.md).
+  const int32_t intact =
+      for_each_intact_bond<kLattice, 8>(i, p, b, [&](int64_t slot, int32_t j, const auto& g) {
+        const Vec4 state_j = p.state[j];
+        real ep_ij = kPlastic ? b.plastic[slot] : real(0);
+        real ep_ji = kPlastic ? b.plastic_mirror[slot] : real(0);
+        if (flows && state_i.w < real(1)) {
+          ep_ij = returned_plastic_extension(g.e, g.r0, theta_i, state_i.w, ep_ij, m);
+          b.plastic[slot] = ep_ij;
+        }
+        if (flows && state_j.w < real(1)) {
+          ep_ji = returned_plastic_extension(g.e, g.r0, state_j.x, state_j.w, ep_ji, m);
+          b.plastic_mirror[slot] = ep_ji;
+        }
+        const real s = g.e * g.inv_r0;
+        const real w = bond_strength<kWeak>(b, slot, g);
+        const real tau_j = g.tau_j;
+        const bool breaks = m.chen_fracture ? g.e - ep_ij > w * limit_i &&
+                                                  g.e - ep_ji > w * chen_extension_limit(tau_j, state_j.z, m)
+                                            : s > max_of(tau_i, tau_j) * w;
+        if (breaks) {
+          p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
+          return false;  // broken: for_each_intact_bond records it
+        }
+        smin = min_of(s, smin);
+        const ForceStateCoefficients k_j = force_state_coefficients(state_j.x, state_j.y, m);
+        const real t = influence<kAnisotropic>(g.xi, g.inv_r0, m) *
+                       ((k_i.a + k_j.a) * g.e - (k_i.a * ep_ij + k_j.a * ep_ji) + (k_i.c + k_j.c) * g.r0);
+        f += (t * g.weight(m) * g.inv_r) * g.y;
+        return true;
+      });
   f = vol_i * f;
   p.force[i] = f;
   p.strain_min[i] = intact > 0 ? smin : real(0);

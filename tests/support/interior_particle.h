@@ -112,7 +112,14 @@ struct InteriorParticle {
     const DilatationPass d = dilatation<true, true, true>(0, view(), bonds(), m);
     for (auto& s : state) s.x = d.theta;
     state[0].w = d.trial_norm;
-    plastic_update(0, view(), bonds(), table);
+    yield_test(0, view(), table);
+    if (!m.plastic || state[0].w >= real(1)) return;
+    const BondsView b = bonds();
+    for (int32_t k = 0; k < count[0]; ++k) {
+      const int64_t slot = b.slot(0, k);
+      const BondGeometry g = bond_geometry(rest[0], disp[0], rest[neighbor[slot]], disp[neighbor[slot]]);
+      plastic[slot] = returned_plastic_extension(g.e, g.r0, state[0].x, state[0].w, plastic[slot], m);
+    }
   }
 
   // By symmetry t_ji on bond -xi equals t_ij on xi, so sigma = sum_j t_ij beta V_j y^ (x) xi.
