@@ -15,20 +15,17 @@
 #include "host/engine.h"
 #include "host/random.h"
 #include "tests/support/fixtures.h"
+#include "tests/support/particle_arrays.h"
 
 namespace pd {
 namespace {
 
 // A plastic state-based block with its families as the engine builds them (listed families),
 // every array a step reads, and a plastic history with its mirror.
-struct PlasticBlock {
+struct PlasticBlock : testing::ParticleArrays {
   SimulationInput in;
   BondLists families;
-  std::vector<Vec4> rest, disp, state;
-  std::vector<Vec3> vel, force;
-  std::vector<real> inv_mass, tau0, smin, plastic, mirror;
-  std::vector<int32_t> intact;
-  std::vector<Ledger> ledger;
+  std::vector<real> plastic, mirror;
 
   PlasticBlock() : in(testing::state_block(7, 6, 5, 1e-3, 1.0, true)) {
     in.lattice_families = false;
@@ -46,27 +43,12 @@ struct PlasticBlock {
     smin.assign(n, 0);
     intact = families.count;
     ledger.assign(n, Ledger());
+    material = ps.material;
+    body = ps.body;
+    flags = ps.flags;
     plastic.assign(families.neighbor.size(), 0);
     mirror = plastic;
     for (int32_t i = 0; i < int32_t(n); ++i) weighted_volume(i, view(), bonds(), in.materials);
-  }
-  ParticlesView view() {
-    ParticlesView p;
-    p.n = int32_t(rest.size());
-    p.rest = rest.data();
-    p.disp = disp.data();
-    p.vel = vel.data();
-    p.force = force.data();
-    p.inv_mass = inv_mass.data();
-    p.material = in.particles.material.data();
-    p.body = in.particles.body.data();
-    p.flags = in.particles.flags.data();
-    p.strain_limit0 = tau0.data();
-    p.strain_min = smin.data();
-    p.intact = intact.data();
-    p.state = state.data();
-    p.ledger = ledger.data();
-    return p;
   }
   BondsView bonds() {
     BondsView b = families.view();

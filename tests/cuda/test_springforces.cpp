@@ -5,19 +5,14 @@
 #include <vector>
 
 #include "cuda/kernels/springforces.h"
+#include "tests/support/particle_arrays.h"
 
 namespace pd {
 namespace {
 
 // Two particles bonded to each other, in sliced-ELL storage (one slice).
-struct Pair {
-  std::vector<Vec4> rest, disp;
-  std::vector<Vec3> vel, force;
-  std::vector<real> inv_mass{1, 1}, tau0, smin{0, 0};
-  std::vector<uint16_t> material{0, 0};
-  std::vector<int32_t> body{0, 0}, intact{0, 0}, count{1, 1}, neighbor;
-  std::vector<uint8_t> flags{0, 0};
-  std::vector<Ledger> ledger{Ledger(), Ledger()};
+struct Pair : testing::ParticleArrays {
+  std::vector<int32_t> count{1, 1}, neighbor;
   std::vector<int64_t> offset{0, kSliceWidth};
   MaterialTable mt;
 
@@ -25,7 +20,13 @@ struct Pair {
     rest = {{0, 0, 0, real(2e-9)}, with_w(xj, real(3e-9))};
     disp = {{0, 0, 0, limit}, with_w(uj, limit)};
     vel = force = {{0, 0, 0}, {0, 0, 0}};
+    inv_mass = {1, 1};
     tau0 = {limit, limit};
+    smin = {0, 0};
+    material = {0, 0};
+    body = intact = {0, 0};
+    flags = {0, 0};
+    ledger = {Ledger(), Ledger()};
     neighbor.assign(kSliceWidth, 0);
     neighbor[0] = 1;
     neighbor[1] = 0;
@@ -34,23 +35,6 @@ struct Pair {
     mt.m[0].horizon = real(0.01);
     mt.m[0].spacing = real(0.001);
     mt.m[0].partial_volumes = 0;
-  }
-  ParticlesView particles() {
-    ParticlesView p;
-    p.n = 2;
-    p.rest = rest.data();
-    p.disp = disp.data();
-    p.vel = vel.data();
-    p.force = force.data();
-    p.inv_mass = inv_mass.data();
-    p.material = material.data();
-    p.body = body.data();
-    p.flags = flags.data();
-    p.strain_limit0 = tau0.data();
-    p.strain_min = smin.data();
-    p.ledger = ledger.data();
-    p.intact = intact.data();
-    return p;
   }
   BondsView bonds() {
     BondsView b;
@@ -61,7 +45,7 @@ struct Pair {
     return b;
   }
   void run() {
-    for (int i = 0; i < 2; ++i) spring_forces<false, false>(i, particles(), bonds(), mt);
+    for (int i = 0; i < 2; ++i) spring_forces<false, false>(i, view(), bonds(), mt);
   }
 };
 

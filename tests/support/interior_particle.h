@@ -10,20 +10,15 @@
 
 #include "cuda/kernels/plasticity.h"
 #include "cuda/kernels/springforces_state.h"
+#include "particle_arrays.h"
 
 namespace pd::testing {
 
 using Mat3 = std::array<std::array<double, 3>, 3>;
 
-struct InteriorParticle {
+struct InteriorParticle : ParticleArrays {
   Material m;
-  std::vector<Vec4> rest, disp, state;  // state: (theta, m, phi)
-  std::vector<real> tau, smin, inv_mass;
-  std::vector<Vec3> vel, force;
-  std::vector<uint16_t> material;
-  std::vector<int32_t> body, intact, count, neighbor;
-  std::vector<uint8_t> flags;
-  std::vector<Ledger> ledger;
+  std::vector<int32_t> count, neighbor;
   std::vector<int64_t> offset;
   std::vector<real> plastic;
 
@@ -47,7 +42,7 @@ struct InteriorParticle {
     vel = force = std::vector<Vec3>(n, Vec3{0, 0, 0});
     inv_mass.assign(n, 1);
     smin.assign(n, 0);
-    tau.assign(n, real(1e30));
+    tau0.assign(n, real(1e30));
     material.assign(n, 0);
     body.assign(n, 0);
     flags.assign(n, 0);
@@ -71,24 +66,6 @@ struct InteriorParticle {
 
   MaterialTable table;
 
-  ParticlesView view() {
-    ParticlesView p;
-    p.n = int32_t(rest.size());
-    p.rest = rest.data();
-    p.disp = disp.data();
-    p.vel = vel.data();
-    p.force = force.data();
-    p.inv_mass = inv_mass.data();
-    p.material = material.data();
-    p.body = body.data();
-    p.flags = flags.data();
-    p.strain_limit0 = tau.data();
-    p.strain_min = smin.data();
-    p.intact = intact.data();
-    p.state = state.data();
-    p.ledger = ledger.data();
-    return p;
-  }
   BondsView bonds() {
     BondsView b;
     b.n = int32_t(rest.size());
