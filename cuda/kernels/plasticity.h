@@ -48,8 +48,8 @@ PD_HD inline void yield_test(int32_t i, ParticlesView p, const MaterialTable& mt
 PD_HD inline void mirror_plastic(int32_t i, BondsView b) {
   for (int32_t k = 0; k < b.count[i]; ++k) {
     const int64_t slot = b.slot(i, k);
-    const int32_t j = bond_partner(b.neighbor[slot]);
-    b.plastic_mirror[b.slot(j, position_in_family(b, j, i))] = b.plastic[slot];
+    const int32_t j = bond_partner(b.neighbor[slot]), q = position_in_family(b, j, i);
+    if (q >= 0) b.plastic_mirror[b.slot(j, q)] = b.plastic[slot];  // families are symmetric: always
   }
 }
 
