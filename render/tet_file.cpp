@@ -1,44 +1,15 @@
 #include "tet_file.h"
 
 #include <cstring>
-#include <fstream>
-#include <iterator>
 
 #include "../host/io/atomic_file.h"
+#include "byte_file.h"
 
 namespace pd {
 
 namespace {
 
 constexpr size_t kHeaderBytes = 32;
-
-template <class T>
-void put(std::string& out, T v) {
-  char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  out.append(b, sizeof(T));
-}
-
-// Reads little-endian values from the file's bytes; every shortfall is an IoError.
-class Reader {
- public:
-  Reader(const std::string& path, std::string bytes) : path_(path), bytes_(std::move(bytes)) {}
-  template <class T>
-  T get() {
-    if (bytes_.size() - at_ < sizeof(T)) fail("truncated");
-    T v;
-    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-    return v;
-  }
-  size_t left() const { return bytes_.size() - at_; }
-  [[noreturn]] void fail(const std::string& why) const { throw io_error("read", path_, why); }
-
- private:
-  std::string path_;
-  std::string bytes_;
-  size_t at_ = 0;
-};
 
 }  // namespace
 
@@ -47,23 +18,21 @@ void write_tets_file(const std::string& path, const EmbeddedTets& t) {
   std::string out;
   out.reserve(kHeaderBytes + vertices * 12 + tets * 20);
   out.append(kTetsMagic, 8);
-  put(out, kTetsVersion);
-  put(out, uint32_t(0));
-  put(out, vertices);
-  put(out, tets);
+  put_bytes(out, kTetsVersion);
+  put_bytes(out, uint32_t(0));
+  put_bytes(out, vertices);
+  put_bytes(out, tets);
   for (const Vec3d& v : t.vertices)
-    for (double x : v) put(out, float(x));
+    for (double x : v) put_bytes(out, float(x));
   for (const auto& c : t.tets)
-    for (int32_t k : c) put(out, k);
-  for (int32_t p : t.particle) put(out, p);
+    for (int32_t k : c) put_bytes(out, k);
+  for (int32_t p : t.particle) put_bytes(out, p);
   write_file_atomic(path, out);
 }
 
 EmbeddedTets read_tets_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw io_error("read", path, "cannot open");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Reader r(path, std::move(bytes));
+  const std::string bytes = read_file_bytes(path);
+  ByteReader r(path, bytes);
   char magic[8];
   for (char& c : magic) c = r.get<char>();
   if (std::memcmp(magic, kTetsMagic, 8) != 0) r.fail("not a tetrahedra file (wrong magic)");

@@ -81,16 +81,22 @@ PD_HD inline bool line_triangle(Vec3 o, Vec3 d, Vec3 a, Vec3 b, Vec3 c, real* t,
 PD_HD inline bool first_triangle(const TrimtopesView& v, int32_t i, Vec3 o, Vec3 d, real ta, real tb, real* t,
                                  Vec3* normal) {
   bool found = false;
+  real best = tb;  // the nearest crossing so far, kept here and written once at the end
+  Vec3 best_normal{0, 0, 0};
   for (int32_t k = v.tri_start[i]; k < v.tri_start[i + 1]; ++k) {
     const Vec3* p = v.tri_vertex + 3 * int64_t(k);
     real tk;
     Vec3 nk;
     if (!line_triangle(o, d, p[0], p[1], p[2], &tk, &nk)) continue;
-    if (tk > ta && tk <= tb && (!found || tk < *t)) {
+    if (tk > ta && tk <= tb && (!found || tk < best)) {
       found = true;
-      *t = tk;
-      *normal = nk;
+      best = tk;
+      best_normal = nk;
     }
+  }
+  if (found) {
+    *t = best;
+    *normal = best_normal;
   }
   return found;
 }
