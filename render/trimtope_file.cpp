@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <sstream>
 
 #include "../host/io/atomic_file.h"
 #include "byte_file.h"
