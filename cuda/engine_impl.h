@@ -33,7 +33,8 @@ class EngineImpl final : public Engine {
         materials_(in.materials),
         step_params_(in.step),
         motion_(in.motion),
-        contact_(in.contact) {
+        contact_(in.contact),
+        screen_(in.screen) {
     features_ = features_of(materials_, contact_);
     const ParticleSet& ps = in.particles;
     n_ = int32_t(ps.size());
@@ -65,7 +66,7 @@ class EngineImpl final : public Engine {
       step_params_.time = real(time_ + dt);
       if (scripted_motion_) motion_.apply(time_ + dt, step_params_);
       launch_position_update(exec_, particles(), step_params_, contact_ ? contact_view() : ContactView{});
-      if (contact_) exec_.mark_flags();
+      if (contact_) exec_.mark_flags(kContactFlagEvent);
       compute_forces();
       launch_velocity_update(exec_, particles(), step_params_);
       time_ += dt;
@@ -108,6 +109,8 @@ class EngineImpl final : public Engine {
   }
 
   size_t memory_bytes() const override { return allocated_; }
+  int64_t force_passes() const override { return force_passes_; }
+  int64_t screened_passes() const override { return screened_passes_; }
   double critical_time_step() const override { return critical_dt_; }
 
   void save(EngineSnapshot& out) override {
@@ -277,7 +280,7 @@ class EngineImpl final : public Engine {
   // the last build (position_update raised the flag), or if there are none yet. A list that
   // overflows its room doubles the room of all and builds again.
   void refresh_contacts() {
-    const bool moved = exec_.take_flags() & (1u << kFlagMoved);
+    const bool moved = exec_.take_flags(kContactFlagMask, kContactFlagEvent) & (1u << kFlagMoved);
     if (contacts_built_ && !moved) return;
     const ParticlesView p = particles();
     launch_reset_bins(exec_, "pd/collection_reset", hash_view(true));
@@ -285,8 +288,8 @@ class EngineImpl final : public Engine {
     for (;;) {
       launch_build_contacts(exec_, p, hash_view(true), contact_view(), materials_, contact_quarter_max_,
                             exec_.flag(kFlagOverflow), exec_.flag(kFlagPairs));
-      exec_.mark_flags();
-      const uint32_t raised = exec_.take_flags();
+      exec_.mark_flags(kContactFlagEvent);
+      const uint32_t raised = exec_.take_flags(kContactFlagMask, kContactFlagEvent);
       contact_pairs_ = raised & (1u << kFlagPairs);
       if (!(raised & (1u << kFlagOverflow))) break;
       const size_t room = contact_partner_.size() * 2;
@@ -447,7 +450,7 @@ class EngineImpl final : public Engine {
     const BondsView b = bonds();
     launch_init(exec_, p, b, materials_, features_);
     if (features_.plastic) launch_plasticity(exec_, p, materials_);
-    launch_springforces(exec_, p, b, materials_, features_);
+    queue_springforces(p, b);
     if (contact_) {  // after springforces is queued: waiting for position_update's flag idles nothing
       refresh_contacts();
       if (contact_pairs_)
@@ -455,6 +458,26 @@ class EngineImpl final : public Engine {
     }
     if (body_forces_) launch_bodyforces(exec_, p, step_params_);
   }
+
+  // Kernel 4 in the form chosen from the pass before the last (bond_screen.h): that pass's
+  // flag is read after this one is queued, so the host waits for nothing the device still runs.
+  void queue_springforces(const ParticlesView& p, const BondsView& b) {
+    const bool screened =
+        screen_ == BondScreen::kAlways || (screen_ == BondScreen::kAuto && breaking_hold_ == 0);
+    const int parity = int(force_passes_ % kBrokeFlags);
+    launch_springforces(exec_, p, b, materials_, features_, screened, exec_.flag(kFlagBroke + parity));
+    exec_.mark_flags(kBrokeFlagEvent + parity);
+    screened_passes_ += screened;
+    if (force_passes_++ == 0) return;
+    const int last = int((force_passes_ - 2) % kBrokeFlags);
+    const bool broke = exec_.take_flags(1u << (kFlagBroke + last), kBrokeFlagEvent + last) != 0;
+    breaking_hold_ = broke ? kScreenHoldPasses : std::max(breaking_hold_ - 1, 0);
+  }
+
+  // Exec flag events: the contact flags', and one per parity of the force passes' broke flags.
+  static constexpr int kContactFlagEvent = 0, kBrokeFlagEvent = 1;
+  static_assert(kBrokeFlagEvent + kBrokeFlags <= Exec::kFlagEvents &&
+                kFlagBroke + kBrokeFlags <= Exec::kFlags);
 
   KernelStats stats_;
   Exec exec_;
@@ -464,6 +487,9 @@ class EngineImpl final : public Engine {
   MotionScript motion_;
   bool scripted_motion_ = !motion_.empty();
   bool contact_ = false;
+  BondScreen screen_ = BondScreen::kAuto;
+  int64_t force_passes_ = 0, screened_passes_ = 0;
+  int breaking_hold_ = 0;  // passes left to run with the breaking pass
   KernelFeatures features_;
   bool body_forces_ = false;
   int32_t n_ = 0;

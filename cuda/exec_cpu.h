@@ -96,16 +96,19 @@ class CpuExec {
   void flush_stats() {}
 
   // Flags the kernels raise (raise_flag) and the host reads: flag(k) for k < kFlags;
-  // mark_flags() after the launches that may raise them, take_flags() waits for those launches
-  // and returns the raised flags as bits (bit k: flag k), all cleared.
-  static constexpr int kFlags = 4;
+  // mark_flags(e) after the launches that may raise them (event e < kFlagEvents), take_flags(mask,
+  // e) waits for those launches and returns the raised flags of mask as bits (bit k: flag k),
+  // those cleared.
+  static constexpr int kFlags = 5;
+  static constexpr int kFlagEvents = 3;
   int32_t* flag(int k) {
     return &flags_[k];
   }
-  void mark_flags() {}
-  uint32_t take_flags() {
+  void mark_flags(int) {}
+  uint32_t take_flags(uint32_t mask, int) {
     uint32_t raised = 0;
     for (int k = 0; k < kFlags; ++k) {
+      if (!(mask >> k & 1u)) continue;
       raised |= uint32_t(flags_[k] != 0) << k;
       flags_[k] = 0;
     }
@@ -122,7 +125,7 @@ class CpuExec {
 
   KernelStats* stats_;
   std::vector<int64_t> histogram_;
-  int32_t flags_[kFlags] = {0, 0, 0, 0};
+  int32_t flags_[kFlags] = {};
 };
 
 }  // namespace pd

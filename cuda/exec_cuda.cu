@@ -48,7 +48,8 @@ CudaExec::~CudaExec() {
   for (auto e : free_events_) cudaEventDestroy(e);
   for (void* s : scratch_) cudaFree(s);
   if (flag_host_) cudaFreeHost(flag_host_);
-  if (flag_event_) cudaEventDestroy(flag_event_);
+  for (cudaEvent_t e : flag_event_)
+    if (e) cudaEventDestroy(e);
 }
 
 void CudaExec::describe(KernelStat* s, const void* kernel) {
@@ -183,21 +184,23 @@ int32_t* CudaExec::flag(int k) {
     void* device = nullptr;
     cuda_check(cudaHostGetDevicePointer(&device, host, 0), "flags");
     flag_device_ = static_cast<int32_t*>(device);
-    cuda_check(cudaEventCreateWithFlags(&flag_event_, cudaEventDisableTiming), "flags");
+    for (cudaEvent_t& e : flag_event_)
+      cuda_check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "flags");
   }
   return flag_device_ + k;
 }
 
-void CudaExec::mark_flags() {
-  if (flag_event_) cuda_check(cudaEventRecord(flag_event_), "flags");
+void CudaExec::mark_flags(int event) {
+  if (flag_host_) cuda_check(cudaEventRecord(flag_event_[event]), "flags");
 }
 
-uint32_t CudaExec::take_flags() {
+uint32_t CudaExec::take_flags(uint32_t mask, int event) {
   if (!flag_host_) return 0;
-  cuda_check(cudaEventSynchronize(flag_event_), "a kernel before reading the kernels' flags");
+  cuda_check(cudaEventSynchronize(flag_event_[event]), "a kernel before reading the kernels' flags");
   volatile int32_t* host = flag_host_;
   uint32_t raised = 0;
   for (int k = 0; k < kFlags; ++k) {
+    if (!(mask >> k & 1u)) continue;
     raised |= uint32_t(host[k] != 0) << k;
     host[k] = 0;
   }

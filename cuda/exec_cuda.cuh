@@ -101,13 +101,15 @@ class CudaExec {
   void fill_bytes(void* dst, int value, size_t bytes);
   void synchronize();
   // Flags the kernels raise (raise_flag) and the host reads without a copy (mapped host memory):
-  // flag(k) for k < kFlags; mark_flags() after the launches that may raise them, take_flags()
-  // waits for those launches (an event, so later launches keep running) and returns the raised
-  // flags as bits (bit k: flag k), all cleared.
-  static constexpr int kFlags = 4;
+  // flag(k) for k < kFlags; mark_flags(e) after the launches that may raise them (event e <
+  // kFlagEvents), take_flags(mask, e) waits for the launches before the last mark_flags(e) (an
+  // event, so later launches keep running) and returns the raised flags of mask as bits (bit k:
+  // flag k), those cleared.
+  static constexpr int kFlags = 5;
+  static constexpr int kFlagEvents = 3;
   int32_t* flag(int k);
-  void mark_flags();
-  uint32_t take_flags();
+  void mark_flags(int event);
+  uint32_t take_flags(uint32_t mask, int event);
   // Waits for the device, adds the timed launches to the stats, and reports any
   // asynchronous kernel error with the name of the kernel family last launched.
   void flush_stats();
@@ -131,7 +133,7 @@ class CudaExec {
   const char* last_name_ = "";
   int32_t* flag_host_ = nullptr;
   int32_t* flag_device_ = nullptr;
-  cudaEvent_t flag_event_ = nullptr;
+  cudaEvent_t flag_event_[kFlagEvents] = {};
 };
 
 }  // namespace pd

@@ -93,42 +93,51 @@ void launch_collisions(Exec& ex, ParticlesView p, ContactView c, MaterialTable m
                   [=] PD_HD(int64_t i) { collision_forces(int32_t(i), p, c, mt, stiffness); });
 }
 
-// Kernel 4, one instantiation per feature set so a scene pays only for what it uses. Writes the
-// force (the other force kernels add to it).
-template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice>
+// Kernel 4, one instantiation per feature set so a scene pays only for what it uses, in two
+// forms (bond_screen.h): kScreened, the pass without the breaking path. Writes the force (the
+// other force kernels add to it) and raises `broke` where a bond broke.
+template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, bool kScreened>
 PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
-                                    const MaterialTable& mt) {
-  if constexpr (kStateBased)
-    state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt);
+                                    const MaterialTable& mt, int32_t* broke) {
+  if constexpr (kStateBased && kScreened)
+    screened_state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt, broke);
+  else if constexpr (kStateBased)
+    state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt, broke);
+  else if constexpr (kScreened)
+    screened_spring_forces<kWeak, kLattice>(i, p, b, mt, broke);
   else
-    spring_forces<kWeak, kLattice>(i, p, b, mt);
+    spring_forces<kWeak, kLattice>(i, p, b, mt, broke);
 }
 
-template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, class Exec>
-void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, bool kScreened,
+          class Exec>
+void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, int32_t* broke) {
   // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
   // with weakened bonds 5 (48 registers; it would take 56 and run 4); state-based 4 (at most 64;
   // they spill at 48). The plain bond-based kernel has 48 either way and runs 4% slower with
   // the bound.
   constexpr int kMinBlocks = kStateBased ? 4 : (kWeak ? 5 : 0);
   ex.template parallel_for<kMinBlocks>("pd/springforces", p.n, [=] PD_HD(int64_t i) {
-    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice>(int32_t(i), p, b, mt);
+    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(int32_t(i), p, b, mt,
+                                                                                       broke);
   });
 }
 
 template <class Exec>
-void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
+void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
+                         bool screened, int32_t* broke) {
   static_bools(
-      [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice) {
+      [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto screen) {
         constexpr bool kState = decltype(state_based)::value;
         constexpr bool kPlastic = kState && decltype(plastic)::value;
         constexpr bool kAniso = kState && decltype(anisotropic)::value;
         // Plasticity and anisotropy exist only for state-based materials: no bond-based copies.
         if constexpr (kState || (!decltype(plastic)::value && !decltype(anisotropic)::value))
           launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
-                                      decltype(lattice)::value>(ex, p, b, mt);
+                                      decltype(lattice)::value, decltype(screen)::value>(ex, p, b, mt, broke);
       },
-      f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds, f.lattice);
+      f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds, f.lattice,
+      screened);
 }
 
 // Kernel 5.

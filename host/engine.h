@@ -94,6 +94,10 @@ class Engine {
   virtual double critical_time_step() const = 0;
   // Bytes of backend memory held by the engine.
   virtual size_t memory_bytes() const = 0;
+  // Force passes run (one per step, and one at set-up) and those `springforces` ran screened
+  // (cuda/kernels/bond_screen.h).
+  virtual int64_t force_passes() const = 0;
+  virtual int64_t screened_passes() const = 0;
 };
 
 std::unique_ptr<Engine> make_cpu_engine(const SimulationInput& in);

@@ -29,6 +29,10 @@ struct ParticleSet {
 };
 
 // Everything an engine needs to run: particles, material constants and step parameters.
+// `springforces` in its screened form (cuda/kernels/bond_screen.h) while no bond broke in the
+// last passes (kAuto), never (kOff), or in every pass (kAlways); the results are the same.
+enum class BondScreen { kAuto, kOff, kAlways };
+
 struct SimulationInput {
   ParticleSet particles;
   MaterialTable materials;
@@ -37,6 +41,7 @@ struct SimulationInput {
   std::vector<CutTriangle> cuts;  // pre-cracks and weakened surfaces (bond_cuts.h)
   bool contact = false;           // launch `collection` and `collisions`
   bool lattice_families = true;   // box-grid bodies find partners by offset (lattice_families.h)
+  BondScreen screen = BondScreen::kAuto;
 };
 
 }  // namespace pd

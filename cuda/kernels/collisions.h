@@ -29,6 +29,7 @@ constexpr int32_t kContactCapacity = 8;
 // The backend flags (Exec::flag) contact raises: a particle left its skin (position_update); a
 // list outgrew its room, some list is not empty (the build).
 enum ContactFlag : int { kFlagMoved = 0, kFlagOverflow = 1, kFlagPairs = 2 };
+constexpr uint32_t kContactFlagMask = 0x7u;
 
 PD_HD inline Vec3 contact_force(Vec3 xi, Vec3 xj, real contact_distance, real stiffness) {
   const Vec3 d = xi - xj;

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "bond.h"
+#include "bond_screen.h"
 
 namespace pd {
 
@@ -17,17 +18,22 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, co
   return real(0.25) * m.micromodulus * s * s * r0 * vol_i * weight_j;
 }
 
+// The entry loop unrolled 8 times where bonds may be weakened, as the compiler picks (2) else
+// (bench/NOTES.md: each the faster of the two for its kernel).
+template <bool kWeak>
+constexpr int kSpringUnroll = kWeak ? 8 : 2;
+
+// The breaking pass: the forces, and the bonds that break now removed. Raises `broke` when one did.
 template <bool kWeak, bool kLattice = true>
-PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                                int32_t* broke) {
   const Material& m = mt.m[p.material[i]];
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};  // sum over the intact bonds of s beta V_j y/|y| (c V_i applied once at the end)
   real smin = real(INFINITY);
-  // The entry loop unrolled 8 times where bonds may be weakened, as the compiler picks (2) else
-  // (bench/NOTES.md: each the faster of the two for its kernel).
-  constexpr int kUnroll = kWeak ? 8 : 2;
-  const int32_t intact =
-      for_each_intact_bond<kLattice, kUnroll>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
+  const int32_t intact_before = p.intact[i];
+  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
+      i, p, b, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
           p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
@@ -37,10 +43,31 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
         f += (s * g.weight(m) * g.inv_r) * g.y;
         return true;
       });
-  f = (m.micromodulus * vol_i) * f;
-  p.force[i] = f;
-  p.strain_min[i] = intact > 0 ? smin : real(0);
-  p.intact[i] = intact;
+  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact, intact_before, broke);
+}
+
+// The screened pass (bond_screen.h): the same sums with no breaking path, and after the loop
+// the test that every break needs, s > w tau_i at the particle's own end (tau_i <= max(tau_i,
+// tau_j)); where it holds, the breaking pass runs for the particle from the start and its results
+// are kept. The sums are the breaking pass's expressions in its order, so where no bond breaks
+// both passes give the same bits.
+template <bool kWeak, bool kLattice = true>
+PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                                         int32_t* broke) {
+  const Material& m = mt.m[p.material[i]];
+  const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
+  Vec3 f{0, 0, 0};
+  real smin = real(INFINITY);
+  real nearest = -real(INFINITY);  // the largest s - w tau_i (s alone without weakened bonds)
+  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
+      i, p, b, [&](int64_t slot, int32_t, const auto& g) {
+        const real s = g.e * g.inv_r0;
+        nearest = max_of(nearest, kWeak ? s - bond_strength<kWeak>(b, slot, g) * tau_i : s);
+        smin = min_of(s, smin);
+        f += (s * g.weight(m) * g.inv_r) * g.y;
+      });
+  if (may_break<kWeak>(nearest, tau_i)) return spring_forces<kWeak, kLattice>(i, p, b, mt, broke);
+  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact, intact, broke);
 }
 
 }  // namespace pd

@@ -8,22 +8,31 @@
 // onto the yield surface where the particle yields (the return mapping, plasticity.h).
 #pragma once
 
+#include "bond_screen.h"
 #include "plasticity.h"
 #include "state_based.h"
 
 namespace pd {
 
-template <bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice = true>
-PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+// One pass over the bonds of particle i. kBreaking: the breaking pass (bonds past Chen's
+// criterion removed); else the screened pass (bond_screen.h), which returns false where a break
+// is not ruled out, having written nothing but the plastic history. kProject: move both ends'
+// e^p onto the yield surface (a breaking pass after a screened one reads them moved).
+template <bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, bool kBreaking, bool kProject>
+PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                                   int32_t* broke) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
   const Vec4 state_i = p.state[i];
   const real theta_i = state_i.x, inv_mw_i = state_i.y, phi_i = state_i.z;
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   const ForceStateCoefficients k_i = force_state_coefficients(theta_i, inv_mw_i, m);
   const real limit_i = chen_extension_limit(tau_i, phi_i, m);
-  const bool flows = kPlastic && m.plastic;  // state.w holds the return mapping's factor
+  const real own_limit = m.chen_fracture ? limit_i : tau_i;  // the screened pass's L
+  const bool flows = kPlastic && kProject && m.plastic;      // state.w holds the return mapping's factor
   Vec3 f{0, 0, 0};
   real smin = real(INFINITY);
+  real nearest = -real(INFINITY);  // screened pass: the largest own-end margin (bond_screen.h)
+  const int32_t intact_before = p.intact[i];
   // The entry loop unrolled 8 times: +3% (elastic) to +8% (plastic) against the compiler's 2
   // (bench/NOTES.md).
   const int32_t intact =
@@ -42,12 +51,18 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
         const real s = g.e * g.inv_r0;
         const real w = bond_strength<kWeak>(b, slot, g);
         const real tau_j = g.tau_j;
-        const bool breaks = m.chen_fracture ? g.e - ep_ij > w * limit_i &&
-                                                  g.e - ep_ji > w * chen_extension_limit(tau_j, state_j.z, m)
-                                            : s > max_of(tau_i, tau_j) * w;
-        if (breaks) {
-          p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
-          return false;  // broken: for_each_intact_bond records it
+        if constexpr (kBreaking) {
+          const bool breaks =
+              m.chen_fracture
+                  ? g.e - ep_ij > w * limit_i && g.e - ep_ji > w * chen_extension_limit(tau_j, state_j.z, m)
+                  : s > max_of(tau_i, tau_j) * w;
+          if (breaks) {
+            p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
+            return false;  // broken: for_each_intact_bond records it
+          }
+        } else {
+          const real own = m.chen_fracture ? g.e - ep_ij : s;
+          nearest = max_of(nearest, kWeak ? own - w * own_limit : own);
         }
         smin = min_of(s, smin);
         const ForceStateCoefficients k_j = force_state_coefficients(state_j.x, state_j.y, m);
@@ -56,10 +71,23 @@ PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const Ma
         f += (t * g.weight(m) * g.inv_r) * g.y;
         return true;
       });
-  f = vol_i * f;
-  p.force[i] = f;
-  p.strain_min[i] = intact > 0 ? smin : real(0);
-  p.intact[i] = intact;
+  if (!kBreaking && may_break<kWeak>(nearest, own_limit)) return false;
+  write_bond_forces(i, p, vol_i * f, smin, intact, intact_before, broke);
+  return true;
+}
+
+// The breaking pass, and the screened pass with the breaking pass where it cannot rule a break out.
+template <bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice = true>
+PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                               int32_t* broke) {
+  state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, true, true>(i, p, b, mt, broke);
+}
+
+template <bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice = true>
+PD_HD inline void screened_state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                                        int32_t* broke) {
+  if (!state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, false, true>(i, p, b, mt, broke))
+    state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, true, false>(i, p, b, mt, broke);
 }
 
 }  // namespace pd

@@ -15,6 +15,7 @@ struct BenchOptions {
   double horizon = 3.0;              // delta / lambda of the lattice
   bool contact = false;              // lattice: launch collection + collisions
   bool explicit_families = false;    // box-grid bodies read partner indices as other bodies do
+  std::string screen = "auto";       // springforces: auto | off | always (cuda/kernels/bond_screen.h)
   std::string model = "bond_based";  // lattice material: bond_based | state_based | plastic
   std::string backend = "auto";
   int64_t steps = 200;

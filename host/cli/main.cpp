@@ -65,6 +65,11 @@ int main(int argc, char** argv) {
       "--explicit-families", bench.explicit_families,
       "find every partner through its stored index (box-grid bodies otherwise use lattice offsets)");
   bench_cmd
+      ->add_option("--screen", bench.screen,
+                   "springforces without the breaking path while no bond broke lately (auto), never "
+                   "(off), or in every step (always)")
+      ->check(CLI::IsMember({"auto", "off", "always"}));
+  bench_cmd
       ->add_option("--model", bench.model,
                    "lattice material: bond_based | state_based | plastic | anisotropic")
       ->check(CLI::IsMember({"bond_based", "state_based", "plastic", "anisotropic"}));

@@ -68,7 +68,7 @@ struct PlasticBlock : testing::ParticleArrays {
     const BondsView b = bonds();
     for (int32_t i = 0; i < p.n; ++i) init_particle<true, false, false, true>(i, p, b, in.materials);
     for (int32_t i = 0; i < p.n; ++i) yield_test(i, p, in.materials);
-    for (int32_t i = 0; i < p.n; ++i) state_forces<true, false, false, false>(i, p, b, in.materials);
+    for (int32_t i = 0; i < p.n; ++i) state_forces<true, false, false, false>(i, p, b, in.materials, &broke);
   }
 };
 

@@ -24,7 +24,8 @@ struct Pair : testing::ParticleArrays {
     tau0 = {limit, limit};
     smin = {0, 0};
     material = {0, 0};
-    body = intact = {0, 0};
+    body = {0, 0};
+    intact = {1, 1};  // the bond, before the pass
     flags = {0, 0};
     ledger = {Ledger(), Ledger()};
     neighbor.assign(kSliceWidth, 0);
@@ -45,7 +46,7 @@ struct Pair : testing::ParticleArrays {
     return b;
   }
   void run() {
-    for (int i = 0; i < 2; ++i) spring_forces<false, false>(i, view(), bonds(), mt);
+    for (int i = 0; i < 2; ++i) spring_forces<false, false>(i, view(), bonds(), mt, &broke);
   }
 };
 
@@ -65,6 +66,7 @@ TEST(SpringForces, StretchedBondForceMatchesFormula) {
   EXPECT_FLOAT_EQ(pair.force[1].y, -f.y);
   EXPECT_NEAR(pair.smin[0], s, 1e-6);
   EXPECT_EQ(pair.intact[0], 1);
+  EXPECT_EQ(pair.broke, 0);
 }
 
 TEST(SpringForces, ElongationHasNoCancellation) {
@@ -86,6 +88,7 @@ TEST(SpringForces, BondPastItsLimitBreaksFromBothEnds) {
   EXPECT_EQ(bond_partner(pair.neighbor[0]), 1);
   EXPECT_EQ(pair.intact[0], 0);
   EXPECT_EQ(pair.intact[1], 0);
+  EXPECT_EQ(pair.broke, 1);  // the flag that keeps the next passes on the breaking form
   EXPECT_EQ(pair.force[0].x, 0);
 }
 

@@ -131,7 +131,7 @@ TEST(StateBased, HomogeneousDeformationIsInEquilibrium) {
   g[1][2] = 4e-4;
   g[2][1] = -2e-4;
   a.deform(g);
-  state_forces<false, false, false>(0, a.view(), a.bonds(), a.table);
+  state_forces<false, false, false>(0, a.view(), a.bonds(), a.table, &a.broke);
   const double bond_scale = std::fabs(a.stress()[0][0]);  // ~ the size of single bond terms summed
   EXPECT_LT(length(a.force[0]), 1e3 * kEps * bond_scale);
   EXPECT_EQ(a.intact[0], a.family_size());
@@ -292,10 +292,10 @@ TEST(StateBased, IsotropicInstantiationMatchesTheGeneralOne) {
   g[0][0] = 1e-3;
   g[0][2] = 3e-4;
   a.deform(g);
-  state_forces<false, false, false>(0, a.view(), a.bonds(), a.table);
+  state_forces<false, false, false>(0, a.view(), a.bonds(), a.table, &a.broke);
   const Vec3 isotropic = a.force[0];
   a.force[0] = Vec3{1, 2, 3};  // overwritten, not added to
-  state_forces<false, true, false>(0, a.view(), a.bonds(), a.table);
+  state_forces<false, true, false>(0, a.view(), a.bonds(), a.table, &a.broke);
   EXPECT_EQ(a.force[0].x, isotropic.x);
   EXPECT_EQ(a.force[0].y, isotropic.y);
   EXPECT_EQ(a.force[0].z, isotropic.z);

@@ -149,11 +149,8 @@ void expect_same_run(SimulationInput in, int64_t steps) {
   EXPECT_EQ(differ, 0);
 }
 
-// A block pulled apart in x at +-v: bonds break across the middle.
 SimulationInput pulled_apart(SimulationInput in, int nx, double v) {
-  for (size_t i = 0; i < in.particles.size(); ++i)
-    in.particles.velocity[i] = {real(in.particles.rest[i].x < 0.5 * nx * kLambda ? -v : v), 0, 0};
-  return in;
+  return testing::pulled_apart(std::move(in), nx, kLambda, v);
 }
 
 TEST(LatticeFamilies, BondBasedBreakingRunsAsWithExplicitFamilies) {

@@ -64,6 +64,24 @@ inline SimulationInput state_block(int nx, int ny, int nz, double lambda, double
   return in;
 }
 
+// The block of nx particles across x (spacing lambda) pulled apart at +-v about its middle:
+// bonds break across it.
+inline SimulationInput pulled_apart(SimulationInput in, int nx, double lambda, double v) {
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    in.particles.velocity[i] = {real(in.particles.rest[i].x < 0.5 * nx * lambda ? -v : v), 0, 0};
+  return in;
+}
+
+// The bonds across the plane x = x0 weakened to `strength` (two triangles covering it).
+inline void weaken_plane(SimulationInput& in, double x0, double strength) {
+  CutTriangle a, b;
+  a.corner = {{{x0, -1, -1}, {x0, 1, -1}, {x0, 1, 1}}};
+  b.corner = {{{x0, -1, -1}, {x0, 1, 1}, {x0, -1, 1}}};
+  a.strength = b.strength = strength;
+  in.cuts.push_back(a);
+  in.cuts.push_back(b);
+}
+
 // Total momentum of `vel` with the input's masses, and the sum of |m v| (its scale).
 inline std::array<double, 3> total_momentum(const SimulationInput& in, const std::vector<Vec3>& vel,
                                             double* scale = nullptr) {

@@ -16,6 +16,7 @@ struct ParticleArrays {
   std::vector<int32_t> body, intact;
   std::vector<uint8_t> flags;
   std::vector<Ledger> ledger;
+  int32_t broke = 0;  // the flag a force pass raises where a bond broke (kernels/bond_screen.h)
 
   ParticlesView view() {
     ParticlesView p;

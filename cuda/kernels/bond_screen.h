@@ -1,0 +1,49 @@
+// Screened force passes (bench/NOTES.md, "Forces without the breaking path"): `springforces`
+// has two forms of each kernel, compiled apart so that neither carries the other's code in its
+// loop. The breaking pass tests every bond against its limit and removes the bonds that break;
+// the screened pass sums the forces with no breaking path, tracks the nearest any bond came to
+// breaking at the particle's own end, and where that test does not rule a break out runs the
+// breaking pass for the particle from the start. The engine launches the screened pass while no
+// bond has broken for a while (kScreenHoldPasses) and the breaking pass otherwise: both give the
+// same bits, so the choice changes only the speed.
+#pragma once
+
+#include <cmath>
+
+#include "../views.h"
+
+namespace pd {
+
+// Flag (Exec::flag) raised by a force pass in which some bond broke: one per parity of the
+// pass's count, so the host reads one pass's flag while the next pass may raise the other.
+constexpr int kFlagBroke = 3;
+constexpr int kBrokeFlags = 2;
+
+// Force passes run with the breaking pass after a pass in which some bond broke.
+constexpr int kScreenHoldPasses = 64;
+
+// Whether a bond of the particle may break, from the largest over its bonds of the own-end
+// margin x - w L (x: the bond's stretch or Chen's extension, L: the particle's own limit, w
+// the bond's strength), or of x alone without weakened bonds (w = 1: the breaking test's
+// x > L exactly). With w, the breaking test compares x with w L rounded, which can be below
+// w L by half an ulp; the margin here may be fused (one rounding), so a break leaves it above
+// -|L| 2^-24, and the test keeps every margin above -|L| 2^-20.
+template <bool kWeak>
+PD_HD inline bool may_break(real nearest, real limit) {
+  if constexpr (kWeak)
+    return nearest > -std::fabs(limit) * real(0x1p-20);
+  else
+    return nearest > limit;
+}
+
+// The results of a force pass for particle i: its force, least stretch and intact bonds; raises
+// `broke` where a bond broke in it.
+PD_HD inline void write_bond_forces(int32_t i, const ParticlesView& p, Vec3 force, real smin, int32_t intact,
+                                    int32_t intact_before, int32_t* broke) {
+  p.force[i] = force;
+  p.strain_min[i] = intact > 0 ? smin : real(0);
+  p.intact[i] = intact;
+  if (intact < intact_before) raise_flag(broke);
+}
+
+}  // namespace pd
