@@ -113,10 +113,10 @@ template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool k
           class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, int32_t* broke) {
   // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
-  // with weakened bonds 5 (48 registers; it would take 56 and run 4); state-based 4 (at most 64;
-  // they spill at 48). The plain bond-based kernel has 48 either way and runs 4% slower with
-  // the bound.
-  constexpr int kMinBlocks = kStateBased ? 4 : (kWeak ? 5 : 0);
+  // with weakened bonds or screened 5 (48 registers; they would take 55-56 and run 4);
+  // state-based 4 (at most 64; they spill at 48). The plain bond-based breaking pass has 48
+  // either way and runs 4% slower with the bound.
+  constexpr int kMinBlocks = kStateBased ? 4 : (kWeak || kScreened ? 5 : 0);
   ex.template parallel_for<kMinBlocks>("pd/springforces", p.n, [=] PD_HD(int64_t i) {
     springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(int32_t(i), p, b, mt,
                                                                                        broke);
