@@ -23,7 +23,7 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, co
 template <bool kWeak>
 constexpr int kSpringUnroll = kWeak ? 8 : 2;
 
-// The breaking pass: the forces, and the bonds that break now removed. Raises `broke` when one did.
+// The breaking pass: the forces, and the bonds that break now removed. Raises `broke` when one does.
 template <bool kWeak, bool kLattice = true>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                 int32_t* broke) {
@@ -31,19 +31,19 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};  // sum over the intact bonds of s beta V_j y/|y| (c V_i applied once at the end)
   real smin = real(INFINITY);
-  const int32_t intact_before = p.intact[i];
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
       i, p, b, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
           p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
+          raise_flag(broke);
           return false;  // broken: for_each_intact_bond records it
         }
         smin = min_of(s, smin);
         f += (s * g.weight(m) * g.inv_r) * g.y;
         return true;
       });
-  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact, intact_before, broke);
+  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact);
 }
 
 // The screened pass (bond_screen.h): the same sums with no breaking path, and after the loop
@@ -67,7 +67,7 @@ PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b
         f += (s * g.weight(m) * g.inv_r) * g.y;
       });
   if (may_break<kWeak>(nearest, tau_i)) return spring_forces<kWeak, kLattice>(i, p, b, mt, broke);
-  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact, intact, broke);
+  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact);
 }
 
 }  // namespace pd

@@ -32,7 +32,6 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
   Vec3 f{0, 0, 0};
   real smin = real(INFINITY);
   real nearest = -real(INFINITY);  // screened pass: the largest own-end margin (bond_screen.h)
-  const int32_t intact_before = p.intact[i];
   // The entry loop unrolled 8 times: +3% (elastic) to +8% (plastic) against the compiler's 2
   // (bench/NOTES.md).
   const int32_t intact =
@@ -58,6 +57,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
                   : s > max_of(tau_i, tau_j) * w;
           if (breaks) {
             p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
+            raise_flag(broke);
             return false;  // broken: for_each_intact_bond records it
           }
         } else {
@@ -72,7 +72,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
         return true;
       });
   if (!kBreaking && may_break<kWeak>(nearest, own_limit)) return false;
-  write_bond_forces(i, p, vol_i * f, smin, intact, intact_before, broke);
+  write_bond_forces(i, p, vol_i * f, smin, intact);
   return true;
 }
 
