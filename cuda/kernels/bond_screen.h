@@ -14,9 +14,8 @@
 
 namespace pd {
 
-// Flag (Exec::flag) raised by a force pass in which some bond broke (in the breaking branch,
-// which leaves the loop's registers as they were): one per parity of the pass's count, so the
-// host reads one pass's flag while the next pass may raise the other.
+// Flag (Exec::flag) raised by a force pass in which some bond broke: one per parity of the
+// pass's count, so the host reads one pass's flag while the next pass may raise the other.
 constexpr int kFlagBroke = 3;
 constexpr int kBrokeFlags = 2;
 
@@ -37,9 +36,14 @@ PD_HD inline bool may_break(real nearest, real limit) {
     return nearest > limit;
 }
 
-// The results of a force pass for particle i: its force, least stretch and intact bonds.
-PD_HD inline void write_bond_forces(int32_t i, const ParticlesView& p, Vec3 force, real smin,
-                                    int32_t intact) {
+// The results of a force pass for particle i: its force, least stretch and intact bonds. The
+// breaking pass passes its flag `broke` (the screened pass null: it breaks nothing), raised where
+// the particle has fewer intact bonds than the last pass left, read after the loop so that no
+// register is held over it (raised in the breaking branch it cost the weakened-bond kernel 3%,
+// bench/NOTES.md).
+PD_HD inline void write_bond_forces(int32_t i, const ParticlesView& p, Vec3 force, real smin, int32_t intact,
+                                    int32_t* broke) {
+  if (broke && intact < p.intact[i]) raise_flag(broke);
   p.force[i] = force;
   p.strain_min[i] = intact > 0 ? smin : real(0);
   p.intact[i] = intact;
