@@ -36,11 +36,17 @@ PD_HD inline bool may_break(real nearest, real limit) {
     return nearest > limit;
 }
 
-// The results of a force pass for particle i: its force, least stretch and intact bonds. The
-// breaking pass passes its flag `broke` (the screened pass null: it breaks nothing), raised where
-// the particle has fewer intact bonds than the last pass left, read after the loop so that no
-// register is held over it (raised in the breaking branch it cost the weakened-bond kernel 3%,
-// bench/NOTES.md).
+// Where a breaking pass raises `broke`: in its breaking branch, or after its loop where the
+// particle has fewer intact bonds than the last pass left. Each form changes the compiler's code
+// of the loop; the faster for each kernel, measured on the H100 (bench/NOTES.md): in the branch
+// for the plain bond-based and state-based kernels (after the loop the bond-based one took 56
+// registers and ran 12% slower, the plastic one 7%), after the loop where bonds may be weakened
+// (in the branch: 7% slower).
+template <bool kWeak>
+constexpr bool kRaiseInBranch = !kWeak;
+
+// The results of a force pass for particle i: its force, least stretch and intact bonds; raises
+// `broke` (where not null) where the particle has fewer intact bonds than the last pass left.
 PD_HD inline void write_bond_forces(int32_t i, const ParticlesView& p, Vec3 force, real smin, int32_t intact,
                                     int32_t* broke) {
   if (broke && intact < p.intact[i]) raise_flag(broke);

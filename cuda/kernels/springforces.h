@@ -36,13 +36,15 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
         const real s = g.e * g.inv_r0;
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
           p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
+          if (kRaiseInBranch<kWeak>) raise_flag(broke);
           return false;  // broken: for_each_intact_bond records it
         }
         smin = min_of(s, smin);
         f += (s * g.weight(m) * g.inv_r) * g.y;
         return true;
       });
-  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact, broke);
+  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact,
+                    kRaiseInBranch<kWeak> ? nullptr : broke);
 }
 
 // The screened pass (bond_screen.h): the same sums with no breaking path, and after the loop

@@ -57,6 +57,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
                   : s > max_of(tau_i, tau_j) * w;
           if (breaks) {
             p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
+            if (kRaiseInBranch<kWeak>) raise_flag(broke);
             return false;  // broken: for_each_intact_bond records it
           }
         } else {
@@ -71,7 +72,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
         return true;
       });
   if (!kBreaking && may_break<kWeak>(nearest, own_limit)) return false;
-  write_bond_forces(i, p, vol_i * f, smin, intact, kBreaking ? broke : nullptr);
+  write_bond_forces(i, p, vol_i * f, smin, intact, kBreaking && !kRaiseInBranch<kWeak> ? broke : nullptr);
   return true;
 }
 
