@@ -41,7 +41,7 @@ PD_HD inline bool may_break(real nearest, real limit) {
 // of the loop; the faster for each kernel, measured on the H100 (bench/NOTES.md): in the branch
 // for the plain bond-based and state-based kernels (after the loop the bond-based one took 56
 // registers and ran 12% slower, the plastic one 7%), after the loop where bonds may be weakened
-// (in the branch: 7% slower).
+// (in the branch: 6% slower).
 template <bool kWeak>
 constexpr bool kRaiseInBranch = !kWeak;
 

@@ -114,7 +114,9 @@ int bench_command(const BenchOptions& opt) {
   engine->stats().reset_times();
   const int64_t screened_before = engine->screened_passes();
   const auto t0 = std::chrono::steady_clock::now();
+  profiler_range_push("pd-bench-timed");  // what scripts/profile.sh profiles after a long warm-up
   engine->advance(opt.steps);
+  profiler_range_pop();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const int64_t screened = engine->screened_passes() - screened_before;
 
