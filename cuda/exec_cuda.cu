@@ -1,7 +1,7 @@
 // Non-template parts of the CUDA backend.
 #include <cub/device/device_scan.cuh>
 
-#include "exec_cuda.cuh"
+#include "cuda/exec_cuda.cuh"
 
 namespace pd {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "kernel_stats.h"
-#include "pd_common.h"
+#include "cuda/kernel_stats.h"
+#include "cuda/pd_common.h"
 
 namespace pd {
 

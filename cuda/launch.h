@@ -2,17 +2,17 @@
 // profiler reports. Views and parameters are captured by value. One source for both backends.
 #pragma once
 
-#include "features.h"
-#include "kernels/bodyforces.h"
-#include "kernels/collection.h"
-#include "kernels/collisions.h"
-#include "kernels/energy.h"
-#include "kernels/family.h"
-#include "kernels/init.h"
-#include "kernels/integrate.h"
-#include "kernels/plasticity.h"
-#include "kernels/springforces.h"
-#include "kernels/springforces_state.h"
+#include "cuda/features.h"
+#include "cuda/kernels/bodyforces.h"
+#include "cuda/kernels/collection.h"
+#include "cuda/kernels/collisions.h"
+#include "cuda/kernels/energy.h"
+#include "cuda/kernels/family.h"
+#include "cuda/kernels/init.h"
+#include "cuda/kernels/integrate.h"
+#include "cuda/kernels/plasticity.h"
+#include "cuda/kernels/springforces.h"
+#include "cuda/kernels/springforces_state.h"
 
 namespace pd {
 

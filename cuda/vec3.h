@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "pd_common.h"
+#include "cuda/pd_common.h"
 
 namespace pd {
 

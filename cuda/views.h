@@ -2,8 +2,8 @@
 // parameter structs the kernels read. Owning buffers live in the engine (engine_impl.h).
 #pragma once
 
-#include "pd_common.h"
-#include "vec3.h"
+#include "cuda/pd_common.h"
+#include "cuda/vec3.h"
 
 namespace pd {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "geometry.h"
+#include "render/geometry.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "embree_scene.h"
+#include "render/embree_scene.h"
 
 #include <embree3/rtcore.h>
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "camera.h"
-#include "primitive_set.h"
+#include "render/camera.h"
+#include "render/primitive_set.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "environment.h"
+#include "render/environment.h"
 
 #include <cerrno>
 #include <cstdio>

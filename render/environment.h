@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sh.h"
+#include "render/sh.h"
 
 namespace pd {
 

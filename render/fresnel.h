@@ -9,7 +9,7 @@
 // own amplitude coefficients, so R + T = 1 is a check of the formulas (tests/render).
 #pragma once
 
-#include "geometry.h"
+#include "render/geometry.h"
 
 namespace pd {
 

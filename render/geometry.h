@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "../cuda/vec3.h"
+#include "cuda/vec3.h"
 
 namespace pd {
 

@@ -5,8 +5,8 @@
 // part, reflects back inside and walks on. Fresnel weights: fresnel.h.
 #pragma once
 
-#include "fresnel.h"
-#include "union_walk.h"
+#include "render/fresnel.h"
+#include "render/union_walk.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "hidden_tets.h"
+#include "render/hidden_tets.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <parallel/algorithm>
 
-#include "shading.h"
+#include "render/shading.h"
 
 namespace pd {
 

@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "primitive_set.h"
+#include "render/primitive_set.h"
 
 namespace pd {
 

@@ -1,9 +1,7 @@
-#include "image.h"
+#include "render/image.h"
 
 #include <cmath>
 #include <stdexcept>
-
-#include "../host/io/atomic_file.h"
 
 // The one stb_image_write implementation of the project, with internal linkage.
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -40,10 +38,6 @@ double psnr(const ImageRGB8& a, const ImageRGB8& b) {
   }
   if (sum == 0) return INFINITY;
   return 10 * std::log10(255.0 * 255.0 * double(a.rgb.size()) / sum);
-}
-
-void write_png(const std::string& path, const ImageRGB8& image) {
-  write_file_atomic(path, encode_png(image));
 }
 
 }  // namespace pd

@@ -1,5 +1,5 @@
 // 8-bit sRGB images: the linear-to-sRGB encoding the renderer kernel applies per pixel, and
-// PNG output.
+// PNG encoding (host/io/png_file.h writes the file).
 #pragma once
 
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry.h"
+#include "render/geometry.h"
 
 namespace pd {
 
@@ -36,8 +36,5 @@ double psnr(const ImageRGB8& a, const ImageRGB8& b);
 // The image as PNG file bytes (stb_image_write, 8-bit RGB). Throws std::runtime_error if the
 // encoder fails and std::invalid_argument if the pixel buffer does not match the size.
 std::string encode_png(const ImageRGB8& image);
-
-// Writes the PNG atomically (write_file_atomic); throws IoError on failure.
-void write_png(const std::string& path, const ImageRGB8& image);
 
 }  // namespace pd

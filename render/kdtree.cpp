@@ -1,4 +1,4 @@
-#include "kdtree.h"
+#include "render/kdtree.h"
 
 #include <algorithm>
 #include <chrono>

@@ -11,7 +11,7 @@
 
 #include <vector>
 
-#include "geometry.h"
+#include "render/geometry.h"
 
 namespace pd {
 

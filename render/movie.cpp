@@ -1,4 +1,4 @@
-#include "movie.h"
+#include "render/movie.h"
 
 #include <spawn.h>
 #include <sys/wait.h>

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "primitives.h"
+#include "render/primitives.h"
 
 namespace pd {
 

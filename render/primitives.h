@@ -11,8 +11,8 @@
 // bit for bit wherever it is tested (the kd-tree tests rely on that).
 #pragma once
 
-#include "geometry.h"
-#include "trimtope.h"
+#include "render/geometry.h"
+#include "render/trimtope.h"
 
 namespace pd {
 

@@ -1,7 +1,7 @@
 // Backend choice and the host-side preparation shared by both renderers.
-#include "renderer.h"
+#include "render/renderer.h"
 
-#include "hidden_tets.h"
+#include "render/hidden_tets.h"
 
 #include <algorithm>
 #include <stdexcept>

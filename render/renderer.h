@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "camera.h"
-#include "environment.h"
-#include "image.h"
-#include "kdtree.h"
-#include "primitive_set.h"
-#include "shading.h"
+#include "render/camera.h"
+#include "render/environment.h"
+#include "render/image.h"
+#include "render/kdtree.h"
+#include "render/primitive_set.h"
+#include "render/shading.h"
 
 namespace pd {
 

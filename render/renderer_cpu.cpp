@@ -1,8 +1,8 @@
 // The CPU renderer: the shared pixel kernel run by OpenMP loops.
 #include <omp.h>
 
-#include "../cuda/exec_cpu.h"
-#include "renderer_impl.h"
+#include "cuda/exec_cpu.h"
+#include "render/renderer_impl.h"
 
 namespace pd {
 

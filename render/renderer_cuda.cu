@@ -1,7 +1,7 @@
 // The CUDA renderer: the shared pixel kernel, one pixel per thread.
-#include "../cuda/exec_cuda.cuh"
-#include "../host/engine.h"
-#include "renderer_impl.h"
+#include "cuda/engine/engine.h"
+#include "cuda/exec_cuda.cuh"
+#include "render/renderer_impl.h"
 
 namespace pd {
 

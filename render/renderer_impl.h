@@ -11,11 +11,11 @@
 #include <string>
 #include <utility>
 
-#include "../cuda/device_array.h"
-#include "../cuda/kernel_stats.h"
-#include "glass.h"
-#include "renderer.h"
-#include "traverse.h"
+#include "cuda/device_array.h"
+#include "cuda/kernel_stats.h"
+#include "render/glass.h"
+#include "render/renderer.h"
+#include "render/traverse.h"
 
 namespace pd {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry.h"
+#include "render/geometry.h"
 
 namespace pd {
 

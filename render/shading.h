@@ -4,8 +4,8 @@
 // wood texture. No shadows.
 #pragma once
 
-#include "environment.h"
-#include "sky.h"
+#include "render/environment.h"
+#include "render/sky.h"
 
 namespace pd {
 

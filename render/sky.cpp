@@ -1,4 +1,4 @@
-#include "sky.h"
+#include "render/sky.h"
 
 namespace pd {
 

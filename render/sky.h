@@ -3,7 +3,7 @@
 // for the specular highlight) and is the background that rays missing everything see.
 #pragma once
 
-#include "sh.h"
+#include "render/sh.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "tet_lattice.h"
+#include "render/tet_lattice.h"
 
 #include <vector>
 

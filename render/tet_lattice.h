@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "primitive_set.h"
+#include "render/primitive_set.h"
 
 namespace pd {
 

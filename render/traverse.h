@@ -11,8 +11,8 @@
 // the one a brute-force loop over all primitives finds.
 #pragma once
 
-#include "kdtree.h"
-#include "primitives.h"
+#include "render/kdtree.h"
+#include "render/primitives.h"
 
 namespace pd {
 

@@ -24,7 +24,7 @@
 // ray to V and an inside start leaves through the cell's exit face.
 #pragma once
 
-#include "geometry.h"
+#include "render/geometry.h"
 
 namespace pd {
 

@@ -10,8 +10,8 @@
 // `gap` should cover, while real cracks are wider).
 #pragma once
 
-#include "kdtree.h"
-#include "primitives.h"
+#include "render/kdtree.h"
+#include "render/primitives.h"
 
 namespace pd {
 

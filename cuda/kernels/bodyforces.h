@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "../views.h"
+#include "cuda/views.h"
 
 namespace pd {
 

@@ -3,7 +3,7 @@
 
 #include <type_traits>
 
-#include "../views.h"
+#include "cuda/views.h"
 
 namespace pd {
 

@@ -10,7 +10,7 @@
 
 #include <cmath>
 
-#include "../views.h"
+#include "cuda/views.h"
 
 namespace pd {
 

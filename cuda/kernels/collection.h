@@ -3,7 +3,7 @@
 // where atomic bin insertion would not be.
 #pragma once
 
-#include "../views.h"
+#include "cuda/views.h"
 
 namespace pd {
 

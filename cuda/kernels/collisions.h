@@ -8,8 +8,8 @@
 // wrote.
 #pragma once
 
-#include "../views.h"
-#include "collection.h"
+#include "cuda/kernels/collection.h"
+#include "cuda/views.h"
 
 namespace pd {
 

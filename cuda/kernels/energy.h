@@ -5,9 +5,9 @@
 // stays constant up to the integrator's error; a blow-up makes it grow without bound.
 #pragma once
 
-#include "collisions.h"
-#include "springforces.h"
-#include "state_based.h"
+#include "cuda/kernels/collisions.h"
+#include "cuda/kernels/springforces.h"
+#include "cuda/kernels/state_based.h"
 
 namespace pd {
 

@@ -5,9 +5,9 @@
 // Families are then sorted by partner index, so they are identical on CPU and GPU.
 #pragma once
 
-#include "../views.h"
-#include "bond.h"
-#include "collection.h"
+#include "cuda/kernels/bond.h"
+#include "cuda/kernels/collection.h"
+#include "cuda/views.h"
 
 namespace pd {
 

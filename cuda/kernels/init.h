@@ -4,8 +4,8 @@
 // deviatoric norm that `plasticity` tests.
 #pragma once
 
-#include "../views.h"
-#include "state_based.h"
+#include "cuda/kernels/state_based.h"
+#include "cuda/views.h"
 
 namespace pd {
 

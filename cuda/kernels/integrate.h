@@ -4,8 +4,8 @@
 //   velocity update: v += dt/2 f/m   (with the forces of the new positions)
 #pragma once
 
-#include "../views.h"
-#include "collisions.h"
+#include "cuda/kernels/collisions.h"
+#include "cuda/views.h"
 
 namespace pd {
 

@@ -14,8 +14,8 @@
 
 #include <cmath>
 
-#include "family.h"
-#include "state_based.h"
+#include "cuda/kernels/family.h"
+#include "cuda/kernels/state_based.h"
 
 namespace pd {
 

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "bond.h"
-#include "bond_screen.h"
+#include "cuda/kernels/bond.h"
+#include "cuda/kernels/bond_screen.h"
 
 namespace pd {
 

@@ -8,9 +8,9 @@
 // onto the yield surface where the particle yields (the return mapping, plasticity.h).
 #pragma once
 
-#include "bond_screen.h"
-#include "plasticity.h"
-#include "state_based.h"
+#include "cuda/kernels/bond_screen.h"
+#include "cuda/kernels/plasticity.h"
+#include "cuda/kernels/state_based.h"
 
 namespace pd {
 

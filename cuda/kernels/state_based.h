@@ -13,8 +13,8 @@
 
 #include <cmath>
 
-#include "../views.h"
-#include "bond.h"
+#include "cuda/kernels/bond.h"
+#include "cuda/views.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "backend_choice.h"
+#include "host/app/backend_choice.h"
 
 #include <stdexcept>
 

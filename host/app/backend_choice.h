@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "../engine.h"
+#include "cuda/engine/engine.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "bench.h"
+#include "host/app/bench.h"
 
 #include <chrono>
 #include <cstdio>
@@ -8,14 +8,14 @@
 #include <iostream>
 #include <sstream>
 
-#include "../engine.h"
-#include "../io/atomic_file.h"
-#include "../material.h"
-#include "../scene/scene_setup.h"
-#include "backend_choice.h"
-#include "kernel_report.h"
-#include "provenance.h"
-#include "run.h"
+#include "cuda/engine/engine.h"
+#include "cuda/engine/material.h"
+#include "host/app/backend_choice.h"
+#include "host/app/kernel_report.h"
+#include "host/app/provenance.h"
+#include "host/app/run.h"
+#include "host/io/atomic_file.h"
+#include "host/scene/scene_setup.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "bench_fragments.h"
+#include "host/app/bench_fragments.h"
 
 #include <omp.h>
 #include <unistd.h>
@@ -12,15 +12,15 @@
 #include <stdexcept>
 #include <thread>
 
-#include "../fragments/adjacency.h"
-#include "../fragments/fragment_output.h"
-#include "../fragments/fragments_file.h"
-#include "../fragments/piece_mesh.h"
-#include "../fragments/ply_points.h"
-#include "../geometry/shapes.h"
-#include "../geometry/voronoi_particles.h"
-#include "../material.h"
-#include "provenance.h"
+#include "cuda/engine/material.h"
+#include "host/app/provenance.h"
+#include "host/fragments/adjacency.h"
+#include "host/fragments/fragment_output.h"
+#include "host/fragments/fragments_file.h"
+#include "host/fragments/piece_mesh.h"
+#include "host/fragments/ply_points.h"
+#include "host/geometry/shapes.h"
+#include "host/geometry/voronoi_particles.h"
 
 namespace pd {
 

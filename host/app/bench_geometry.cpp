@@ -1,4 +1,4 @@
-#include "bench_geometry.h"
+#include "host/app/bench_geometry.h"
 
 #include <omp.h>
 #include <unistd.h>
@@ -11,13 +11,13 @@
 #include <stdexcept>
 #include <thread>
 
-#include "../geometry/grid_particles.h"
-#include "../geometry/mesh_check.h"
-#include "../geometry/mesh_io.h"
-#include "../geometry/shapes.h"
-#include "../geometry/tet_particles.h"
-#include "../geometry/voronoi_particles.h"
-#include "provenance.h"
+#include "host/app/provenance.h"
+#include "host/geometry/grid_particles.h"
+#include "host/geometry/mesh_check.h"
+#include "host/geometry/mesh_io.h"
+#include "host/geometry/shapes.h"
+#include "host/geometry/tet_particles.h"
+#include "host/geometry/voronoi_particles.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "bench_render.h"
+#include "host/app/bench_render.h"
 
 #include <omp.h>
 
@@ -11,16 +11,16 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "../../render/renderer.h"
-#include "../../render/tet_lattice.h"
-#include "../../render/traverse.h"
-#include "../io/atomic_file.h"
-#include "backend_choice.h"
-#include "bench_two_level.h"
-#include "provenance.h"
-#include "run.h"
+#include "host/app/backend_choice.h"
+#include "host/app/bench_two_level.h"
+#include "host/app/provenance.h"
+#include "host/app/run.h"
+#include "host/io/atomic_file.h"
+#include "render/renderer.h"
+#include "render/tet_lattice.h"
+#include "render/traverse.h"
 #if defined(PERIFRAC_HAS_EMBREE)
-#include "../../render/embree_scene.h"
+#include "render/embree_scene.h"
 #endif
 
 namespace pd {

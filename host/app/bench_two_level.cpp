@@ -1,4 +1,4 @@
-#include "bench_two_level.h"
+#include "host/app/bench_two_level.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "../../render/traverse.h"
+#include "render/traverse.h"
 
 namespace pd {
 

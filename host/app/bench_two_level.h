@@ -9,9 +9,9 @@
 
 #include <cstdint>
 
-#include "../../render/camera.h"
-#include "../../render/kdtree.h"
-#include "../../render/primitive_set.h"
+#include "render/camera.h"
+#include "render/kdtree.h"
+#include "render/primitive_set.h"
 
 namespace pd {
 

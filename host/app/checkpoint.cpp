@@ -1,4 +1,4 @@
-#include "checkpoint.h"
+#include "host/app/checkpoint.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -6,8 +6,8 @@
 #include <map>
 #include <sstream>
 
-#include "../io/checksum.h"
-#include "../io/record_file.h"
+#include "host/io/checksum.h"
+#include "host/io/record_file.h"
 
 namespace pd {
 

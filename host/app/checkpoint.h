@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "../engine.h"
-#include "../fragments/smoothing.h"
-#include "../io/vtk_writer.h"
+#include "cuda/engine/engine.h"
+#include "host/fragments/smoothing.h"
+#include "host/io/vtk_writer.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "compare.h"
+#include "host/app/compare.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "../io/frame_file.h"
+#include "host/io/frame_file.h"
 
 namespace pd {
 

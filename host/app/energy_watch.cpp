@@ -1,9 +1,9 @@
-#include "energy_watch.h"
+#include "host/app/energy_watch.h"
 
 #include <cmath>
 #include <cstdio>
 
-#include "../io/atomic_file.h"
+#include "host/io/atomic_file.h"
 
 namespace pd {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "../engine.h"
+#include "cuda/engine/engine.h"
 
 namespace pd {
 

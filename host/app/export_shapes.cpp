@@ -1,12 +1,12 @@
-#include "export_shapes.h"
+#include "host/app/export_shapes.h"
 
 #include <cstdio>
 #include <filesystem>
 
-#include "../geometry/mesh_io.h"
-#include "../io/atomic_file.h"
-#include "../scene/scene_setup.h"
-#include "run.h"
+#include "host/app/run.h"
+#include "host/geometry/mesh_io.h"
+#include "host/io/atomic_file.h"
+#include "host/scene/scene_setup.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "interrupt.h"
+#include "host/app/interrupt.h"
 
 #include <csignal>
 #include <cstring>

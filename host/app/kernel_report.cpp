@@ -1,4 +1,4 @@
-#include "kernel_report.h"
+#include "host/app/kernel_report.h"
 
 #include <cstdio>
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "../../cuda/kernel_stats.h"
+#include "cuda/kernel_stats.h"
 
 namespace pd {
 

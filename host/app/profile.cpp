@@ -1,4 +1,4 @@
-#include "profile.h"
+#include "host/app/profile.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,12 +8,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "../engine.h"
-#include "../io/atomic_file.h"
-#include "../scene/scene.h"
-#include "../scene/scene_setup.h"
-#include "backend_choice.h"
-#include "provenance.h"
+#include "cuda/engine/engine.h"
+#include "host/app/backend_choice.h"
+#include "host/app/provenance.h"
+#include "host/io/atomic_file.h"
+#include "host/scene/scene.h"
+#include "host/scene/scene_setup.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "provenance.h"
+#include "host/app/provenance.h"
 
 #include <cstdio>
 #include <cstdlib>

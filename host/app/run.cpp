@@ -1,4 +1,4 @@
-#include "run.h"
+#include "host/app/run.h"
 
 #include <unistd.h>
 
@@ -10,21 +10,21 @@
 #include <optional>
 #include <sstream>
 
-#include "../../render/live_render.h"
-#include "../../render/tet_file.h"
-#include "../../render/trimtope_file.h"
-#include "../engine.h"
-#include "../fragments/fragment_output.h"
-#include "../io/atomic_file.h"
-#include "../io/frame_file.h"
-#include "../io/vtk_writer.h"
-#include "../scene/scene.h"
-#include "../scene/scene_setup.h"
-#include "backend_choice.h"
-#include "checkpoint.h"
-#include "energy_watch.h"
-#include "interrupt.h"
-#include "kernel_report.h"
+#include "cuda/engine/engine.h"
+#include "host/app/backend_choice.h"
+#include "host/app/checkpoint.h"
+#include "host/app/energy_watch.h"
+#include "host/app/interrupt.h"
+#include "host/app/kernel_report.h"
+#include "host/app/live_render.h"
+#include "host/fragments/fragment_output.h"
+#include "host/fragments/tet_file.h"
+#include "host/fragments/trimtope_file.h"
+#include "host/io/atomic_file.h"
+#include "host/io/frame_file.h"
+#include "host/io/vtk_writer.h"
+#include "host/scene/scene.h"
+#include "host/scene/scene_setup.h"
 
 namespace pd {
 

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <exception>
 
+#include "cuda/engine/engine.h"
+#include "cuda/engine/memory_budget.h"
 #include "host/app/bench.h"
 #include "host/app/bench_fragments.h"
 #include "host/app/bench_geometry.h"
@@ -11,13 +13,11 @@
 #include "host/app/compare.h"
 #include "host/app/export_shapes.h"
 #include "host/app/profile.h"
+#include "host/app/render_frames.h"
 #include "host/app/run.h"
-#include "host/engine.h"
+#include "host/app/validate_command.h"
 #include "host/io/atomic_file.h"
-#include "host/memory_budget.h"
 #include "host/scene/scene.h"
-#include "host/validation/validate_command.h"
-#include "render/render_frames.h"
 
 int main(int argc, char** argv) {
   using namespace pd;

@@ -1,4 +1,4 @@
-#include "adjacency.h"
+#include "host/fragments/adjacency.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
-#include "../adjacency.h"
-#include "../engine.h"
-#include "../particle_set.h"
+#include "cuda/engine/engine.h"
+#include "cuda/engine/particle_set.h"
+#include "host/geometry/element_adjacency.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "align.h"
+#include "host/fragments/align.h"
 
 #include <stdexcept>
 #include <string>

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "components.h"
-#include "kabsch.h"
+#include "host/fragments/components.h"
+#include "host/fragments/kabsch.h"
 
 namespace pd {
 

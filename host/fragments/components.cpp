@@ -1,4 +1,4 @@
-#include "components.h"
+#include "host/fragments/components.h"
 
 #include <algorithm>
 #include <array>

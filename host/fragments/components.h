@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "../engine.h"
-#include "adjacency.h"
-#include "face_links.h"
+#include "cuda/engine/engine.h"
+#include "host/fragments/adjacency.h"
+#include "host/fragments/face_links.h"
 
 namespace pd {
 

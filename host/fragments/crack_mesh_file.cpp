@@ -1,14 +1,14 @@
-#include "crack_mesh_file.h"
+#include "host/fragments/crack_mesh_file.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
 
-#include "../geometry/mesh_io.h"
-#include "../geometry/tri_mesh.h"
-#include "../io/atomic_file.h"
-#include "obj_text.h"
+#include "host/fragments/obj_text.h"
+#include "host/geometry/mesh_io.h"
+#include "host/geometry/tri_mesh.h"
+#include "host/io/atomic_file.h"
 
 namespace pd {
 

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "../geometry/vec3d.h"
+#include "host/geometry/vec3d.h"
 
 namespace pd {
 

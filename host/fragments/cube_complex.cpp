@@ -1,4 +1,4 @@
-#include "cube_complex.h"
+#include "host/fragments/cube_complex.h"
 
 #include <algorithm>
 #include <array>

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "../../cuda/vec3.h"
-#include "../adjacency.h"
-#include "element_complex.h"
+#include "cuda/vec3.h"
+#include "host/fragments/element_complex.h"
+#include "host/geometry/element_adjacency.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "element_complex.h"
+#include "host/fragments/element_complex.h"
 
 #include <algorithm>
 #include <limits>

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "../geometry/vec3d.h"
+#include "host/geometry/vec3d.h"
 
 namespace pd {
 

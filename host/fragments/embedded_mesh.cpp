@@ -1,4 +1,4 @@
-#include "embedded_mesh.h"
+#include "host/fragments/embedded_mesh.h"
 
 #include <algorithm>
 #include <numeric>

@@ -7,15 +7,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "../adjacency.h"
-#include "../engine.h"
-#include "../geometry/vec3d.h"
-#include "align.h"
-#include "components.h"
-#include "crack_mesh_file.h"
-#include "element_complex.h"
-#include "face_links.h"
-#include "tet_complex.h"  // EmbeddedTets, which the scene set-up keeps for tet bodies
+#include "cuda/engine/engine.h"
+#include "host/fragments/align.h"
+#include "host/fragments/components.h"
+#include "host/fragments/crack_mesh_file.h"
+#include "host/fragments/element_complex.h"
+#include "host/fragments/face_links.h"
+#include "host/fragments/tet_complex.h"  // EmbeddedTets, which the scene set-up keeps for tet bodies
+#include "host/geometry/element_adjacency.h"
+#include "host/geometry/vec3d.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "face_links.h"
+#include "host/fragments/face_links.h"
 
 #include <stdexcept>
 #include <string>

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "../engine.h"
+#include "cuda/engine/engine.h"
 
 namespace pd {
 

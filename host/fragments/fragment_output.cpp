@@ -1,13 +1,13 @@
-#include "fragment_output.h"
+#include "host/fragments/fragment_output.h"
 
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include "fragments_file.h"
-#include "piece_mesh.h"
-#include "ply_points.h"
+#include "host/fragments/fragments_file.h"
+#include "host/fragments/piece_mesh.h"
+#include "host/fragments/ply_points.h"
 
 namespace pd {
 

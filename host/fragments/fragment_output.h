@@ -11,15 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "../engine.h"
-#include "../io/frame.h"
-#include "../particle_set.h"
-#include "adjacency.h"
-#include "align.h"
-#include "components.h"
-#include "embedded_mesh.h"
-#include "particle_elements.h"
-#include "smoothing.h"
+#include "cuda/engine/engine.h"
+#include "cuda/engine/particle_set.h"
+#include "host/fragments/adjacency.h"
+#include "host/fragments/align.h"
+#include "host/fragments/components.h"
+#include "host/fragments/embedded_mesh.h"
+#include "host/fragments/particle_elements.h"
+#include "host/fragments/smoothing.h"
+#include "host/io/frame.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "fragments_file.h"
+#include "host/fragments/fragments_file.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -8,7 +8,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "../io/atomic_file.h"
+#include "host/io/atomic_file.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, ".pfg files are little endian");
 

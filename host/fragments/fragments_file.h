@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "align.h"
+#include "host/fragments/align.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "kabsch.h"
+#include "host/fragments/kabsch.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "../../cuda/vec3.h"
+#include "cuda/vec3.h"
 
 namespace pd {
 

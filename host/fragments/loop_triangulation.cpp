@@ -1,4 +1,4 @@
-#include "loop_triangulation.h"
+#include "host/fragments/loop_triangulation.h"
 
 #include <algorithm>
 #include <cmath>

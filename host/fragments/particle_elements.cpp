@@ -1,8 +1,8 @@
-#include "particle_elements.h"
+#include "host/fragments/particle_elements.h"
 
 #include <utility>
 
-#include "cube_complex.h"
+#include "host/fragments/cube_complex.h"
 
 namespace pd {
 

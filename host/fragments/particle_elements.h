@@ -6,12 +6,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "../../cuda/vec3.h"
-#include "../adjacency.h"
-#include "../geometry/particle_geometry.h"
-#include "element_complex.h"
-#include "tet_complex.h"
-#include "voronoi_complex.h"
+#include "cuda/vec3.h"
+#include "host/fragments/element_complex.h"
+#include "host/fragments/tet_complex.h"
+#include "host/fragments/voronoi_complex.h"
+#include "host/geometry/element_adjacency.h"
+#include "host/geometry/particle_geometry.h"
 
 namespace pd {
 

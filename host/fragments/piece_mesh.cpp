@@ -1,10 +1,10 @@
-#include "piece_mesh.h"
+#include "host/fragments/piece_mesh.h"
 
 #include <stdexcept>
 #include <string>
 
-#include "../io/atomic_file.h"
-#include "obj_text.h"
+#include "host/fragments/obj_text.h"
+#include "host/io/atomic_file.h"
 
 namespace pd {
 

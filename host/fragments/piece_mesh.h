@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "../geometry/vec3d.h"
-#include "components.h"
-#include "element_complex.h"
+#include "host/fragments/components.h"
+#include "host/fragments/element_complex.h"
+#include "host/geometry/vec3d.h"
 
 namespace pd {
 

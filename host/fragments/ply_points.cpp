@@ -1,4 +1,4 @@
-#include "ply_points.h"
+#include "host/fragments/ply_points.h"
 
 #include <algorithm>
 #include <array>
@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "../io/atomic_file.h"
+#include "host/io/atomic_file.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "PLY files are written little endian");
 

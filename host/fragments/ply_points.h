@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "../io/frame.h"
+#include "host/io/frame.h"
 
 namespace pd {
 

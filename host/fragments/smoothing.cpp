@@ -1,4 +1,4 @@
-#include "smoothing.h"
+#include "host/fragments/smoothing.h"
 
 #include <numeric>
 #include <stdexcept>

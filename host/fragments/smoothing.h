@@ -21,8 +21,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "align.h"
-#include "components.h"
+#include "host/fragments/align.h"
+#include "host/fragments/components.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "tet_complex.h"
+#include "host/fragments/tet_complex.h"
 
 #include <algorithm>
 #include <stdexcept>

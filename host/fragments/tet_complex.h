@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "../geometry/tet_mesh.h"
-#include "../geometry/vec3d.h"
-#include "element_complex.h"
+#include "host/fragments/element_complex.h"
+#include "host/geometry/tet_mesh.h"
+#include "host/geometry/vec3d.h"
 
 namespace pd {
 

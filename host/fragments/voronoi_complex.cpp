@@ -1,4 +1,4 @@
-#include "voronoi_complex.h"
+#include "host/fragments/voronoi_complex.h"
 
 #include <algorithm>
 #include <array>
@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "../geometry/convex_cell.h"
-#include "../geometry/inside_test.h"
-#include "loop_triangulation.h"
+#include "host/fragments/loop_triangulation.h"
+#include "host/geometry/convex_cell.h"
+#include "host/geometry/inside_test.h"
 
 namespace pd {
 

@@ -12,8 +12,8 @@
 
 #include <cstdint>
 
-#include "../geometry/particle_geometry.h"
-#include "element_complex.h"
+#include "host/fragments/element_complex.h"
+#include "host/geometry/particle_geometry.h"
 
 namespace pd {
 

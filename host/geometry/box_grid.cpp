@@ -1,4 +1,4 @@
-#include "box_grid.h"
+#include "host/geometry/box_grid.h"
 
 #include <algorithm>
 #include <cmath>

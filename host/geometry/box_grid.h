@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "../../cuda/vec3.h"
+#include "cuda/vec3.h"
 
 namespace pd {
 

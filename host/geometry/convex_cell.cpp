@@ -1,4 +1,4 @@
-#include "convex_cell.h"
+#include "host/geometry/convex_cell.h"
 
 #include <algorithm>
 #include <cmath>

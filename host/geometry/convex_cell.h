@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "vec3d.h"
+#include "host/geometry/vec3d.h"
 
 namespace pd {
 

@@ -1,9 +1,9 @@
-#include "grid_particles.h"
+#include "host/geometry/grid_particles.h"
 
 #include <cmath>
 
-#include "box_grid.h"
-#include "inside_test.h"
+#include "host/geometry/box_grid.h"
+#include "host/geometry/inside_test.h"
 
 namespace pd {
 

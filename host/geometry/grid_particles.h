@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "particle_geometry.h"
-#include "tri_mesh.h"
+#include "host/geometry/particle_geometry.h"
+#include "host/geometry/tri_mesh.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "inside_test.h"
+#include "host/geometry/inside_test.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tri_mesh.h"
+#include "host/geometry/tri_mesh.h"
 
 namespace pd {
 

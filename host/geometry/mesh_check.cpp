@@ -1,4 +1,4 @@
-#include "mesh_check.h"
+#include "host/geometry/mesh_check.h"
 
 #include <algorithm>
 #include <cmath>

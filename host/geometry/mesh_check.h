@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "tri_mesh.h"
+#include "host/geometry/tri_mesh.h"
 
 namespace pd {
 

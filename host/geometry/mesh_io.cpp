@@ -6,7 +6,7 @@
 #include <cstring>
 #include <memory>
 
-#include "mesh_io.h"
+#include "host/geometry/mesh_io.h"
 
 namespace pd {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "tri_mesh.h"
+#include "host/geometry/tri_mesh.h"
 
 namespace pd {
 

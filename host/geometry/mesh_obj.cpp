@@ -3,8 +3,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "../io/atomic_file.h"
-#include "mesh_io.h"
+#include "host/geometry/mesh_io.h"
+#include "host/io/atomic_file.h"
 
 namespace pd {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "../io/atomic_file.h"
-#include "mesh_io.h"
+#include "host/geometry/mesh_io.h"
+#include "host/io/atomic_file.h"
 
 namespace pd {
 

@@ -7,8 +7,8 @@
 #include <map>
 #include <string>
 
-#include "../io/atomic_file.h"
-#include "mesh_io.h"
+#include "host/geometry/mesh_io.h"
+#include "host/io/atomic_file.h"
 
 namespace pd {
 

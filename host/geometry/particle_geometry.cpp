@@ -1,4 +1,4 @@
-#include "particle_geometry.h"
+#include "host/geometry/particle_geometry.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "../adjacency.h"
-#include "stage_time.h"
-#include "tet_mesh.h"
-#include "vec3d.h"
-#include "voronoi_cells.h"
+#include "host/geometry/element_adjacency.h"
+#include "host/geometry/stage_time.h"
+#include "host/geometry/tet_mesh.h"
+#include "host/geometry/vec3d.h"
+#include "host/geometry/voronoi_cells.h"
 
 namespace pd {
 

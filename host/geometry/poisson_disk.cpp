@@ -1,11 +1,11 @@
-#include "poisson_disk.h"
+#include "host/geometry/poisson_disk.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 
-#include "../random.h"
+#include "host/geometry/random.h"
 
 namespace pd {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "inside_test.h"
+#include "host/geometry/inside_test.h"
 
 namespace pd {
 

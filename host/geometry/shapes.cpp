@@ -1,4 +1,4 @@
-#include "shapes.h"
+#include "host/geometry/shapes.h"
 
 #include <algorithm>
 #include <cmath>

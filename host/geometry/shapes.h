@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-#include "tri_mesh.h"
+#include "host/geometry/tri_mesh.h"
 
 namespace pd {
 

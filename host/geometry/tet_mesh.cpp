@@ -1,4 +1,4 @@
-#include "tet_mesh.h"
+#include "host/geometry/tet_mesh.h"
 
 namespace pd {
 

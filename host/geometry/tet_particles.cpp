@@ -1,10 +1,10 @@
-#include "tet_particles.h"
+#include "host/geometry/tet_particles.h"
 
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
-#include "grid_particles.h"
+#include "host/geometry/grid_particles.h"
 
 namespace pd {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "particle_geometry.h"
-#include "tetgen.h"
+#include "host/geometry/particle_geometry.h"
+#include "host/geometry/tetgen.h"
 
 namespace pd {
 

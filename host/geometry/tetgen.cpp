@@ -1,4 +1,4 @@
-#include "tetgen.h"
+#include "host/geometry/tetgen.h"
 
 #include <fcntl.h>
 #include <spawn.h>

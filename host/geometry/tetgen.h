@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "stage_time.h"
-#include "tet_mesh.h"
-#include "tri_mesh.h"
+#include "host/geometry/stage_time.h"
+#include "host/geometry/tet_mesh.h"
+#include "host/geometry/tri_mesh.h"
 
 namespace pd {
 

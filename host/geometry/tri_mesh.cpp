@@ -1,4 +1,4 @@
-#include "tri_mesh.h"
+#include "host/geometry/tri_mesh.h"
 
 #include <utility>
 

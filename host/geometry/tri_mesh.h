@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "vec3d.h"
+#include "host/geometry/vec3d.h"
 
 namespace pd {
 

@@ -1,12 +1,12 @@
-#include "voronoi_particles.h"
+#include "host/geometry/voronoi_particles.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "convex_cell.h"
-#include "grid_particles.h"
-#include "inside_test.h"
-#include "poisson_disk.h"
+#include "host/geometry/convex_cell.h"
+#include "host/geometry/grid_particles.h"
+#include "host/geometry/inside_test.h"
+#include "host/geometry/poisson_disk.h"
 
 namespace pd {
 

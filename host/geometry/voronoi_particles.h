@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <string>
 
-#include "particle_geometry.h"
+#include "host/geometry/particle_geometry.h"
 
 namespace pd {
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "../../cuda/vec3.h"
+#include "cuda/vec3.h"
 
 namespace pd {
 

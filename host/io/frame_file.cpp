@@ -1,4 +1,4 @@
-#include "frame_file.h"
+#include "host/io/frame_file.h"
 
 #include <sys/stat.h>
 
@@ -12,7 +12,7 @@
 #include <variant>
 #include <vector>
 
-#include "atomic_file.h"
+#include "host/io/atomic_file.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, ".pfr files are little endian");
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "frame.h"
+#include "host/io/frame.h"
 
 namespace pd {
 

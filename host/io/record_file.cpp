@@ -1,11 +1,11 @@
-#include "record_file.h"
+#include "host/io/record_file.h"
 
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 
-#include "checksum.h"
+#include "host/io/checksum.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "record files are little endian");
 

@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "atomic_file.h"
+#include "host/io/atomic_file.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "vtk_writer.h"
+#include "host/io/vtk_writer.h"
 
 #include <charconv>
 #include <cstdint>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "atomic_file.h"
+#include "host/io/atomic_file.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the VTK files are declared LittleEndian");
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "frame.h"
+#include "host/io/frame.h"
 
 namespace pd {
 

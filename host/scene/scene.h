@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scene_render.h"
+#include "host/scene/scene_render.h"
 
 namespace pd {
 

@@ -1,13 +1,13 @@
-#include "scene_cracks.h"
+#include "host/scene/scene_cracks.h"
 
 #include <cmath>
 #include <memory>
 
-#include "../geometry/inside_test.h"
-#include "../geometry/mesh_check.h"
-#include "../geometry/mesh_io.h"
-#include "../geometry/vec3d.h"
-#include "../random.h"
+#include "host/geometry/inside_test.h"
+#include "host/geometry/mesh_check.h"
+#include "host/geometry/mesh_io.h"
+#include "host/geometry/random.h"
+#include "host/geometry/vec3d.h"
 
 namespace pd {
 

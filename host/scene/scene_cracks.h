@@ -5,8 +5,8 @@
 #include <functional>
 #include <vector>
 
-#include "../cut_triangle.h"
-#include "scene.h"
+#include "cuda/engine/cut_triangle.h"
+#include "host/scene/scene.h"
 
 namespace pd {
 

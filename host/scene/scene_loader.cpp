@@ -25,9 +25,9 @@
 #include <utility>
 #include <vector>
 
-#include "../../cuda/views.h"
-#include "../geometry/shapes.h"
-#include "scene.h"
+#include "cuda/views.h"
+#include "host/geometry/shapes.h"
+#include "host/scene/scene.h"
 
 namespace pd {
 

@@ -1,4 +1,4 @@
-#include "scene_setup.h"
+#include "host/scene/scene_setup.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,18 +6,18 @@
 #include <limits>
 #include <string>
 
-#include "../bond_cuts.h"
-#include "../geometry/box_grid.h"
-#include "../geometry/grid_particles.h"
-#include "../geometry/mesh_check.h"
-#include "../geometry/mesh_io.h"
-#include "../geometry/shapes.h"
-#include "../geometry/tet_particles.h"
-#include "../geometry/voronoi_particles.h"
-#include "../material.h"
-#include "../memory_budget.h"
-#include "../random.h"
-#include "scene_cracks.h"
+#include "cuda/engine/bond_cuts.h"
+#include "cuda/engine/material.h"
+#include "cuda/engine/memory_budget.h"
+#include "host/geometry/box_grid.h"
+#include "host/geometry/grid_particles.h"
+#include "host/geometry/mesh_check.h"
+#include "host/geometry/mesh_io.h"
+#include "host/geometry/random.h"
+#include "host/geometry/shapes.h"
+#include "host/geometry/tet_particles.h"
+#include "host/geometry/voronoi_particles.h"
+#include "host/scene/scene_cracks.h"
 
 namespace pd {
 

@@ -4,13 +4,13 @@
 #include <string>
 #include <vector>
 
-#include "../adjacency.h"
-#include "../engine.h"
-#include "../fragments/embedded_mesh.h"
-#include "../geometry/particle_geometry.h"
-#include "../geometry/tri_mesh.h"
-#include "../particle_set.h"
-#include "scene.h"
+#include "cuda/engine/engine.h"
+#include "cuda/engine/particle_set.h"
+#include "host/fragments/embedded_mesh.h"
+#include "host/geometry/element_adjacency.h"
+#include "host/geometry/particle_geometry.h"
+#include "host/geometry/tri_mesh.h"
+#include "host/scene/scene.h"
 
 namespace pd {
 

@@ -18,8 +18,8 @@
 #include <cmath>
 #include <vector>
 
-#include "lattice.h"
-#include "validation.h"
+#include "host/validation/lattice.h"
+#include "host/validation/validation.h"
 
 namespace pd {
 

@@ -30,9 +30,9 @@
 #include <cmath>
 #include <vector>
 
-#include "../material.h"
-#include "lattice.h"
-#include "validation.h"
+#include "cuda/engine/material.h"
+#include "host/validation/lattice.h"
+#include "host/validation/validation.h"
 
 namespace pd {
 

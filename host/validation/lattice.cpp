@@ -1,6 +1,6 @@
-#include "lattice.h"
+#include "host/validation/lattice.h"
 
-#include "../material.h"
+#include "cuda/engine/material.h"
 
 namespace pd {
 

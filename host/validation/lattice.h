@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cstdint>
 
-#include "../particle_set.h"
+#include "cuda/engine/particle_set.h"
 
 namespace pd {
 

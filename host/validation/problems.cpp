@@ -1,6 +1,6 @@
 #include <cmath>
 
-#include "validation.h"
+#include "host/validation/validation.h"
 
 namespace pd {
 

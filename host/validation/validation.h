@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "../engine.h"
+#include "cuda/engine/engine.h"
 
 namespace pd {
 

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "host/random.h"
+#include "host/geometry/random.h"
 #include "tests/support/fixtures.h"
 #include "tests/support/screen_runs.h"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cuda/kernels/collisions.h"
-#include "host/random.h"
+#include "host/geometry/random.h"
 
 namespace pd {
 namespace {

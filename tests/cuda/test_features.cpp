@@ -1,5 +1,5 @@
 // Feature sets: runtime flags reach the matching compile-time instantiation.
-#include "../../cuda/features.h"
+#include "cuda/features.h"
 
 #include <gtest/gtest.h>
 

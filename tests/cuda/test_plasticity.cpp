@@ -8,12 +8,12 @@
 #include <memory>
 #include <vector>
 
+#include "cuda/engine/engine.h"
 #include "cuda/kernels/family.h"
 #include "cuda/kernels/init.h"
 #include "cuda/kernels/plasticity.h"
 #include "cuda/kernels/springforces_state.h"
-#include "host/engine.h"
-#include "host/random.h"
+#include "host/geometry/random.h"
 #include "tests/support/fixtures.h"
 #include "tests/support/particle_arrays.h"
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <set>
 
+#include "cuda/engine/engine.h"
 #include "cuda/kernels/family.h"
-#include "host/engine.h"
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
 #include "tests/support/fixtures.h"

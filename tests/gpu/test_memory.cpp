@@ -4,8 +4,8 @@
 
 #include <cstdlib>
 
-#include "host/engine.h"
-#include "host/memory_budget.h"
+#include "cuda/engine/engine.h"
+#include "cuda/engine/memory_budget.h"
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
 #include "tests/support/fixtures.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "host/random.h"
+#include "host/geometry/random.h"
 #include "render/primitive_set.h"
 #include "render/traverse.h"
 

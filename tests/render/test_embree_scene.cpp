@@ -10,7 +10,7 @@
 
 #include "render/kdtree.h"
 #include "render/traverse.h"
-#include "render_scenes.h"
+#include "tests/render/render_scenes.h"
 
 namespace pd {
 namespace {

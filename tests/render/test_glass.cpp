@@ -6,11 +6,11 @@
 
 #include <cmath>
 
-#include "host/random.h"
+#include "host/geometry/random.h"
 #include "render/glass.h"
 #include "render/primitive_set.h"
 #include "render/traverse.h"
-#include "render_scenes.h"
+#include "tests/render/render_scenes.h"
 
 namespace pd {
 namespace {

@@ -11,7 +11,7 @@
 #include "render/renderer.h"
 #include "render/shading.h"
 #include "render/tet_lattice.h"
-#include "render_scenes.h"
+#include "tests/render/render_scenes.h"
 
 namespace pd {
 namespace {

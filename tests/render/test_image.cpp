@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/image.h"
+#include "host/io/png_file.h"
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC

@@ -6,7 +6,7 @@
 #include <functional>
 
 #include "render/kdtree.h"
-#include "render_scenes.h"
+#include "tests/render/render_scenes.h"
 
 namespace pd {
 namespace {

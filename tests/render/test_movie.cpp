@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "render/image.h"
+#include "host/io/png_file.h"
 
 namespace pd {
 namespace {

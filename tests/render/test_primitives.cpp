@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "host/random.h"
+#include "host/geometry/random.h"
 #include "render/primitive_set.h"
 
 namespace pd {

@@ -7,13 +7,13 @@
 #include <cstdlib>
 #include <memory>
 
-#include "host/engine.h"
+#include "cuda/engine/engine.h"
+#include "host/fragments/voronoi_trimtopes.h"
 #include "host/geometry/shapes.h"
 #include "host/geometry/voronoi_particles.h"
 #include "render/renderer.h"
 #include "render/tet_lattice.h"
-#include "render/voronoi_trimtopes.h"
-#include "render_scenes.h"
+#include "tests/render/render_scenes.h"
 
 namespace pd {
 namespace {

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "render/renderer.h"
-#include "render_scenes.h"
+#include "tests/render/render_scenes.h"
 
 namespace pd {
 namespace {

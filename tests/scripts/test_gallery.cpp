@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "render/image.h"
+#include "host/io/png_file.h"
 #include "tests/support/temp_dir.h"
 
 namespace pd {

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include "host/material.h"
-#include "host/particle_set.h"
-#include "host/random.h"
+#include "cuda/engine/material.h"
+#include "cuda/engine/particle_set.h"
+#include "host/geometry/random.h"
 
 namespace pd::testing {
 

@@ -10,7 +10,7 @@
 
 #include "cuda/kernels/plasticity.h"
 #include "cuda/kernels/springforces_state.h"
-#include "particle_arrays.h"
+#include "tests/support/particle_arrays.h"
 
 namespace pd::testing {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "host/engine.h"
+#include "cuda/engine/engine.h"
 
 #define REQUIRE_GPU()                                                                      \
   do {                                                                                     \

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "host/engine.h"
+#include "cuda/engine/engine.h"
 
 namespace pd::testing {
 

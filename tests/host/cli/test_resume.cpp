@@ -147,7 +147,9 @@ TEST_F(Resume, KilledRunsResumeToTheUninterruptedResult) {
     kills += code == 128 + SIGKILL;
     ASSERT_TRUE(code == 0 || code == 128 + SIGKILL) << "exit " << code << "\n" << read_all(log_);
   }
-  if (code != 0) ASSERT_EQ(run({"run", "--resume", killed}, log_), 0) << read_all(log_);
+  if (code != 0) {
+    ASSERT_EQ(run({"run", "--resume", killed}, log_), 0) << read_all(log_);
+  }
   EXPECT_GE(kills, 3);
   EXPECT_GE(resumes, 2);
   for (const auto& e : std::filesystem::directory_iterator(killed))

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "host/engine.h"
+#include "cuda/engine/engine.h"
 #include "host/fragments/tet_complex.h"
 #include "tests/support/temp_dir.h"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "host/fragments/adjacency.h"
-#include "host/random.h"
+#include "host/geometry/random.h"
 #include "tests/host/fragments/fragment_fixtures.h"
 #include "tests/support/fixtures.h"
 
@@ -57,12 +57,16 @@ std::vector<int32_t> bfs_ids(const ElementAdjacency& adj, const BondLists& b) {
 void expect_consistent(const Components& c) {
   ASSERT_EQ(c.start.back(), int32_t(c.id.size()));
   for (size_t k = 0; k < c.count(); ++k) {
-    if (k > 0) EXPECT_LT(c.component_id(k - 1), c.component_id(k));
+    if (k > 0) {
+      EXPECT_LT(c.component_id(k - 1), c.component_id(k));
+    }
     for (int32_t m = c.start[k]; m < c.start[k + 1]; ++m) {
       const size_t i = size_t(c.members[size_t(m)]);
       EXPECT_EQ(c.index[i], int32_t(k));
       EXPECT_EQ(c.id[i], c.component_id(k));
-      if (m > c.start[k]) EXPECT_LT(c.members[size_t(m) - 1], c.members[size_t(m)]);
+      if (m > c.start[k]) {
+        EXPECT_LT(c.members[size_t(m) - 1], c.members[size_t(m)]);
+      }
     }
   }
 }

@@ -173,8 +173,9 @@ TEST(EmbeddedMesh, CutBlockSplitsIntoTwoClosedSurfacesWithCrackFacesOnTheCut) {
     // Tet vertices are given in double; cube corners come from the float particle positions.
     const double on_plane = cubes ? 1e-9 : 1e-12;
     for (size_t f = 0; f < s.triangles.size(); ++f)
-      if (s.crack[f])
+      if (s.crack[f]) {
         for (int32_t v : s.triangles[f]) EXPECT_NEAR(s.vertices[size_t(v)][0], 2 * kSide, on_plane);
+      }
     const std::vector<double> volumes = testing::closed_piece_volumes(s);
     ASSERT_EQ(volumes.size(), 2u);
     EXPECT_NEAR(volumes[0], 12 * kSide * kSide * kSide, 1e-6 * 12 * kSide * kSide * kSide);

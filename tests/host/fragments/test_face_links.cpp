@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fragment_fixtures.h"
+#include "tests/host/fragments/fragment_fixtures.h"
 
 namespace pd {
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "host/geometry/random.h"
 #include "host/io/atomic_file.h"
-#include "host/random.h"
 #include "tests/host/fragments/fragment_fixtures.h"
 
 namespace pd {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "host/random.h"
+#include "host/geometry/random.h"
 
 namespace pd {
 namespace {
@@ -106,7 +106,9 @@ TEST(Kabsch, ReflectedInputGivesBestProperRotation) {
     // The optimum over proper rotations: Horn's answer, and no better rotation nearby.
     EXPECT_NEAR(misfit(p, q, w, fit.rotation), misfit(p, q, w, horn_rotation(p, q, w)), 1e-10);
     // Three points are always planar, and a mirrored planar set is a rotation of it.
-    if (n > 3) EXPECT_GT(fit.rms, 0.01);
+    if (n > 3) {
+      EXPECT_GT(fit.rms, 0.01);
+    }
   }
 }
 

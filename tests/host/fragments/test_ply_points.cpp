@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
+#include "host/geometry/random.h"
 #include "host/io/atomic_file.h"
-#include "host/random.h"
 #include "tests/host/fragments/fragment_fixtures.h"
 
 namespace pd {

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "host/geometry/inside_test.h"
+#include "host/geometry/random.h"
 #include "host/geometry/shapes.h"
-#include "host/random.h"
 
 namespace pd {
 namespace {

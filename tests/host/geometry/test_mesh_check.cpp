@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "geometry_fixtures.h"
 #include "host/geometry/mesh_check.h"
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/shapes.h"
+#include "tests/host/geometry/geometry_fixtures.h"
 
 namespace pd {
 namespace {

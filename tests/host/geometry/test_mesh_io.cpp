@@ -2,9 +2,9 @@
 // (STL binary to float precision); malformed files give a MeshError naming the file.
 #include <gtest/gtest.h>
 
-#include "geometry_fixtures.h"
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/shapes.h"
+#include "tests/host/geometry/geometry_fixtures.h"
 
 namespace pd {
 namespace {

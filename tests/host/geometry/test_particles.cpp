@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <fstream>
 
-#include "geometry_fixtures.h"
 #include "host/geometry/grid_particles.h"
 #include "host/geometry/inside_test.h"
 #include "host/geometry/mesh_check.h"
@@ -16,6 +15,7 @@
 #include "host/geometry/shapes.h"
 #include "host/geometry/tet_particles.h"
 #include "host/geometry/voronoi_particles.h"
+#include "tests/host/geometry/geometry_fixtures.h"
 
 namespace pd {
 namespace {

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <numeric>
 
-#include "geometry_fixtures.h"
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/shapes.h"
 #include "host/geometry/tet_particles.h"
 #include "host/geometry/tetgen.h"
 #include "host/scene/scene_setup.h"
+#include "tests/host/geometry/geometry_fixtures.h"
 
 namespace pd {
 namespace {

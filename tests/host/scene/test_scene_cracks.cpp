@@ -5,7 +5,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "host/bond_cuts.h"
+#include "cuda/engine/bond_cuts.h"
 #include "host/scene/scene_cracks.h"
 #include "host/scene/scene_setup.h"
 #include "tests/support/temp_dir.h"

@@ -116,7 +116,9 @@ void expect_error(const std::string& text, const std::string& key, const std::st
   EXPECT_EQ(message.rfind(kFile + ": " + key + ": ", 0), 0u) << message;
   EXPECT_NE(message.find("(allowed: "), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  if (!fragment.empty()) EXPECT_NE(message.find(fragment), std::string::npos) << message;
+  if (!fragment.empty()) {
+    EXPECT_NE(message.find(fragment), std::string::npos) << message;
+  }
 }
 
 TEST(SceneLoader, CompleteSceneParses) {

@@ -1,0 +1,138 @@
+#include "cuda/engine/bond_cuts.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pd {
+
+namespace {
+
+using P3 = std::array<double, 3>;
+
+P3 sub(const P3& a, const P3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+P3 cross3(const P3& a, const P3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot3(const P3& a, const P3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+P3 to_p3(Vec3 v) {
+  return {double(v.x), double(v.y), double(v.z)};
+}
+
+}  // namespace
+
+CutTester::CutTester(const std::vector<CutTriangle>& cuts, double reach) : cuts_(&cuts), inv_(1 / reach) {
+  for (size_t t = 0; t < cuts.size(); ++t) {
+    std::array<int64_t, 3> lo{}, hi{};
+    for (int a = 0; a < 3; ++a) {
+      double mn = cuts[t].corner[0][size_t(a)], mx = mn;
+      for (const P3& c : cuts[t].corner) {
+        mn = std::min(mn, c[size_t(a)]);
+        mx = std::max(mx, c[size_t(a)]);
+      }
+      lo[size_t(a)] = coord(mn - reach);
+      hi[size_t(a)] = coord(mx + reach);
+    }
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (int64_t x = lo[0]; x <= hi[0]; ++x) bins_[key(x, y, z)].push_back(int32_t(t));
+  }
+}
+
+int64_t CutTester::coord(double v) const {
+  return int64_t(std::floor(v * inv_));
+}
+
+int64_t CutTester::key(int64_t x, int64_t y, int64_t z) {
+  return (x & 0x1FFFFF) | ((y & 0x1FFFFF) << 21) | ((z & 0x1FFFFF) << 42);
+}
+
+const std::vector<int32_t>* CutTester::near(Vec3 p) const {
+  const auto it = bins_.find(key(coord(p.x), coord(p.y), coord(p.z)));
+  return it == bins_.end() ? nullptr : &it->second;
+}
+
+double CutTester::strength(int32_t a, Vec3 pa, int32_t b, Vec3 pb, int32_t body) const {
+  const std::vector<int32_t>* candidates = near(pa);
+  if (!candidates) return 1;
+  const P3 lo = to_p3(a < b ? pa : pb), hi = to_p3(a < b ? pb : pa);
+  double weakest = 1;
+  for (int32_t t : *candidates) {
+    const CutTriangle& tri = (*cuts_)[size_t(t)];
+    if ((tri.body < 0 || tri.body == body) && tri.strength < weakest && segment_crosses_triangle(lo, hi, tri))
+      weakest = tri.strength;
+  }
+  return weakest;
+}
+
+bool segment_crosses_triangle(const P3& p, const P3& q, const CutTriangle& t) {
+  const P3 e1 = sub(t.corner[1], t.corner[0]), e2 = sub(t.corner[2], t.corner[0]), d = sub(q, p);
+  const P3 h = cross3(d, e2);
+  const double det = dot3(e1, h);
+  if (det == 0) return false;  // the segment lies parallel to the triangle's plane
+  const double f = 1 / det;
+  const P3 s = sub(p, t.corner[0]);
+  const double u = f * dot3(s, h);
+  if (u < 0 || u > 1) return false;
+  const P3 r = cross3(s, e1);
+  const double v = f * dot3(d, r);
+  if (v < 0 || u + v > 1) return false;
+  const double along = f * dot3(e2, r);
+  return along > 0 && along < 1;
+}
+
+BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<Vec3>& rest,
+                        const std::vector<int32_t>& body, BondLists& bonds, std::vector<uint8_t>& strength) {
+  BondCutCounts report;
+  strength.clear();
+  if (cuts.empty()) return report;
+  const BondsView b = bonds.view();
+  const int32_t n = b.n;
+
+  // The grid's cell: the longest bond, so every bond starts in a cell that lists what it crosses.
+  double longest = 0;
+#pragma omp parallel for reduction(max : longest) schedule(static)
+  for (int32_t i = 0; i < n; ++i)
+    for (int32_t k = 0; k < b.count[i]; ++k) {
+      const P3 d = sub(to_p3(rest[size_t(bond_partner(b.neighbor[b.slot(i, k)]))]), to_p3(rest[size_t(i)]));
+      longest = std::max(longest, std::sqrt(dot3(d, d)));
+    }
+  if (!(longest > 0)) return report;
+  const CutTester tester(cuts, longest);
+
+  // Per slot: the strength of the weakest triangle the bond crosses (1 for none); then each
+  // family is compacted past its removed bonds, in order.
+  std::vector<uint8_t> level(bonds.neighbor.size(), uint8_t(kStrengthLevels));
+  int64_t removed = 0, weakened = 0;
+#pragma omp parallel for reduction(+ : removed, weakened) schedule(dynamic, 256)
+  for (int32_t i = 0; i < n; ++i) {
+    if (tester.clear(rest[size_t(i)])) continue;
+    int32_t kept = 0;
+    for (int32_t k = 0; k < b.count[i]; ++k) {
+      const int64_t slot = b.slot(i, k);
+      const int32_t j = bond_partner(b.neighbor[slot]);
+      const double weakest = tester.strength(i, rest[size_t(i)], j, rest[size_t(j)], body[size_t(i)]);
+      if (weakest <= 0) {
+        ++removed;
+        continue;
+      }
+      const int64_t to = b.slot(i, kept++);
+      b.neighbor[to] = b.neighbor[slot];
+      level[size_t(to)] =
+          weakest < 1
+              ? uint8_t(std::clamp(std::lround(weakest * kStrengthLevels), 1L, long(kStrengthLevels) - 1))
+              : uint8_t(kStrengthLevels);
+      weakened += weakest < 1;
+    }
+    bonds.count[size_t(i)] = kept;
+  }
+  report.removed = removed;
+  report.weakened = weakened;
+  if (weakened > 0) strength = std::move(level);
+  return report;
+}
+
+}  // namespace pd

@@ -1,0 +1,117 @@
+// The simulation engine seen from the host: one interface, two backends that run the same
+// kernel bodies (cuda/engine_impl.h). Host code never touches device memory directly.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cuda/engine/particle_set.h"
+#include "cuda/kernel_stats.h"
+#include "cuda/kernels/energy.h"
+
+namespace pd {
+
+enum class Backend { kCpu, kCuda };
+
+const char* backend_name(Backend b);
+
+// Bonds (stored per direction) that the scene's cracks removed or weakened (host/bond_cuts.h).
+struct BondCutCounts {
+  int64_t removed = 0, weakened = 0;
+};
+
+struct FamilyStats {
+  int64_t bonds = 0;  // stored bonds, each pair counted once per direction
+  int32_t min = 0, max = 0;
+  double mean = 0;
+  int64_t slots = 0;              // sliced-ELL storage, padding included
+  int64_t lattice_particles = 0;  // particles whose partners are found by offset (lattice_families.h)
+  BondCutCounts cuts;
+};
+
+// Per-particle state copied back to the host.
+struct ParticleState {
+  std::vector<Vec3> disp, vel, force;
+  std::vector<int32_t> intact;  // unbroken bonds
+};
+
+// Families as stored (sliced ELL, see BondsView), copied back to the host.
+struct BondLists {
+  std::vector<int64_t> slice_offset;
+  std::vector<int32_t> count;
+  std::vector<int32_t> neighbor;
+  BondsView view() const {
+    BondsView v;
+    v.n = int32_t(count.size());
+    v.slice_offset = slice_offset.data();
+    v.count = count.data();
+    v.neighbor = const_cast<int32_t*>(neighbor.data());
+    return v;
+  }
+};
+
+// Everything a run changes, for checkpoints: restoring it into an engine built from the same
+// input continues the run bit for bit on the same backend. The rest (reference positions,
+// masses, strain limits, families as built) follows from the input.
+struct EngineSnapshot {
+  int64_t step = 0;
+  double time = 0;
+  std::vector<Vec4> disp;  // (u, tau')
+  std::vector<Vec3> vel, force;
+  std::vector<real> strain_min;
+  std::vector<int32_t> intact;
+  std::vector<Ledger> ledger;
+  std::vector<Vec4> state;        // state-based materials only, else empty
+  std::vector<int32_t> neighbor;  // family slots; a broken bond is stored as ~j
+  std::vector<real> plastic;      // plastic materials only, else empty
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual Backend backend() const = 0;
+  virtual std::string device_name() const = 0;
+  virtual const FamilyStats& family_stats() const = 0;
+  // Advances `steps` velocity-Verlet steps of the fixed dt.
+  virtual void advance(int64_t steps) = 0;
+  virtual int64_t step() const = 0;
+  virtual double time() const = 0;
+  virtual void read_state(ParticleState& out) = 0;
+  virtual void read_bonds(BondLists& out) = 0;
+  virtual int64_t broken_bonds() = 0;
+  // Energy terms at the current state, and the work and released energy since the start.
+  virtual Energy energy() = 0;
+  // Index of the first particle whose displacement, velocity or force is not finite; -1 if none.
+  virtual int64_t first_non_finite() = 0;
+  virtual KernelStats& stats() = 0;
+  virtual void save(EngineSnapshot& out) = 0;
+  // Throws std::invalid_argument, changing nothing, when the snapshot's sizes are not this
+  // engine's (another scene or scale).
+  virtual void restore(const EngineSnapshot& in) = 0;
+  // Stable time step from the families as built (Silling & Askari 2005, eq. 29):
+  // min_i sqrt(2 rho_i / sum_j beta V_j c / |xi_j|); infinite for particles without bonds.
+  virtual double critical_time_step() const = 0;
+  // Bytes of backend memory held by the engine.
+  virtual size_t memory_bytes() const = 0;
+  // Force passes run (one per step, and one at set-up) and those `springforces` ran screened
+  // (cuda/kernels/bond_screen.h).
+  virtual int64_t force_passes() const = 0;
+  virtual int64_t screened_passes() const = 0;
+};
+
+std::unique_ptr<Engine> make_cpu_engine(const SimulationInput& in);
+// Throws std::runtime_error when CUDA is not compiled in or no device is usable.
+std::unique_ptr<Engine> make_cuda_engine(const SimulationInput& in);
+std::unique_ptr<Engine> make_engine(Backend b, const SimulationInput& in);
+
+// True when the build has CUDA and a device answers; otherwise `why` says what is missing.
+bool cuda_device_available(std::string* why = nullptr);
+// Free memory of the CUDA device; 0 when there is none.
+size_t cuda_free_bytes();
+
+// Named ranges for GPU profilers (NVTX push/pop); no-ops in a build without CUDA.
+void profiler_range_push(const char* name);
+void profiler_range_pop();
+
+}  // namespace pd

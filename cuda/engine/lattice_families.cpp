@@ -1,0 +1,235 @@
+#include "cuda/engine/lattice_families.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "cuda/engine/bond_cuts.h"
+#include "cuda/kernels/bond.h"
+
+namespace pd {
+
+namespace {
+
+// A body's particles [first, first + nx ny nz) on the grid origin + (ix, iy, iz) h.
+struct BoxGrid {
+  int32_t first = 0;
+  std::array<int32_t, 3> n{};
+  std::array<double, 3> origin{}, h{};
+  std::array<int32_t, 3> coords(int32_t i) const {
+    const int32_t r = i - first;
+    return {r % n[0], (r / n[0]) % n[1], r / (n[0] * n[1])};
+  }
+};
+
+double axis(const Vec3& v, int a) {
+  return a == 0 ? v.x : (a == 1 ? v.y : v.z);
+}
+
+// The box grid of the contiguous particles [first, end), if they form one (see the header).
+bool find_box_grid(const ParticleSet& ps, int32_t first, int32_t end, BoxGrid& g) {
+  const int32_t count = end - first;
+  const Vec3 p0 = ps.rest[size_t(first)];
+  int32_t nx = 1, ny = 1;
+  while (nx < count && ps.rest[size_t(first + nx)].y == p0.y && ps.rest[size_t(first + nx)].z == p0.z) ++nx;
+  while (int64_t(ny) * nx < count && ps.rest[size_t(first + ny * nx)].z == p0.z) ++ny;
+  if (count % (nx * ny) != 0) return false;
+  g.first = first;
+  g.n = {nx, ny, count / (nx * ny)};
+  if (g.n[0] < 2 || g.n[1] < 2 || g.n[2] < 2) return false;
+  const int32_t last_along[3] = {first + nx - 1, first + (ny - 1) * nx, first + (g.n[2] - 1) * nx * ny};
+  for (int a = 0; a < 3; ++a) {
+    g.origin[a] = axis(p0, a);
+    g.h[a] = (axis(ps.rest[size_t(last_along[a])], a) - g.origin[a]) / (g.n[a] - 1);
+    if (!(g.h[a] > 0)) return false;
+  }
+  const double tol = 1e-3 * std::min({g.h[0], g.h[1], g.h[2]});
+  for (int32_t i = first; i < end; ++i) {
+    if (ps.material[size_t(i)] != ps.material[size_t(first)] ||
+        ps.volume[size_t(i)] != ps.volume[size_t(first)])
+      return false;
+    const auto c = g.coords(i);
+    for (int a = 0; a < 3; ++a)
+      if (std::abs(axis(ps.rest[size_t(i)], a) - (g.origin[a] + c[a] * g.h[a])) > tol) return false;
+  }
+  return true;
+}
+
+// Builds body `g`'s stencil from its families and sets its particles' bits; false (nothing
+// changed) when the families do not fit a stencil. Bonds are identified by their index offset
+// j - i alone (no division per bond): no bond is longer than the family radius, so along each axis
+// it spans at most `bound` cells, and a grid wider than 2 bound along x and y gives every such
+// cell offset its own index offset.
+bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bonds, const BoxGrid& g,
+                 LatticeFamilies& lf) {
+  const BondsView v = bonds.view();
+  const int32_t end = g.first + g.n[0] * g.n[1] * g.n[2];
+  std::array<int32_t, 3> bound{};
+  for (int a = 0; a < 3; ++a) bound[a] = int32_t(std::floor(double(m.family_radius()) * (1 + 1e-4) / g.h[a]));
+  if (g.n[0] <= 2 * bound[0] || g.n[1] <= 2 * bound[1] || bound[0] > 127 || bound[1] > 127 || bound[2] > 127)
+    return false;
+  const int64_t reach = bound[0] + int64_t(g.n[0]) * (bound[1] + int64_t(g.n[1]) * bound[2]);
+  if (reach > (int64_t(1) << 28)) return false;
+  // The cell offset d of each index offset within reach (offset + reach indexes these arrays).
+  const size_t span = size_t(2 * reach + 1);
+  std::vector<std::array<int8_t, 3>> cells(span);
+  std::vector<uint8_t> is_cell(span, 0), used(span, 0);
+  for (int32_t dz = -bound[2]; dz <= bound[2]; ++dz)
+    for (int32_t dy = -bound[1]; dy <= bound[1]; ++dy)
+      for (int32_t dx = -bound[0]; dx <= bound[0]; ++dx) {
+        const size_t at = size_t(reach + dx + int64_t(g.n[0]) * (dy + int64_t(g.n[1]) * dz));
+        cells[at] = {int8_t(dx), int8_t(dy), int8_t(dz)};
+        is_cell[at] = 1;
+      }
+  // The offsets the families use: partners in the body, ascending, within the bounds.
+  bool fits = true;
+#pragma omp parallel for schedule(static) reduction(&& : fits)
+  for (int32_t i = g.first; i < end; ++i) {
+    int32_t previous = -1;
+    for (int32_t k = 0; k < v.count[i] && fits; ++k) {
+      const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
+      const int64_t at = reach + (j - i);
+      // Another body, not ascending, or beyond the bounds.
+      fits = j >= g.first && j < end && j > previous && at >= 0 && at < int64_t(span) && is_cell[size_t(at)];
+      previous = j;
+      if (fits) {
+#pragma omp atomic write
+        used[size_t(at)] = 1;
+      }
+    }
+  }
+  if (!fits) return false;
+  const int64_t size = std::count(used.begin(), used.end(), uint8_t(1));
+  if (size > 32 * kLatticeWords || lf.stencils.size() >= size_t(std::numeric_limits<int16_t>::max()))
+    return false;
+
+  // The stencil in ascending offset, the order of ascending partners.
+  Stencil st;
+  st.first = int32_t(lf.entries.size());
+  st.size = int32_t(size);
+  std::vector<int32_t> entry_of(span, -1);
+  for (size_t at = 0; at < span; ++at) {
+    if (!used[at]) continue;
+    const auto& d = cells[at];
+    StencilEntry e{};
+    e.xi = {real(d[0] * g.h[0]), real(d[1] * g.h[1]), real(d[2] * g.h[2]), 0};
+    const double r0 = std::sqrt(double(e.xi.x) * e.xi.x + double(e.xi.y) * e.xi.y + double(e.xi.z) * e.xi.z);
+    e.xi.w = real(r0);
+    e.inv_r0 = real(1.0 / r0);
+    e.weight = volume_fraction(e.xi.w, m) * ps.volume[size_t(g.first)];  // as bond_geometry computes it
+    e.offset = int32_t(int64_t(at) - reach);
+    entry_of[at] = int32_t(lf.entries.size()) - st.first;
+    lf.entries.push_back(e);
+  }
+  const int16_t id = int16_t(lf.stencils.size());
+  lf.stencils.push_back(st);
+
+  // Per particle: grow the masks to the stencil's words, then set its bits.
+  const int32_t words = int32_t(size + 31) / 32;
+  if (words > lf.words) {
+    const size_t n = lf.stencil.size();
+    lf.present.resize(size_t(words) * n, 0);
+    lf.intact.resize(size_t(words) * n, 0);
+    lf.words = words;
+  }
+  const size_t n = lf.stencil.size();
+#pragma omp parallel for schedule(static)  // each particle sets only its own words
+  for (int32_t i = g.first; i < end; ++i) {
+    lf.stencil[size_t(i)] = id;
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int32_t nb = v.neighbor[v.slot(i, k)];
+      const int32_t q = entry_of[size_t(reach + (bond_partner(nb) - i))];
+      const size_t word = size_t(q / 32) * n + size_t(i);
+      lf.present[word] |= 1u << (q % 32);
+      if (bond_intact(nb)) lf.intact[word] |= 1u << (q % 32);
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int64_t LatticeFamilies::particles() const {
+  return std::count_if(stencil.begin(), stencil.end(), [](int16_t s) { return s >= 0; });
+}
+
+LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds) {
+  LatticeFamilies lf;
+  const int32_t n = int32_t(ps.size());
+  lf.stencil.assign(size_t(n), -1);
+  // Each body's range; a body seen again after another one is not contiguous.
+  std::map<int32_t, std::pair<int32_t, int32_t>> range;  // body -> [first, end)
+  std::map<int32_t, bool> contiguous;
+  for (int32_t i = 0; i < n; ++i) {
+    const int32_t body = ps.body[size_t(i)];
+    auto it = range.find(body);
+    if (it == range.end()) {
+      range[body] = {i, i + 1};
+      contiguous[body] = true;
+    } else if (it->second.second == i) {
+      it->second.second = i + 1;
+    } else {
+      contiguous[body] = false;
+    }
+  }
+  for (const auto& [body, r] : range) {
+    BoxGrid g;
+    if (contiguous[body] && find_box_grid(ps, r.first, r.second, g))
+      add_stencil(ps, mt.m[ps.material[size_t(g.first)]], bonds, g, lf);
+  }
+  return lf;
+}
+
+// Calls f(q, word, bit, k) for each stencil entry q that lattice particle i's family holds: its
+// mask word's index, the entry's bit in it, and the bond's position k in the family.
+template <class F>
+void for_each_present_bond(const LatticeFamilies& lf, int32_t i, F f) {
+  const size_t n = lf.stencil.size();
+  const Stencil& st = lf.stencils[size_t(lf.stencil[size_t(i)])];
+  int32_t k = 0;
+  for (int32_t q = 0; q < st.size; ++q) {
+    const size_t word = size_t(q / 32) * n + size_t(i);
+    const uint32_t bit = 1u << (q % 32);
+    if (lf.present[word] & bit) f(q, word, bit, k++);
+  }
+}
+
+void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
+                             const std::vector<uint8_t>& strength) {
+  const BondsView v = bonds.view();
+  lf.weak.assign(lf.present.size(), 0);
+  for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
+    if (lf.stencil[size_t(i)] < 0) continue;
+    for_each_present_bond(lf, i, [&](int32_t, size_t word, uint32_t bit, int32_t k) {
+      if (strength[size_t(v.slot(i, k))] < kStrengthLevels) lf.weak[word] |= bit;
+    });
+  }
+}
+
+void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds) {
+  const BondsView v = bonds.view();
+  for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
+    const int32_t s = lf.stencil[size_t(i)];
+    if (s < 0) continue;
+    auto differ = [&]() {
+      return std::invalid_argument("the restored families differ from the engine's at particle " +
+                                   std::to_string(i) + " (a snapshot of another scene or version)");
+    };
+    int32_t listed = 0;
+    for_each_present_bond(lf, i, [&](int32_t q, size_t word, uint32_t bit, int32_t k) {
+      const int32_t nb = k < v.count[i] ? v.neighbor[v.slot(i, k)] : -1;
+      if (k >= v.count[i] ||
+          bond_partner(nb) != i + lf.entries[size_t(lf.stencils[size_t(s)].first + q)].offset)
+        throw differ();
+      lf.intact[word] = bond_intact(nb) ? lf.intact[word] | bit : lf.intact[word] & ~bit;
+      listed = k + 1;
+    });
+    if (listed != v.count[i]) throw differ();
+  }
+}
+
+}  // namespace pd

@@ -1,0 +1,39 @@
+// Lattice families (implicit neighbours, cuda/views.h LatticeView): which bodies are full box
+// grids, their stencils, and per particle which stencil bonds its family holds and which of
+// them are intact. Derived from the families as built (after cuts), so a lattice particle's
+// bonds are exactly its listed ones, in the same order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cuda/engine/engine.h"
+
+namespace pd {
+
+struct LatticeFamilies {
+  int32_t words = 0;                  // mask words per particle
+  std::vector<int16_t> stencil;       // per particle: its stencil, or -1
+  std::vector<Stencil> stencils;      // one per box-grid body
+  std::vector<StencilEntry> entries;  // the stencils' entries, ascending offset within each
+  std::vector<uint32_t> present;      // words x n, word w of particle i at w * n + i
+  std::vector<uint32_t> intact;       // same layout
+  std::vector<uint32_t> weak;         // same layout; scenes with weakened bonds only
+  int64_t particles() const;          // particles with a lattice family
+};
+
+// The bodies of `ps` whose particles are contiguous, laid out as a box grid of at least 2 per
+// axis (x fastest, then y, z; positions within 1e-3 spacing of the grid), of one material and
+// one volume, whose families are ascending and use offsets that identify their bonds (grid
+// wider than the stencil along x and y), get a stencil; the others keep explicit families.
+LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds);
+
+// Sets the weak bits: the bonds whose per-slot strength (bond_cuts.h) is below 1.
+void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
+                             const std::vector<uint8_t>& strength);
+
+// Recomputes the intact bits from `bonds` (a restored snapshot). Throws std::invalid_argument
+// when a lattice particle's listed bonds are not its present stencil bonds in stencil order.
+void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds);
+
+}  // namespace pd

@@ -1,0 +1,47 @@
+// Host-side particle data before a run: the input every engine starts from.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "cuda/engine/cut_triangle.h"
+#include "cuda/engine/motion.h"
+#include "cuda/views.h"
+
+namespace pd {
+
+struct ParticleSet {
+  std::vector<Vec3> rest;           // reference positions [m]
+  std::vector<Vec3> velocity;       // initial velocities [m/s]
+  std::vector<real> volume;         // [m^3]
+  std::vector<real> mass;           // [kg]
+  std::vector<real> strain_limit0;  // scattered base strain limit per particle
+  std::vector<uint16_t> material;   // index into the material table
+  std::vector<int32_t> body;        // bodies are bonded internally only
+  std::vector<uint8_t> flags;       // ParticleFlag bits
+  std::vector<uint8_t> anchor;      // anchor group of anchored particles (SimulationInput::motion)
+
+  size_t size() const { return rest.size(); }
+  void reserve(size_t n);
+  // Appends one particle; returns its index.
+  size_t add(Vec3 x, Vec3 v, real vol, real m, real tau0, uint16_t mat, int32_t body_id,
+             uint8_t flag_bits = 0, uint8_t anchor_group = 0);
+};
+
+// Everything an engine needs to run: particles, material constants and step parameters.
+// `springforces` in its screened form (cuda/kernels/bond_screen.h) while no bond broke in the
+// last passes (kAuto), never (kOff), or in every pass (kAlways); the results are the same.
+enum class BondScreen { kAuto, kOff, kAlways };
+
+struct SimulationInput {
+  ParticleSet particles;
+  MaterialTable materials;
+  StepParams step;
+  MotionScript motion;            // anchors and keyframed projectiles, applied to `step` every step
+  std::vector<CutTriangle> cuts;  // pre-cracks and weakened surfaces (bond_cuts.h)
+  bool contact = false;           // launch `collection` and `collisions`
+  bool lattice_families = true;   // box-grid bodies find partners by offset (lattice_families.h)
+  BondScreen screen = BondScreen::kAuto;
+};
+
+}  // namespace pd

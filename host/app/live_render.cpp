@@ -1,0 +1,54 @@
+#include "host/app/live_render.h"
+
+#include <cstdio>
+
+#include "host/io/frame.h"
+#include "render/movie.h"
+
+namespace pd {
+
+LiveRender::LiveRender(const Scene& scene, const std::string& out_dir, const std::string& backend)
+    : out_dir_(out_dir), every_(scene.render->every) {
+  const SceneRender& r = *scene.render;
+  RenderOptions o;
+  o.dir = out_dir;
+  o.backend = backend;
+  o.width = int(r.width);
+  o.height = int(r.height);
+  o.spp = int(r.spp);
+  if (r.eye) o.eye = Vec3{real((*r.eye)[0]), real((*r.eye)[1]), real((*r.eye)[2])};
+  if (r.look_at) o.look_at = Vec3{real((*r.look_at)[0]), real((*r.look_at)[1]), real((*r.look_at)[2])};
+  o.vfov_degrees = real(r.vfov);
+  if (scene.floor) o.floor_y = real(scene.floor_height);
+  o.material = r.material;
+  o.ior = real(r.ior);
+  o.environment = r.environment == "sky" ? "sky" : r.environment_path;
+  try {
+    renderer_ = std::make_unique<RunRenderer>(o, "");
+  } catch (const EnvironmentError& e) {
+    throw SceneError(scene.path, "render.environment", e.what());
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene.path, "render", e.what());
+  }
+  std::printf("render     every %lld frame(s), %lld x %lld, %lld spp, %s on %s -> %s\n", (long long)every_,
+              (long long)r.width, (long long)r.height, (long long)r.spp, renderer_->scene_summary().c_str(),
+              renderer_->device().c_str(), renderer_->image_dir().c_str());
+}
+
+void LiveRender::frame(int64_t frame) {
+  if (frame % every_ != 0) return;
+  const FrameRenderReport r = renderer_->render(out_dir_ + "/" + frame_file_name(frame, "pfr"));
+  ++frames_;
+  rays_ += r.rays;
+  build_seconds_ += r.tree.build_seconds;
+  render_seconds_ += r.render_seconds;
+}
+
+void LiveRender::finish() {
+  std::printf("render     %lld frames -> %s (kd-trees %.2f s, rendering %.2f s, %.2f Mrays/s)\n",
+              (long long)frames_, renderer_->image_dir().c_str(), build_seconds_, render_seconds_,
+              render_seconds_ > 0 ? 1e-6 * double(rays_) / render_seconds_ : 0.0);
+  if (frames_ > 0) std::printf("movie      %s\n", make_movie(renderer_->image_dir()).message.c_str());
+}
+
+}  // namespace pd

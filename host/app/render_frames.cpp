@@ -1,0 +1,181 @@
+#include "host/app/render_frames.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "host/app/backend_choice.h"
+#include "host/app/run.h"
+#include "host/fragments/tet_file.h"
+#include "host/fragments/trimtope_file.h"
+#include "host/io/atomic_file.h"
+#include "host/io/frame_file.h"
+#include "host/io/png_file.h"
+#include "render/movie.h"
+
+namespace pd {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> list_frame_files(const std::string& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("frame_", 0) == 0 && it->path().extension() == ".pfr" && it->is_regular_file())
+      files.push_back(it->path().string());
+  }
+  if (ec) throw io_error_errno("list", dir, ec.value());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::vector<std::string> select_frame_files(const std::string& dir, const std::vector<int64_t>& wanted) {
+  std::vector<std::string> all = list_frame_files(dir);
+  if (wanted.empty()) return all;
+  auto number = [](const std::string& file) -> int64_t {  // the digits after "frame_"; -1 if none
+    const std::string digits = fs::path(file).stem().string().substr(6);
+    const bool ok = !digits.empty() && digits.size() <= 18 &&
+                    std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+    return ok ? std::stoll(digits) : -1;
+  };
+  std::vector<int64_t> numbers(all.size());
+  std::transform(all.begin(), all.end(), numbers.begin(), number);
+  std::vector<std::string> chosen;
+  for (int64_t f : wanted) {
+    const auto it = std::find(numbers.begin(), numbers.end(), f);
+    if (it == numbers.end())
+      throw std::invalid_argument(
+          "render: --frames " + std::to_string(f) + ": no such frame in '" + dir + "' (allowed: " +
+          (all.empty() ? std::string("none, the folder has no frame_*.pfr files")
+                       : std::to_string(numbers.front()) + " to " + std::to_string(numbers.back())) +
+          ")");
+    chosen.push_back(all[size_t(it - numbers.begin())]);
+  }
+  return chosen;
+}
+
+void check_render_options(const RenderOptions& o) {
+  auto bad = [](const std::string& what) { throw std::invalid_argument("render: " + what); };
+  if (o.width <= 0 || o.height <= 0) bad("image size must be positive");
+  if (o.spp < 1) bad("--spp must be at least 1");
+  if (!(o.vfov_degrees > 0 && o.vfov_degrees < 180))
+    bad("vfov " + std::to_string(o.vfov_degrees) + " (allowed: degrees in (0, 180))");
+  if (o.material != "opaque" && o.material != "glass")
+    bad("material '" + o.material + "' (allowed: opaque, glass)");
+  if (!(o.ior >= 1) || !(o.ior <= 4)) bad("ior must be in [1, 4]");
+  if (o.environment.empty()) bad("environment is empty (allowed: sky, or the path of a Radiance .hdr file)");
+}
+
+RunRenderer::RunRenderer(const RenderOptions& o, const std::string& last_frame) : options_(o) {
+  check_render_options(o);
+  rest_ = read_rest_file((fs::path(o.dir) / kRestFileName).string());
+  out_ = o.out.empty() ? (fs::path(o.dir) / "render").string() : o.out;
+  // Rest-space geometry the run wrote: Voronoi bodies' trimtopes, tet bodies' tetrahedra.
+  const fs::path trimtope_path = fs::path(o.dir) / kTrimtopesFileName;
+  if (fs::exists(trimtope_path)) trimtopes_ = read_trimtopes_file(trimtope_path.string());
+  const fs::path tets_path = fs::path(o.dir) / kTetsFileName;
+  if (fs::exists(tets_path)) tets_ = read_tets_file(tets_path.string());
+
+  // Camera, floor and texture scale for the whole run, from the rest configuration (and the
+  // last frame for the floor, where fallen pieces lie).
+  const Box box = cube_bounds(rest_.position, rest_.volume);
+  const real size = length(box.hi - box.lo);
+  camera_ = frame_box(box, o.width, o.height, o.vfov_degrees);
+  if (o.eye) camera_.eye = *o.eye;
+  if (o.look_at) camera_.look_at = *o.look_at;
+  camera_frame(camera_, o.width, o.height);  // a degenerate camera fails here, before any frame
+  settings_.width = o.width;
+  settings_.height = o.height;
+  settings_.spp = o.spp;
+  settings_.floor = o.floor;
+  settings_.ior = o.ior;
+  settings_.plank_width = size / 5;
+  settings_.fade_distance = 20 * size;
+  settings_.floor_y = box.lo.y;
+  if (o.floor_y)
+    settings_.floor_y = *o.floor_y;
+  else if (!last_frame.empty())
+    settings_.floor_y =
+        rmin(settings_.floor_y, cube_bounds(read_frame_file(last_frame).position, rest_.volume).lo.y);
+  if (o.environment != "sky")
+    settings_.environment = std::make_shared<EnvironmentMap>(load_environment(o.environment));
+
+  const Backend backend = choose_backend(o.backend, &backend_note_);
+  renderer_ = make_renderer(backend == Backend::kCuda);
+  backend_name_ = backend_name(backend);
+  ensure_directory(out_);
+}
+
+RunRenderer::~RunRenderer() = default;
+
+std::string RunRenderer::device() const {
+  return renderer_->device_name() + " [" + backend_name_ + "]";
+}
+
+std::string RunRenderer::scene_summary() const {
+  const size_t n_trim = trimtopes_ ? trimtopes_->size() : 0, n_tets = tets_ ? tets_->tets.size() : 0;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%zu cubes, %zu tetrahedra, %zu trimtopes (%s), %s",
+                rest_.size() - n_trim - n_tets, n_tets, n_trim, options_.material.c_str(),
+                settings_.environment ? settings_.environment->path.c_str() : "procedural sky");
+  return buf;
+}
+
+FrameRenderReport RunRenderer::render(const std::string& frame_file) {
+  // Scene of this frame, its kd-tree, the image.
+  const FrameData frame = read_frame_file(frame_file);
+  std::optional<FragmentsFrame> fragments;
+  const fs::path fragments_path = fs::path(options_.dir) / fragments_file_name(frame.frame);
+  if (fs::exists(fragments_path)) fragments = read_fragments_file(fragments_path.string());
+  PrimitiveSet prims;
+  std::vector<Vec3> albedo;
+  frame_primitives(rest_, frame, &prims, &albedo, trimtopes_ ? &*trimtopes_ : nullptr,
+                   fragments ? &*fragments : nullptr, tets_ ? &*tets_ : nullptr);
+  std::vector<uint8_t> material(options_.material == "glass" ? albedo.size() : 0, kMaterialGlass);
+  const RenderScene scene = make_render_scene(std::move(prims), std::move(albedo), std::move(material));
+  const RenderResult r = renderer_->render_frame(scene, camera_, settings_);
+  FrameRenderReport report;
+  report.png = (fs::path(out_) / fs::path(frame_file).filename().replace_extension(".png")).string();
+  write_png(report.png, r.image);
+  report.tree = scene.tree.stats;
+  report.hidden = scene.hidden;
+  report.render_seconds = r.seconds;
+  report.rays = r.rays;
+  return report;
+}
+
+int render_frames(const RenderOptions& o) {
+  check_render_options(o);
+  const std::vector<std::string> frames = select_frame_files(o.dir, o.frames);
+  if (frames.empty()) {
+    read_rest_file((fs::path(o.dir) / kRestFileName).string());  // a missing folder says so first
+    throw io_error("read", o.dir, "no frame_*.pfr files");
+  }
+  RunRenderer renderer(o, frames.back());
+  if (!renderer.backend_note().empty()) std::printf("backend    %s\n", renderer.backend_note().c_str());
+  std::printf("device     %s\n", renderer.device().c_str());
+  std::printf("images     %d x %d, %d spp, %s, %zu frames -> %s\n", o.width, o.height, o.spp,
+              renderer.scene_summary().c_str(), frames.size(), renderer.image_dir().c_str());
+  double ray_seconds = 0;
+  int64_t rays = 0;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const FrameRenderReport r = renderer.render(frames[k]);
+    ray_seconds += r.render_seconds;
+    rays += r.rays;
+    std::printf(
+        "frame %zu/%zu  kd-tree %.2f s (%lld nodes, depth %d, %lld hidden)  render %.3f s  %.2f Mrays/s  "
+        "%s\n",
+        k + 1, frames.size(), r.tree.build_seconds, (long long)r.tree.nodes, r.tree.depth,
+        (long long)r.hidden, r.render_seconds, 1e-6 * double(r.rays) / r.render_seconds, r.png.c_str());
+    std::fflush(stdout);
+  }
+  std::printf("rendered   %zu frames, %.2f Mrays/s overall\n", frames.size(),
+              1e-6 * double(rays) / ray_seconds);
+  if (o.movie && o.frames.empty())
+    std::printf("movie      %s\n", make_movie(renderer.image_dir()).message.c_str());
+  return kExitOk;
+}
+
+}  // namespace pd

@@ -1,0 +1,87 @@
+// `perifrac render DIR`: turn the frames of a run into images (frame_primitives.h says what each
+// particle becomes) and, when ffmpeg is on PATH, a movie. RunRenderer renders one frame file at a
+// time, so that `perifrac run` can render as it goes (live_render.h).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "host/app/frame_primitives.h"
+#include "render/renderer.h"
+
+namespace pd {
+
+struct RenderOptions {
+  std::string dir;               // run output: DIR/rest.pfr and DIR/frame_*.pfr
+  std::string out;               // image folder; empty: DIR/render
+  std::string backend = "auto";  // auto | cpu | cuda
+  int width = 1280, height = 720;
+  int spp = 4;
+  // Camera; by default a 3/4 view from above framing the rest bounding box.
+  std::optional<Vec3> eye, look_at;
+  real vfov_degrees = 35;
+  bool floor = true;
+  std::optional<real> floor_y;      // default: bottom of the lowest cube of the rest and last frames
+  std::string material = "opaque";  // opaque | glass: the material of every body
+  real ior = real(1.5);             // glass index of refraction
+  std::string environment = "sky";  // "sky" (procedural) or the path of a Radiance .hdr map
+  bool movie = true;                // DIR/render/movie.mp4 when ffmpeg is on PATH (all frames only)
+  std::vector<int64_t> frames;      // frame numbers to render; empty: every frame of the run
+};
+
+// The run's frame files frame_NNNNN.pfr, in order; with `wanted` (frame numbers), only those.
+// Throws IoError when the folder cannot be listed, std::invalid_argument naming a wanted frame the
+// run does not have (and the range it has).
+std::vector<std::string> select_frame_files(const std::string& dir, const std::vector<int64_t>& wanted);
+
+// Throws std::invalid_argument naming the option and what is allowed when `o` holds a bad value
+// (image size, spp, field of view, material, ior, eye at look-at).
+void check_render_options(const RenderOptions& o);
+
+// What one rendered frame took.
+struct FrameRenderReport {
+  std::string png;
+  KdTreeStats tree;
+  int64_t hidden = 0;  // tetrahedra left out of the kd-tree (hidden_tets.h)
+  double render_seconds = 0;
+  int64_t rays = 0;
+};
+
+// The renderer of one run folder: rest.pfr, trimtopes.ptm and tets.ptt are read once, the
+// environment loaded and the backend chosen at construction; each render() call draws one frame
+// file. Throws IoError for unreadable inputs and std::invalid_argument for bad options (an
+// unreadable .hdr included) or frames that do not match the rest file.
+class RunRenderer {
+ public:
+  // `last_frame`: a frame file whose lowest cube sets the default floor (empty: the rest only).
+  RunRenderer(const RenderOptions& options, const std::string& last_frame);
+  ~RunRenderer();
+
+  FrameRenderReport render(const std::string& frame_file);
+  const std::string& image_dir() const { return out_; }
+  std::string device() const;         // "<device name> [<backend>]"
+  std::string scene_summary() const;  // counts of each primitive kind and the material
+  const std::string& backend_note() const { return backend_note_; }
+
+ private:
+  RenderOptions options_;
+  std::string out_, backend_note_;
+  RestData rest_;
+  std::optional<RestTrimtopes> trimtopes_;
+  std::optional<EmbeddedTets> tets_;
+  Camera camera_;
+  RenderSettings settings_;
+  std::unique_ptr<Renderer> renderer_;
+  std::string backend_name_;
+};
+
+// Renders DIR/render/frame_NNNNN.png for every frame file, printing one line per frame with
+// the rays per second, then the movie. Returns kExitOk; throws as RunRenderer does.
+int render_frames(const RenderOptions& options);
+
+// The frame files of DIR (frame_*.pfr), in name order.
+std::vector<std::string> list_frame_files(const std::string& dir);
+
+}  // namespace pd

@@ -1,0 +1,104 @@
+#include "host/app/validate_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "host/app/backend_choice.h"
+#include "host/io/atomic_file.h"
+#include "host/validation/validation.h"
+
+namespace pd {
+
+const char* const kValidationCsvHeader =
+    "problem,backend,precision,resolution,delta_over_lambda,dt_fraction,particles,steps,wall_s,measured,"
+    "reference,rel_error";
+
+namespace {
+
+const char* precision_name() {
+  return sizeof(real) == 8 ? "double" : "float";
+}
+
+std::string csv_row(const ValidationResult& r, const ValidationCase& c) {
+  char line[512];
+  std::snprintf(line, sizeof line, "%s,%s,%s,%d,%g,%g,%lld,%lld,%.4f,%.9g,%.9g,%.6g\n", r.problem.c_str(),
+                backend_name(c.backend), precision_name(), c.resolution, c.delta_over_lambda, c.dt_fraction,
+                (long long)r.particles, (long long)r.steps, r.wall_s, r.measured, r.reference, r.rel_error);
+  return line;
+}
+
+// Appends rows to the CSV, rewriting it atomically (header first when it is new or empty).
+void append_csv(const std::string& path, const std::string& rows) {
+  std::string text;
+  if (std::filesystem::exists(path)) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream old;
+    old << in.rdbuf();
+    text = old.str();
+  }
+  if (text.empty()) text = std::string(kValidationCsvHeader) + "\n";
+  write_file_atomic(path, text + rows);
+}
+
+}  // namespace
+
+int validate_command(const ValidateOptions& o) {
+  std::vector<const ValidationProblem*> selected;
+  for (const auto& p : validation_problems())
+    if (o.problem == "all" || o.problem == p.name) selected.push_back(&p);
+  if (selected.empty()) {
+    std::string names;
+    for (const auto& p : validation_problems()) names += std::string(", ") + p.name;
+    std::fprintf(stderr, "error: validate: unknown problem '%s' (allowed: all%s)\n", o.problem.c_str(),
+                 names.c_str());
+    return 2;
+  }
+  if (!(o.delta_over_lambda >= 1) || !(o.dt_fraction > 0)) {
+    std::fprintf(stderr, "error: validate: need --delta-over-lambda >= 1 and --dt-fraction > 0\n");
+    return 2;
+  }
+  for (int r : o.resolutions)
+    if (r < 2) {
+      std::fprintf(stderr, "error: validate: resolution %d (allowed: >= 2 particles across)\n", r);
+      return 2;
+    }
+  std::string note;
+  ValidationCase c;
+  try {
+    c.backend = choose_backend(o.backend, &note);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: validate: %s\n", e.what());
+    return 2;
+  }
+  if (!note.empty() && !o.quiet) std::printf("backend    %s\n", note.c_str());
+  c.delta_over_lambda = o.delta_over_lambda;
+  c.dt_fraction = o.dt_fraction;
+
+  int status = 0;
+  for (const ValidationProblem* p : selected) {
+    for (int res : o.resolutions.empty() ? p->resolutions : o.resolutions) {
+      c.resolution = res;
+      std::string rows;
+      for (const ValidationResult& r : p->run(c)) {
+        rows += csv_row(r, c);
+        if (!std::isfinite(r.measured)) status = 3;
+        if (!o.quiet)
+          std::printf(
+              "%-32s %-4s %-6s res %3d  d/l %g  dt %.2f dt_c  %8lld particles %7lld steps %8.2f s  "
+              "measured %-12.6g reference %-12.6g error %6.2f%%  (%s)\n",
+              r.problem.c_str(), backend_name(c.backend), precision_name(), res, c.delta_over_lambda,
+              c.dt_fraction, (long long)r.particles, (long long)r.steps, r.wall_s, r.measured, r.reference,
+              100 * r.rel_error, r.note.c_str());
+      }
+      std::fflush(stdout);
+      if (!o.csv.empty()) append_csv(o.csv, rows);
+    }
+  }
+  return status;
+}
+
+}  // namespace pd

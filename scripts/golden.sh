@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Golden outputs: runs five small scenes (bond-based, state-based plastic, anisotropic, tets,
+# Voronoi; with contact, pre-cracks, anchors and projectiles among them) on one backend, renders
+# their last frame, and prints the SHA-256 of every output file whose bytes are meant to depend
+# only on the physics (files that record wall times, dates or paths are left out).
+#   scripts/golden.sh [cpu|cuda] [BINARY] > sums.txt
+# A change that must not move results is checked by running this before and after it with the
+# same compiler and comparing the two lists (`diff`); bench/golden/ keeps lists so made.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+backend=${1:-cpu}
+bin=${2:-build/$backend/perifrac}
+out=${GOLDEN_OUT:-out/golden-$backend}
+rm -rf "$out"
+mkdir -p "$out"
+
+# name scene scale frames steps_per_frame
+cases=(
+  "glass_plate scenes/glass_plate_projectile.toml 0.02 3 40"
+  "plastic_wall scenes/chen_elastic_vs_plastic_wall.toml 0.02 2 40"
+  "four_walls scenes/chen_four_walls.toml 0.005 2 40"
+  "vase_tets scenes/vase_drop.toml 0.1 2 40"
+  "torus_voronoi scenes/torus_voronoi_drop.toml 0.05 2 40"
+)
+for c in "${cases[@]}"; do
+  read -r name scene scale frames spf <<<"$c"
+  "$bin" run "$scene" --backend "$backend" --scale "$scale" --frames "$frames" --steps-per-frame "$spf" \
+    --out "$out/$name" >"$out/$name.log" 2>&1 || { echo "golden: $name failed, see $out/$name.log" >&2; exit 1; }
+  "$bin" render "$out/$name" --backend "$backend" --width 96 --height 64 --spp 1 >>"$out/$name.log" 2>&1 ||
+    { echo "golden: rendering $name failed, see $out/$name.log" >&2; exit 1; }
+done
+# Run records (wall times, dates, the command line) and logs are not results.
+(cd "$out" && find . -type f ! -name '*.log' ! -name 'run.json' ! -name '*.json' ! -name 'kernels*' \
+  ! -name 'checkpoint*' | LC_ALL=C sort | xargs sha256sum)

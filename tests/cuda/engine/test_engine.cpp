@@ -1,0 +1,363 @@
+// The engine on the CPU-reference backend: families, conservation, breaking, determinism.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <utility>
+
+#include "cuda/engine/engine.h"
+#include "cuda/engine/motion.h"
+#include "cuda/kernels/collisions.h"
+#include "cuda/kernels/family.h"
+#include "tests/support/fixtures.h"
+
+namespace pd {
+namespace {
+
+using testing::lattice_block;
+
+// Family of each particle as a sorted list, from the sliced-ELL storage.
+std::vector<std::vector<int32_t>> families(Engine& e) {
+  BondLists b;
+  e.read_bonds(b);
+  const BondsView v = b.view();
+  std::vector<std::vector<int32_t>> out(b.count.size());
+  for (int32_t i = 0; i < v.n; ++i) {
+    for (int32_t k = 0; k < v.count[i]; ++k) out[i].push_back(bond_partner(v.neighbor[v.slot(i, k)]));
+    std::sort(out[i].begin(), out[i].end());
+  }
+  return out;
+}
+
+// O(N^2) reference: same body, distance at most delta (with the same slack).
+std::vector<std::vector<int32_t>> brute_force_families(const SimulationInput& in) {
+  const auto& ps = in.particles;
+  std::vector<std::vector<int32_t>> out(ps.size());
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const double delta = double(in.materials.m[ps.material[i]].family_radius()) * (1 + kHorizonSlack);
+    for (size_t j = 0; j < ps.size(); ++j) {
+      if (i == j || ps.body[i] != ps.body[j]) continue;
+      const double dx = double(ps.rest[j].x) - ps.rest[i].x, dy = double(ps.rest[j].y) - ps.rest[i].y,
+                   dz = double(ps.rest[j].z) - ps.rest[i].z;
+      if (dx * dx + dy * dy + dz * dz <= delta * delta) out[i].push_back(int32_t(j));
+    }
+  }
+  return out;
+}
+
+// delta = 3 lambda: 122 neighbours within delta; 178 whose cubes overlap the horizon sphere
+// (distance <= delta + lambda/2) with partial volumes.
+TEST(EngineFamilies, LatticeInteriorNeighbourCounts) {
+  for (bool partial : {false, true}) {
+    auto in = lattice_block(9, 9, 9, 1e-3);
+    in.materials.m[0].partial_volumes = partial;
+    auto e = make_cpu_engine(in);
+    const auto fam = families(*e);
+    const size_t expected = partial ? 178 : 122;
+    EXPECT_EQ(fam[4 + 9 * (4 + 9 * 4)].size(), expected);  // centre particle
+    EXPECT_EQ(e->family_stats().max, int32_t(expected));
+    EXPECT_EQ(fam, brute_force_families(in));
+  }
+}
+
+TEST(EngineFamilies, RandomPointsMatchBruteForce) {
+  auto in = lattice_block(10, 8, 7, 1e-3, 1e-3, 0.9, 11);
+  // A second body overlapping the first: no bonds between bodies.
+  for (size_t i = 0; i < in.particles.size(); i += 3) in.particles.body[i] = 1;
+  auto e = make_cpu_engine(in);
+  EXPECT_EQ(families(*e), brute_force_families(in));
+  const FamilyStats& s = e->family_stats();
+  EXPECT_GT(s.min, 0);
+  EXPECT_LE(s.bonds, s.slots);
+}
+
+// Runs `in` with random velocities of standard deviation `speed` and contact on: bonds break,
+// and the total momentum stays within round-off of the start (no external force).
+void expect_momentum_conserved(SimulationInput in, double speed, uint64_t seed) {
+  Random rng(seed);
+  for (auto& v : in.particles.velocity)
+    v = {real(speed * rng.normal()), real(speed * rng.normal()), real(speed * rng.normal())};
+  in.contact = true;
+  in.step.contact_stiffness = real(1e8);
+  double scale = 0;
+  const auto p0 = testing::total_momentum(in, in.particles.velocity, &scale);
+  auto e = make_cpu_engine(in);
+  e->advance(300);
+  ParticleState s;
+  e->read_state(s);
+  EXPECT_GT(e->broken_bonds(), 0);
+  const auto p1 = testing::total_momentum(in, s.vel);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_NEAR(p1[a], p0[a], 64 * std::numeric_limits<real>::epsilon() * scale) << "axis " << a;
+}
+
+TEST(EngineConservation, MomentumIsConservedWithoutExternalForces) {
+  expect_momentum_conserved(lattice_block(8, 6, 5, 1e-3, 5e-4, 0.2), 1.0, 3);
+}
+
+// The same with the state-based plastic material, damage-weighted fracture on.
+TEST(EngineConservation, MomentumIsConservedWithPlasticityAndDamage) {
+  expect_momentum_conserved(testing::state_block(8, 6, 5, 1e-3, 5e-4, true, 0.2), 3.0, 4);
+}
+
+TEST(EngineBreaking, NoStateBasedBondBreaksAtRest) {
+  for (bool plastic : {false, true}) {
+    auto e = make_cpu_engine(testing::state_block(6, 6, 6, 1e-3, 1e-5, plastic));
+    e->advance(100);
+    EXPECT_EQ(e->broken_bonds(), 0);
+    ParticleState s;
+    e->read_state(s);
+    for (const Vec3& u : s.disp) EXPECT_LT(length(u), 1e-12);
+  }
+}
+
+// Every broken bond is broken from both ends.
+TEST(EngineBreaking, BondsBreakSymmetrically) {
+  auto in = lattice_block(12, 4, 4, 1e-3, 2e-4);
+  // Pull the two halves apart.
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    in.particles.velocity[i] = {real(in.particles.rest[i].x < 6e-3 ? -2 : 2), 0, 0};
+  auto e = make_cpu_engine(in);
+  e->advance(200);
+  BondLists b;
+  e->read_bonds(b);
+  const BondsView v = b.view();
+  std::set<std::pair<int32_t, int32_t>> broken;
+  int64_t total = 0;
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int32_t nb = v.neighbor[v.slot(i, k)];
+      total += 1;
+      if (!bond_intact(nb)) broken.insert({i, bond_partner(nb)});
+    }
+  ASSERT_GT(broken.size(), 0u);
+  for (const auto& [i, j] : broken) EXPECT_TRUE(broken.count({j, i})) << i << "-" << j;
+  EXPECT_EQ(int64_t(broken.size()), e->broken_bonds());
+  EXPECT_LT(int64_t(broken.size()), total);
+}
+
+// Chen's damage factor alpha raises the limit of damaged material (eq. 18 as the paper's text
+// means it): a framed brittle plate punched by a projectile sheds far fewer loose particles (all
+// bonds broken) with alpha = 8 than with alpha = 0.
+TEST(EngineBreaking, DamageFactorLeavesFewerLooseParticles) {
+  auto punch = [](double alpha) {
+    auto in = testing::state_block(20, 20, 3, 1e-3, 1e-3, false);
+    in.materials.m[0].damage_alpha = real(alpha);
+    for (size_t i = 0; i < in.particles.size(); ++i) {
+      const Vec3 r = in.particles.rest[i];
+      if (std::min({r.x, r.y, 19e-3f - r.x, 19e-3f - r.y}) < 1.5e-3f) in.particles.flags[i] |= kAnchored;
+    }
+    in.step.n_projectiles = 1;
+    in.step.projectile[0] = {
+        {real(9.5e-3), real(9.5e-3), real(6.5e-3)}, {0, 0, real(-40)}, real(3e-3), real(1e8)};
+    auto e = make_cpu_engine(in);
+    e->advance(1200);
+    ParticleState s;
+    e->read_state(s);
+    const auto loose = std::count(s.intact.begin(), s.intact.end(), 0);
+    std::printf("  alpha %g: %ld loose particles, %ld broken bonds\n", alpha, long(loose),
+                long(e->broken_bonds()));
+    return int64_t(loose);
+  };
+  const int64_t loose0 = punch(0), loose8 = punch(8);  // 215 and 32 (eq. 18 as printed: 312)
+  ASSERT_GT(loose0, 50);
+  EXPECT_LT(loose8, loose0 / 3);
+}
+
+TEST(EngineBreaking, NoBondBreaksAtRest) {
+  auto in = lattice_block(6, 6, 6, 1e-3, 1e-4);
+  auto e = make_cpu_engine(in);
+  e->advance(100);
+  EXPECT_EQ(e->broken_bonds(), 0);
+  ParticleState s;
+  e->read_state(s);
+  for (const Vec3& u : s.disp) EXPECT_LT(length(u), 1e-12);
+}
+
+TEST(EngineDeterminism, TwoRunsAreBitIdentical) {
+  auto in = lattice_block(8, 8, 4, 1e-3, 3e-4, 0.3);
+  Random rng(5);
+  for (auto& v : in.particles.velocity) v = {real(rng.normal()), real(rng.normal()), real(rng.normal())};
+  in.contact = true;
+  in.step.contact_stiffness = real(1e8);
+  ParticleState a, b;
+  for (ParticleState* s : {&a, &b}) {
+    auto e = make_cpu_engine(in);
+    e->advance(150);
+    e->read_state(*s);
+  }
+  ASSERT_EQ(a.disp.size(), b.disp.size());
+  for (size_t i = 0; i < a.disp.size(); ++i) {
+    EXPECT_EQ(a.disp[i].x, b.disp[i].x);
+    EXPECT_EQ(a.disp[i].y, b.disp[i].y);
+    EXPECT_EQ(a.disp[i].z, b.disp[i].z);
+  }
+}
+
+// A cloud of unbonded particles (each its own body) flying through each other: after every few
+// steps the force on each particle is, to the last bit, the sum of Levine's eq. 6 over every
+// other particle in ascending order, although the contact lists were built only now and then.
+// With a contact spacing of 3 lambda the lists outgrow their first room and are built again.
+void expect_list_forces_equal_all_pairs(double contact_spacing, double stiffness) {
+  auto in = lattice_block(8, 8, 8, 1e-3, 1e-3, 0.9, 13);
+  in.materials.m[0].contact_spacing = real(contact_spacing);
+  Random rng(29);
+  for (size_t i = 0; i < in.particles.size(); ++i) {
+    in.particles.body[i] = int32_t(i);
+    in.particles.velocity[i] = {real(30 * rng.normal()), real(30 * rng.normal()), real(30 * rng.normal())};
+  }
+  in.contact = true;
+  in.step.contact_stiffness = real(stiffness);
+  auto e = make_cpu_engine(in);
+  const real rc = real(0.5) * in.materials.m[0].contact_spacing;
+  int checked = 0, touching = 0;
+  for (int round = 0; round < 30; ++round) {
+    e->advance(7);
+    ParticleState s;
+    e->read_state(s);
+    std::vector<Vec3> x(s.disp.size());
+    for (size_t i = 0; i < x.size(); ++i) x[i] = in.particles.rest[i] + s.disp[i];
+    for (size_t i = 0; i < x.size(); ++i) {
+      Vec3 f{0, 0, 0};
+      for (size_t j = 0; j < x.size(); ++j)
+        if (j != i) f += contact_force(x[i], x[j], rc, in.step.contact_stiffness);
+      ASSERT_EQ(s.force[i].x, f.x) << "particle " << i << " after " << e->step() << " steps";
+      ASSERT_EQ(s.force[i].y, f.y);
+      ASSERT_EQ(s.force[i].z, f.z);
+      touching += f.x != 0 || f.y != 0 || f.z != 0;
+      ++checked;
+    }
+  }
+  EXPECT_GT(touching, checked / 20);  // contacts were there to find
+  // Built at the start and again as particles left their skins, not every step.
+  const int64_t builds = e->stats().entry("pd/contact_build").launches;
+  EXPECT_GT(builds, 3);
+  EXPECT_LT(builds, 210 / 3);
+}
+
+TEST(EngineContact, ListForcesEqualTheSumOverAllPairs) {
+  expect_list_forces_equal_all_pairs(1e-3, 1e8);
+}
+
+TEST(EngineContact, ListsThatOutgrowTheirRoomAreBuiltAgain) {
+  expect_list_forces_equal_all_pairs(3e-3, 1e6);
+}
+
+// An intact lattice (neighbours at lambda, lists reaching 0.9 lambda) has empty lists: built
+// once, and `collisions` never launched while nothing moves.
+TEST(EngineContact, AnIntactLatticeAtRestBuildsOnceAndSkipsCollisions) {
+  auto in = lattice_block(6, 6, 6, 1e-3);
+  in.contact = true;
+  in.step.contact_stiffness = real(1e8);
+  auto e = make_cpu_engine(in);
+  e->advance(50);
+  EXPECT_EQ(e->stats().entry("pd/contact_build").launches, 1);
+  EXPECT_EQ(e->stats().entry("pd/collisions").launches, 0);
+  EXPECT_EQ(e->energy().contact, 0);
+}
+
+// A moving grip: anchored particles follow their prescribed velocity exactly.
+TEST(EngineAnchors, MovingAnchorsFollowTheirVelocity) {
+  auto in = lattice_block(10, 4, 4, 1e-3, 1.0);
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    if (in.particles.rest[i].x > 8.5e-3) {
+      in.particles.flags[i] |= kAnchored;
+      in.particles.velocity[i] = {real(0.5), 0, 0};
+    }
+  auto e = make_cpu_engine(in);
+  e->advance(400);
+  ParticleState s;
+  e->read_state(s);
+  const double travelled = 400 * double(in.step.dt) * 0.5;
+  for (size_t i = 0; i < s.disp.size(); ++i)
+    if (in.particles.flags[i] & kAnchored) {
+      EXPECT_NEAR(s.disp[i].x, travelled, 1e-5 * travelled);
+      EXPECT_EQ(s.vel[i].x, real(0.5));
+    }
+  EXPECT_GT(s.disp[0].x, 0);  // the free end is pulled along through the bonds
+}
+
+// A scripted anchor turns and translates its particles rigidly: each one sits at
+// P + offset + R (X - P) with the velocity of that motion, to float round-off.
+TEST(EngineAnchors, ScriptedAnchorMovesItsParticlesRigidly) {
+  auto in = lattice_block(6, 6, 6, 1e-3);
+  AnchorScript script;
+  script.pivot = {3e-3, 3e-3, 3e-3};
+  script.omega = {0, 200, 100};  // rad/s: about 1.5 degrees over the run
+  script.path = {{0, 0, 0, 0}, {1e-4, 1e-4, 0, 0}, {1e-3, 1e-4, -2e-4, 0}};
+  in.motion.anchors = {AnchorScript{}, script};
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    if (in.particles.rest[i].y < 2e-3) {
+      in.particles.flags[i] |= kAnchored;
+      in.particles.anchor[i] = 1;
+    }
+  auto e = make_cpu_engine(in);
+  e->advance(1000);
+  ParticleState s;
+  e->read_state(s);
+  const double t = e->time();
+  const auto rm = rotation_minus_identity(script.omega, t);
+  const PathSample move = sample_path(script.path, t);
+  int checked = 0;
+  for (size_t i = 0; i < s.disp.size(); ++i) {
+    if (!(in.particles.flags[i] & kAnchored)) continue;
+    const double d[3] = {in.particles.rest[i].x - script.pivot[0], in.particles.rest[i].y - script.pivot[1],
+                         in.particles.rest[i].z - script.pivot[2]};
+    const double u[3] = {s.disp[i].x, s.disp[i].y, s.disp[i].z}, v[3] = {s.vel[i].x, s.vel[i].y, s.vel[i].z};
+    double r[3];  // R d
+    for (int row = 0; row < 3; ++row)
+      r[row] = d[row] + rm[size_t(3 * row)] * d[0] + rm[size_t(3 * row + 1)] * d[1] +
+               rm[size_t(3 * row + 2)] * d[2];
+    const auto& w = script.omega;
+    const double spin[3] = {w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2], w[0] * r[1] - w[1] * r[0]};
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(u[c], move.position[size_t(c)] + r[c] - d[c], 1e-9) << i;  // 1e-6 of the 1 mm spacing
+      EXPECT_NEAR(v[c], move.velocity[size_t(c)] + spin[c], 1e-6) << i;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
+}
+
+// From its release time on an anchor lets go: its particles fall with the rest.
+TEST(EngineAnchors, ReleasedAnchorLetsGo) {
+  auto in = lattice_block(4, 4, 4, 1e-3);
+  in.step.gravity = {0, real(-9.81), 0};
+  AnchorScript hold;
+  hold.release = 100.5 * double(in.step.dt);
+  in.motion.anchors = {hold};
+  for (size_t i = 0; i < in.particles.size(); ++i) in.particles.flags[i] |= kAnchored;
+  auto e = make_cpu_engine(in);
+  ParticleState s;
+  e->advance(100);
+  e->read_state(s);
+  for (const Vec3& v : s.vel) EXPECT_EQ(length(v), 0);
+  e->advance(100);
+  e->read_state(s);
+  const double fall = 9.81 * 100 * double(in.step.dt);  // speed gained after the release
+  for (const Vec3& v : s.vel) EXPECT_NEAR(v.y, -fall, 1e-3 * fall);
+}
+
+TEST(EngineAnchors, AnchoredParticlesStayPut) {
+  auto in = lattice_block(6, 6, 6, 1e-3);
+  in.step.gravity = {0, real(-9.81), 0};
+  for (size_t i = 0; i < in.particles.size(); ++i)
+    if (in.particles.rest[i].y < 0.5e-3) in.particles.flags[i] |= kAnchored;
+  auto e = make_cpu_engine(in);
+  e->advance(200);
+  ParticleState s;
+  e->read_state(s);
+  for (size_t i = 0; i < s.disp.size(); ++i) {
+    if (in.particles.flags[i] & kAnchored) {
+      EXPECT_EQ(length(s.disp[i]), 0);
+      EXPECT_EQ(length(s.vel[i]), 0);
+    } else if (in.particles.rest[i].y > 4.5e-3) {
+      EXPECT_LT(s.disp[i].y, 0);  // the free top sags under gravity
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pd

@@ -1,0 +1,220 @@
+// Lattice families (host/lattice_families.h): which bodies find their partners by offset, their
+// stencils and bits, and that the engine computes the same motion with them as with explicit
+// families (CPU-reference backend; the GPU runs the same kernel bodies, tests/gpu).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "cuda/engine/bond_cuts.h"
+#include "cuda/engine/engine.h"
+#include "cuda/engine/lattice_families.h"
+#include "tests/support/fixtures.h"
+
+namespace pd {
+namespace {
+
+using testing::lattice_block;
+using testing::state_block;
+
+// A power-of-two spacing puts every grid point exactly on a float, so an explicit bond vector
+// (the difference of two positions) is the stencil's exactly; what is left between the two
+// paths is the rounding of |xi| and 1/|xi| (float against double), a few ulps.
+constexpr double kLambda = 0x1p-10;
+
+BondLists bonds_of(const SimulationInput& in) {
+  BondLists b;
+  make_cpu_engine(in)->read_bonds(b);
+  return b;
+}
+
+bool bit(const LatticeFamilies& lf, const std::vector<uint32_t>& mask, int32_t i, int32_t q) {
+  return mask[size_t(q / 32) * lf.stencil.size() + size_t(i)] >> (q % 32) & 1u;
+}
+
+TEST(LatticeFamilies, BoxGridBodyGetsItsStencil) {
+  const auto in = lattice_block(10, 9, 8, 1e-3);  // delta = 3 lambda with partial volumes
+  const BondLists b = bonds_of(in);
+  const LatticeFamilies lf = lattice_families(in.particles, in.materials, b);
+  ASSERT_EQ(lf.stencils.size(), 1u);
+  EXPECT_EQ(lf.particles(), int64_t(in.particles.size()));
+  const Stencil& st = lf.stencils[0];
+  EXPECT_EQ(st.size, 178);  // the cubes overlapping the horizon sphere: |d| <= 3.5 lambda
+  EXPECT_EQ(lf.words, 6);
+  // An interior particle holds every entry; partners at the offsets, bond vectors as the
+  // positions say, ascending offsets.
+  const int32_t i = 4 + 10 * (4 + 9 * 4);
+  for (int32_t q = 0; q < st.size; ++q) {
+    const StencilEntry& e = lf.entries[size_t(st.first + q)];
+    EXPECT_TRUE(bit(lf, lf.present, i, q));
+    EXPECT_TRUE(bit(lf, lf.intact, i, q));
+    if (q > 0) {
+      EXPECT_LT(lf.entries[size_t(st.first + q - 1)].offset, e.offset);
+    }
+    const Vec3 d = in.particles.rest[size_t(i + e.offset)] - in.particles.rest[size_t(i)];
+    EXPECT_NEAR(d.x, e.xi.x, 1e-9);
+    EXPECT_NEAR(d.y, e.xi.y, 1e-9);
+    EXPECT_NEAR(d.z, e.xi.z, 1e-9);
+    EXPECT_NEAR(e.xi.w, length(xyz(e.xi)), 1e-9);
+    EXPECT_NEAR(e.xi.w * e.inv_r0, 1.0, 1e-6);
+    // beta V_j: whole cubes well inside the horizon, the overlapped fraction at its edge.
+    const double beta = std::min(1.0, std::max(0.0, (3.5e-3 - e.xi.w) / 1e-3));
+    EXPECT_NEAR(e.weight / in.particles.volume[0], beta, 1e-5) << q;
+  }
+  // Every particle's present bits, walked in order, are its listed partners.
+  const BondsView v = b.view();
+  for (int32_t p = 0; p < v.n; ++p) {
+    int32_t k = 0;
+    for (int32_t q = 0; q < st.size; ++q) {
+      if (!bit(lf, lf.present, p, q)) continue;
+      ASSERT_LT(k, v.count[p]);
+      EXPECT_EQ(v.neighbor[v.slot(p, k++)], p + lf.entries[size_t(st.first + q)].offset);
+    }
+    EXPECT_EQ(k, v.count[p]);
+  }
+}
+
+TEST(LatticeFamilies, BodiesThatAreNotFullBoxGridsKeepExplicitFamilies) {
+  auto none = [](const SimulationInput& in) {
+    return lattice_families(in.particles, in.materials, bonds_of(in)).stencils.size();
+  };
+  EXPECT_EQ(none(lattice_block(10, 9, 8, 1e-3, 1e-3, 0.2)), 0u);  // jittered
+  auto mixed = lattice_block(10, 9, 8, 1e-3);
+  mixed.particles.volume[17] *= real(1.5);  // one particle of another volume
+  EXPECT_EQ(none(mixed), 0u);
+  const auto full = lattice_block(10, 9, 8, 1e-3);
+  auto holed = full;  // the last particle missing: not a full box
+  holed.particles = ParticleSet();
+  for (size_t i = 0; i + 1 < full.particles.size(); ++i)
+    holed.particles.add(full.particles.rest[i], {0, 0, 0}, full.particles.volume[i], full.particles.mass[i],
+                        full.particles.strain_limit0[i], 0, 0);
+  EXPECT_EQ(none(holed), 0u);
+  EXPECT_EQ(none(lattice_block(6, 9, 8, 1e-3)), 0u);  // offsets along x would alias (6 <= 2 * 3)
+  auto interleaved = lattice_block(10, 9, 8, 1e-3);   // two bodies taking turns
+  for (size_t i = 0; i < interleaved.particles.size(); ++i) interleaved.particles.body[i] = int32_t(i % 2);
+  EXPECT_EQ(none(interleaved), 0u);
+}
+
+TEST(LatticeFamilies, TwoBoxBodiesGetOneStencilEach) {
+  auto in = lattice_block(10, 9, 8, 1e-3);
+  const size_t half = in.particles.size();
+  auto other = lattice_block(12, 10, 7, 1e-3);
+  for (size_t i = 0; i < other.particles.size(); ++i)
+    in.particles.add(other.particles.rest[i] + Vec3{real(0.05), 0, 0}, {0, 0, 0}, other.particles.volume[i],
+                     other.particles.mass[i], other.particles.strain_limit0[i], 0, 1);
+  const LatticeFamilies lf = lattice_families(in.particles, in.materials, bonds_of(in));
+  ASSERT_EQ(lf.stencils.size(), 2u);
+  EXPECT_EQ(lf.stencil[0], 0);
+  EXPECT_EQ(lf.stencil[half], 1);
+  EXPECT_EQ(lf.stencils[0].size, lf.stencils[1].size);
+  EXPECT_EQ(lf.entries[size_t(lf.stencils[1].first + 1)].offset, 12 * (-1 + 10 * -3));
+}
+
+// Relative L2 difference of two vector fields.
+double relative_l2(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double num = 0, den = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const Vec3 d = a[i] - b[i];
+    num += double(dot(d, d));
+    den += double(dot(b[i], b[i]));
+  }
+  return std::sqrt(num / den);
+}
+
+// Runs `in` with lattice and with explicit families and compares: the same bonds broken, and
+// the motion as close as rounding leaves it (see kLambda: a few ulps per bond and step, grown
+// over the run). A particle's net force is the small remainder of its ~178 bond forces, which
+// cancel to ~1% of their sizes once it moves with its neighbours, so its relative difference
+// is ~100x that of the bond forces.
+void expect_same_run(SimulationInput in, int64_t steps) {
+  auto lattice = make_cpu_engine(in);
+  ASSERT_GT(lattice->family_stats().lattice_particles, 0);
+  in.lattice_families = false;
+  auto listed = make_cpu_engine(in);
+  EXPECT_EQ(listed->family_stats().lattice_particles, 0);
+  lattice->advance(steps);
+  listed->advance(steps);
+  ASSERT_GT(lattice->broken_bonds(), 0) << "the run must break bonds";
+  EXPECT_EQ(lattice->broken_bonds(), listed->broken_bonds());
+  ParticleState a, b;
+  lattice->read_state(a);
+  listed->read_state(b);
+  EXPECT_LT(relative_l2(a.disp, b.disp), 1e-5);
+  EXPECT_LT(relative_l2(a.vel, b.vel), 1e-4);
+  EXPECT_LT(relative_l2(a.force, b.force), 1e-3);
+  BondLists la, lb;
+  lattice->read_bonds(la);
+  listed->read_bonds(lb);
+  int64_t differ = 0;
+  for (size_t k = 0; k < la.neighbor.size(); ++k) differ += la.neighbor[k] != lb.neighbor[k];
+  EXPECT_EQ(differ, 0);
+}
+
+SimulationInput pulled_apart(SimulationInput in, int nx, double v) {
+  return testing::pulled_apart(std::move(in), nx, kLambda, v);
+}
+
+TEST(LatticeFamilies, BondBasedBreakingRunsAsWithExplicitFamilies) {
+  const auto in = pulled_apart(lattice_block(16, 8, 8, kLambda, 2e-4), 16, 2);
+  expect_same_run(in, 150);
+}
+
+TEST(LatticeFamilies, PlasticStateBasedRunsAsWithExplicitFamilies) {
+  const auto in = pulled_apart(state_block(16, 8, 8, kLambda, 2e-4, true), 16, 2);
+  expect_same_run(in, 150);
+}
+
+TEST(LatticeFamilies, CutAndWeakenedBondsKeepTheirSlots) {
+  auto in = pulled_apart(lattice_block(16, 8, 8, kLambda, 4e-4), 16, 2);
+  CutTriangle a, b;  // weaken the bonds across x = 8 lambda (by half), remove those across 4 lambda
+  a.corner = {{{8 * kLambda, -1, -1}, {8 * kLambda, 1, -1}, {8 * kLambda, 1, 1}}};
+  b.corner = {{{8 * kLambda, -1, -1}, {8 * kLambda, 1, 1}, {8 * kLambda, -1, 1}}};
+  a.strength = b.strength = 0.5;
+  CutTriangle c = a, d = b;
+  for (auto* t : {&c, &d}) {
+    for (auto& p : t->corner) p[0] = 4.25 * kLambda;
+    t->strength = 0;
+  }
+  in.cuts = {a, b, c, d};
+  auto e = make_cpu_engine(in);
+  EXPECT_GT(e->family_stats().cuts.removed, 0);
+  EXPECT_GT(e->family_stats().cuts.weakened, 0);
+  // The weak bits are the weakened slots: only those read their strength.
+  BondLists lists;
+  e->read_bonds(lists);
+  std::vector<uint8_t> strength;
+  cut_bonds(in.cuts, in.particles.rest, in.particles.body, lists,
+            strength);  // lists already cut: weakens only
+  LatticeFamilies lf = lattice_families(in.particles, in.materials, lists);
+  mark_weak_lattice_bonds(lf, lists, strength);
+  int64_t weak = 0;
+  for (uint32_t w : lf.weak) weak += __builtin_popcount(w);
+  EXPECT_EQ(weak, e->family_stats().cuts.weakened);
+  expect_same_run(in, 150);
+}
+
+TEST(LatticeFamilies, SnapshotsRestoreTheIntactBits) {
+  const auto in = pulled_apart(lattice_block(16, 8, 8, kLambda, 2e-4), 16, 2);
+  auto whole = make_cpu_engine(in);
+  whole->advance(150);
+  auto first = make_cpu_engine(in);
+  first->advance(75);
+  EngineSnapshot s;
+  first->save(s);
+  ASSERT_GT(first->broken_bonds(), 0);
+  auto second = make_cpu_engine(in);
+  second->restore(s);
+  second->advance(75);
+  ParticleState a, b;
+  whole->read_state(a);
+  second->read_state(b);
+  EXPECT_EQ(relative_l2(a.disp, b.disp), 0.0);
+  EXPECT_EQ(whole->broken_bonds(), second->broken_bonds());
+  // A snapshot whose families list the bonds in another order is refused.
+  std::swap(s.neighbor[0], s.neighbor[size_t(kSliceWidth)]);
+  EXPECT_THROW(make_cpu_engine(in)->restore(s), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pd
