@@ -24,8 +24,9 @@ const char* cuda_hint(cudaError_t err) {
     case cudaErrorIllegalAddress:
     case cudaErrorMisalignedAddress:
     case cudaErrorLaunchFailure:
-      return "a kernel accessed memory out of bounds: rerun under compute-sanitizer, or with a build "
-             "configured with -DPERIFRAC_BOUNDS_CHECKS=ON, and report it";
+      return "a kernel accessed memory out of bounds or stopped at a failed bounds check: rerun under "
+             "compute-sanitizer, or with the cuda-debug preset (bounds checks in kernel views; its message "
+             "names the index and the place), and report it";
     default:
       return "see `perifrac info` for the device; --backend cpu runs without the GPU";
   }

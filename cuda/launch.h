@@ -2,6 +2,10 @@
 // profiler reports. Views and parameters are captured by value. One source for both backends.
 #pragma once
 
+#include <initializer_list>
+#include <string>
+#include <utility>
+
 #include "cuda/features.h"
 #include "cuda/kernels/bodyforces.h"
 #include "cuda/kernels/collection.h"
@@ -16,10 +20,24 @@
 
 namespace pd {
 
+// The statistics name of one instantiation of a kernel: its name and, in brackets, the
+// features it was compiled for (those set), e.g. "pd/springforces[state,plastic,lattice]".
+// Registers and occupancy differ per instantiation, so each is timed and described apart.
+inline std::string kernel_variant(const char* kernel,
+                                  std::initializer_list<std::pair<const char*, bool>> flags) {
+  std::string name = kernel, set;
+  for (const auto& [flag, on] : flags)
+    if (on) set += (set.empty() ? "" : ",") + std::string(flag);
+  return set.empty() ? name : name + "[" + set + "]";
+}
+
 // Kernel 1.
 template <bool kStateBased, bool kAnisotropic, bool kLattice, bool kPlastic, class Exec>
 void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
-  ex.parallel_for("pd/init", p.n, [=] PD_HD(int64_t i) {
+  static const std::string name = kernel_variant(
+      "pd/init",
+      {{"state", kStateBased}, {"aniso", kAnisotropic}, {"lattice", kLattice}, {"plastic", kPlastic}});
+  ex.parallel_for(name.c_str(), p.n, [=] PD_HD(int64_t i) {
     init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(int32_t(i), p, b, mt);
   });
 }
@@ -117,7 +135,13 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
   // state-based 4 (at most 64; they spill at 48). The plain bond-based breaking pass has 48
   // either way and runs 4% slower with the bound.
   constexpr int kMinBlocks = kStateBased ? 4 : (kWeak || kScreened ? 5 : 0);
-  ex.template parallel_for<kMinBlocks>("pd/springforces", p.n, [=] PD_HD(int64_t i) {
+  static const std::string name = kernel_variant("pd/springforces", {{"state", kStateBased},
+                                                                     {"plastic", kPlastic},
+                                                                     {"aniso", kAnisotropic},
+                                                                     {"weak", kWeak},
+                                                                     {"lattice", kLattice},
+                                                                     {"screened", kScreened}});
+  ex.template parallel_for<kMinBlocks>(name.c_str(), p.n, [=] PD_HD(int64_t i) {
     springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(int32_t(i), p, b, mt,
                                                                                        broke);
   });
@@ -151,7 +175,7 @@ void launch_bodyforces(Exec& ex, ParticlesView p, StepParams sp) {
 template <class Exec>
 void launch_position_update(Exec& ex, ParticlesView p, StepParams sp, ContactView c) {
   if (c.moved)
-    ex.parallel_for("pd/position_update", p.n,
+    ex.parallel_for("pd/position_update[contact]", p.n,
                     [=] PD_HD(int64_t i) { position_update<true>(int32_t(i), p, sp, c); });
   else
     ex.parallel_for("pd/position_update", p.n,

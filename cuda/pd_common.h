@@ -18,13 +18,21 @@
 #define PD_TRAP() std::abort()
 #endif
 
-// Debug bounds checks (Warp style): on in Debug builds, free in Release.
+// Bounds checks of kernel views (ArrayView, cuda/array_view.h): compiled in with
+// PERIFRAC_BOUNDS_CHECKS (the cpu-asan and cuda-debug presets), free otherwise. A failed check
+// prints the index, the length and the place (stderr on the CPU, the device printf buffer on the
+// GPU) and stops: abort on the CPU, a trap on the GPU (the launch then fails).
+#if defined(__CUDA_ARCH__)
+#define PD_INDEX_MESSAGE(...) printf(__VA_ARGS__)
+#else
+#define PD_INDEX_MESSAGE(...) std::fprintf(stderr, __VA_ARGS__)
+#endif
 #if defined(PERIFRAC_BOUNDS_CHECKS)
 #define PD_CHECK_INDEX(i, n)                                                                               \
   do {                                                                                                     \
     if ((i) < 0 || (i) >= (n)) {                                                                           \
-      printf("perifrac: index %lld out of [0, %lld) at %s:%d\n", (long long)(i), (long long)(n), __FILE__, \
-             __LINE__);                                                                                    \
+      PD_INDEX_MESSAGE("perifrac: index %lld out of [0, %lld) at %s:%d\n", (long long)(i), (long long)(n), \
+                       __FILE__, __LINE__);                                                                \
       PD_TRAP();                                                                                           \
     }                                                                                                      \
   } while (0)

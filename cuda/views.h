@@ -2,7 +2,9 @@
 // parameter structs the kernels read. Owning buffers live in the engine (engine_impl.h).
 #pragma once
 
+#include "cuda/array_view.h"
 #include "cuda/pd_common.h"
+#include "cuda/state_fields.h"
 #include "cuda/vec3.h"
 
 namespace pd {
@@ -12,38 +14,14 @@ enum ParticleFlag : uint8_t {
   kAnchored = 1u << 0,  // prescribed motion (its anchor group's, see AnchorMotion) whatever the forces
 };
 
-// Energy that entered or left a particle's books outside its potential and kinetic energy:
-// work done on it by projectiles, moving anchors and the floor's restitution, and the elastic
-// energy of its bonds at the moment they broke (its end's share). Accumulated in double.
-struct Ledger {
-  double work = 0;
-  double released = 0;
-};
-
-// Particle state, structure of arrays. What a bond reads of its partner is packed into
-// 16-byte records, one vector load each: (X, V) and (u, tau'), plus (theta, m, phi) for
-// state-based materials. Current position = X + u; bond vectors are formed from
-// displacements (xi + (u_j - u_i)) to keep float32 round-off out of small strains.
+// Particle state, structure of arrays: the fields of cuda/state_fields.h, each a view that
+// carries its length (checked under PERIFRAC_BOUNDS_CHECKS). Current position = X + u; bond
+// vectors are formed from displacements (xi + (u_j - u_i)) to keep float32 round-off out of
+// small strains.
+#define PD_VIEW_MEMBER(name, Type, ...) ArrayView<Type> name;
 struct ParticlesView {
   int32_t n = 0;
-  const Vec4* rest = nullptr;  // xyz: reference position X [m]; w: volume V [m^3]
-  Vec4* disp = nullptr;   // xyz: displacement u [m]; w: effective strain limit tau' (eq. 5), set by `init`
-  Vec3* vel = nullptr;    // velocity v
-  Vec3* force = nullptr;  // total force on the particle [N]
-  const real* inv_mass = nullptr;       // 1/m [1/kg]
-  const uint16_t* material = nullptr;   // index into MaterialTable
-  const int32_t* body = nullptr;        // bodies do not bond to each other
-  const uint8_t* flags = nullptr;       // ParticleFlag bits
-  const uint8_t* anchor = nullptr;      // anchor group of an anchored particle (StepParams::anchor)
-  const real* strain_limit0 = nullptr;  // scattered base strain limit tau_i
-  real* strain_min = nullptr;           // minimum bond strain of the last force pass
-  int32_t* intact = nullptr;            // unbroken bonds, written by `springforces`
-  Ledger* ledger = nullptr;             // energy accounting (see Ledger)
-  // State-based materials only (null otherwise): x theta_i (dilatation, set by `init`),
-  // y 1/m_i with m_i = sum_j omega |xi|^2 beta V_j over the initial family, z phi_i =
-  // 1 - intact/initial bonds of the last step (damage, set by `init`), w (plastic materials)
-  // the trial deviatoric norm |t^d| that `plasticity` tests (set by `init`).
-  Vec4* state = nullptr;
+  PD_PARTICLE_FIELDS(PD_VIEW_MEMBER)
 
   PD_HD Vec3 position(int32_t i) const { return xyz(rest[i]) + xyz(disp[i]); }
   PD_HD real volume(int32_t i) const { return rest[i].w; }
@@ -92,18 +70,8 @@ struct LatticeView {
 };
 
 struct BondsView {
-  int32_t n = 0;                          // particles
-  const int64_t* slice_offset = nullptr;  // n_slices + 1 entries
-  const int32_t* count = nullptr;         // bonds per particle at the start
-  int32_t* neighbor = nullptr;            // partner index, or ~partner once broken
-  // Plastic state-based materials only (null otherwise):
-  real* plastic = nullptr;  // e^p of this end's state on the bond [m]
-  // e^p of the partner's end of the same bond, kept at this end's slot by `springforces`
-  // (plasticity.h), so that it reads and updates both ends' history at its own slots.
-  real* plastic_mirror = nullptr;
-  // Scenes with weakened bonds only (null otherwise): per slot, the factor q/255 on the bond's
-  // strain limit (host/bond_cuts.h), the same in both stored directions.
-  const uint8_t* strength = nullptr;
+  int32_t n = 0;  // particles
+  PD_BOND_FIELDS(PD_VIEW_MEMBER)
   // Scenes with box-grid bodies (null `lattice.stencil` otherwise).
   LatticeView lattice;
 
@@ -111,6 +79,7 @@ struct BondsView {
     return slice_offset[i / kSliceWidth] + int64_t(k) * kSliceWidth + (i % kSliceWidth);
   }
 };
+#undef PD_VIEW_MEMBER
 
 PD_HD inline bool bond_intact(int32_t nb) {
   return nb >= 0;

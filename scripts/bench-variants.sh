@@ -18,7 +18,7 @@ for spec in "$@"; do
   for model in $models; do
     "$dir/perifrac" bench --lattice 100 --model "$model" --backend cuda --steps 300 --warmup 30 \
       --out "$OUT/results-$name" >"$OUT/$name-$model.log" 2>&1
-    spring=$(awk '/^pd\/springforces/ {print $5, "regs", $6, "occ", $7}' "$OUT/$name-$model.log")
+    spring=$(awk '/^pd\/springforces \(all\)/ {print $6}' "$OUT/$name-$model.log")
     step=$(awk '/^step \(all kernels\)/ {print $7}' "$OUT/$name-$model.log")
     printf '%-14s %-12s springforces %-28s step %s\n' "$name" "$model" "$spring" "$step"
   done

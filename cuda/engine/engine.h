@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "cuda/engine/particle_set.h"
@@ -44,28 +45,34 @@ struct BondLists {
   BondsView view() const {
     BondsView v;
     v.n = int32_t(count.size());
-    v.slice_offset = slice_offset.data();
-    v.count = count.data();
-    v.neighbor = const_cast<int32_t*>(neighbor.data());
+    v.slice_offset = view_of(slice_offset);
+    v.count = view_of(count);
+    v.neighbor = {const_cast<int32_t*>(neighbor.data()), int64_t(neighbor.size())};
     return v;
   }
 };
 
-// Everything a run changes, for checkpoints: restoring it into an engine built from the same
-// input continues the run bit for bit on the same backend. The rest (reference positions,
-// masses, strain limits, families as built) follows from the input.
+// Everything a run changes, for checkpoints: the state table's saved fields (cuda/state_fields.h)
+// as host vectors, named as there. Restoring it into an engine built from the same input
+// continues the run bit for bit on the same backend; the rest (reference positions, masses,
+// strain limits, families as built) follows from the input. Fields a run does not have (state
+// of a bond-based run, plastic of an elastic one) are empty.
 struct EngineSnapshot {
   int64_t step = 0;
   double time = 0;
-  std::vector<Vec4> disp;  // (u, tau')
-  std::vector<Vec3> vel, force;
-  std::vector<real> strain_min;
-  std::vector<int32_t> intact;
-  std::vector<Ledger> ledger;
-  std::vector<Vec4> state;        // state-based materials only, else empty
-  std::vector<int32_t> neighbor;  // family slots; a broken bond is stored as ~j
-  std::vector<real> plastic;      // plastic materials only, else empty
+#define PD_SNAPSHOT_MEMBER(name, Type, length, when, saved, ...) \
+  PD_IF_SAVED(saved, std::vector<std::remove_const_t<Type>> name;)
+  PD_STATE_FIELDS(PD_SNAPSHOT_MEMBER)
+#undef PD_SNAPSHOT_MEMBER
 };
+
+// f(name, vector) for every field of a snapshot, in the table's order (checkpoint files).
+template <class Snapshot, class F>
+void for_each_snapshot_field(Snapshot& s, F f) {
+#define PD_SNAPSHOT_VISIT(name, Type, length, when, saved, ...) PD_IF_SAVED(saved, f(#name, s.name);)
+  PD_STATE_FIELDS(PD_SNAPSHOT_VISIT)
+#undef PD_SNAPSHOT_VISIT
+}
 
 class Engine {
  public:

@@ -182,16 +182,7 @@ uint64_t file_fingerprint(const std::string& path) {
 void write_checkpoint(const std::string& path, const RunCheckpoint& c) {
   RecordWriter w;
   w.add_owned("meta", meta_text(c));
-  const EngineSnapshot& e = c.engine;
-  w.add_array("disp", e.disp);
-  w.add_array("vel", e.vel);
-  w.add_array("force", e.force);
-  w.add_array("strain_min", e.strain_min);
-  w.add_array("intact", e.intact);
-  w.add_array("ledger", e.ledger);
-  w.add_array("state", e.state);
-  w.add_array("neighbor", e.neighbor);
-  w.add_array("plastic", e.plastic);
+  for_each_snapshot_field(c.engine, [&](const char* name, const auto& v) { w.add_array(name, v); });
   w.add_owned("energy0", std::string(reinterpret_cast<const char*>(&c.energy0), sizeof c.energy0));
   w.add("energy_log", c.energy_log);
   w.add_owned("series", series_text(c.series));
@@ -204,16 +195,9 @@ RunCheckpoint read_checkpoint(const std::string& path) {
   const RecordReader r(path, kMagic, kCheckpointVersion);
   RunCheckpoint c;
   parse_meta(r, r.get("meta"), c);
-  EngineSnapshot& e = c.engine;
-  e.disp = r.get_array<Vec4>("disp");
-  e.vel = r.get_array<Vec3>("vel");
-  e.force = r.get_array<Vec3>("force");
-  e.strain_min = r.get_array<real>("strain_min");
-  e.intact = r.get_array<int32_t>("intact");
-  e.ledger = r.get_array<Ledger>("ledger");
-  e.state = r.get_array<Vec4>("state");
-  e.neighbor = r.get_array<int32_t>("neighbor");
-  e.plastic = r.get_array<real>("plastic");
+  for_each_snapshot_field(c.engine, [&](const char* name, auto& v) {
+    v = r.get_array<typename std::decay_t<decltype(v)>::value_type>(name);
+  });
   const std::vector<Energy> energy0 = r.get_array<Energy>("energy0");
   if (energy0.size() != 1) r.fail("record 'energy0' has the wrong size");
   c.energy0 = energy0[0];

@@ -19,8 +19,10 @@ struct KernelRow {
   double occupancy = -1;
 };
 
-// Rows for the kernels whose name starts with `prefix` ("pd/" for the step kernels), plus a
-// final "step" row summing them. `bonds` is the number of stored bonds (both directions)
+// Rows for the kernels whose name starts with `prefix` ("pd/" for the step kernels), one per
+// instantiation ("pd/springforces[state,lattice]": its own time, registers and occupancy), a row
+// "name (all)" after the instantiations of a kernel that has them, and a final "step" row summing
+// every kernel. `bonds` is the number of stored bonds (both directions)
 // and `steps` the number of steps the stats cover.
 std::vector<KernelRow> kernel_rows(const KernelStats& stats, const std::string& prefix, int64_t bonds,
                                    int64_t steps);

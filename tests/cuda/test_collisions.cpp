@@ -98,10 +98,10 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
   }
   ParticlesView p;
   p.n = n;
-  p.rest = rest.data();
-  p.disp = disp.data();
-  p.vel = vel.data();
-  p.material = material.data();
+  p.rest = view_of(rest);
+  p.disp = view_of(disp);
+  p.vel = view_of(vel);
+  p.material = view_of(material);
   ContactView c;
   c.n = n;
   c.base = real(kContactRestSkin) * rc;

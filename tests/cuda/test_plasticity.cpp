@@ -52,8 +52,8 @@ struct PlasticBlock : testing::ParticleArrays {
   }
   BondsView bonds() {
     BondsView b = families.view();
-    b.plastic = plastic.data();
-    b.plastic_mirror = mirror.data();
+    b.plastic = view_of(plastic);
+    b.plastic_mirror = view_of(mirror);
     return b;
   }
   // Slot of bond (i, k) in the partner's family.

@@ -40,9 +40,9 @@ struct Pair : testing::ParticleArrays {
   BondsView bonds() {
     BondsView b;
     b.n = 2;
-    b.slice_offset = offset.data();
-    b.count = count.data();
-    b.neighbor = neighbor.data();
+    b.slice_offset = view_of(offset);
+    b.count = view_of(count);
+    b.neighbor = view_of(neighbor);
     return b;
   }
   void run() {

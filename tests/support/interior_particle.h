@@ -69,10 +69,10 @@ struct InteriorParticle : ParticleArrays {
   BondsView bonds() {
     BondsView b;
     b.n = int32_t(rest.size());
-    b.slice_offset = offset.data();
-    b.count = count.data();
-    b.neighbor = neighbor.data();
-    b.plastic = plastic.data();
+    b.slice_offset = view_of(offset);
+    b.count = view_of(count);
+    b.neighbor = view_of(neighbor);
+    b.plastic = view_of(plastic);
     return b;
   }
   int32_t family_size() const { return count[0]; }

@@ -21,19 +21,19 @@ struct ParticleArrays {
   ParticlesView view() {
     ParticlesView p;
     p.n = int32_t(rest.size());
-    p.rest = rest.data();
-    p.disp = disp.data();
-    p.vel = vel.data();
-    p.force = force.data();
-    p.inv_mass = inv_mass.data();
-    p.material = material.data();
-    p.body = body.data();
-    p.flags = flags.data();
-    p.strain_limit0 = tau0.data();
-    p.strain_min = smin.data();
-    p.intact = intact.data();
-    p.state = state.data();
-    p.ledger = ledger.data();
+    p.rest = view_of(rest);
+    p.disp = view_of(disp);
+    p.vel = view_of(vel);
+    p.force = view_of(force);
+    p.inv_mass = view_of(inv_mass);
+    p.material = view_of(material);
+    p.body = view_of(body);
+    p.flags = view_of(flags);
+    p.strain_limit0 = view_of(tau0);
+    p.strain_min = view_of(smin);
+    p.intact = view_of(intact);
+    p.state = view_of(state);
+    p.ledger = view_of(ledger);
     return p;
   }
 };

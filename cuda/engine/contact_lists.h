@@ -1,0 +1,89 @@
+// Contact lists (cuda/kernels/collisions.h): per particle, the particles within its contact
+// reach plus both skins, rebuilt through a spatial hash over current positions whenever a
+// particle has left its skin since the last build (position_update raises the flag).
+#pragma once
+
+#include <algorithm>
+
+#include "cuda/engine/device_memory.h"
+#include "cuda/engine/spatial_hash.h"
+#include "cuda/launch.h"
+
+namespace pd {
+
+template <class Exec>
+class ContactLists {
+ public:
+  // Exec flag event the contact flags are read through.
+  static constexpr int kFlagEvent = 0;
+
+  // The hash they are built from, with cells twice the reach of two particles at rest (contact
+  // distance plus their skins), its sorted records, and the lists.
+  void allocate(DeviceMemory<Exec>& mem, int32_t n, const MaterialTable& materials) {
+    n_ = n;
+    real spacing = 0;
+    for (int m = 0; m < materials.count; ++m) spacing = std::max(spacing, materials.m[m].contact_spacing);
+    const double contact_distance = 0.5 * double(spacing);
+    quarter_max_ = real(0.25) * spacing;
+    rest_skin_ = real(kContactRestSkin * contact_distance);
+    skin_cap_ = real(kContactSkinCap * contact_distance);
+    hash_.allocate(mem, n, real(2 * (contact_distance + 2 * double(rest_skin_))));
+    hash_.record = mem.template make<Vec4>(size_t(n));
+    origin_ = mem.template make<Vec4>(size_t(n));
+    count_ = mem.template make<int32_t>(size_t(n));
+    partner_ = mem.template make<int32_t>(size_t(kContactCapacity) * size_t(n));
+  }
+
+  ContactView view(Exec& exec, real dt) const {
+    ContactView c;
+    c.n = n_;
+    c.capacity = int32_t(partner_.size() / size_t(n_));
+    c.base = rest_skin_;
+    c.per_speed = real(double(dt) * kContactStepsAhead / kContactTrigger);
+    c.cap = skin_cap_;
+    c.count = count_.data();
+    c.partner = partner_.data();
+    c.origin = origin_.data();
+    c.moved = exec.flag(kFlagMoved);
+    return c;
+  }
+
+  // Builds the lists at the current positions if a particle has left its skin since the last
+  // build, or if there are none yet. A list that overflows its room doubles the room of all and
+  // builds again. Returns whether some list is not empty (else `collisions` need not run).
+  bool refresh(DeviceMemory<Exec>& mem, const ParticlesView& p, const MaterialTable& materials, real dt) {
+    Exec& exec = mem.exec();
+    const bool moved = exec.take_flags(kContactFlagMask, kFlagEvent) & (1u << kFlagMoved);
+    if (built_ && !moved) return pairs_;
+    launch_reset_bins(exec, "pd/collection_reset", hash_.view(true));
+    launch_collection<true>(exec, "pd/collection", p, hash_.view(false), hash_.view(true), materials);
+    for (;;) {
+      launch_build_contacts(exec, p, hash_.view(true), view(exec, dt), materials, quarter_max_,
+                            exec.flag(kFlagOverflow), exec.flag(kFlagPairs));
+      exec.mark_flags(kFlagEvent);
+      const uint32_t raised = exec.take_flags(kContactFlagMask, kFlagEvent);
+      pairs_ = raised & (1u << kFlagPairs);
+      if (!(raised & (1u << kFlagOverflow))) break;
+      const size_t room = partner_.size() * 2;
+      mem.drop(partner_);
+      partner_ = mem.template make<int32_t>(room);
+    }
+    built_ = true;
+    return pairs_;
+  }
+
+  // The lists are built again from the next positions (after a restore).
+  void invalidate() { built_ = false; }
+  bool pairs() const { return pairs_; }
+
+ private:
+  int32_t n_ = 0;
+  SpatialHash<Exec> hash_;
+  real quarter_max_ = 0, rest_skin_ = 0, skin_cap_ = 0;
+  bool built_ = false;
+  bool pairs_ = false;  // some list is not empty
+  DeviceArray<Vec4, Exec> origin_;
+  DeviceArray<int32_t, Exec> count_, partner_;
+};
+
+}  // namespace pd

@@ -1,0 +1,109 @@
+// The engine's state arrays in the backend's memory: one DeviceArray per field of the state
+// table (cuda/state_fields.h), allocated for the fields a run needs, uploaded from the particle
+// set, paired with the snapshot's vectors for save and restore, and seen by the kernels through
+// ParticlesView and BondsView.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "cuda/engine/device_memory.h"
+#include "cuda/engine/engine.h"
+#include "cuda/views.h"
+
+namespace pd {
+
+template <class Exec>
+struct EngineState {
+  int32_t n = 0;
+#define PD_STATE_ARRAY(name, Type, ...) DeviceArray<std::remove_const_t<Type>, Exec> name;
+  PD_STATE_FIELDS(PD_STATE_ARRAY)
+#undef PD_STATE_ARRAY
+
+  // Allocates, zeroed, every field of this length that a run with `needs` has and that is not
+  // allocated yet, `entries` entries each.
+  void allocate(DeviceMemory<Exec>& mem, FieldLength wanted, size_t entries, FieldNeeds needs) {
+#define PD_STATE_ALLOCATE(name, Type, length, when, ...)   \
+  if (length == wanted && needs(when) && name.size() == 0) \
+    name = mem.template make_zeroed<std::remove_const_t<Type>>(entries);
+    PD_STATE_FIELDS(PD_STATE_ALLOCATE)
+#undef PD_STATE_ALLOCATE
+  }
+
+  // The per-particle fields from the particle set: every one allocated (zeroed), then those the
+  // scene gives filled in. Derived inputs: rest holds (X, V), disp starts at (0, tau_i).
+  void upload(DeviceMemory<Exec>& mem, const ParticleSet& ps, FieldNeeds needs) {
+    n = int32_t(ps.size());
+    allocate(mem, kParticles, ps.size(), needs);
+    const size_t particle_count = ps.size();
+    std::vector<Vec4> rest4(particle_count), disp4(particle_count);
+    std::vector<real> inv(particle_count);
+    for (size_t i = 0; i < particle_count; ++i) {
+      rest4[i] = with_w(ps.rest[i], ps.volume[i]);
+      disp4[i] = {0, 0, 0, ps.strain_limit0[i]};
+      inv[i] = real(1) / ps.mass[i];
+    }
+    rest.upload(rest4);
+    disp.upload(disp4);
+    vel.upload(ps.velocity);
+    inv_mass.upload(inv);
+    material.upload(ps.material);
+    body.upload(ps.body);
+    flags.upload(ps.flags);
+    if (ps.anchor.size() == ps.size()) anchor.upload(ps.anchor);
+    strain_limit0.upload(ps.strain_limit0);
+  }
+
+  ParticlesView particles() const {
+    ParticlesView p;
+    p.n = n;
+#define PD_STATE_VIEW(name, Type, length, ...) PD_STATE_VIEW_##length(p, name)
+#define PD_STATE_VIEW_kParticles(v, name) v.name = view_of(name);
+#define PD_STATE_VIEW_kSlots(v, name)
+#define PD_STATE_VIEW_kSlices(v, name)
+    PD_PARTICLE_FIELDS(PD_STATE_VIEW)
+    return p;
+  }
+
+  // The bond fields; the lattice part is the family builder's (LatticeState::view).
+  BondsView bonds() const {
+    BondsView b;
+    b.n = n;
+#define PD_STATE_BOND_VIEW(name, ...) b.name = view_of(name);
+    PD_BOND_FIELDS(PD_STATE_BOND_VIEW)
+#undef PD_STATE_BOND_VIEW
+    return b;
+  }
+#undef PD_STATE_VIEW
+#undef PD_STATE_VIEW_kParticles
+#undef PD_STATE_VIEW_kSlots
+#undef PD_STATE_VIEW_kSlices
+
+  // f(name, array, snapshot vector) for every saved field (save, restore).
+  template <class Snapshot, class F>
+  void for_each_saved(Snapshot& s, F f) {
+#define PD_STATE_SAVED(name, Type, length, when, saved, ...) PD_IF_SAVED(saved, f(#name, name, s.name);)
+    PD_STATE_FIELDS(PD_STATE_SAVED)
+#undef PD_STATE_SAVED
+  }
+
+  void save(EngineSnapshot& out) {
+    for_each_saved(out, [](const char*, auto& array, auto& host) { array.download(host); });
+  }
+  // Throws std::invalid_argument, changing nothing, when a snapshot vector's size is not the
+  // array's (another scene or scale); otherwise uploads every saved field.
+  void check_sizes(const EngineSnapshot& in) {
+    for_each_saved(in, [](const char* what, auto& array, const auto& host) {
+      if (host.size() != array.size())
+        throw std::invalid_argument(std::string("snapshot ") + what + " has " + std::to_string(host.size()) +
+                                    " entries, the engine " + std::to_string(array.size()));
+    });
+  }
+  void upload_saved(const EngineSnapshot& in) {
+    for_each_saved(in, [](const char*, auto& array, const auto& host) { array.upload(host); });
+  }
+};
+
+}  // namespace pd

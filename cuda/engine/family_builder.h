@@ -1,0 +1,181 @@
+// The bond families, built once at set-up: partners within the horizon found through the
+// spatial hash over reference positions, stored in sliced-ELL layout (BondsView); then the
+// scene's pre-cracks and weakened surfaces applied; then, for box-grid bodies, the lattice
+// families that find partners by offset (cuda/engine/lattice_families.h).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cuda/engine/bond_cuts.h"
+#include "cuda/engine/engine_state.h"
+#include "cuda/engine/lattice_families.h"
+#include "cuda/engine/memory_budget.h"
+#include "cuda/engine/spatial_hash.h"
+#include "cuda/features.h"
+#include "cuda/launch.h"
+
+namespace pd {
+
+// Lattice families on the backend: the host tables (kept to check and refresh the intact bits of
+// a restored snapshot) and their device copies.
+template <class Exec>
+struct LatticeState {
+  LatticeFamilies tables;
+  DeviceArray<int16_t, Exec> stencil;
+  DeviceArray<Stencil, Exec> stencils;
+  DeviceArray<StencilEntry, Exec> entries;
+  DeviceArray<uint32_t, Exec> present, intact, weak;
+
+  bool empty() const { return tables.stencils.empty(); }
+  LatticeView view() const {
+    LatticeView v;
+    v.words = tables.words;
+    v.stencil = stencil.data();
+    v.stencils = stencils.data();
+    v.entries = entries.data();
+    v.present = present.data();
+    v.intact = intact.data();
+    v.weak = weak.data();
+    return v;
+  }
+};
+
+// Families as stored, copied back to the host.
+template <class Exec>
+BondLists download_bonds(const EngineState<Exec>& s) {
+  BondLists out;
+  s.slice_offset.download(out.slice_offset);
+  s.count.download(out.count);
+  s.neighbor.download(out.neighbor);
+  return out;
+}
+
+// Counts, smallest, largest and mean family of the families as stored.
+inline void count_family_stats(FamilyStats& family, const std::vector<int32_t>& counts) {
+  family.min = *std::min_element(counts.begin(), counts.end());
+  family.max = *std::max_element(counts.begin(), counts.end());
+  family.bonds = 0;
+  for (int32_t c : counts) family.bonds += c;
+  family.mean = double(family.bonds) / double(counts.size());
+}
+
+// The bond arrays are the bulk of the memory: refused with a clear message, before they are
+// allocated, when the backend has not enough free.
+template <class Exec>
+void check_bond_memory(int64_t slots, int32_t n, const KernelFeatures& features, Backend backend) {
+  const double per_slot = field_bytes<kSlots>(FieldNeeds{features.state_based, features.plastic, false});
+  const double need = double(slots) * per_slot;
+  const double free = double(backend_available_bytes(backend));
+  if (need <= free) return;
+  throw ResourceError("the families hold " + std::to_string(slots) + " bond slots (" + std::to_string(n) +
+                      " particles), which need " + format_bytes(need) + " of " +
+                      (Exec::kDevice ? "GPU" : "host") + " memory; " + format_bytes(free) +
+                      " are free. Lower --scale, the horizon or the particle count" +
+                      (Exec::kDevice ? ", or run on a GPU with more memory" : ""));
+}
+
+// Partners within each particle's horizon (plus the partial-volume reach), in the order the
+// kernels visit them; `count` and `intact` start as the family sizes.
+template <class Exec>
+void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, const MaterialTable& materials,
+                    const KernelFeatures& features, Backend backend, FamilyStats& family) {
+  Exec& exec = mem.exec();
+  real horizon = 0;
+  for (int m = 0; m < materials.count; ++m) horizon = std::max(horizon, materials.m[m].family_radius());
+  SpatialHash<Exec> hash;
+  hash.allocate(mem, s.n, real(horizon * (1.0 + 2 * kHorizonSlack)));
+  const ParticlesView p = s.particles();
+  launch_reset_bins(exec, "family/reset", hash.view(true));
+  launch_collection<false>(exec, "family/collection", p, hash.view(false), hash.view(true));
+
+  launch_count_family(exec, p, hash.view(true), materials, s.count.data());
+  const int64_t slices = (int64_t(s.n) + kSliceWidth - 1) / kSliceWidth;
+  auto length = mem.template make<int64_t>(size_t(slices));
+  s.slice_offset = mem.template make<int64_t>(size_t(slices + 1));
+  launch_slice_length(exec, s.n, s.count.data(), length.data());
+  const int64_t slots = exec.exclusive_scan(length.data(), s.slice_offset.data(), slices);
+  exec.upload(s.slice_offset.data() + slices, &slots, sizeof(int64_t));
+  mem.drop(length);
+
+  check_bond_memory<Exec>(slots, s.n, features, backend);
+  s.neighbor = mem.template make_zeroed<int32_t>(size_t(std::max<int64_t>(slots, 1)));
+  launch_fill_family(exec, p, hash.view(true), materials, s.bonds());
+  hash.release(mem);
+
+  std::vector<int32_t> counts;
+  s.count.download(counts);
+  family.slots = slots;
+  count_family_stats(family, counts);
+  s.intact.upload(counts);
+}
+
+// Pre-cracks and weakened surfaces: bonds crossing them leave the families (compacted on the
+// host) or keep a strength factor, before anything is derived from the families. Returns
+// whether some bond was weakened (the `strength` field then exists).
+template <class Exec>
+bool apply_cuts(DeviceMemory<Exec>& mem, EngineState<Exec>& s, const SimulationInput& in,
+                FamilyStats& family) {
+  BondLists lists = download_bonds(s);
+  std::vector<uint8_t> strength;
+  family.cuts = cut_bonds(in.cuts, in.particles.rest, in.particles.body, lists, strength);
+  s.neighbor.upload(lists.neighbor);
+  s.count.upload(lists.count);
+  s.intact.upload(lists.count);
+  count_family_stats(family, lists.count);
+  if (strength.empty()) return false;
+  s.strength = mem.make_from(strength);
+  return true;
+}
+
+// Box-grid bodies find their partners by offset (cuda/engine/lattice_families.h). Returns
+// whether some body has a stencil.
+template <class Exec>
+bool build_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s, const ParticleSet& ps,
+                            const MaterialTable& materials, bool weak_bonds, LatticeState<Exec>& lattice,
+                            FamilyStats& family) {
+  const BondLists lists = download_bonds(s);
+  lattice.tables = lattice_families(ps, materials, lists);
+  family.lattice_particles = lattice.tables.particles();
+  if (lattice.empty()) return false;
+  lattice.stencil = mem.make_from(lattice.tables.stencil);
+  lattice.stencils = mem.make_from(lattice.tables.stencils);
+  lattice.entries = mem.make_from(lattice.tables.entries);
+  lattice.present = mem.make_from(lattice.tables.present);
+  lattice.intact = mem.make_from(lattice.tables.intact);
+  if (!weak_bonds) return true;
+  std::vector<uint8_t> strength;
+  s.strength.download(strength);
+  mark_weak_lattice_bonds(lattice.tables, lists, strength);
+  lattice.weak = mem.make_from(lattice.tables.weak);
+  return true;
+}
+
+// After a restore: the intact bits follow the restored families (the layout as built, the
+// partners as restored).
+template <class Exec>
+void refresh_lattice_after_restore(const EngineState<Exec>& s, const std::vector<int32_t>& neighbor,
+                                   LatticeState<Exec>& lattice) {
+  BondLists lists;
+  s.slice_offset.download(lists.slice_offset);
+  s.count.download(lists.count);
+  lists.neighbor = neighbor;
+  refresh_lattice_intact(lattice.tables, lists);
+}
+
+// Smallest stable step over the particles, from the families as built (Engine::critical_time_step).
+template <class Exec>
+double stable_time_step(DeviceMemory<Exec>& mem, const ParticlesView& p, const BondsView& b,
+                        const MaterialTable& materials) {
+  auto rate = mem.template make<double>(size_t(p.n));
+  launch_stability_rate(mem.exec(), p, b, materials, rate.data());
+  std::vector<double> host;
+  rate.download(host);
+  mem.drop(rate);
+  const double fastest = *std::max_element(host.begin(), host.end());
+  return fastest > 0 ? std::sqrt(2.0 / fastest) : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace pd

@@ -1,0 +1,120 @@
+// The engine's state, declared once: every per-particle and per-bond array the kernels read or
+// write, with its element type, its length, when it exists and what it takes part in. The rest
+// is generated from these two lists:
+// - the array members of ParticlesView and BondsView (cuda/views.h), bounds-checked views;
+// - the engine's buffers, their views, upload sizes and memory accounting
+//   (cuda/engine/engine_state.h), and the bytes per particle of the memory budget;
+// - EngineSnapshot, save / restore, and the checkpoint file's records (cuda/engine/snapshot.h);
+// - for a partitioned run, what a ghost copy of a particle receives (the halo column).
+//
+// Each entry is X(name, Type, length, when, saved, halo):
+//   Type    the element type as the kernels see it; const where the kernels only read it
+//   length  kParticles: one per particle; kSlots: one per bond slot of the sliced-ELL families
+//           (BondsView::slot); kSlices: one per slice of kSliceWidth particles, plus one
+//   when    kForAll; kForStateBased, kForPlastic: state-based / plastic materials only; kForWeakBonds:
+//           scenes whose cuts weaken bonds. Otherwise the array is empty (a null view).
+//   saved   kSaved: a run changes it, so checkpoints save it and a restore puts it back bit for
+//           bit; kDerived: it follows from the scene (or, for plastic_mirror, from `plastic`)
+//   halo    kHaloNone: only the owner reads it; kHaloSetup: a partner's bond or contact reads it
+//           and it never changes (sent once); kHaloStep: a partner reads it and it changes every
+//           step (sent before the kernel that reads it)
+// Adding a field is one line here plus its use in a kernel (and its start value in
+// EngineState::upload when that is not zero); checkpoints, views and memory follow.
+#pragma once
+
+#include "cuda/vec3.h"
+
+namespace pd {
+
+// Energy that entered or left a particle's books outside its potential and kinetic energy:
+// work done on it by projectiles, moving anchors and the floor's restitution, and the elastic
+// energy of its bonds at the moment they broke (its end's share). Accumulated in double.
+struct Ledger {
+  double work = 0;
+  double released = 0;
+};
+
+enum FieldLength { kParticles, kSlots, kSlices };
+enum FieldWhen { kForAll, kForStateBased, kForPlastic, kForWeakBonds };
+enum FieldSaved { kDerived, kSaved };
+enum FieldHalo { kHaloNone, kHaloSetup, kHaloStep };
+
+// Per particle (ParticlesView). What a bond reads of its partner is packed into 16-byte records,
+// one vector load each.
+#define PD_PARTICLE_FIELDS(X)                                                                        \
+  /* xyz: reference position X [m]; w: volume V [m^3] */                                             \
+  X(rest, const Vec4, kParticles, kForAll, kDerived, kHaloSetup)                                     \
+  /* xyz: displacement u [m]; w: effective strain limit tau' (Levine eq. 5), set by `init` */        \
+  X(disp, Vec4, kParticles, kForAll, kSaved, kHaloStep)                                              \
+  /* velocity v [m/s] */                                                                             \
+  X(vel, Vec3, kParticles, kForAll, kSaved, kHaloNone)                                               \
+  /* total force on the particle [N] */                                                              \
+  X(force, Vec3, kParticles, kForAll, kSaved, kHaloNone)                                             \
+  /* 1/m [1/kg] */                                                                                   \
+  X(inv_mass, const real, kParticles, kForAll, kDerived, kHaloNone)                                  \
+  /* index into MaterialTable */                                                                     \
+  X(material, const uint16_t, kParticles, kForAll, kDerived, kHaloSetup)                             \
+  /* body: bodies do not bond to each other */                                                       \
+  X(body, const int32_t, kParticles, kForAll, kDerived, kHaloSetup)                                  \
+  /* ParticleFlag bits */                                                                            \
+  X(flags, const uint8_t, kParticles, kForAll, kDerived, kHaloNone)                                  \
+  /* anchor group of an anchored particle (StepParams::anchor) */                                    \
+  X(anchor, const uint8_t, kParticles, kForAll, kDerived, kHaloNone)                                 \
+  /* scattered base strain limit tau_i */                                                            \
+  X(strain_limit0, const real, kParticles, kForAll, kDerived, kHaloNone)                             \
+  /* minimum bond strain of the last force pass */                                                   \
+  X(strain_min, real, kParticles, kForAll, kSaved, kHaloNone)                                        \
+  /* unbroken bonds, written by `springforces` */                                                    \
+  X(intact, int32_t, kParticles, kForAll, kSaved, kHaloNone)                                         \
+  /* energy accounting (Ledger) */                                                                   \
+  X(ledger, Ledger, kParticles, kForAll, kSaved, kHaloNone)                                          \
+  /* x theta_i (dilatation, set by `init`); y 1/m_i, m_i = sum_j omega |xi|^2 beta V_j over the  */  \
+  /* initial family; z phi_i = 1 - intact/initial bonds of the last step (damage, set by `init`); */ \
+  /* w (plastic materials) the trial deviatoric norm |t^d| that `plasticity` tests (`init`)       */ \
+  X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep)
+
+// Per bond slot (BondsView), in sliced-ELL layout.
+#define PD_BOND_FIELDS(X)                                                                          \
+  /* start of each slice's slots; n_slices + 1 entries */                                          \
+  X(slice_offset, const int64_t, kSlices, kForAll, kDerived, kHaloNone)                            \
+  /* bonds per particle at the start */                                                            \
+  X(count, const int32_t, kParticles, kForAll, kDerived, kHaloNone)                                \
+  /* partner index, or ~partner once broken */                                                     \
+  X(neighbor, int32_t, kSlots, kForAll, kSaved, kHaloNone)                                         \
+  /* e^p of this end's state on the bond [m] */                                                    \
+  X(plastic, real, kSlots, kForPlastic, kSaved, kHaloNone)                                         \
+  /* e^p of the partner's end of the same bond, kept at this end's slot by `springforces`      */  \
+  /* (plasticity.h), so that it reads and updates both ends' history at its own slots; rebuilt */  \
+  /* from `plastic` after a restore                                                             */ \
+  X(plastic_mirror, real, kSlots, kForPlastic, kDerived, kHaloNone)                                \
+  /* per slot, the factor q/255 on the bond's strain limit (cuda/engine/bond_cuts.h), the same  */ \
+  /* in both stored directions                                                                  */ \
+  X(strength, const uint8_t, kSlots, kForWeakBonds, kDerived, kHaloNone)
+
+// All of them, particles first.
+#define PD_STATE_FIELDS(X) PD_PARTICLE_FIELDS(X) PD_BOND_FIELDS(X)
+
+// PD_IF_SAVED(saved, code): `code` for a kSaved field only (token pasting on the table's column).
+#define PD_IF_SAVED_kSaved(...) __VA_ARGS__
+#define PD_IF_SAVED_kDerived(...)
+#define PD_IF_SAVED(saved, ...) PD_IF_SAVED_##saved(__VA_ARGS__)
+
+// Bytes a particle's own arrays take (every field of length kParticles that exists for a run
+// with these features).
+struct FieldNeeds {
+  bool state_based = false, plastic = false, weak_bonds = false;
+  constexpr bool operator()(FieldWhen w) const {
+    return w == kForAll || (w == kForStateBased && state_based) || (w == kForPlastic && plastic) ||
+           (w == kForWeakBonds && weak_bonds);
+  }
+};
+
+#define PD_FIELD_BYTES_OF(name, Type, length, when, ...) \
+  +(length == kWanted && needs(when) ? double(sizeof(Type)) : 0.0)
+template <FieldLength kWanted>
+constexpr double field_bytes(FieldNeeds needs) {
+  return 0.0 PD_STATE_FIELDS(PD_FIELD_BYTES_OF);
+}
+#undef PD_FIELD_BYTES_OF
+
+}  // namespace pd
