@@ -58,63 +58,24 @@ struct Instance {
   Vec3 rt[3];  // rows of the rotation's transpose: world -> rest directions
 };
 
-// The nearest hit through the top-level tree (full stack, the traversal's conventions): at each
-// leaf the ray is taken into each fragment's rest frame and traced through its tree.
+// The nearest hit through the top-level tree: the renderer's walk with a full stack (it never
+// restarts), whose leaves hold fragments instead of primitives. At each leaf the ray is taken into
+// each fragment's rest frame and traced through its tree.
 Hit trace_two_level(const KdTree& top, const std::vector<Instance>& inst, const Ray& ray, int64_t* entered) {
-  Hit best;
-  real t_enter, t_exit;
-  int ea, xa;
-  if (!line_box_interval(ray, top.bounds.lo, top.bounds.hi, &t_enter, &t_exit, &ea, &xa)) return best;
-  t_enter = rmax(t_enter, ray.tmin);
-  t_exit = rmin(t_exit, ray.tmax);
-  if (t_enter > t_exit) return best;
-  struct Entry {
-    uint32_t node;
-    real tmin, tmax;
-  };
-  Entry stack[kKdMaxDepth];
-  int count = 0;
-  uint32_t node = 0;
-  real tmin = t_enter, tmax = t_exit;
-  for (;;) {
-    KdNode n = top.nodes[node];
-    while (!n.is_leaf()) {
-      const int a = n.axis();
-      const real o = axis_of(ray.o, a), d = axis_of(ray.d, a), split = n.split;
-      const bool below_first = o < split || (o == split && d < 0);
-      const uint32_t near_child = below_first ? node + 1 : n.above_child();
-      const uint32_t far_child = below_first ? n.above_child() : node + 1;
-      const real t_split = (split - o) * axis_of(ray.inv_d, a);
-      if (d == 0 || t_split >= tmax || t_split <= 0) {
-        node = near_child;
-      } else if (t_split <= tmin) {
-        node = far_child;
-      } else {
-        stack[count++] = {far_child, t_split, tmax};
-        node = near_child;
-        tmax = t_split;
-      }
-      n = top.nodes[node];
-    }
-    for (uint32_t k = 0; k < n.prim_count(); ++k) {
-      const Instance& f = inst[top.prim_index[n.first_prim + k]];
+  const auto enter_fragments = [&](KdNode leaf, Hit* best) {
+    for (uint32_t k = 0; k < leaf.prim_count(); ++k) {
+      const Instance& f = inst[top.prim_index[leaf.first_prim + k]];
       const Vec3 q = ray.o - Vec3{real(f.translation.x()), real(f.translation.y()), real(f.translation.z())};
       const Ray local = make_ray({dot(f.rt[0], q), dot(f.rt[1], q), dot(f.rt[2], q)},
                                  {dot(f.rt[0], ray.d), dot(f.rt[1], ray.d), dot(f.rt[2], ray.d)}, ray.tmin,
-                                 best.prim >= 0 ? best.t : ray.tmax);
+                                 best->prim >= 0 ? best->t : ray.tmax);
       ++*entered;
       const Hit h = traverse_short_stack<kRenderStackSize>(f.tree.view(), f.prims.view(), local);
-      if (h.prim >= 0 && (best.prim < 0 || h.t < best.t))
-        best = {f.global[size_t(h.prim)], h.t, turn(f.rotation, h.normal)};
+      if (h.prim >= 0 && (best->prim < 0 || h.t < best->t))
+        *best = {f.global[size_t(h.prim)], h.t, turn(f.rotation, h.normal)};
     }
-    if (best.prim >= 0 && best.t < tmax) return best;
-    if (count == 0) return best;
-    --count;
-    node = stack[count].node;
-    tmin = stack[count].tmin;
-    tmax = stack[count].tmax;
-    if (best.prim >= 0 && best.t < tmin) return best;
-  }
+  };
+  return walk_short_stack<kKdMaxDepth>(top.view(), ray, enter_fragments);
 }
 
 }  // namespace
