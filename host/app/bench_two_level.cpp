@@ -78,13 +78,11 @@ Hit trace_two_level(const KdTree& top, const std::vector<Instance>& inst, const 
   return walk_short_stack<kKdMaxDepth>(top.view(), ray, enter_fragments);
 }
 
-}  // namespace
-
-TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int64_t cells_y, int64_t cells_z,
-                                 int per_cell, int fragments, const CameraFrame& camera,
-                                 const KdBuildOptions& options) {
-  // Blocks of cells, each with a rigid motion about its centre: turned up to 0.2 rad, moved up to
-  // 2% of the slab's width, as pieces are a little after breaking.
+// The rest scene cut into about `fragments` blocks of cells in x and z, each block a fragment with
+// its primitives in rest space and a rigid motion about its rest centre: turned up to 0.2 rad, moved
+// up to 2% of the slab's width, as pieces are a little after breaking. No trees yet.
+std::vector<Instance> make_fragments(const PrimitiveSet& rest, int64_t cells_x, int64_t cells_y,
+                                     int64_t cells_z, int per_cell, int fragments) {
   const int64_t fx = std::max<int64_t>(1, std::lround(std::sqrt(double(fragments))));
   const int64_t fz = std::max<int64_t>(1, (fragments + fx - 1) / fx);
   std::vector<Instance> inst(size_t(fx * fz));
@@ -115,6 +113,39 @@ TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int6
     const Eigen::Matrix3d rt = f.rotation.transpose();
     for (int k = 0; k < 3; ++k) f.rt[k] = {real(rt(k, 0)), real(rt(k, 1)), real(rt(k, 2))};
   }
+  return inst;
+}
+
+// The boxes of the fragments' rest trees moved by their motions (each the bounds of the moved
+// corners).
+std::vector<Box> moved_bounds(const std::vector<Instance>& inst) {
+  std::vector<Box> moved(inst.size());
+  for (size_t k = 0; k < inst.size(); ++k) {
+    const Box& b = inst[k].tree.bounds;
+    moved[k] = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 p = apply(inst[k].rotation, inst[k].translation,
+                           {(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z});
+      moved[k] = {vmin(moved[k].lo, p), vmax(moved[k].hi, p)};
+    }
+  }
+  return moved;
+}
+
+}  // namespace
+
+double depth_agreement(const std::vector<float>& a, const std::vector<float>& b) {
+  size_t same = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    same +=
+        std::isinf(a[i]) ? std::isinf(b[i]) : std::fabs(double(a[i]) - double(b[i])) <= 1e-4 * double(a[i]);
+  return a.empty() ? 1.0 : double(same) / double(a.size());
+}
+
+TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int64_t cells_y, int64_t cells_z,
+                                 int per_cell, int fragments, const CameraFrame& camera,
+                                 const KdBuildOptions& options) {
+  std::vector<Instance> inst = make_fragments(rest, cells_x, cells_y, cells_z, per_cell, fragments);
   TwoLevelReport r;
   r.fragments = int32_t(inst.size());
 
@@ -128,17 +159,7 @@ TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int6
 
   // Per frame, two levels: the top-level tree over the moved fragment bounds.
   t0 = std::chrono::steady_clock::now();
-  std::vector<Box> moved(inst.size());
-  for (size_t k = 0; k < inst.size(); ++k) {
-    const Box& b = inst[k].tree.bounds;
-    moved[k] = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
-    for (int c = 0; c < 8; ++c) {
-      const Vec3 p = apply(inst[k].rotation, inst[k].translation,
-                           {(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z});
-      moved[k] = {vmin(moved[k].lo, p), vmax(moved[k].hi, p)};
-    }
-  }
-  const KdTree top = build_kdtree(moved, options);
+  const KdTree top = build_kdtree(moved_bounds(inst), options);
   r.top_build_seconds = seconds_since(t0);
 
   // Per frame, one level: the moved primitives and their tree.
@@ -172,12 +193,7 @@ TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int6
     }
   r.two_level_trace_seconds = seconds_since(t0);
   r.instances_per_ray = double(entered) / double(pixels);
-  int64_t same = 0;
-  for (size_t i = 0; i < one_depth.size(); ++i)
-    same += std::isinf(one_depth[i])
-                ? std::isinf(two_depth[i])
-                : std::fabs(double(one_depth[i]) - double(two_depth[i])) <= 1e-4 * double(one_depth[i]);
-  r.agreement = double(same) / double(pixels);
+  r.agreement = depth_agreement(one_depth, two_depth);
   return r;
 }
 
