@@ -8,6 +8,28 @@
 
 namespace pd {
 
+// The view of `n` primitives whose arrays `a` holds under PrimitiveSet's member names: a
+// PrimitiveSet itself, or the renderer's copies of one on a device (anything whose arrays give
+// their elements through data()).
+template <class Arrays>
+PrimitivesView primitives_view(int32_t n, const Arrays& a) {
+  PrimitivesView v{n,
+                   a.kind.data(),
+                   a.slot.data(),
+                   a.cube_center.data(),
+                   a.cube_half.data(),
+                   a.tet_vertex.data(),
+                   a.tet_plane.data(),
+                   a.ocube_center.data(),
+                   a.ocube_half.data(),
+                   a.ocube_axis.data(),
+                   {}};
+  v.trim = {a.trim_site.data(),         a.trim_plane_start.data(), a.trim_plane_normal.data(),
+            a.trim_plane_offset.data(), a.trim_tri_start.data(),   a.trim_tri_vertex.data(),
+            a.trim_box.data()};
+  return v;
+}
+
 struct PrimitiveSet {
   std::vector<uint8_t> kind;
   std::vector<int32_t> slot;
@@ -79,23 +101,7 @@ struct PrimitiveSet {
   }
 
   // A view of the host arrays (host-side tests and the kd-tree build).
-  PrimitivesView view() const {
-    PrimitivesView v{size(),
-                     kind.data(),
-                     slot.data(),
-                     cube_center.data(),
-                     cube_half.data(),
-                     tet_vertex.data(),
-                     tet_plane.data(),
-                     ocube_center.data(),
-                     ocube_half.data(),
-                     ocube_axis.data(),
-                     {}};
-    v.trim = {trim_site.data(),         trim_plane_start.data(), trim_plane_normal.data(),
-              trim_plane_offset.data(), trim_tri_start.data(),   trim_tri_vertex.data(),
-              trim_box.data()};
-    return v;
-  }
+  PrimitivesView view() const { return primitives_view(size(), *this); }
 
   std::vector<Box> bounds() const {
     std::vector<Box> b(kind.size());

@@ -134,6 +134,27 @@ void launch_render_pixels(Exec& ex, const PixelKernelParams& p, uint8_t* rgb) {
   ex.parallel_for("render/pixels", p.tiles * kTilePixels, [=] PD_HD(int64_t i) { render_pixel(p, i, rgb); });
 }
 
+// A scene's primitive arrays copied to the backend, under PrimitiveSet's member names.
+template <class Exec>
+struct DevicePrimitives {
+  DeviceArray<uint8_t, Exec> kind;
+  DeviceArray<int32_t, Exec> slot;
+  DeviceArray<Vec3, Exec> cube_center;
+  DeviceArray<real, Exec> cube_half;
+  DeviceArray<Vec3, Exec> tet_vertex;
+  DeviceArray<TetPlane, Exec> tet_plane;
+  DeviceArray<Vec3, Exec> trim_site;
+  DeviceArray<int32_t, Exec> trim_plane_start;
+  DeviceArray<Vec3, Exec> trim_plane_normal;
+  DeviceArray<real, Exec> trim_plane_offset;
+  DeviceArray<int32_t, Exec> trim_tri_start;
+  DeviceArray<Vec3, Exec> trim_tri_vertex;
+  DeviceArray<Box, Exec> trim_box;
+  DeviceArray<Vec3, Exec> ocube_center;
+  DeviceArray<real, Exec> ocube_half;
+  DeviceArray<Vec3, Exec> ocube_axis;
+};
+
 template <class Exec>
 class RendererImpl final : public Renderer {
  public:
@@ -151,22 +172,7 @@ class RendererImpl final : public Renderer {
       throw std::invalid_argument("render: the scene needs no material or one per primitive");
 
     // Upload the scene.
-    auto kind = upload(ps.kind);
-    auto slot = upload(ps.slot);
-    auto cube_center = upload(ps.cube_center);
-    auto cube_half = upload(ps.cube_half);
-    auto tet_vertex = upload(ps.tet_vertex);
-    auto tet_plane = upload(ps.tet_plane);
-    auto trim_site = upload(ps.trim_site);
-    auto trim_plane_start = upload(ps.trim_plane_start);
-    auto trim_plane_normal = upload(ps.trim_plane_normal);
-    auto trim_plane_offset = upload(ps.trim_plane_offset);
-    auto trim_tri_start = upload(ps.trim_tri_start);
-    auto trim_tri_vertex = upload(ps.trim_tri_vertex);
-    auto trim_box = upload(ps.trim_box);
-    auto ocube_center = upload(ps.ocube_center);
-    auto ocube_half = upload(ps.ocube_half);
-    auto ocube_axis = upload(ps.ocube_axis);
+    const DevicePrimitives<Exec> prims = upload_primitives(ps);
     auto albedo = upload(scene.albedo);
     auto material = upload(scene.material);
     auto env = upload(s.environment ? s.environment->texel : std::vector<Vec3>());
@@ -176,20 +182,7 @@ class RendererImpl final : public Renderer {
     // Kernel parameters.
     PixelKernelParams p;
     p.camera = camera_frame(camera, s.width, s.height);
-    p.prims = {ps.size(),
-               kind.data(),
-               slot.data(),
-               cube_center.data(),
-               cube_half.data(),
-               tet_vertex.data(),
-               tet_plane.data(),
-               ocube_center.data(),
-               ocube_half.data(),
-               ocube_axis.data(),
-               {}};
-    p.prims.trim = {trim_site.data(),         trim_plane_start.data(), trim_plane_normal.data(),
-                    trim_plane_offset.data(), trim_tri_start.data(),   trim_tri_vertex.data(),
-                    trim_box.data()};
+    p.prims = primitives_view(ps.size(), prims);
     p.tree = {nodes.data(), prim_index.data(), scene.tree.bounds};
     p.albedo = albedo.data();
     p.material = scene.material.empty() ? nullptr : material.data();
@@ -231,6 +224,26 @@ class RendererImpl final : public Renderer {
     DeviceArray<T, Exec> a(&exec_, host.size());
     if (!host.empty()) a.upload(host);  // an empty vector may have no data pointer
     return a;
+  }
+
+  // The arrays of `ps` copied to the backend (uploaded in the order of DevicePrimitives' members).
+  DevicePrimitives<Exec> upload_primitives(const PrimitiveSet& ps) {
+    return {upload(ps.kind),
+            upload(ps.slot),
+            upload(ps.cube_center),
+            upload(ps.cube_half),
+            upload(ps.tet_vertex),
+            upload(ps.tet_plane),
+            upload(ps.trim_site),
+            upload(ps.trim_plane_start),
+            upload(ps.trim_plane_normal),
+            upload(ps.trim_plane_offset),
+            upload(ps.trim_tri_start),
+            upload(ps.trim_tri_vertex),
+            upload(ps.trim_box),
+            upload(ps.ocube_center),
+            upload(ps.ocube_half),
+            upload(ps.ocube_axis)};
   }
 
   KernelStats stats_;

@@ -50,9 +50,13 @@ PD_HD inline void intersect_leaf(const KdTreeView& tree, const PrimitivesView& p
   }
 }
 
-template <int K>
-PD_HD inline Hit traverse_short_stack(const KdTreeView& tree, const PrimitivesView& prims, const Ray& ray,
-                                      TraversalStats* stats = nullptr) {
+// The walk itself, whatever the leaves hold: visits the leaves the ray crosses, nearest first, and
+// calls visit_leaf(leaf, &best) at each to bring the nearest hit `best` up to date with the leaf's
+// contents (the primitives here; the two-level bench enters fragment trees). Stops at the first hit
+// that no later leaf can beat.
+template <int K, class VisitLeaf>
+PD_HD inline Hit walk_short_stack(const KdTreeView& tree, const Ray& ray, const VisitLeaf& visit_leaf,
+                                  TraversalStats* stats = nullptr) {
   static_assert(K >= 1, "the short stack needs at least one entry");
   Hit best;
   // The ray's interval inside the scene bounds.
@@ -97,7 +101,7 @@ PD_HD inline Hit traverse_short_stack(const KdTreeView& tree, const PrimitivesVi
       n = tree.nodes[node];
     }
     if (stats) ++stats->nodes;
-    intersect_leaf(tree, prims, n, ray, &best, stats);
+    visit_leaf(n, &best);
     // A hit before the leaf's exit is final: everything left lies beyond it. At exactly the exit
     // a primitive of the next leaf may tie, and the smaller id wins, so traversal goes on.
     if (best.prim >= 0 && best.t < tmax) return best;
@@ -117,6 +121,22 @@ PD_HD inline Hit traverse_short_stack(const KdTreeView& tree, const PrimitivesVi
     }
     if (best.prim >= 0 && best.t < tmin) return best;
   }
+}
+
+// The leaf visit of the renderer's traversal: the nearest of the leaf's primitive hits.
+struct IntersectLeaf {
+  const KdTreeView& tree;
+  const PrimitivesView& prims;
+  const Ray& ray;
+  TraversalStats* stats;
+  PD_HD void operator()(KdNode leaf, Hit* best) const { intersect_leaf(tree, prims, leaf, ray, best, stats); }
+};
+
+// The nearest primitive hit along `ray`.
+template <int K>
+PD_HD inline Hit traverse_short_stack(const KdTreeView& tree, const PrimitivesView& prims, const Ray& ray,
+                                      TraversalStats* stats = nullptr) {
+  return walk_short_stack<K>(tree, ray, IntersectLeaf{tree, prims, ray, stats}, stats);
 }
 
 // The reference: the same traversal with a stack as deep as any tree, so it never restarts.

@@ -150,6 +150,156 @@ const char* const kStages[] = {"components",          "fits",           "crack m
 constexpr int kStageCount = 9;
 const char* const kStates[] = {"intact", "cut", "shattered"};
 
+// What the three states took: per stage the first frame after the change and the mean of the
+// next ones [s], the rest-space pieces' build and write, and the sizes.
+struct StateTimes {
+  double first[3][kStageCount] = {}, then[3][kStageCount] = {}, build[3] = {}, write[3] = {};
+  size_t fragments[3] = {}, triangles[3] = {};
+  double megabytes[3] = {};
+};
+
+// The frame loop's working data: the frame, its components, fits and crack surface, and the
+// split blending.
+struct FrameWork {
+  FrameData frame;
+  Components components;
+  std::vector<Fragment> fits;
+  CrackSurface surface;
+  FragmentSmoother smoother{4};
+};
+
+// One timed frame `global_frame`, the body turned by 1e-3 rad per frame about `centre`: each stage
+// of FragmentOutput::process, its time over `frames` (the frames it is averaged over) added to
+// into[stage]. Only this frame's files are kept in `dir`: a shattered body writes hundreds of MB
+// per frame.
+void time_frame(const ParticleSet& ps, const BondLists& bonds, ComponentFinder& finder, EmbeddedMesh& mesh,
+                const Vec3d& centre, int64_t global_frame, const std::string& dir, FrameWork& w, double* into,
+                int frames) {
+  const double angle = 1e-3 * double(global_frame), c = std::cos(angle), s = std::sin(angle);
+  FrameData& frame = w.frame;
+  frame.frame = global_frame;
+  frame.position.resize(ps.size());
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const double x = ps.rest[i].x - centre[0], y = ps.rest[i].y - centre[1];
+    frame.position[i] = {real(centre[0] + c * x - s * y), real(centre[1] + s * x + c * y), ps.rest[i].z};
+  }
+  Clock::time_point t = Clock::now();
+  auto lap = [&](int stage) {
+    const Clock::time_point now = Clock::now();
+    into[stage] += std::chrono::duration<double>(now - t).count() / frames;
+    t = now;
+  };
+  finder.find(bonds, w.components);
+  frame.component = w.components.id;
+  lap(0);
+  align_fragments(w.components, ps.rest, frame.position, ps.mass, w.fits);
+  lap(1);
+  mesh.update(bonds, frame.position, w.components, w.fits);
+  lap(2);
+  w.smoother.apply(w.components, ps.rest, frame.position, ps.mass, w.fits);
+  lap(3);
+  write_fragments_file(dir + "/" + fragments_file_name(global_frame), global_frame, 0, 0, w.fits);
+  lap(4);
+  write_ply_points(dir + "/" + points_file_name(global_frame), frame);
+  lap(5);
+  mesh.surface(w.surface);
+  lap(6);
+  write_crack_obj(dir + "/" + crack_mesh_file_name(global_frame, "obj"), w.surface, "bench");
+  lap(7);
+  write_crack_ply(dir + "/" + crack_mesh_file_name(global_frame, "ply"), w.surface, "bench");
+  lap(8);
+  if (global_frame > 0)
+    for (const std::string& old :
+         {fragments_file_name(global_frame - 1), points_file_name(global_frame - 1),
+          crack_mesh_file_name(global_frame - 1, "obj"), crack_mesh_file_name(global_frame - 1, "ply")})
+      std::filesystem::remove(dir + "/" + old);
+}
+
+// Times the per-frame stages in the three states: intact, cut into blocks^3 blocks, every bond
+// broken (the bonds are broken on the way); then, per state, the rest-space pieces (written once
+// per run by `perifrac run`).
+StateTimes time_states(const FragmentsBenchOptions& o, const ParticleSet& ps, BondLists& bonds,
+                       ComponentFinder& finder, EmbeddedMesh& mesh, const std::string& dir) {
+  Box3d box;
+  for (const Vec3& p : ps.rest) box.add({p.x, p.y, p.z});
+  auto block = [&](int32_t i) {
+    const Vec3& p = ps.rest[size_t(i)];
+    int cell[3];
+    const double x[3] = {p.x, p.y, p.z};
+    for (int a = 0; a < 3; ++a)
+      cell[a] = std::min(o.blocks - 1, int(double(o.blocks) * (x[a] - box.lo[a]) / (box.hi[a] - box.lo[a])));
+    return cell[0] + o.blocks * (cell[1] + o.blocks * cell[2]);
+  };
+  const Vec3d centre = box.center();
+  FrameWork w;
+  w.frame.velocity.assign(ps.size(), {0, 0, 0});
+  w.frame.damage.assign(ps.size(), 0);
+  w.frame.body.assign(ps.size(), 0);
+  StateTimes r;
+  int64_t global_frame = 0;
+  for (int state = 0; state < 3; ++state) {
+    if (state == 1) break_bonds(bonds, [&](int32_t i, int32_t j) { return block(i) != block(j); });
+    if (state == 2) break_bonds(bonds, [](int32_t, int32_t) { return true; });
+    for (int f = 0; f < o.frames; ++f, ++global_frame)
+      time_frame(ps, bonds, finder, mesh, centre, global_frame, dir, w,
+                 f == 0 ? r.first[state] : r.then[state], f == 0 ? 1 : o.frames - 1);
+    Clock::time_point t = Clock::now();
+    const FragmentMesh pieces = fragment_pieces(mesh.elements(), w.components);
+    r.build[state] = seconds_since(t);
+    t = Clock::now();
+    const std::string obj = dir + "/fragments.obj";
+    write_obj(obj, pieces);
+    r.write[state] = seconds_since(t);
+    r.fragments[state] = w.components.count();
+    r.triangles[state] = w.surface.triangles.size();
+    r.megabytes[state] = double(std::filesystem::file_size(obj)) / 1e6;
+  }
+  return r;
+}
+
+// The table: one row per stage, one column per state.
+void print_state_table(const StateTimes& r, int frames) {
+  std::printf("per frame [ms], the first frame after the change / the mean of the next %d:\n", frames - 1);
+  std::printf("  %-22s", "");
+  for (int state = 0; state < 3; ++state) std::printf(" %21s", kStates[state]);
+  std::printf("\n  %-22s", "fragments");
+  for (int state = 0; state < 3; ++state) std::printf(" %21zu", r.fragments[state]);
+  for (int k = 0; k < kStageCount; ++k) {
+    std::printf("\n  %-22s", kStages[k]);
+    for (int state = 0; state < 3; ++state)
+      std::printf(" %10.1f / %8.1f", 1e3 * r.first[state][k], 1e3 * r.then[state][k]);
+  }
+  std::printf("\n  %-22s", "crack triangles");
+  for (int state = 0; state < 3; ++state) std::printf(" %21zu", r.triangles[state]);
+  std::printf("\nonce per run [ms]:\n  %-22s", "pieces (build)");
+  for (int state = 0; state < 3; ++state) std::printf(" %21.1f", 1e3 * r.build[state]);
+  std::printf("\n  %-22s", "pieces OBJ (write)");
+  for (int state = 0; state < 3; ++state)
+    std::printf(" %10.1f %7.1f MB", 1e3 * r.write[state], r.megabytes[state]);
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
+// Appends the table and the set-up stages to the CSV file `path` (a header first when it is new).
+void append_csv_rows(const std::string& path, const std::string& kind, size_t n, int threads,
+                     const StateTimes& r, const std::vector<StageTime>& setup) {
+  const bool fresh = !std::filesystem::exists(path);
+  std::ofstream csv(path, std::ios::app);
+  if (fresh) csv << "date,revision,cores,threads,particles,count,state,fragments,stage,first_ms,then_ms\n";
+  const std::string stamp = utc_now("%Y-%m-%dT%H:%M:%SZ") + "," + git_revision() + "," +
+                            std::to_string(std::thread::hardware_concurrency()) + "," +
+                            std::to_string(threads) + "," + kind + "," + std::to_string(n) + ",";
+  for (int state = 0; state < 3; ++state) {
+    const std::string row = stamp + kStates[state] + "," + std::to_string(r.fragments[state]) + ",";
+    for (int k = 0; k < kStageCount; ++k)
+      csv << row << kStages[k] << ',' << 1e3 * r.first[state][k] << ',' << 1e3 * r.then[state][k] << '\n';
+    csv << row << "pieces (build)," << 1e3 * r.build[state] << ",\n"
+        << row << "pieces OBJ," << 1e3 * r.write[state] << ",\n";
+  }
+  for (const StageTime& s : setup) csv << stamp << "set-up,1," << s.name << ',' << 1e3 * s.seconds << ",\n";
+  if (!csv) throw std::runtime_error("bench-fragments: cannot write " + path);
+}
+
 }  // namespace
 
 int bench_fragments_command(const FragmentsBenchOptions& o) {
@@ -216,127 +366,9 @@ int bench_fragments_command(const FragmentsBenchOptions& o) {
   std::printf("\n");
   for (const StageTime& s : b.setup) std::printf("  %-40s %9.3f s\n", s.name.c_str(), s.seconds);
 
-  // The three states: intact, cut into blocks^3 blocks, every bond broken. Each frame turns the
-  // body a little about its centre, so every fit and vertex moves.
-  Box3d box;
-  for (const Vec3& p : ps.rest) box.add({p.x, p.y, p.z});
-  auto block = [&](int32_t i) {
-    const Vec3& p = ps.rest[size_t(i)];
-    int cell[3];
-    const double x[3] = {p.x, p.y, p.z};
-    for (int a = 0; a < 3; ++a)
-      cell[a] = std::min(o.blocks - 1, int(double(o.blocks) * (x[a] - box.lo[a]) / (box.hi[a] - box.lo[a])));
-    return cell[0] + o.blocks * (cell[1] + o.blocks * cell[2]);
-  };
-  const Vec3d centre = box.center();
-  Components components;
-  std::vector<Fragment> fits;
-  CrackSurface surface;
-  FrameData frame;
-  frame.velocity.assign(n, {0, 0, 0});
-  frame.damage.assign(n, 0);
-  frame.body.assign(n, 0);
-  FragmentSmoother smoother(4);
-  double first[3][kStageCount] = {}, then[3][kStageCount] = {}, build[3] = {}, write[3] = {};
-  size_t fragments[3] = {}, triangles[3] = {};
-  double megabytes[3] = {};
-  int64_t global_frame = 0;
-  for (int state = 0; state < 3; ++state) {
-    if (state == 1) break_bonds(bonds, [&](int32_t i, int32_t j) { return block(i) != block(j); });
-    if (state == 2) break_bonds(bonds, [](int32_t, int32_t) { return true; });
-    for (int f = 0; f < o.frames; ++f, ++global_frame) {
-      const double angle = 1e-3 * double(global_frame), c = std::cos(angle), s = std::sin(angle);
-      frame.frame = global_frame;
-      frame.position.resize(n);
-      for (size_t i = 0; i < n; ++i) {
-        const double x = ps.rest[i].x - centre[0], y = ps.rest[i].y - centre[1];
-        frame.position[i] = {real(centre[0] + c * x - s * y), real(centre[1] + s * x + c * y), ps.rest[i].z};
-      }
-      double* into = f == 0 ? first[state] : then[state];
-      auto lap = [&](int stage) {
-        const Clock::time_point now = Clock::now();
-        into[stage] += std::chrono::duration<double>(now - t).count() / (f == 0 ? 1 : o.frames - 1);
-        t = now;
-      };
-      t = Clock::now();
-      finder.find(bonds, components);
-      frame.component = components.id;
-      lap(0);
-      align_fragments(components, ps.rest, frame.position, ps.mass, fits);
-      lap(1);
-      mesh.update(bonds, frame.position, components, fits);
-      lap(2);
-      smoother.apply(components, ps.rest, frame.position, ps.mass, fits);
-      lap(3);
-      write_fragments_file(dir + "/" + fragments_file_name(global_frame), global_frame, 0, 0, fits);
-      lap(4);
-      write_ply_points(dir + "/" + points_file_name(global_frame), frame);
-      lap(5);
-      mesh.surface(surface);
-      lap(6);
-      write_crack_obj(dir + "/" + crack_mesh_file_name(global_frame, "obj"), surface, "bench");
-      lap(7);
-      write_crack_ply(dir + "/" + crack_mesh_file_name(global_frame, "ply"), surface, "bench");
-      lap(8);
-      // Only the last frames' files are kept: a shattered body writes hundreds of MB per frame.
-      if (global_frame > 0)
-        for (const std::string& old :
-             {fragments_file_name(global_frame - 1), points_file_name(global_frame - 1),
-              crack_mesh_file_name(global_frame - 1, "obj"), crack_mesh_file_name(global_frame - 1, "ply")})
-          std::filesystem::remove(dir + "/" + old);
-    }
-    // The rest-space pieces of this state (written once per run by `perifrac run`).
-    t = Clock::now();
-    const FragmentMesh pieces = fragment_pieces(mesh.elements(), components);
-    build[state] = seconds_since(t);
-    t = Clock::now();
-    const std::string obj = dir + "/fragments.obj";
-    write_obj(obj, pieces);
-    write[state] = seconds_since(t);
-    fragments[state] = components.count();
-    triangles[state] = surface.triangles.size();
-    megabytes[state] = double(std::filesystem::file_size(obj)) / 1e6;
-  }
-
-  // The table: one row per stage, one column per state.
-  std::printf("per frame [ms], the first frame after the change / the mean of the next %d:\n", o.frames - 1);
-  std::printf("  %-22s", "");
-  for (int state = 0; state < 3; ++state) std::printf(" %21s", kStates[state]);
-  std::printf("\n  %-22s", "fragments");
-  for (int state = 0; state < 3; ++state) std::printf(" %21zu", fragments[state]);
-  for (int k = 0; k < kStageCount; ++k) {
-    std::printf("\n  %-22s", kStages[k]);
-    for (int state = 0; state < 3; ++state)
-      std::printf(" %10.1f / %8.1f", 1e3 * first[state][k], 1e3 * then[state][k]);
-  }
-  std::printf("\n  %-22s", "crack triangles");
-  for (int state = 0; state < 3; ++state) std::printf(" %21zu", triangles[state]);
-  std::printf("\nonce per run [ms]:\n  %-22s", "pieces (build)");
-  for (int state = 0; state < 3; ++state) std::printf(" %21.1f", 1e3 * build[state]);
-  std::printf("\n  %-22s", "pieces OBJ (write)");
-  for (int state = 0; state < 3; ++state)
-    std::printf(" %10.1f %7.1f MB", 1e3 * write[state], megabytes[state]);
-  std::printf("\n");
-  std::fflush(stdout);
-
-  if (!o.csv.empty()) {
-    const bool fresh = !std::filesystem::exists(o.csv);
-    std::ofstream csv(o.csv, std::ios::app);
-    if (fresh) csv << "date,revision,cores,threads,particles,count,state,fragments,stage,first_ms,then_ms\n";
-    const std::string stamp = utc_now("%Y-%m-%dT%H:%M:%SZ") + "," + git_revision() + "," +
-                              std::to_string(std::thread::hardware_concurrency()) + "," +
-                              std::to_string(threads) + "," + kind + "," + std::to_string(n) + ",";
-    for (int state = 0; state < 3; ++state) {
-      const std::string row = stamp + kStates[state] + "," + std::to_string(fragments[state]) + ",";
-      for (int k = 0; k < kStageCount; ++k)
-        csv << row << kStages[k] << ',' << 1e3 * first[state][k] << ',' << 1e3 * then[state][k] << '\n';
-      csv << row << "pieces (build)," << 1e3 * build[state] << ",\n"
-          << row << "pieces OBJ," << 1e3 * write[state] << ",\n";
-    }
-    for (const StageTime& s : b.setup)
-      csv << stamp << "set-up,1," << s.name << ',' << 1e3 * s.seconds << ",\n";
-    if (!csv) throw std::runtime_error("bench-fragments: cannot write " + o.csv);
-  }
+  const StateTimes times = time_states(o, ps, bonds, finder, mesh, dir);
+  print_state_table(times, o.frames);
+  if (!o.csv.empty()) append_csv_rows(o.csv, kind, n, threads, times, b.setup);
   if (temporary) std::filesystem::remove_all(dir);
   return 0;
 }

@@ -55,9 +55,8 @@ double nominal_volume(const GeometryBenchOptions& o, const TriMesh* file_mesh) {
   throw std::invalid_argument("bench-geometry: --shape must be sphere, vase or mesh, got '" + o.shape + "'");
 }
 
-}  // namespace
-
-int bench_geometry_command(const GeometryBenchOptions& o) {
+// Throws std::invalid_argument for a particle kind, shape or mesh the bench does not take.
+void check_options(const GeometryBenchOptions& o) {
   const std::string& kind = o.particles;
   if (kind != "grid" && kind != "tets" && kind != "shell" && kind != "voronoi")
     throw std::invalid_argument("bench-geometry: --particles must be grid, tets, shell or voronoi, got '" +
@@ -66,6 +65,29 @@ int bench_geometry_command(const GeometryBenchOptions& o) {
     throw std::invalid_argument("bench-geometry: --particles shell needs --shape vase");
   if (o.shape == "mesh" && o.mesh.empty())
     throw std::invalid_argument("bench-geometry: --shape mesh needs --mesh FILE");
+}
+
+// Appends one row to the CSV file of --csv (a header first when it is new).
+void append_csv_row(const GeometryBenchOptions& o, int threads, size_t particles, double spacing,
+                    double error, double total, const std::vector<StageTime>& stages) {
+  const bool fresh = !std::filesystem::exists(o.csv);
+  std::ofstream out(o.csv, std::ios::app);
+  if (fresh) out << "date,revision,cores,threads,shape,particles,count,spacing,volume_error,total_s,stages\n";
+  out << utc_now("%Y-%m-%dT%H:%M:%SZ") << ',' << git_revision() << ',' << std::thread::hardware_concurrency()
+      << ',' << threads << ','
+      << (o.shape == "mesh" ? std::filesystem::path(o.mesh).filename().string() : o.shape) << ','
+      << o.particles << ',' << particles << ',' << spacing << ',' << error << ',' << total << ",\"";
+  for (size_t k = 0; k < stages.size(); ++k)
+    out << (k ? "; " : "") << stages[k].name << '=' << stages[k].seconds;
+  out << "\"\n";
+  if (!out) throw std::runtime_error("bench-geometry: cannot write " + o.csv);
+}
+
+}  // namespace
+
+int bench_geometry_command(const GeometryBenchOptions& o) {
+  check_options(o);
+  const std::string& kind = o.particles;
   if (o.threads > 0) omp_set_num_threads(o.threads);
   const int threads = omp_get_max_threads();
 
@@ -125,20 +147,7 @@ int bench_geometry_command(const GeometryBenchOptions& o) {
   for (const StageTime& s : stages) std::printf("  %-40s %9.3f s\n", s.name.c_str(), s.seconds);
   std::printf("  %-40s %9.3f s\n", "total", total);
 
-  if (!o.csv.empty()) {
-    const bool fresh = !std::filesystem::exists(o.csv);
-    std::ofstream out(o.csv, std::ios::app);
-    if (fresh)
-      out << "date,revision,cores,threads,shape,particles,count,spacing,volume_error,total_s,stages\n";
-    out << utc_now("%Y-%m-%dT%H:%M:%SZ") << ',' << git_revision() << ','
-        << std::thread::hardware_concurrency() << ',' << threads << ','
-        << (o.shape == "mesh" ? std::filesystem::path(o.mesh).filename().string() : o.shape) << ',' << kind
-        << ',' << g.size() << ',' << spacing << ',' << error << ',' << total << ",\"";
-    for (size_t k = 0; k < stages.size(); ++k)
-      out << (k ? "; " : "") << stages[k].name << '=' << stages[k].seconds;
-    out << "\"\n";
-    if (!out) throw std::runtime_error("bench-geometry: cannot write " + o.csv);
-  }
+  if (!o.csv.empty()) append_csv_row(o, threads, g.size(), spacing, error, total, stages);
   return 0;
 }
 

@@ -132,18 +132,147 @@ HostTrace trace_on_host(const RenderScene& scene, const CameraFrame& camera, int
   return out;
 }
 
-// Fraction of pixels whose hit or miss agrees and whose depths agree within 1e-4 relative.
-double depth_agreement(const std::vector<float>& a, const std::vector<float>& b) {
-  size_t same = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-    same +=
-        std::isinf(a[i]) ? std::isinf(b[i]) : std::fabs(double(a[i]) - double(b[i])) <= 1e-4 * double(a[i]);
-  return a.empty() ? 1.0 : double(same) / double(a.size());
+// The scene to render: the bench scene's primitives with albedos and materials, its kd-tree built
+// serially, then in parallel (the same tree); both builds and the whole scene's set-up timed.
+struct TimedScene {
+  RenderScene scene;
+  double serial_build = 0;   // the serial kd-tree build [s]
+  double scene_seconds = 0;  // the scene with the hidden-element search and the parallel build [s]
+};
+
+// Makes the render scene of `b` (its primitives moved in) and reports what the kd-tree left out and
+// what its builds took.
+TimedScene make_timed_scene(BenchScene& b, const RenderBenchOptions& o, const KdBuildOptions& build) {
+  KdBuildOptions serial_options = build;
+  serial_options.threads = 1;
+  std::vector<Vec3> albedo(size_t(b.prims.size()));
+  for (size_t i = 0; i < albedo.size(); ++i)
+    albedo[i] = {real(0.55 + 0.1 * double(i % 3)), real(0.6), real(0.65)};
+  std::vector<uint8_t> material(o.material == "glass" ? albedo.size() : 0, kMaterialGlass);
+  const HiddenElements hidden = o.keep_hidden ? HiddenElements::kKeep : HiddenElements::kCull;
+  TimedScene r;
+  r.serial_build =
+      make_render_scene(b.prims, albedo, material, serial_options, hidden).tree.stats.build_seconds;
+  const auto scene_start = std::chrono::steady_clock::now();
+  r.scene = make_render_scene(std::move(b.prims), std::move(albedo), std::move(material), build, hidden);
+  r.scene_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scene_start).count();
+  const RenderScene& scene = r.scene;
+  const KdTreeStats& t = scene.tree.stats;
+  const int64_t in_tree = scene.prims.size() - scene.hidden;
+  std::printf("hidden      %lld of %d primitives left out of the kd-tree (%s)\n", (long long)scene.hidden,
+              scene.prims.size(), o.keep_hidden ? "--keep-hidden: none looked for" : "hidden_tets.h");
+  std::printf(
+      "kd-tree     build %.3f s serial, %.3f s on %d threads (scene with the hidden-element search %.3f s); "
+      "%.2f M nodes, depth %d, %.2f references per primitive in the tree\n",
+      r.serial_build, t.build_seconds, t.threads, r.scene_seconds, 1e-6 * double(t.nodes), t.depth,
+      double(t.prim_refs) / double(std::max<int64_t>(1, in_tree)));
+  return r;
 }
 
-}  // namespace
+// The bench's view: looking down at 50 degrees onto the slab's centre from a distance at which the
+// slab fills the 16:9 frame, so that nearly every primary ray meets the primitives.
+Camera bench_camera(const RenderScene& scene) {
+  Camera camera;
+  const Box& bb = scene.tree.bounds;
+  const real extent = rmax(bb.hi.x - bb.lo.x, bb.hi.z - bb.lo.z);
+  camera.look_at = real(0.5) * (bb.lo + bb.hi);
+  camera.eye = camera.look_at + extent * Vec3{0, real(0.85), real(0.72)};
+  camera.vfov_degrees = 35;
+  return camera;
+}
 
-int bench_render_command(const RenderBenchOptions& o) {
+// What the renders on the backend took: the warm-up (whose ray counts are reported), the best and
+// the sum of the timed ones.
+struct RenderTimes {
+  RenderResult first;
+  double best = INFINITY, total = 0;
+};
+
+// Renders the bench view on the backend: one warm-up, then `repeat` timed renders.
+RenderTimes time_renders(Renderer& renderer, const RenderScene& scene, const Camera& camera,
+                         const RenderBenchOptions& o) {
+  RenderSettings s;
+  s.width = o.width;
+  s.height = o.height;
+  s.spp = o.spp;
+  s.count_rays = true;
+  s.floor_y = scene.tree.bounds.lo.y;
+  s.plank_width = real(0.2);
+  s.fade_distance = real(20);
+  RenderTimes r;
+  r.first = renderer.render_frame(scene, camera, s);
+  for (int k = 0; k < o.repeat; ++k) {
+    const RenderResult t = renderer.render_frame(scene, camera, s);
+    r.best = std::min(r.best, t.seconds);
+    r.total += t.seconds;
+  }
+  return r;
+}
+
+// Embree on the same primitives, triangulated, against the renderer and the host traversal (when
+// built in and not turned off): reported, and returned as the results file's "embree" entry.
+std::string embree_baseline(const RenderBenchOptions& o, [[maybe_unused]] const RenderScene& scene,
+                            [[maybe_unused]] const CameraFrame& frame, [[maybe_unused]] const HostTrace& host,
+                            [[maybe_unused]] const RenderTimes& render, [[maybe_unused]] int threads) {
+  std::ostringstream json;
+#if defined(PERIFRAC_HAS_EMBREE)
+  if (o.embree) {
+    const double primary_rate = double(render.first.rays) / render.best;
+    const double host_rate = double(render.first.rays) / host.seconds;
+    const EmbreeScene embree(scene.prims);
+    const EmbreeScene::PrimaryTrace e = embree.trace_primary(frame, o.spp);
+    const double rate = double(render.first.rays) / e.seconds, agree = depth_agreement(host.depth, e.depth);
+    std::printf(
+        "embree      %s high-quality BVH of %zu triangles %.3f s; rtcIntersect1 primary rays, %d "
+        "threads: %.3f s, %.3e rays/s\n",
+        EmbreeScene::version().c_str(), embree.triangles(), embree.build_seconds(), threads, e.seconds, rate);
+    std::printf(
+        "compare     renderer primary rays/s over Embree's: %.2f; host traversal over Embree's: %.2f; depth "
+        "agrees on %.4f%% of pixels\n",
+        primary_rate / rate, host_rate / rate, 100 * agree);
+    json << ",\n  \"embree\": {\"version\": \"" << EmbreeScene::version()
+         << "\", \"triangles\": " << embree.triangles() << ", \"build_seconds\": " << embree.build_seconds()
+         << ", \"threads\": " << threads << ", \"seconds\": " << e.seconds
+         << ", \"primary_rays_per_s\": " << rate << ", \"depth_agreement\": " << agree << "}";
+  }
+#else
+  if (o.embree) std::printf("embree      not built in (install libembree-dev and configure again)\n");
+#endif
+  return json.str();
+}
+
+// The per-frame rebuild against two levels (bench_two_level.h), with --fragments: reported, and
+// returned as the results file's "two_level" entry.
+std::string two_level_comparison(const RenderBenchOptions& o, const BenchScene& b, const RenderScene& scene,
+                                 const CameraFrame& frame, const KdBuildOptions& build,
+                                 int64_t primary_rays) {
+  std::ostringstream json;
+  if (o.fragments <= 0) return json.str();
+  const TwoLevelReport t2 =
+      measure_two_level(scene.prims, b.nx, b.ny, b.nz, o.scene == "slab" ? 6 : 1, o.fragments, frame, build);
+  std::printf(
+      "two-level   %d fragments moved apart: rest trees %.3f s (once per fragment); per frame top-level "
+      "tree "
+      "%.4f s against one rebuilt tree %.3f s\n",
+      t2.fragments, t2.rest_build_seconds, t2.top_build_seconds, t2.world_build_seconds);
+  std::printf(
+      "two-level   host trace of the primary rays: one tree %.3e rays/s, two levels %.3e rays/s (%.2f "
+      "fragment "
+      "trees entered per ray); %.4f%% of pixels agree\n",
+      double(primary_rays / o.spp) / t2.world_trace_seconds,
+      double(primary_rays / o.spp) / t2.two_level_trace_seconds, t2.instances_per_ray, 100 * t2.agreement);
+  json << ",\n  \"two_level\": {\"fragments\": " << t2.fragments
+       << ", \"rest_build_seconds\": " << t2.rest_build_seconds
+       << ", \"top_build_seconds\": " << t2.top_build_seconds
+       << ", \"world_build_seconds\": " << t2.world_build_seconds
+       << ", \"world_trace_seconds\": " << t2.world_trace_seconds
+       << ", \"two_level_trace_seconds\": " << t2.two_level_trace_seconds
+       << ", \"instances_per_ray\": " << t2.instances_per_ray << ", \"agreement\": " << t2.agreement << "}";
+  return json.str();
+}
+
+// Throws std::invalid_argument naming an option out of its range.
+void check_options(const RenderBenchOptions& o) {
   if (o.scene != "slab" && o.scene != "cubes" && o.scene != "turned-cubes")
     throw std::invalid_argument("bench-render: --scene '" + o.scene +
                                 "' (allowed: slab, cubes, turned-cubes)");
@@ -152,6 +281,21 @@ int bench_render_command(const RenderBenchOptions& o) {
   if (o.count < 1 || o.width < 16 || o.height < 16 || o.spp < 1 || o.repeat < 1)
     throw std::invalid_argument(
         "bench-render: need --count >= 1, --width/--height >= 16, --spp >= 1, --repeat >= 1");
+}
+
+// The kd-tree build knobs of the options (negative: the default).
+KdBuildOptions kd_build_options(const RenderBenchOptions& o) {
+  KdBuildOptions build;
+  if (o.kd_intersect_cost >= 0) build.intersect_cost = o.kd_intersect_cost;
+  if (o.kd_max_depth >= 0) build.max_depth = o.kd_max_depth;
+  if (o.kd_leaf_prims >= 0) build.max_leaf_prims = o.kd_leaf_prims;
+  return build;
+}
+
+}  // namespace
+
+int bench_render_command(const RenderBenchOptions& o) {
+  check_options(o);
   std::string note;
   const Backend backend = choose_backend(o.backend, &note);
   if (!note.empty()) std::printf("backend     %s\n", note.c_str());
@@ -165,66 +309,24 @@ int bench_render_command(const RenderBenchOptions& o) {
               o.height, o.spp, o.material.c_str());
   std::printf("device      %s [%s], %d host threads, %s, git %s\n", renderer->device_name().c_str(),
               backend_name(backend), threads, date.c_str(), rev.c_str());
-  KdBuildOptions build;
-  if (o.kd_intersect_cost >= 0) build.intersect_cost = o.kd_intersect_cost;
-  if (o.kd_max_depth >= 0) build.max_depth = o.kd_max_depth;
-  if (o.kd_leaf_prims >= 0) build.max_leaf_prims = o.kd_leaf_prims;
-  KdBuildOptions serial_options = build;
-  serial_options.threads = 1;
-  std::vector<Vec3> albedo(size_t(b.prims.size()));
-  for (size_t i = 0; i < albedo.size(); ++i)
-    albedo[i] = {real(0.55 + 0.1 * double(i % 3)), real(0.6), real(0.65)};
-  std::vector<uint8_t> material(o.material == "glass" ? albedo.size() : 0, kMaterialGlass);
-  const HiddenElements hidden = o.keep_hidden ? HiddenElements::kKeep : HiddenElements::kCull;
-  const double serial_build =
-      make_render_scene(b.prims, albedo, material, serial_options, hidden).tree.stats.build_seconds;
-  const auto scene_start = std::chrono::steady_clock::now();
-  const RenderScene scene =
-      make_render_scene(std::move(b.prims), std::move(albedo), std::move(material), build, hidden);
-  const double scene_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - scene_start).count();
+  const KdBuildOptions build = kd_build_options(o);
+  const TimedScene timed = make_timed_scene(b, o, build);
+  const RenderScene& scene = timed.scene;
   const KdTreeStats& t = scene.tree.stats;
-  const int64_t in_tree = scene.prims.size() - scene.hidden;
-  std::printf("hidden      %lld of %d primitives left out of the kd-tree (%s)\n", (long long)scene.hidden,
-              scene.prims.size(), o.keep_hidden ? "--keep-hidden: none looked for" : "hidden_tets.h");
-  std::printf(
-      "kd-tree     build %.3f s serial, %.3f s on %d threads (scene with the hidden-element search %.3f s); "
-      "%.2f M nodes, depth %d, %.2f references per primitive in the tree\n",
-      serial_build, t.build_seconds, t.threads, scene_seconds, 1e-6 * double(t.nodes), t.depth,
-      double(t.prim_refs) / double(std::max<int64_t>(1, in_tree)));
 
   // Render: one warm-up, then the best of `repeat`.
-  RenderSettings s;
-  s.width = o.width;
-  s.height = o.height;
-  s.spp = o.spp;
-  s.count_rays = true;
-  s.floor_y = scene.tree.bounds.lo.y;
-  s.plank_width = real(0.2);
-  s.fade_distance = real(20);
-  // The camera looks down at 50 degrees onto the slab's centre from a distance at which the slab
-  // fills the 16:9 frame: nearly every primary ray meets the primitives.
-  Camera camera;
-  const Box& bb = scene.tree.bounds;
-  const real extent = rmax(bb.hi.x - bb.lo.x, bb.hi.z - bb.lo.z);
-  camera.look_at = real(0.5) * (bb.lo + bb.hi);
-  camera.eye = camera.look_at + extent * Vec3{0, real(0.85), real(0.72)};
-  camera.vfov_degrees = 35;
-  RenderResult first = renderer->render_frame(scene, camera, s);
-  double best = INFINITY, total = 0;
-  for (int k = 0; k < o.repeat; ++k) {
-    const RenderResult r = renderer->render_frame(scene, camera, s);
-    best = std::min(best, r.seconds);
-    total += r.seconds;
-  }
+  const Camera camera = bench_camera(scene);
+  const RenderTimes render = time_renders(*renderer, scene, camera, o);
+  const RenderResult& first = render.first;
+  const double best = render.best, total = render.total;
   const double primary_rate = double(first.rays) / best, all_rate = double(first.traced_rays) / best;
   std::printf(
       "render      best of %d %.4f s (mean %.4f s): primary %.3e rays/s, all rays %.3e rays/s (%.2f per "
       "primary)\n",
       o.repeat, best, total / o.repeat, primary_rate, all_rate,
       double(first.traced_rays) / double(first.rays));
-  std::printf("per frame   scene and kd-tree rebuild %.3f s = %.1f x the render\n", scene_seconds,
-              scene_seconds / best);
+  std::printf("per frame   scene and kd-tree rebuild %.3f s = %.1f x the render\n", timed.scene_seconds,
+              timed.scene_seconds / best);
 
   // The same primary rays without shading on the host: the traversal alone.
   const CameraFrame frame = camera_frame(camera, o.width, o.height);
@@ -235,57 +337,8 @@ int bench_render_command(const RenderBenchOptions& o) {
       "hit; "
       "%.1f nodes and %.1f primitive tests per ray\n",
       threads, host.seconds, host_rate, 100 * host.hit_fraction, host.nodes_per_ray, host.tests_per_ray);
-
-  // Embree on the same primitives, triangulated.
-  std::ostringstream embree_json;
-#if defined(PERIFRAC_HAS_EMBREE)
-  if (o.embree) {
-    const EmbreeScene embree(scene.prims);
-    const EmbreeScene::PrimaryTrace e = embree.trace_primary(frame, o.spp);
-    const double rate = double(first.rays) / e.seconds, agree = depth_agreement(host.depth, e.depth);
-    std::printf(
-        "embree      %s high-quality BVH of %zu triangles %.3f s; rtcIntersect1 primary rays, %d "
-        "threads: %.3f s, %.3e rays/s\n",
-        EmbreeScene::version().c_str(), embree.triangles(), embree.build_seconds(), threads, e.seconds, rate);
-    std::printf(
-        "compare     renderer primary rays/s over Embree's: %.2f; host traversal over Embree's: %.2f; depth "
-        "agrees on %.4f%% of pixels\n",
-        primary_rate / rate, host_rate / rate, 100 * agree);
-    embree_json << ",\n  \"embree\": {\"version\": \"" << EmbreeScene::version()
-                << "\", \"triangles\": " << embree.triangles()
-                << ", \"build_seconds\": " << embree.build_seconds() << ", \"threads\": " << threads
-                << ", \"seconds\": " << e.seconds << ", \"primary_rays_per_s\": " << rate
-                << ", \"depth_agreement\": " << agree << "}";
-  }
-#else
-  if (o.embree) std::printf("embree      not built in (install libembree-dev and configure again)\n");
-#endif
-
-  // Per-frame rebuild against two levels (bench_two_level.h).
-  std::ostringstream two_level_json;
-  if (o.fragments > 0) {
-    const TwoLevelReport t2 = measure_two_level(scene.prims, b.nx, b.ny, b.nz, o.scene == "slab" ? 6 : 1,
-                                                o.fragments, frame, build);
-    std::printf(
-        "two-level   %d fragments moved apart: rest trees %.3f s (once per fragment); per frame top-level "
-        "tree "
-        "%.4f s against one rebuilt tree %.3f s\n",
-        t2.fragments, t2.rest_build_seconds, t2.top_build_seconds, t2.world_build_seconds);
-    std::printf(
-        "two-level   host trace of the primary rays: one tree %.3e rays/s, two levels %.3e rays/s (%.2f "
-        "fragment "
-        "trees entered per ray); %.4f%% of pixels agree\n",
-        double(first.rays / o.spp) / t2.world_trace_seconds,
-        double(first.rays / o.spp) / t2.two_level_trace_seconds, t2.instances_per_ray, 100 * t2.agreement);
-    two_level_json << ",\n  \"two_level\": {\"fragments\": " << t2.fragments
-                   << ", \"rest_build_seconds\": " << t2.rest_build_seconds
-                   << ", \"top_build_seconds\": " << t2.top_build_seconds
-                   << ", \"world_build_seconds\": " << t2.world_build_seconds
-                   << ", \"world_trace_seconds\": " << t2.world_trace_seconds
-                   << ", \"two_level_trace_seconds\": " << t2.two_level_trace_seconds
-                   << ", \"instances_per_ray\": " << t2.instances_per_ray
-                   << ", \"agreement\": " << t2.agreement << "}";
-  }
+  const std::string embree_json = embree_baseline(o, scene, frame, host, render, threads);
+  const std::string two_level_json = two_level_comparison(o, b, scene, frame, build, first.rays);
 
   // Results file.
   ensure_directory(o.out);
@@ -295,8 +348,9 @@ int bench_render_command(const RenderBenchOptions& o) {
      << "\",\n  \"host_threads\": " << threads << ",\n  \"workload\": \"" << o.scene
      << "\",\n  \"primitives\": " << scene.prims.size() << ",\n  \"width\": " << o.width
      << ",\n  \"height\": " << o.height << ",\n  \"spp\": " << o.spp << ",\n  \"material\": \"" << o.material
-     << "\",\n  \"hidden_primitives\": " << scene.hidden << ",\n  \"scene_build_seconds\": " << scene_seconds
-     << ",\n  \"kd_tree\": {\"serial_build_seconds\": " << serial_build
+     << "\",\n  \"hidden_primitives\": " << scene.hidden
+     << ",\n  \"scene_build_seconds\": " << timed.scene_seconds
+     << ",\n  \"kd_tree\": {\"serial_build_seconds\": " << timed.serial_build
      << ", \"build_seconds\": " << t.build_seconds << ", \"build_threads\": " << t.threads
      << ", \"nodes\": " << t.nodes << ", \"depth\": " << t.depth << ", \"prim_refs\": " << t.prim_refs
      << "},\n  \"render\": {\"repeat\": " << o.repeat << ", \"best_seconds\": " << best
@@ -305,8 +359,7 @@ int bench_render_command(const RenderBenchOptions& o) {
      << ", \"all_rays_per_s\": " << all_rate << "},\n  \"host_trace\": {\"threads\": " << threads
      << ", \"seconds\": " << host.seconds << ", \"primary_rays_per_s\": " << host_rate
      << ", \"hit_fraction\": " << host.hit_fraction << ", \"nodes_per_ray\": " << host.nodes_per_ray
-     << ", \"tests_per_ray\": " << host.tests_per_ray << "}" << embree_json.str() << two_level_json.str()
-     << "\n}\n";
+     << ", \"tests_per_ray\": " << host.tests_per_ray << "}" << embree_json << two_level_json << "\n}\n";
   const std::string file = o.out + "/" + utc_now("%Y%m%d-%H%M%S") + "_" + backend_name(backend) + "_render_" +
                            o.scene + "_" + std::to_string(scene.prims.size()) + ".json";
   write_file_atomic(file, js.str());

@@ -58,72 +58,31 @@ struct Instance {
   Vec3 rt[3];  // rows of the rotation's transpose: world -> rest directions
 };
 
-// The nearest hit through the top-level tree (full stack, the traversal's conventions): at each
-// leaf the ray is taken into each fragment's rest frame and traced through its tree.
+// The nearest hit through the top-level tree: the renderer's walk with a full stack (it never
+// restarts), whose leaves hold fragments instead of primitives. At each leaf the ray is taken into
+// each fragment's rest frame and traced through its tree.
 Hit trace_two_level(const KdTree& top, const std::vector<Instance>& inst, const Ray& ray, int64_t* entered) {
-  Hit best;
-  real t_enter, t_exit;
-  int ea, xa;
-  if (!line_box_interval(ray, top.bounds.lo, top.bounds.hi, &t_enter, &t_exit, &ea, &xa)) return best;
-  t_enter = rmax(t_enter, ray.tmin);
-  t_exit = rmin(t_exit, ray.tmax);
-  if (t_enter > t_exit) return best;
-  struct Entry {
-    uint32_t node;
-    real tmin, tmax;
-  };
-  Entry stack[kKdMaxDepth];
-  int count = 0;
-  uint32_t node = 0;
-  real tmin = t_enter, tmax = t_exit;
-  for (;;) {
-    KdNode n = top.nodes[node];
-    while (!n.is_leaf()) {
-      const int a = n.axis();
-      const real o = axis_of(ray.o, a), d = axis_of(ray.d, a), split = n.split;
-      const bool below_first = o < split || (o == split && d < 0);
-      const uint32_t near_child = below_first ? node + 1 : n.above_child();
-      const uint32_t far_child = below_first ? n.above_child() : node + 1;
-      const real t_split = (split - o) * axis_of(ray.inv_d, a);
-      if (d == 0 || t_split >= tmax || t_split <= 0) {
-        node = near_child;
-      } else if (t_split <= tmin) {
-        node = far_child;
-      } else {
-        stack[count++] = {far_child, t_split, tmax};
-        node = near_child;
-        tmax = t_split;
-      }
-      n = top.nodes[node];
-    }
-    for (uint32_t k = 0; k < n.prim_count(); ++k) {
-      const Instance& f = inst[top.prim_index[n.first_prim + k]];
+  const auto enter_fragments = [&](KdNode leaf, Hit* best) {
+    for (uint32_t k = 0; k < leaf.prim_count(); ++k) {
+      const Instance& f = inst[top.prim_index[leaf.first_prim + k]];
       const Vec3 q = ray.o - Vec3{real(f.translation.x()), real(f.translation.y()), real(f.translation.z())};
       const Ray local = make_ray({dot(f.rt[0], q), dot(f.rt[1], q), dot(f.rt[2], q)},
                                  {dot(f.rt[0], ray.d), dot(f.rt[1], ray.d), dot(f.rt[2], ray.d)}, ray.tmin,
-                                 best.prim >= 0 ? best.t : ray.tmax);
+                                 best->prim >= 0 ? best->t : ray.tmax);
       ++*entered;
       const Hit h = traverse_short_stack<kRenderStackSize>(f.tree.view(), f.prims.view(), local);
-      if (h.prim >= 0 && (best.prim < 0 || h.t < best.t))
-        best = {f.global[size_t(h.prim)], h.t, turn(f.rotation, h.normal)};
+      if (h.prim >= 0 && (best->prim < 0 || h.t < best->t))
+        *best = {f.global[size_t(h.prim)], h.t, turn(f.rotation, h.normal)};
     }
-    if (best.prim >= 0 && best.t < tmax) return best;
-    if (count == 0) return best;
-    --count;
-    node = stack[count].node;
-    tmin = stack[count].tmin;
-    tmax = stack[count].tmax;
-    if (best.prim >= 0 && best.t < tmin) return best;
-  }
+  };
+  return walk_short_stack<kKdMaxDepth>(top.view(), ray, enter_fragments);
 }
 
-}  // namespace
-
-TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int64_t cells_y, int64_t cells_z,
-                                 int per_cell, int fragments, const CameraFrame& camera,
-                                 const KdBuildOptions& options) {
-  // Blocks of cells, each with a rigid motion about its centre: turned up to 0.2 rad, moved up to
-  // 2% of the slab's width, as pieces are a little after breaking.
+// The rest scene cut into about `fragments` blocks of cells in x and z, each block a fragment with
+// its primitives in rest space and a rigid motion about its rest centre: turned up to 0.2 rad, moved
+// up to 2% of the slab's width, as pieces are a little after breaking. No trees yet.
+std::vector<Instance> make_fragments(const PrimitiveSet& rest, int64_t cells_x, int64_t cells_y,
+                                     int64_t cells_z, int per_cell, int fragments) {
   const int64_t fx = std::max<int64_t>(1, std::lround(std::sqrt(double(fragments))));
   const int64_t fz = std::max<int64_t>(1, (fragments + fx - 1) / fx);
   std::vector<Instance> inst(size_t(fx * fz));
@@ -154,6 +113,39 @@ TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int6
     const Eigen::Matrix3d rt = f.rotation.transpose();
     for (int k = 0; k < 3; ++k) f.rt[k] = {real(rt(k, 0)), real(rt(k, 1)), real(rt(k, 2))};
   }
+  return inst;
+}
+
+// The boxes of the fragments' rest trees moved by their motions (each the bounds of the moved
+// corners).
+std::vector<Box> moved_bounds(const std::vector<Instance>& inst) {
+  std::vector<Box> moved(inst.size());
+  for (size_t k = 0; k < inst.size(); ++k) {
+    const Box& b = inst[k].tree.bounds;
+    moved[k] = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 p = apply(inst[k].rotation, inst[k].translation,
+                           {(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z});
+      moved[k] = {vmin(moved[k].lo, p), vmax(moved[k].hi, p)};
+    }
+  }
+  return moved;
+}
+
+}  // namespace
+
+double depth_agreement(const std::vector<float>& a, const std::vector<float>& b) {
+  size_t same = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    same +=
+        std::isinf(a[i]) ? std::isinf(b[i]) : std::fabs(double(a[i]) - double(b[i])) <= 1e-4 * double(a[i]);
+  return a.empty() ? 1.0 : double(same) / double(a.size());
+}
+
+TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int64_t cells_y, int64_t cells_z,
+                                 int per_cell, int fragments, const CameraFrame& camera,
+                                 const KdBuildOptions& options) {
+  std::vector<Instance> inst = make_fragments(rest, cells_x, cells_y, cells_z, per_cell, fragments);
   TwoLevelReport r;
   r.fragments = int32_t(inst.size());
 
@@ -167,17 +159,7 @@ TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int6
 
   // Per frame, two levels: the top-level tree over the moved fragment bounds.
   t0 = std::chrono::steady_clock::now();
-  std::vector<Box> moved(inst.size());
-  for (size_t k = 0; k < inst.size(); ++k) {
-    const Box& b = inst[k].tree.bounds;
-    moved[k] = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
-    for (int c = 0; c < 8; ++c) {
-      const Vec3 p = apply(inst[k].rotation, inst[k].translation,
-                           {(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z});
-      moved[k] = {vmin(moved[k].lo, p), vmax(moved[k].hi, p)};
-    }
-  }
-  const KdTree top = build_kdtree(moved, options);
+  const KdTree top = build_kdtree(moved_bounds(inst), options);
   r.top_build_seconds = seconds_since(t0);
 
   // Per frame, one level: the moved primitives and their tree.
@@ -211,12 +193,7 @@ TwoLevelReport measure_two_level(const PrimitiveSet& rest, int64_t cells_x, int6
     }
   r.two_level_trace_seconds = seconds_since(t0);
   r.instances_per_ray = double(entered) / double(pixels);
-  int64_t same = 0;
-  for (size_t i = 0; i < one_depth.size(); ++i)
-    same += std::isinf(one_depth[i])
-                ? std::isinf(two_depth[i])
-                : std::fabs(double(one_depth[i]) - double(two_depth[i])) <= 1e-4 * double(one_depth[i]);
-  r.agreement = double(same) / double(pixels);
+  r.agreement = depth_agreement(one_depth, two_depth);
   return r;
 }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "render/camera.h"
 #include "render/kdtree.h"
@@ -24,6 +25,10 @@ struct TwoLevelReport {
   double instances_per_ray = 0;                                 // fragment trees entered per ray (two levels)
   double agreement = 0;  // pixels with the same hit or miss and depth within 1e-4
 };
+
+// Fraction of pixels whose hit or miss agrees and whose depths agree within 1e-4 relative, of two
+// depth images (INFINITY: a miss).
+double depth_agreement(const std::vector<float>& a, const std::vector<float>& b);
 
 // `cells_x`, `cells_z`: the scene's lattice cells along x and z; `per_cell`: consecutive
 // primitives per cell (cells in x, then y, then z order, `cells_y` layers). Cells are grouped

@@ -7,8 +7,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "cuda/engine/engine.h"
 #include "host/app/backend_choice.h"
@@ -152,35 +156,50 @@ void check_resume(const RunCheckpoint& c, const Scene& scene, const std::vector<
                 c.backend.c_str(), backend_name(backend));
 }
 
-}  // namespace
+// What set-up made of the scene: the scene as run, its particles, the backend and the engine.
+struct Simulation {
+  Scene scene;
+  Backend backend = Backend::kCpu;
+  SetupResult setup;
+  std::unique_ptr<Engine> engine;
+};
 
-int run_command(const RunOptions& options) {
-  RunOptions opt = options;
-  std::optional<RunCheckpoint> resume;
-  if (!opt.resume.empty()) resume = open_resume(opt);
-  Scene scene = load_scene(opt.scene, opt.overrides);
+// Loads the scene with the run's options, makes its particles and reports them; checks the time
+// step and, for a resumed run, that the checkpoint comes from this scene and set-up.
+Simulation set_up_simulation(const RunOptions& opt, const std::optional<RunCheckpoint>& resume) {
+  Simulation sim;
+  Scene& scene = sim.scene;
+  scene = load_scene(opt.scene, opt.overrides);
   if (opt.frames >= 0) scene.frames = opt.frames;
   if (opt.steps_per_frame >= 1) scene.steps_per_frame = opt.steps_per_frame;
   std::string note;
-  const Backend backend = choose_backend(opt.backend, &note);
-  const SetupResult setup = setup_scene(scene, setup_options_for(scene, opt.scale, backend));
-  print_setup(scene, setup, opt);
-  check_time_step(scene, setup, opt.allow_unstable_dt);
+  sim.backend = choose_backend(opt.backend, &note);
+  sim.setup = setup_scene(scene, setup_options_for(scene, opt.scale, sim.backend));
+  print_setup(scene, sim.setup, opt);
+  check_time_step(scene, sim.setup, opt.allow_unstable_dt);
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
-  if (resume) check_resume(*resume, scene, opt.overrides, setup, backend);
+  if (resume) check_resume(*resume, scene, opt.overrides, sim.setup, sim.backend);
+  return sim;
+}
+
+// Makes the engine (the particles' families) and reports it; dt must not exceed the stable time
+// step of the families unless allowed.
+void start_engine(Simulation& sim, const RunOptions& opt) {
+  const SetupResult& setup = sim.setup;
   const auto t_setup = std::chrono::steady_clock::now();
-  std::unique_ptr<Engine> engine = make_engine(backend, setup.input);
-  const FamilyStats& fam = engine->family_stats();
-  std::printf("device     %s [%s]\n", engine->device_name().c_str(), backend_name(backend));
+  sim.engine = make_engine(sim.backend, setup.input);
+  Engine& engine = *sim.engine;
+  const FamilyStats& fam = engine.family_stats();
+  std::printf("device     %s [%s]\n", engine.device_name().c_str(), backend_name(sim.backend));
   std::printf(
       "bonds      %lld (per particle min %d, mean %.1f, max %d); families built in %.2f s; %.1f MiB\n",
       (long long)fam.bonds, fam.min, fam.mean, fam.max,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count(),
-      double(engine->memory_bytes()) / (1 << 20));
+      double(engine.memory_bytes()) / (1 << 20));
   if (!setup.input.cuts.empty())
     std::printf("cracks     %zu triangles: %lld bonds removed, %lld weakened (per direction)\n",
                 setup.input.cuts.size(), (long long)fam.cuts.removed, (long long)fam.cuts.weakened);
-  const double family_dt = engine->critical_time_step();
+  const double family_dt = engine.critical_time_step();
   std::printf("stability  dt_c from the families %.4g s (continuum estimate %.4g s): dt = %.2f of it\n",
               family_dt, setup.critical_dt, setup.dt / family_dt);
   if (setup.dt > family_dt && !opt.allow_unstable_dt) {
@@ -188,10 +207,15 @@ int run_command(const RunOptions& options) {
     msg << "dt = " << setup.dt << " s exceeds the stable time step " << family_dt
         << " s computed from the particles' families (allowed: dt <= " << family_dt
         << "; pass --allow-unstable-dt to run anyway)";
-    throw SceneError(scene.path, "simulation.dt", msg.str());
+    throw SceneError(sim.scene.path, "simulation.dt", msg.str());
   }
+}
 
-  // Output folder: rest state once, then one set of files per frame.
+// Makes the output folder (default out/<scene name>), clears a killed run's partial files and
+// writes the rest state once. Returns the folder.
+std::string prepare_output_folder(const Simulation& sim, const RunOptions& opt) {
+  const Scene& scene = sim.scene;
+  const SetupResult& setup = sim.setup;
   const std::string out =
       opt.out.empty() ? "out/" + std::filesystem::path(scene.path).stem().string() : opt.out;
   ensure_directory(out);
@@ -208,161 +232,292 @@ int run_command(const RunOptions& options) {
   // The tet bodies' tetrahedra in rest space, for `perifrac render`.
   if (scene.write_binary && !setup.embedded.empty())
     write_tets_file(out + "/" + kTetsFileName, setup.embedded);
-  // [render]: frames rendered as the run writes them.
-  std::unique_ptr<LiveRender> live;
-  if (scene.render) live = std::make_unique<LiveRender>(scene, out, backend_name(backend));
-  PvdSeries series(out, "particles");
+  return out;
+}
+
+// The engine's bonds as built, before the first step.
+BondLists bonds_as_built(Engine& engine) {
   BondLists bonds;
-  engine->read_bonds(bonds);
-  const std::vector<int32_t>& count = bonds.count;
-  std::vector<VoronoiElements> voronoi_elements;
-  for (const VoronoiBody& v : setup.voronoi) voronoi_elements.push_back({v.first_particle, &v.geometry});
-  FragmentOutput fragments(setup.input, bonds, {out, opt.blend_frames}, setup.adjacency, setup.embedded,
-                           voronoi_elements);
-  if (const FaceLinks& links = fragments.face_links(); links.indirect() + links.unlinked() > 0)
-    std::printf(
-        "elements   %zu touching pairs farther apart than the horizon: %zu hold through common "
-        "neighbours, %zu have no bond path (cracks from the start)\n",
-        links.indirect() + links.unlinked(), links.indirect(), links.unlinked());
-  std::string fragment_log;
-  auto write_frame = [&](int64_t frame) {
-    FrameData f = frame_data(*engine, setup.input.particles, count, frame);
-    if (frame > 0) engine->read_bonds(bonds);
-    fragment_log = format_component_stats(fragments.process(f, bonds));
-    if (scene.write_binary) write_frame_file(out + "/" + frame_file_name(frame, "pfr"), f);
-    if (scene.write_vtk) {
-      const std::string name = frame_file_name(frame, "vtu");
-      write_vtu(out + "/" + name, f);
-      series.add(f.time, name);
-    }
-    if (live) live->frame(frame);
-  };
+  engine.read_bonds(bonds);
+  return bonds;
+}
 
-  // A fresh run writes frame 0; a resumed one restores the state after its checkpointed frame.
-  EnergyLog energy_log(out + "/energy.csv");
-  Energy energy0;
-  int64_t first_frame = 1;
-  if (resume) {
-    engine->restore(resume->engine);
-    fragments.smoother().restore(std::move(resume->smoother));
-    series.restore(std::move(resume->series));
-    energy_log.restore(std::move(resume->energy_log));
-    energy0 = resume->energy0;
-    first_frame = resume->frame + 1;
-    std::printf("resume     from frame %lld (step %lld) of %s\n", (long long)resume->frame,
-                (long long)resume->engine.step, out.c_str());
-    if (first_frame > scene.frames) {
-      // Killed after its last checkpoint: finish the end-of-run outputs; nothing else to run.
-      engine->read_bonds(bonds);
-      fragments.find_components(bonds);
-      fragments.write_meshes();
-      std::printf("output     the run is complete at frame %lld; pass --frames N (N > %lld) to extend it\n",
-                  (long long)resume->frame, (long long)resume->frame);
-      return kExitOk;
-    }
-  } else {
-    write_frame(0);
-    energy0 = engine->energy();
-    energy_log.add(0, 0, 0.0, energy0);
+// The Voronoi bodies' cells, the elements of their particles.
+std::vector<VoronoiElements> voronoi_elements(const SetupResult& setup) {
+  std::vector<VoronoiElements> elements;
+  for (const VoronoiBody& v : setup.voronoi) elements.push_back({v.first_particle, &v.geometry});
+  return elements;
+}
+
+// The per-frame outputs of a run in its output folder: frame files, the VTK series, the fragment
+// outputs, the energy log and, with a [render] block, the frames rendered as they come.
+class RunOutput {
+ public:
+  // Sets up the fragment outputs from the engine's bonds as built and reports touching elements
+  // farther apart than the horizon.
+  RunOutput(Simulation& sim, const RunOptions& opt, std::string out)
+      : sim_(sim),
+        out_(std::move(out)),
+        live_(sim.scene.render ? std::make_unique<LiveRender>(sim.scene, out_, backend_name(sim.backend))
+                               : nullptr),
+        series_(out_, "particles"),
+        bonds_(bonds_as_built(*sim.engine)),
+        fragments_(sim.setup.input, bonds_, {out_, opt.blend_frames}, sim.setup.adjacency, sim.setup.embedded,
+                   voronoi_elements(sim.setup)),
+        energy_log_(out_ + "/energy.csv") {
+    if (const FaceLinks& links = fragments_.face_links(); links.indirect() + links.unlinked() > 0)
+      std::printf(
+          "elements   %zu touching pairs farther apart than the horizon: %zu hold through common "
+          "neighbours, %zu have no bond path (cracks from the start)\n",
+          links.indirect() + links.unlinked(), links.indirect(), links.unlinked());
   }
-  engine->stats().reset_times();
 
-  // Checkpoints: the whole state after a frame, atomically replacing the previous one.
-  const std::string scene_hash_path = scene.path;
-  auto write_checkpoint_now = [&](int64_t frame) {
-    RunCheckpoint c;
-    c.scene_path = scene.path;
-    c.overrides = opt.overrides;
-    c.scene_hash = scene_fingerprint(scene_hash_path, opt.overrides);
-    c.setup_hash = setup_fingerprint(setup.input);
-    c.scale = opt.scale;
-    c.steps_per_frame = scene.steps_per_frame;
-    c.frames = scene.frames;
-    c.blend_frames = opt.blend_frames;
-    c.allow_unstable_dt = opt.allow_unstable_dt;
-    c.backend = backend_name(backend);
-    c.frame = frame;
-    engine->save(c.engine);
-    c.energy0 = energy0;
-    c.energy_log = energy_log.text();
-    c.series = series.entries();
-    c.smoother = fragments.smoother().history();
-    write_checkpoint(out + "/" + kCheckpointFileName, c);
-  };
-  const InterruptGuard interrupt;
+  const std::string& dir() const { return out_; }
+  EnergyLog& energy_log() { return energy_log_; }
+  // The fragment statistics of the last frame written, for the progress line.
+  const std::string& fragment_log() const { return fragment_log_; }
+  size_t fragment_pieces() const { return fragments_.components().count(); }
+
+  // Writes frame `frame` of the engine's current state: its fragment outputs, frame files and
+  // rendering.
+  void write_frame(int64_t frame) {
+    Engine& engine = *sim_.engine;
+    FrameData f = frame_data(engine, sim_.setup.input.particles, bonds_.count, frame);
+    if (frame > 0) engine.read_bonds(bonds_);
+    fragment_log_ = format_component_stats(fragments_.process(f, bonds_));
+    if (sim_.scene.write_binary) write_frame_file(out_ + "/" + frame_file_name(frame, "pfr"), f);
+    if (sim_.scene.write_vtk) {
+      const std::string name = frame_file_name(frame, "vtu");
+      write_vtu(out_ + "/" + name, f);
+      series_.add(f.time, name);
+    }
+    if (live_) live_->frame(frame);
+  }
+
+  // Takes over a checkpoint's fragment smoothing, VTK series and energy log (moved from `c`).
+  void restore(RunCheckpoint& c) {
+    fragments_.smoother().restore(std::move(c.smoother));
+    series_.restore(std::move(c.series));
+    energy_log_.restore(std::move(c.energy_log));
+  }
+
+  // Puts the energy log, the VTK series and the fragment smoothing into checkpoint `c`.
+  void save(RunCheckpoint& c) {
+    c.energy_log = energy_log_.text();
+    c.series = series_.entries();
+    c.smoother = fragments_.smoother().history();
+  }
+
+  // The end-of-run outputs of a run resumed after its last frame: the fragment pieces of the
+  // engine's current bonds.
+  void finish_complete_run() {
+    sim_.engine->read_bonds(bonds_);
+    fragments_.find_components(bonds_);
+    fragments_.write_meshes();
+  }
+
+  // The end-of-run outputs: the live render's summary and movie, and the fragment pieces.
+  void finish() {
+    if (live_) live_->finish();
+    fragments_.write_meshes();
+  }
+
+ private:
+  Simulation& sim_;
+  std::string out_;
+  std::unique_ptr<LiveRender> live_;
+  PvdSeries series_;
+  BondLists bonds_;
+  FragmentOutput fragments_;
+  EnergyLog energy_log_;
+  std::string fragment_log_;
+};
+
+// Where the frame loop starts: the first frame to simulate and the energy the run started with.
+struct RunStart {
+  int64_t first_frame = 1;
+  Energy energy0;
+};
+
+// A fresh run: writes frame 0 and logs the energy it starts with.
+RunStart start_fresh_run(Simulation& sim, RunOutput& output) {
+  output.write_frame(0);
+  RunStart start;
+  start.energy0 = sim.engine->energy();
+  output.energy_log().add(0, 0, 0.0, start.energy0);
+  return start;
+}
+
+// A resumed run: restores the state after the checkpointed frame (moved from `c`).
+RunStart restore_run(Simulation& sim, RunOutput& output, RunCheckpoint& c) {
+  sim.engine->restore(c.engine);
+  output.restore(c);
+  RunStart start;
+  start.energy0 = c.energy0;
+  start.first_frame = c.frame + 1;
+  std::printf("resume     from frame %lld (step %lld) of %s\n", (long long)c.frame, (long long)c.engine.step,
+              output.dir().c_str());
+  return start;
+}
+
+// A run resumed after its last frame: writes the end-of-run outputs and says how to extend it.
+int finish_complete_run(RunOutput& output, const RunCheckpoint& c) {
+  output.finish_complete_run();
+  std::printf("output     the run is complete at frame %lld; pass --frames N (N > %lld) to extend it\n",
+              (long long)c.frame, (long long)c.frame);
+  return kExitOk;
+}
+
+// Writes the whole state after `frame` to OUT/checkpoint.pck, atomically replacing the previous one.
+void write_run_checkpoint(const Simulation& sim, const RunOptions& opt, RunOutput& output,
+                          const Energy& energy0, int64_t frame) {
+  RunCheckpoint c;
+  c.scene_path = sim.scene.path;
+  c.overrides = opt.overrides;
+  c.scene_hash = scene_fingerprint(sim.scene.path, opt.overrides);
+  c.setup_hash = setup_fingerprint(sim.setup.input);
+  c.scale = opt.scale;
+  c.steps_per_frame = sim.scene.steps_per_frame;
+  c.frames = sim.scene.frames;
+  c.blend_frames = opt.blend_frames;
+  c.allow_unstable_dt = opt.allow_unstable_dt;
+  c.backend = backend_name(sim.backend);
+  c.frame = frame;
+  sim.engine->save(c.engine);
+  c.energy0 = energy0;
+  output.save(c);
+  write_checkpoint(output.dir() + "/" + kCheckpointFileName, c);
+}
+
+// A particle no longer finite after the steps of `frame`: reports the blow-up with the step and the
+// frames written, and returns true.
+bool stopped_by_non_finite(const Simulation& sim, int64_t frame, const std::string& out) {
+  Engine& engine = *sim.engine;
+  const int64_t bad = engine.first_non_finite();
+  if (bad < 0) return false;
+  std::fprintf(
+      stderr,
+      "\nerror: numerical blow-up: particle %lld is not finite by step %lld (frame %lld, between steps "
+      "%lld and %lld); dt = %.3g s is %.2f of the critical time step. Frames up to %lld are written "
+      "in %s\n",
+      (long long)bad, (long long)engine.step(), (long long)frame,
+      (long long)(engine.step() - sim.scene.steps_per_frame), (long long)engine.step(), sim.setup.dt,
+      sim.setup.dt / sim.setup.critical_dt, (long long)(frame - 1), out.c_str());
+  return true;
+}
+
+// The energy grown without bound by `frame` (the watchdog's `excess` over 1, or not finite):
+// reports the blow-up with the fastest particle and the frames written, and returns true.
+bool stopped_by_energy_growth(const Simulation& sim, const Energy& energy0, const Energy& energy,
+                              double excess, int64_t frame, const std::string& out) {
+  if (!(excess > 1.0 || !std::isfinite(energy.balance()))) return false;
+  Engine& engine = *sim.engine;
+  std::fprintf(stderr,
+               "\nerror: numerical blow-up: the energy grew by %.3g J (%.1f times the energy in play) by "
+               "step %lld "
+               "(frame %lld); particle %lld moves fastest. dt = %.3g s is %.2f of the critical time "
+               "step%s. Frames "
+               "up to %lld are written in %s\n",
+               energy.balance() - energy0.balance(), excess, (long long)engine.step(), (long long)frame,
+               (long long)fastest_particle(engine), sim.setup.dt, sim.setup.dt / sim.setup.critical_dt,
+               sim.scene.contact ? "; a high contact stiffness needs a smaller dt too" : "",
+               (long long)(frame - 1), out.c_str());
+  return true;
+}
+
+// Whether a checkpoint is due after `frame`: every N frames, every M minutes of wall time since
+// the last one, and on SIGINT/SIGTERM.
+bool checkpoint_due(const RunOptions& opt, int64_t frame, double seconds_since_last) {
+  const bool by_count = opt.checkpoint_every > 0 && frame % opt.checkpoint_every == 0;
+  const bool by_time = opt.checkpoint_minutes > 0 && seconds_since_last >= 60 * opt.checkpoint_minutes;
+  return by_count || by_time || InterruptGuard::signal_received();
+}
+
+// The progress line after `frame`: speed, time left, broken bonds, energy balance and fragments
+// (rewritten in place on a terminal).
+void print_progress(const Simulation& sim, int64_t frame, int64_t first_frame, double elapsed, double excess,
+                    const std::string& fragment_log, bool tty) {
+  const Scene& scene = sim.scene;
+  Engine& engine = *sim.engine;
+  const int64_t done = frame - first_frame + 1;
+  const double steps_per_s = double(done * scene.steps_per_frame) / elapsed;
+  const double eta = elapsed / double(done) * double(scene.frames - frame);
+  const int64_t bonds = engine.family_stats().bonds;
+  const double broken = bonds > 0 ? double(engine.broken_bonds()) / double(bonds) : 0;
+  std::printf(
+      "%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%  energy balance %+.2f%%  %s%s",
+      tty ? "\r" : "", (long long)frame, (long long)scene.frames, (long long)engine.step(), steps_per_s,
+      format_duration(eta).c_str(), 100 * broken, 100 * excess, fragment_log.c_str(), tty ? "   " : "\n");
+  std::fflush(stdout);
+}
+
+// The frame loop: simulates and writes the frames from start.first_frame on, with checkpoints and a
+// progress line. Returns kExitOk, or kExitBlowUp / kExitInterrupted when it stopped early.
+int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const RunStart& start) {
+  Engine& engine = *sim.engine;
+  const Scene& scene = sim.scene;
   auto last_checkpoint = std::chrono::steady_clock::now();
-
-  // Frame loop with a progress line; a non-finite state stops the run with the step.
   const bool tty = isatty(fileno(stdout));
   const auto t0 = std::chrono::steady_clock::now();
-  for (int64_t frame = first_frame; frame <= scene.frames; ++frame) {
-    engine->advance(scene.steps_per_frame);
-    const int64_t bad = engine->first_non_finite();
-    if (bad >= 0) {
-      std::fprintf(
-          stderr,
-          "\nerror: numerical blow-up: particle %lld is not finite by step %lld (frame %lld, between steps "
-          "%lld and %lld); dt = %.3g s is %.2f of the critical time step. Frames up to %lld are written "
-          "in %s\n",
-          (long long)bad, (long long)engine->step(), (long long)frame,
-          (long long)(engine->step() - scene.steps_per_frame), (long long)engine->step(), setup.dt,
-          setup.dt / setup.critical_dt, (long long)(frame - 1), out.c_str());
-      return kExitBlowUp;
-    }
-    const Energy energy = engine->energy();
-    const double excess = energy_excess(energy0, energy);
-    if (excess > 1.0 || !std::isfinite(energy.balance())) {
-      std::fprintf(stderr,
-                   "\nerror: numerical blow-up: the energy grew by %.3g J (%.1f times the energy in play) by "
-                   "step %lld "
-                   "(frame %lld); particle %lld moves fastest. dt = %.3g s is %.2f of the critical time "
-                   "step%s. Frames "
-                   "up to %lld are written in %s\n",
-                   energy.balance() - energy0.balance(), excess, (long long)engine->step(), (long long)frame,
-                   (long long)fastest_particle(*engine), setup.dt, setup.dt / setup.critical_dt,
-                   scene.contact ? "; a high contact stiffness needs a smaller dt too" : "",
-                   (long long)(frame - 1), out.c_str());
-      return kExitBlowUp;
-    }
-    energy_log.add(frame, engine->step(), engine->time(), energy);
-    write_frame(frame);
+  for (int64_t frame = start.first_frame; frame <= scene.frames; ++frame) {
+    engine.advance(scene.steps_per_frame);
+    if (stopped_by_non_finite(sim, frame, output.dir())) return kExitBlowUp;
+    const Energy energy = engine.energy();
+    const double excess = energy_excess(start.energy0, energy);
+    if (stopped_by_energy_growth(sim, start.energy0, energy, excess, frame, output.dir())) return kExitBlowUp;
+    output.energy_log().add(frame, engine.step(), engine.time(), energy);
+    output.write_frame(frame);
 
     const auto now = std::chrono::steady_clock::now();
-    const bool by_count = opt.checkpoint_every > 0 && frame % opt.checkpoint_every == 0;
-    const bool by_time =
-        opt.checkpoint_minutes > 0 &&
-        std::chrono::duration<double>(now - last_checkpoint).count() >= 60 * opt.checkpoint_minutes;
-    if (by_count || by_time || InterruptGuard::signal_received()) {
-      write_checkpoint_now(frame);
+    if (checkpoint_due(opt, frame, std::chrono::duration<double>(now - last_checkpoint).count())) {
+      write_run_checkpoint(sim, opt, output, start.energy0, frame);
       last_checkpoint = now;
     }
     if (InterruptGuard::signal_received()) {
       std::printf(
           "%sinterrupted after frame %lld: checkpoint written; continue with: perifrac run --resume %s\n",
-          tty ? "\n" : "", (long long)frame, out.c_str());
+          tty ? "\n" : "", (long long)frame, output.dir().c_str());
       return kExitInterrupted;
     }
-
-    const double elapsed = std::chrono::duration<double>(now - t0).count();
-    const int64_t done = frame - first_frame + 1;
-    const double steps_per_s = double(done * scene.steps_per_frame) / elapsed;
-    const double eta = elapsed / double(done) * double(scene.frames - frame);
-    const double broken = fam.bonds > 0 ? double(engine->broken_bonds()) / double(fam.bonds) : 0;
-    std::printf(
-        "%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%  energy balance %+.2f%%  %s%s",
-        tty ? "\r" : "", (long long)frame, (long long)scene.frames, (long long)engine->step(), steps_per_s,
-        format_duration(eta).c_str(), 100 * broken, 100 * excess, fragment_log.c_str(), tty ? "   " : "\n");
-    std::fflush(stdout);
+    print_progress(sim, frame, start.first_frame, std::chrono::duration<double>(now - t0).count(), excess,
+                   output.fragment_log(), tty);
   }
   if (tty) std::printf("\n");
+  return kExitOk;
+}
 
+// The end of a run: the kernel table, the end-of-run outputs and where they are.
+void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame) {
+  const Scene& scene = sim.scene;
   const int64_t steps = (scene.frames - first_frame + 1) * scene.steps_per_frame;
-  std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(backend));
-  print_kernel_table(std::cout, kernel_rows(engine->stats(), "pd/", fam.bonds, steps));
-  if (live) live->finish();
-  fragments.write_meshes();
-  std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", out.c_str(),
-              (long long)scene.frames + 1, fragments.components().count());
+  std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(sim.backend));
+  print_kernel_table(std::cout,
+                     kernel_rows(sim.engine->stats(), "pd/", sim.engine->family_stats().bonds, steps));
+  output.finish();
+  std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", output.dir().c_str(),
+              (long long)scene.frames + 1, output.fragment_pieces());
+}
+
+}  // namespace
+
+int run_command(const RunOptions& options) {
+  RunOptions opt = options;
+  std::optional<RunCheckpoint> resume;
+  if (!opt.resume.empty()) resume = open_resume(opt);
+  Simulation sim = set_up_simulation(opt, resume);
+  start_engine(sim, opt);
+  RunOutput output(sim, opt, prepare_output_folder(sim, opt));
+
+  // A fresh run writes frame 0; a resumed one restores the state after its checkpointed frame.
+  const RunStart start = resume ? restore_run(sim, output, *resume) : start_fresh_run(sim, output);
+  // Killed after its last checkpoint: finish the end-of-run outputs; nothing else to run.
+  if (resume && start.first_frame > sim.scene.frames) return finish_complete_run(output, *resume);
+  sim.engine->stats().reset_times();
+
+  // From here on, SIGINT/SIGTERM ends the run after the frame with a checkpoint.
+  const InterruptGuard interrupt;
+  if (const int code = run_frames(sim, opt, output, start); code != kExitOk) return code;
+  finish_run(sim, output, start.first_frame);
   return kExitOk;
 }
 

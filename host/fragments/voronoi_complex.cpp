@@ -12,6 +12,7 @@
 #include "host/fragments/loop_triangulation.h"
 #include "host/geometry/convex_cell.h"
 #include "host/geometry/inside_test.h"
+#include "host/geometry/tri_mesh.h"
 
 namespace pd {
 
@@ -22,23 +23,6 @@ Vec3d meet(const Vec3d& n1, double h1, const Vec3d& n2, double h2, const Vec3d& 
   const Vec3d c23 = cross(n2, n3), c31 = cross(n3, n1), c12 = cross(n1, n2);
   const double det = dot(n1, c23);
   return (1 / det) * (h1 * c23 + h2 * c31 + h3 * c12);
-}
-
-// Parameter s in (0, 1) where the segment a + s (b - a) crosses triangle (p, q, r), or -1.
-double segment_hits(const Vec3d& a, const Vec3d& b, const Vec3d& p, const Vec3d& q, const Vec3d& r) {
-  const Vec3d dir = b - a, e1 = q - p, e2 = r - p;
-  const Vec3d h = cross(dir, e2);
-  const double det = dot(e1, h);
-  if (det == 0) return -1;
-  const double inv = 1 / det;
-  const Vec3d s = a - p;
-  const double u = inv * dot(s, h);
-  if (u < 0 || u > 1) return -1;
-  const Vec3d qv = cross(s, e1);
-  const double v = inv * dot(dir, qv);
-  if (v < 0 || u + v > 1) return -1;
-  const double t = inv * dot(e2, qv);
-  return t > 0 && t < 1 ? t : -1;
 }
 
 bool less_xyz(const Vec3d& a, const Vec3d& b) {

@@ -9,19 +9,6 @@ namespace pd {
 
 namespace {
 
-// Keeps the part of a convex polygon with dot(n, x) <= d.
-void clip_polygon(std::vector<Vec3d>& poly, const Vec3d& n, double d, std::vector<Vec3d>& scratch) {
-  scratch.clear();
-  for (size_t k = 0; k < poly.size(); ++k) {
-    const Vec3d& a = poly[k];
-    const Vec3d& b = poly[(k + 1) % poly.size()];
-    const double sa = dot(n, a) - d, sb = dot(n, b) - d;
-    if (sa <= 0) scratch.push_back(a);
-    if ((sa <= 0) != (sb <= 0)) scratch.push_back(a + (sa / (sa - sb)) * (b - a));
-  }
-  poly.swap(scratch);
-}
-
 // Is p inside the object: no triangle on the segment p -> site, or a backward-facing one first
 // (the secondary ray of Levine Fig. 4, in double).
 bool inside_object(const RestTrimtopes& r, size_t i, const Vec3d& p) {

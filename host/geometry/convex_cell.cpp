@@ -168,4 +168,16 @@ void ConvexCell::bounds(Vec3d& lo, Vec3d& hi) const {
   hi = box.hi;
 }
 
+void clip_polygon(std::vector<Vec3d>& poly, const Vec3d& n, double d, std::vector<Vec3d>& scratch) {
+  scratch.clear();
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const Vec3d& a = poly[k];
+    const Vec3d& b = poly[(k + 1) % poly.size()];
+    const double sa = dot(n, a) - d, sb = dot(n, b) - d;
+    if (sa <= 0) scratch.push_back(a);
+    if ((sa <= 0) != (sb <= 0)) scratch.push_back(a + (sa / (sa - sb)) * (b - a));
+  }
+  poly.swap(scratch);
+}
+
 }  // namespace pd

@@ -54,4 +54,8 @@ class ConvexCell {
   std::vector<std::pair<int32_t, int32_t>> cap_next_;   // scratch: the new face's corner links
 };
 
+// Keeps the part of the convex polygon `poly` with n.x <= d (the polygon is rebuilt in
+// `scratch`, then swapped into `poly`).
+void clip_polygon(std::vector<Vec3d>& poly, const Vec3d& n, double d, std::vector<Vec3d>& scratch);
+
 }  // namespace pd

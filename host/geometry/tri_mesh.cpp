@@ -50,4 +50,20 @@ void append(TriMesh& mesh, const TriMesh& other) {
   for (const Triangle& t : other.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
 }
 
+double segment_hits(const Vec3d& a, const Vec3d& b, const Vec3d& p, const Vec3d& q, const Vec3d& r) {
+  const Vec3d dir = b - a, e1 = q - p, e2 = r - p;
+  const Vec3d h = cross(dir, e2);
+  const double det = dot(e1, h);
+  if (det == 0) return -1;
+  const double inv = 1 / det;
+  const Vec3d s = a - p;
+  const double u = inv * dot(s, h);
+  if (u < 0 || u > 1) return -1;
+  const Vec3d qv = cross(s, e1);
+  const double v = inv * dot(dir, qv);
+  if (v < 0 || u + v > 1) return -1;
+  const double t = inv * dot(e2, qv);
+  return t > 0 && t < 1 ? t : -1;
+}
+
 }  // namespace pd

@@ -49,4 +49,7 @@ void flip_orientation(TriMesh& mesh);
 // Appends `other`'s vertices and triangles.
 void append(TriMesh& mesh, const TriMesh& other);
 
+// Parameter t in (0, 1) where the segment a + t (b - a) crosses triangle (p, q, r), or -1.
+double segment_hits(const Vec3d& a, const Vec3d& b, const Vec3d& p, const Vec3d& q, const Vec3d& r);
+
 }  // namespace pd

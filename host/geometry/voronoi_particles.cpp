@@ -7,6 +7,7 @@
 #include "host/geometry/grid_particles.h"
 #include "host/geometry/inside_test.h"
 #include "host/geometry/poisson_disk.h"
+#include "host/geometry/tri_mesh.h"
 
 namespace pd {
 
@@ -71,40 +72,10 @@ class Bins {
   std::vector<Vec3d> point_;
 };
 
-// Keeps the part of a convex polygon with n.x <= d.
-void clip_polygon(std::vector<Vec3d>& poly, const Vec3d& n, double d, std::vector<Vec3d>& scratch) {
-  scratch.clear();
-  for (size_t k = 0; k < poly.size(); ++k) {
-    const Vec3d& a = poly[k];
-    const Vec3d& b = poly[(k + 1) % poly.size()];
-    const double sa = dot(n, a) - d, sb = dot(n, b) - d;
-    if (sa <= 0) scratch.push_back(a);
-    if ((sa <= 0) != (sb <= 0)) scratch.push_back(a + (sa / (sa - sb)) * (b - a));
-  }
-  poly.swap(scratch);
-}
-
 double polygon_area(const std::vector<Vec3d>& poly) {
   Vec3d sum{0, 0, 0};
   for (size_t k = 1; k + 1 < poly.size(); ++k) sum = sum + cross(poly[k] - poly[0], poly[k + 1] - poly[0]);
   return 0.5 * norm(sum);
-}
-
-// Parameter t in (0, 1) where the segment a + t (b - a) crosses triangle (p, q, r), or -1.
-double segment_hits(const Vec3d& a, const Vec3d& b, const Vec3d& p, const Vec3d& q, const Vec3d& r) {
-  const Vec3d dir = b - a, e1 = q - p, e2 = r - p;
-  const Vec3d h = cross(dir, e2);
-  const double det = dot(e1, h);
-  if (det == 0) return -1;
-  const double inv = 1 / det;
-  const Vec3d s = a - p;
-  const double u = inv * dot(s, h);
-  if (u < 0 || u > 1) return -1;
-  const Vec3d qv = cross(s, e1);
-  const double v = inv * dot(dir, qv);
-  if (v < 0 || u + v > 1) return -1;
-  const double t = inv * dot(e2, qv);
-  return t > 0 && t < 1 ? t : -1;
 }
 
 // One cell's results.
