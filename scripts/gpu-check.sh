@@ -24,7 +24,7 @@ step() {
   echo "== $name: $status"
 }
 
-step build bash -c "cmake --preset cuda >/dev/null && cmake --build --preset cuda -j \$(nproc)"
+step build bash -c "cmake --preset cuda -DPERIFRAC_WERROR=ON >/dev/null && cmake --build --preset cuda -j \$(nproc)"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader >"$OUT/device.txt" 2>&1
 step gpu-tests build/cuda/tests/perifrac_gpu_tests
 step cpu-tests build/cuda/tests/perifrac_tests

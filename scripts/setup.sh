@@ -58,6 +58,9 @@ if [ -z "${PERIFRAC_PRESET:-}" ]; then
   fi
 fi
 echo "setup: building preset '$PERIFRAC_PRESET'"
-cmake --preset "$PERIFRAC_PRESET" >/dev/null
+# PERIFRAC_WERROR=1 (CI) makes compiler warnings errors; the cache keeps the last choice otherwise.
+werror=()
+[ -n "${PERIFRAC_WERROR:-}" ] && werror=("-DPERIFRAC_WERROR=$([ "$PERIFRAC_WERROR" = 0 ] && echo OFF || echo ON)")
+cmake --preset "$PERIFRAC_PRESET" "${werror[@]}" >/dev/null
 cmake --build --preset "$PERIFRAC_PRESET" -j "$(nproc)"
 echo "$PERIFRAC_PRESET" >"build/.last-preset"

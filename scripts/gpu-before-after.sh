@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Before and after a change, on one GPU machine in one call: builds an older source tree
+# (e.g. `git archive REV | tar -x -C out/base-src`) and this tree with the cuda preset, compares
+# their golden outputs on the GPU (scripts/golden.sh: every output file's SHA-256), then runs the
+# speed benchmarks of scripts/gpu-check.sh for both binaries in alternation and prints the
+# bond-updates/s of each (springforces summed over its instantiations, and the whole step).
+#   scripts/gpu-before-after.sh OLD_SOURCE_DIR [ROUNDS]
+# Results go to $OUT/before-after (default out/before-after); exits 1 when the golden lists differ.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+old_src=$(cd "$1" && pwd)
+rounds=${2:-2}
+[[ -d .deps/bin ]] && export PATH="$PWD/.deps/bin:$PATH" LD_LIBRARY_PATH="$PWD/.deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+export PATH="$PATH:/usr/local/cuda/bin"
+OUT=${OUT:-out}/before-after
+mkdir -p "$OUT"
+[[ -e "$old_src/.deps" || ! -d .deps ]] || ln -s "$PWD/.deps" "$old_src/.deps"
+
+# Both builds at once (the machine has the cores for it).
+jobs=$(( $(nproc) / 2 ))
+(cmake -S "$old_src" -B build/old -G Ninja -DCMAKE_BUILD_TYPE=Release -DPERIFRAC_CUDA=ON \
+   -DCMAKE_CUDA_ARCHITECTURES=90 >/dev/null && cmake --build build/old -j "$jobs" --target perifrac) \
+  >"$OUT/build-old.log" 2>&1 &
+(cmake --preset cuda -DPERIFRAC_WERROR=ON >/dev/null && cmake --build --preset cuda -j "$jobs") \
+  >"$OUT/build-new.log" 2>&1 &
+wait %1 || { echo "before-after: the old build failed, see $OUT/build-old.log"; exit 2; }
+wait %2 || { echo "before-after: the new build failed, see $OUT/build-new.log"; tail -20 "$OUT/build-new.log"; exit 2; }
+old=build/old/perifrac new=build/cuda/perifrac
+
+# Golden outputs on the GPU.
+status=0
+GOLDEN_OUT="$OUT/golden-old" scripts/golden.sh cuda "$old" >"$OUT/golden-old.txt" || status=2
+GOLDEN_OUT="$OUT/golden-new" scripts/golden.sh cuda "$new" >"$OUT/golden-new.txt" || status=2
+if [ $status -eq 0 ] && cmp -s "$OUT/golden-old.txt" "$OUT/golden-new.txt"; then
+  echo "golden     identical: $(wc -l <"$OUT/golden-new.txt") output files of 5 scenes on the GPU"
+else
+  echo "golden     DIFFER (or a run failed):"
+  diff "$OUT/golden-old.txt" "$OUT/golden-new.txt" | head -20
+  status=1
+fi
+
+# Speed: each workload on both binaries, alternating, `rounds` times.
+scene=scenes/glass_plate_projectile.toml
+workloads=(
+  "glass-1m|--scene $scene --scale 8 --steps 1000 --warmup 100"
+  "glass-1m-explicit|--scene $scene --scale 8 --steps 1000 --warmup 100 --explicit-families"
+)
+for model in bond_based state_based anisotropic plastic; do
+  workloads+=("lattice-$model|--lattice 100 --model $model --steps 300 --warmup 30")
+done
+# rate LOG ROW: the bond-upd/s column of the first row whose name starts with ROW.
+rate() { awk -v row="$2" 'index($0, row) == 1 { for (k = NF; k > 0; --k) if ($k ~ /e[+]/) { print $k; exit } }' "$1"; }
+printf '%-26s %-5s %-14s %-14s\n' workload build springforces step | tee "$OUT/speed.txt"
+for w in "${workloads[@]}"; do
+  name=${w%%|*} args=${w#*|}
+  for ((r = 1; r <= rounds; ++r)); do
+    for build in old new; do
+      bin=$old
+      [ $build = new ] && bin=$new
+      log="$OUT/bench-$name-$build-$r.log"
+      # shellcheck disable=SC2086
+      "$bin" bench $args --backend cuda --out "$OUT/bench-$build" >"$log" 2>&1
+      spring=$(rate "$log" "pd/springforces (all)")
+      [ -z "$spring" ] && spring=$(rate "$log" "pd/springforces")
+      printf '%-26s %-5s %-14s %-14s\n' "$name" $build "$spring" "$(rate "$log" "step (all kernels)")" |
+        tee -a "$OUT/speed.txt"
+    done
+  done
+done
+exit $status
