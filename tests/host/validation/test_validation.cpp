@@ -118,9 +118,9 @@ TEST(Validation, TwistedBarMatchesSaintVenantTorsion) {
 TEST(Validation, SpinningBarStretchesOnlyByTheCentrifugalLoad) {
   const auto spin = run_bar_spin_lps(at(4)), bar = run_tension_bar_lps(at(4));
   print(spin);
-  const auto& tension = figure(bar, "tension_bar_lps/elongation");
+  const auto tension = figure(bar, "tension_bar_lps/elongation");
   const double e_ratio = tension.measured / tension.reference;  // E / E_eff
-  const auto& stretch = figure(spin, "bar_spin_lps/stretch");
+  const auto stretch = figure(spin, "bar_spin_lps/stretch");
   std::printf("  stretch predicted by E_eff: %.5g\n", stretch.reference * e_ratio);
   EXPECT_NEAR(stretch.measured / (stretch.reference * e_ratio), 1.0, 0.05);
   EXPECT_NEAR(figure(spin, "bar_spin_lps/angular_momentum").measured, 1.0, 1e-5);
