@@ -23,10 +23,14 @@ std::vector<KernelRow> kernel_rows(const KernelStats& stats, const std::string& 
       a.launches += s.launches;
     }
   }
+  // An instantiation runs in some steps only (the screened and breaking passes alternate): its
+  // rate is per launch, the bonds of one step over its time per launch; other rows' is per step.
   auto add_row = [&](KernelRow r) {
     r.ms_per_launch = r.launches > 0 ? 1e3 * r.seconds / double(r.launches) : 0;
     r.share = total > 0 ? r.seconds / total : 0;
-    r.bond_updates_per_s = r.seconds > 0 ? double(bonds) * double(steps) / r.seconds : 0;
+    const bool instantiation = r.name.find('[') != std::string::npos;
+    const double runs = instantiation ? double(r.launches) : double(steps);
+    r.bond_updates_per_s = r.seconds > 0 ? double(bonds) * runs / r.seconds : 0;
     rows.push_back(r);
   };
   for (const auto& [name, s] : stats.table()) {

@@ -14,7 +14,9 @@ struct KernelRow {
   std::string name;
   double seconds = 0, ms_per_launch = 0, share = 0;
   int64_t launches = 0;
-  double bond_updates_per_s = 0;  // bonds of one step over this kernel's time per step
+  // Bonds of one step over this kernel's time per step; for an instantiation ("name[...]"), which
+  // may run in some steps only, over its time per launch.
+  double bond_updates_per_s = 0;
   int registers = -1;
   double occupancy = -1;
 };

@@ -72,34 +72,27 @@ std::vector<std::pair<int64_t, int64_t>> parse_step_ranges(const std::string& te
   return ranges;
 }
 
-int profile_command(const ProfileOptions& opt) {
-  Scene scene = load_scene(opt.scene);
-  std::string note;
-  const Backend backend = choose_backend(opt.backend, &note);
-  const SetupResult setup = setup_scene(scene, setup_options_for(scene, opt.scale, backend));
-  const int64_t scene_steps = scene.frames * scene.steps_per_frame;
+namespace {
 
-  // Ranges and the run length.
+// The ranges asked for (or the run cut into 5) and the run's length, checked against each other.
+std::vector<std::pair<int64_t, int64_t>> profile_ranges(const ProfileOptions& opt, int64_t scene_steps,
+                                                        int64_t* steps) {
   std::vector<std::pair<int64_t, int64_t>> ranges;
   if (!opt.ranges.empty()) ranges = parse_step_ranges(opt.ranges);
-  const int64_t steps = opt.steps > 0 ? opt.steps : (ranges.empty() ? scene_steps : ranges.back().second);
+  *steps = opt.steps > 0 ? opt.steps : (ranges.empty() ? scene_steps : ranges.back().second);
   if (ranges.empty())
-    for (int k = 0; k < 5; ++k) ranges.emplace_back(steps * k / 5, steps * (k + 1) / 5);
-  if (ranges.back().second > steps)
+    for (int k = 0; k < 5; ++k) ranges.emplace_back(*steps * k / 5, *steps * (k + 1) / 5);
+  if (ranges.back().second > *steps)
     throw std::invalid_argument("--ranges: the last range ends at step " +
                                 std::to_string(ranges.back().second) + ", after the run's " +
-                                std::to_string(steps) + " steps (raise --steps)");
-  const int64_t chunk = opt.timeline > 0 ? opt.timeline : std::max<int64_t>(1, steps / 100);
+                                std::to_string(*steps) + " steps (raise --steps)");
+  return ranges;
+}
 
-  auto engine = make_engine(backend, setup.input);
-  const int64_t bonds = engine->family_stats().bonds;
-  if (!note.empty()) std::printf("backend    %s\n", note.c_str());
-  std::printf("profile    %s on %s [%s]: %zu particles, %lld bonds, %lld steps, dt %.4g s\n",
-              scene.path.c_str(), engine->device_name().c_str(), backend_name(backend),
-              setup.input.particles.size(), (long long)bonds, (long long)steps, setup.dt);
-
-  // Chunk boundaries: the timeline's and the ranges' ends, so every chunk is inside or outside
-  // each range.
+// Chunk boundaries: the timeline's and the ranges' ends, so every chunk is inside or outside
+// each range.
+std::set<int64_t> chunk_ends(const std::vector<std::pair<int64_t, int64_t>>& ranges, int64_t steps,
+                             int64_t chunk) {
   std::set<int64_t> cuts;
   for (int64_t s = chunk; s < steps; s += chunk) cuts.insert(s);
   for (const auto& [a, b] : ranges) {
@@ -108,23 +101,30 @@ int profile_command(const ProfileOptions& opt) {
   }
   cuts.insert(steps);
   cuts.erase(0);
+  return cuts;
+}
 
+// Runs the engine chunk by chunk to `steps`: the kernel times of each chunk go to the timeline
+// and, inside a range, to that range's sums (an NVTX range around it); the broken-bond fraction
+// is taken at each range's end.
+std::vector<RangeResult> run_ranges(Engine& engine, const std::vector<std::pair<int64_t, int64_t>>& ranges,
+                                    int64_t steps, int64_t chunk, std::ostringstream& timeline) {
+  const int64_t bonds = engine.family_stats().bonds;
   std::vector<RangeResult> results;
   for (const auto& [a, b] : ranges) results.push_back({a, b, {}, 0});
-  std::ostringstream timeline;
   timeline << "step_begin,step_end,kernel,ms_per_step\n";
   int64_t at = 0;
   size_t open = ranges.size();  // index of the range being profiled, or ranges.size()
-  for (int64_t cut : cuts) {
+  for (int64_t cut : chunk_ends(ranges, steps, chunk)) {
     for (size_t k = 0; k < ranges.size(); ++k)
       if (ranges[k].first == at) {
         profiler_range_push(
             ("pd-range-" + std::to_string(ranges[k].first) + "-" + std::to_string(ranges[k].second)).c_str());
         open = k;
       }
-    engine->stats().reset_times();
-    engine->advance(cut - at);
-    for (const auto& [name, s] : step_kernels(engine->stats())) {
+    engine.stats().reset_times();
+    engine.advance(cut - at);
+    for (const auto& [name, s] : step_kernels(engine.stats())) {
       timeline << at << "," << cut << "," << name << "," << 1e3 * s.seconds / double(cut - at) << "\n";
       if (open < ranges.size()) {
         KernelStat& r = results[open].kernels[name];
@@ -137,15 +137,25 @@ int profile_command(const ProfileOptions& opt) {
     at = cut;
     if (open < ranges.size() && ranges[open].second == at) {
       profiler_range_pop();
-      results[open].broken = bonds > 0 ? double(engine->broken_bonds()) / double(bonds) : 0;
+      results[open].broken = bonds > 0 ? double(engine.broken_bonds()) / double(bonds) : 0;
       open = ranges.size();
     }
-    if (engine->first_non_finite() >= 0)
+    if (engine.first_non_finite() >= 0)
       throw std::runtime_error("profile: the run blew up by step " + std::to_string(at) +
                                " (run it with `perifrac run` for the watchdog's diagnosis)");
   }
+  return results;
+}
 
-  // Table: ms per step per kernel and range (Levine Table 2 layout), theoretical occupancy.
+double range_seconds(const RangeResult& r) {
+  double total = 0;
+  for (const auto& [k, s] : r.kernels) total += s.seconds;
+  return total;
+}
+
+// Prints the table (ms per step per kernel and range, Levine Table 2 layout, with registers and
+// theoretical occupancy) and returns the same figures as CSV.
+std::string print_range_table(const std::vector<RangeResult>& results, int64_t bonds) {
   std::set<std::string> names;
   for (const RangeResult& r : results)
     for (const auto& [name, s] : r.kernels) names.insert(name);
@@ -163,8 +173,7 @@ int profile_command(const ProfileOptions& opt) {
     for (const RangeResult& r : results) {
       const auto it = r.kernels.find(name);
       const double n = double(r.end - r.begin);
-      double total = 0;
-      for (const auto& [k, s] : r.kernels) total += s.seconds;
+      const double total = range_seconds(r);
       if (it == r.kernels.end()) {
         std::printf(" %15s", "-");
         continue;
@@ -183,21 +192,41 @@ int profile_command(const ProfileOptions& opt) {
       std::printf("  %4s  %9s\n", "-", "-");
   }
   std::printf("%-20s", "step");
-  for (const RangeResult& r : results) {
-    double total = 0;
-    for (const auto& [k, s] : r.kernels) total += s.seconds;
-    std::printf(" %15.4f", 1e3 * total / double(r.end - r.begin));
-  }
+  for (const RangeResult& r : results)
+    std::printf(" %15.4f", 1e3 * range_seconds(r) / double(r.end - r.begin));
   std::printf("\n%-20s", "broken bonds %");
   for (const RangeResult& r : results) std::printf(" %15.3f", 100 * r.broken);
   std::printf("\n");
+  return csv.str();
+}
+
+}  // namespace
+
+int profile_command(const ProfileOptions& opt) {
+  Scene scene = load_scene(opt.scene);
+  std::string note;
+  const Backend backend = choose_backend(opt.backend, &note);
+  const SetupResult setup = setup_scene(scene, setup_options_for(scene, opt.scale, backend));
+  int64_t steps = 0;
+  const auto ranges = profile_ranges(opt, scene.frames * scene.steps_per_frame, &steps);
+  const int64_t chunk = opt.timeline > 0 ? opt.timeline : std::max<int64_t>(1, steps / 100);
+
+  auto engine = make_engine(backend, setup.input);
+  const int64_t bonds = engine->family_stats().bonds;
+  if (!note.empty()) std::printf("backend    %s\n", note.c_str());
+  std::printf("profile    %s on %s [%s]: %zu particles, %lld bonds, %lld steps, dt %.4g s\n",
+              scene.path.c_str(), engine->device_name().c_str(), backend_name(backend),
+              setup.input.particles.size(), (long long)bonds, (long long)steps, setup.dt);
+  std::ostringstream timeline;
+  const std::vector<RangeResult> results = run_ranges(*engine, ranges, steps, chunk, timeline);
+  const std::string csv = print_range_table(results, bonds);
 
   ensure_directory(opt.out);
   const std::string stem = opt.out + "/" + utc_now("%Y%m%d-%H%M%S") + "_" + backend_name(backend) + "_" +
                            std::filesystem::path(scene.path).stem().string();
   const std::string header = "# " + engine->device_name() + ", " + utc_now("%Y-%m-%dT%H:%M:%SZ") + ", git " +
                              git_revision() + ", scale " + std::to_string(opt.scale) + "\n";
-  write_file_atomic(stem + "_profile.csv", header + csv.str());
+  write_file_atomic(stem + "_profile.csv", header + csv);
   write_file_atomic(stem + "_timeline.csv", header + timeline.str());
   std::printf("results    %s_profile.csv, %s_timeline.csv\n", stem.c_str(), stem.c_str());
   return 0;

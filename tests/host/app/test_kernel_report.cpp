@@ -30,6 +30,7 @@ TEST(KernelReport, InstantiationsGetTheirOwnRowsAndASum) {
   EXPECT_EQ(rows[1].registers, 40);
   EXPECT_EQ(rows[2].name, "pd/springforces[lattice]");
   EXPECT_EQ(rows[2].registers, 48);
+  EXPECT_DOUBLE_EQ(rows[2].bond_updates_per_s, 1000.0 * 4 / 2.0);  // per launch: it ran in 4 steps
   EXPECT_EQ(rows[3].name, "pd/springforces (all)");
   EXPECT_DOUBLE_EQ(rows[3].seconds, 5.0);
   EXPECT_EQ(rows[3].launches, 10);
