@@ -28,6 +28,14 @@ struct ArrayView {
     return ptr[i];
   }
   PD_HD T* data() const { return ptr; }
+  // Entries [first, first + count) as a view of their own (checked: they must lie in this one).
+  PD_HD ArrayView sub(int64_t first, int64_t count) const {
+    if (count > 0) {
+      PD_CHECK_INDEX(first, size);
+      PD_CHECK_INDEX(first + count - 1, size);
+    }
+    return {ptr + first, count};
+  }
   PD_HD explicit operator bool() const { return ptr != nullptr; }
 };
 

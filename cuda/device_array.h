@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "cuda/array_view.h"
+
 namespace pd {
 
 template <class T, class Exec>
@@ -51,5 +53,11 @@ class DeviceArray {
   T* data_ = nullptr;
   size_t size_ = 0;
 };
+
+// The view of a backend array, for kernels.
+template <class T, class Exec>
+ArrayView<T> view_of(const DeviceArray<T, Exec>& a) {
+  return {a.data(), int64_t(a.size())};
+}
 
 }  // namespace pd

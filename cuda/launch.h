@@ -81,8 +81,8 @@ void launch_collection(Exec& ex, const char* name, ParticlesView p, HashView uns
     const Vec3 x = kCurrent ? p.position(int32_t(i)) : xyz(p.rest[i]);
     hash_particle(int32_t(i), x, unsorted);
   });
-  ex.sort_by_key("pd/collection_sort", unsorted.key, unsorted.sorted, sorted.key, sorted.sorted, p.n,
-                 sorted.bins);
+  ex.sort_by_key("pd/collection_sort", unsorted.key.data(), unsorted.sorted.data(), sorted.key.data(),
+                 sorted.sorted.data(), p.n, sorted.bins);
   ex.parallel_for("pd/collection_bins", p.n, [=] PD_HD(int64_t s) {
     mark_bin_bounds(int32_t(s), p.n, sorted);
     if (kCurrent) {  // (not constexpr: an extended lambda cannot first-capture there)

@@ -57,16 +57,16 @@ constexpr int kLatticeWords = 16;  // stencils of up to 512 bonds (delta + lambd
 
 struct LatticeView {
   int32_t words = 0;                 // mask words per particle (the largest stencil's)
-  const int16_t* stencil = nullptr;  // per particle: its stencil, or -1 (explicit family)
-  const Stencil* stencils = nullptr;
-  const StencilEntry* entries = nullptr;
+  ArrayView<const int16_t> stencil;  // per particle: its stencil, or -1 (explicit family)
+  ArrayView<const Stencil> stencils;
+  ArrayView<const StencilEntry> entries;
   // Per particle, bit q of word w (stored at w * n + i) for stencil entry 32 w + q: the bond is
   // in the family (present; cuts remove bonds) and not broken (intact).
-  const uint32_t* present = nullptr;
-  uint32_t* intact = nullptr;
+  ArrayView<const uint32_t> present;
+  ArrayView<uint32_t> intact;
   // Scenes with weakened bonds only: the bonds whose strength factor is below 1, so that only
   // those read it (same layout).
-  const uint32_t* weak = nullptr;
+  ArrayView<const uint32_t> weak;
 };
 
 struct BondsView {
@@ -94,13 +94,13 @@ PD_HD inline int32_t bond_partner(int32_t nb) {
 struct HashView {
   uint32_t bins = 0;  // power of two
   real inv_cell = 0;
-  uint32_t* key = nullptr;       // bin of each particle, then sorted
-  int32_t* sorted = nullptr;     // particle ids in bin order
-  int32_t* bin_start = nullptr;  // first sorted entry of each bin, -1 when empty
-  int32_t* bin_end = nullptr;    // one past the last sorted entry
+  ArrayView<uint32_t> key;       // bin of each particle, then sorted
+  ArrayView<int32_t> sorted;     // particle ids in bin order
+  ArrayView<int32_t> bin_start;  // first sorted entry of each bin, -1 when empty
+  ArrayView<int32_t> bin_end;    // one past the last sorted entry
   // Contact lists only: per sorted entry, the particle's position and a quarter of its contact
   // spacing, so the partners of a cell are read in one contiguous run (launch_collection).
-  Vec4* record = nullptr;
+  ArrayView<Vec4> record;
 };
 
 // Contact pairs kept as Verlet lists (Verlet 1967): per particle, the particles that were
@@ -118,9 +118,9 @@ struct ContactView {
   real base = 0;               // skin of a particle at rest [m]
   real per_speed = 0;          // skin per unit speed [s]
   real cap = 0;                // largest skin [m]
-  int32_t* count = nullptr;    // partners of each particle (above capacity: the list overflowed)
-  int32_t* partner = nullptr;  // capacity x n partner indices
-  Vec4* origin = nullptr;      // xyz: each particle's displacement at the last build; w: its skin
+  ArrayView<int32_t> count;    // partners of each particle (above capacity: the list overflowed)
+  ArrayView<int32_t> partner;  // capacity x n partner indices
+  ArrayView<Vec4> origin;      // xyz: each particle's displacement at the last build; w: its skin
   int32_t* moved = nullptr;    // set to 1 by any particle that moved farther than 0.9 of its skin
   PD_HD int64_t slot(int32_t i, int32_t k) const { return int64_t(k) * n + i; }
 };

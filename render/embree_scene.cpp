@@ -49,9 +49,9 @@ EmbreeScene::EmbreeScene(const PrimitiveSet& prims) {
     if (p.kind[i] == kPrimCube)
       add_cube(vertex, index, p.cube_center[s], p.cube_half[s], identity);
     else if (p.kind[i] == kPrimOrientedCube)
-      add_cube(vertex, index, p.ocube_center[s], p.ocube_half[s], p.ocube_axis + 3 * int64_t(s));
+      add_cube(vertex, index, p.ocube_center[s], p.ocube_half[s], p.ocube_axis.sub(3 * int64_t(s), 3).data());
     else if (p.kind[i] == kPrimTet)
-      add_tet(vertex, index, p.tet_vertex + 4 * int64_t(s));
+      add_tet(vertex, index, p.tet_vertex.sub(4 * int64_t(s), 4).data());
     else
       throw std::invalid_argument("Embree scene: trimtopes are not triangulated");
   }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "cuda/array_view.h"
 #include "cuda/vec3.h"
 
 namespace pd {

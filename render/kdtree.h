@@ -50,8 +50,8 @@ static_assert(sizeof(KdNode) == 8, "kd-tree nodes are 8 bytes");
 
 // What the traversal reads; node 0 is the root.
 struct KdTreeView {
-  const KdNode* nodes = nullptr;
-  const uint32_t* prim_index = nullptr;
+  ArrayView<const KdNode> nodes;
+  ArrayView<const uint32_t> prim_index;
   Box bounds{{0, 0, 0}, {0, 0, 0}};  // union of all primitive boxes
 };
 
@@ -82,7 +82,7 @@ struct KdTree {
   Box bounds{{0, 0, 0}, {0, 0, 0}};
   KdTreeStats stats;
 
-  KdTreeView view() const { return {nodes.data(), prim_index.data(), bounds}; }
+  KdTreeView view() const { return {view_of(nodes), view_of(prim_index), bounds}; }
 };
 
 // Builds the tree over primitives 0..boxes.size()-1. Throws std::length_error past 2^30

@@ -14,19 +14,19 @@ namespace pd {
 template <class Arrays>
 PrimitivesView primitives_view(int32_t n, const Arrays& a) {
   PrimitivesView v{n,
-                   a.kind.data(),
-                   a.slot.data(),
-                   a.cube_center.data(),
-                   a.cube_half.data(),
-                   a.tet_vertex.data(),
-                   a.tet_plane.data(),
-                   a.ocube_center.data(),
-                   a.ocube_half.data(),
-                   a.ocube_axis.data(),
+                   view_of(a.kind),
+                   view_of(a.slot),
+                   view_of(a.cube_center),
+                   view_of(a.cube_half),
+                   view_of(a.tet_vertex),
+                   view_of(a.tet_plane),
+                   view_of(a.ocube_center),
+                   view_of(a.ocube_half),
+                   view_of(a.ocube_axis),
                    {}};
-  v.trim = {a.trim_site.data(),         a.trim_plane_start.data(), a.trim_plane_normal.data(),
-            a.trim_plane_offset.data(), a.trim_tri_start.data(),   a.trim_tri_vertex.data(),
-            a.trim_box.data()};
+  v.trim = {view_of(a.trim_site),         view_of(a.trim_plane_start), view_of(a.trim_plane_normal),
+            view_of(a.trim_plane_offset), view_of(a.trim_tri_start),   view_of(a.trim_tri_vertex),
+            view_of(a.trim_box)};
   return v;
 }
 

@@ -26,15 +26,15 @@ struct alignas(4 * sizeof(real)) TetPlane {
 
 struct PrimitivesView {
   int32_t n = 0;
-  const uint8_t* kind = nullptr;  // PrimKind
-  const int32_t* slot = nullptr;  // index into the arrays of that kind
-  const Vec3* cube_center = nullptr;
-  const real* cube_half = nullptr;      // half the side length
-  const Vec3* tet_vertex = nullptr;     // 4 consecutive vertices per tetrahedron
-  const TetPlane* tet_plane = nullptr;  // its 4 face planes (tet_planes)
-  const Vec3* ocube_center = nullptr;
-  const real* ocube_half = nullptr;
-  const Vec3* ocube_axis = nullptr;  // 3 consecutive unit axes per oriented cube (orthonormal)
+  ArrayView<const uint8_t> kind;  // PrimKind
+  ArrayView<const int32_t> slot;  // index into the arrays of that kind
+  ArrayView<const Vec3> cube_center;
+  ArrayView<const real> cube_half;      // half the side length
+  ArrayView<const Vec3> tet_vertex;     // 4 consecutive vertices per tetrahedron
+  ArrayView<const TetPlane> tet_plane;  // its 4 face planes (tet_planes)
+  ArrayView<const Vec3> ocube_center;
+  ArrayView<const real> ocube_half;
+  ArrayView<const Vec3> ocube_axis;  // 3 consecutive unit axes per oriented cube (orthonormal)
   TrimtopesView trim;
 };
 
@@ -181,8 +181,9 @@ PD_HD inline bool intersect_primitive(const PrimitivesView& p, int32_t i, const 
   if (p.kind[i] == kPrimCube) return intersect_cube(r, p.cube_center[s], p.cube_half[s], hit);
   if (p.kind[i] == kPrimTrimtope) return intersect_trimtope(p.trim, s, r, hit);
   if (p.kind[i] == kPrimOrientedCube)
-    return intersect_oriented_cube(r, p.ocube_center[s], p.ocube_half[s], p.ocube_axis + 3 * int64_t(s), hit);
-  return intersect_tet(r, p.tet_plane + 4 * int64_t(s), hit);
+    return intersect_oriented_cube(r, p.ocube_center[s], p.ocube_half[s],
+                                   p.ocube_axis.sub(3 * int64_t(s), 3).data(), hit);
+  return intersect_tet(r, p.tet_plane.sub(4 * int64_t(s), 4).data(), hit);
 }
 
 PD_HD inline Box primitive_bounds(const PrimitivesView& p, int32_t i) {
@@ -194,8 +195,9 @@ PD_HD inline Box primitive_bounds(const PrimitivesView& p, int32_t i) {
   }
   if (p.kind[i] == kPrimTrimtope) return p.trim.box[s];
   if (p.kind[i] == kPrimOrientedCube)
-    return oriented_cube_bounds(p.ocube_center[s], p.ocube_half[s], p.ocube_axis + 3 * int64_t(s));
-  const Vec3* v = p.tet_vertex + 4 * int64_t(s);
+    return oriented_cube_bounds(p.ocube_center[s], p.ocube_half[s],
+                                p.ocube_axis.sub(3 * int64_t(s), 3).data());
+  const Vec3* v = p.tet_vertex.sub(4 * int64_t(s), 4).data();
   return {vmin(vmin(v[0], v[1]), vmin(v[2], v[3])), vmax(vmax(v[0], v[1]), vmax(v[2], v[3]))};
 }
 
@@ -219,7 +221,7 @@ PD_HD inline bool primitive_exit(const PrimitivesView& p, int32_t i, const Ray& 
     const real sign = axis_of(r.d, exit_axis) > 0 ? real(1) : real(-1);
     n = {exit_axis == 0 ? sign : real(0), exit_axis == 1 ? sign : real(0), exit_axis == 2 ? sign : real(0)};
   } else if (p.kind[i] == kPrimOrientedCube) {
-    const Vec3* a = p.ocube_axis + 3 * int64_t(s);
+    const Vec3* a = p.ocube_axis.sub(3 * int64_t(s), 3).data();
     const real h = p.ocube_half[s];
     const Ray l = to_cube_frame(r, p.ocube_center[s], a);
     int entry_axis, exit_axis;
@@ -228,7 +230,7 @@ PD_HD inline bool primitive_exit(const PrimitivesView& p, int32_t i, const Ray& 
     n = (axis_of(l.d, exit_axis) > 0 ? real(1) : real(-1)) * a[exit_axis];
   } else {
     Vec3 n0;
-    if (!tet_interval(r, p.tet_plane + 4 * int64_t(s), &t0, &t1, &n0, &n)) return false;
+    if (!tet_interval(r, p.tet_plane.sub(4 * int64_t(s), 4).data(), &t0, &t1, &n0, &n)) return false;
   }
   if (!(t1 > r.tmin) || !(t1 < INFINITY)) return false;
   hit->t = t1;
@@ -246,12 +248,12 @@ PD_HD inline bool primitive_contains(const PrimitivesView& p, int32_t i, Vec3 x)
   }
   if (p.kind[i] == kPrimTrimtope) return trimtope_contains(p.trim, s, x);
   if (p.kind[i] == kPrimOrientedCube) {
-    const Vec3* a = p.ocube_axis + 3 * int64_t(s);
+    const Vec3* a = p.ocube_axis.sub(3 * int64_t(s), 3).data();
     const Vec3 q = x - p.ocube_center[s];
     const real h = p.ocube_half[s];
     return std::fabs(dot(q, a[0])) < h && std::fabs(dot(q, a[1])) < h && std::fabs(dot(q, a[2])) < h;
   }
-  const TetPlane* plane = p.tet_plane + 4 * int64_t(s);
+  const TetPlane* plane = p.tet_plane.sub(4 * int64_t(s), 4).data();
   for (int f = 0; f < 4; ++f)
     if (!(dot(plane[f].n, x) < plane[f].w)) return false;
   return true;

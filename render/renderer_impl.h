@@ -183,7 +183,7 @@ class RendererImpl final : public Renderer {
     PixelKernelParams p;
     p.camera = camera_frame(camera, s.width, s.height);
     p.prims = primitives_view(ps.size(), prims);
-    p.tree = {nodes.data(), prim_index.data(), scene.tree.bounds};
+    p.tree = {view_of(nodes), view_of(prim_index), scene.tree.bounds};
     p.albedo = albedo.data();
     p.material = scene.material.empty() ? nullptr : material.data();
     p.ior = s.ior;

@@ -43,13 +43,13 @@ enum TrimtopeCase : uint8_t {
 // Trimtope i's planes are plane_normal/plane_offset[plane_start[i] .. plane_start[i + 1]),
 // its triangles tri_vertex[3 k .. 3 k + 2] for k in [tri_start[i], tri_start[i + 1]).
 struct TrimtopesView {
-  const Vec3* site = nullptr;  // Voronoi site V, inside the object
-  const int32_t* plane_start = nullptr;
-  const Vec3* plane_normal = nullptr;  // outward (need not be unit length)
-  const real* plane_offset = nullptr;  // inside: dot(normal, x) <= offset
-  const int32_t* tri_start = nullptr;
-  const Vec3* tri_vertex = nullptr;  // counter-clockwise seen from outside the object
-  const Box* box = nullptr;          // bounds of the solid part (kd-tree build)
+  ArrayView<const Vec3> site;  // Voronoi site V, inside the object
+  ArrayView<const int32_t> plane_start;
+  ArrayView<const Vec3> plane_normal;  // outward (need not be unit length)
+  ArrayView<const real> plane_offset;  // inside: dot(normal, x) <= offset
+  ArrayView<const int32_t> tri_start;
+  ArrayView<const Vec3> tri_vertex;  // counter-clockwise seen from outside the object
+  ArrayView<const Box> box;          // bounds of the solid part (kd-tree build)
 };
 
 // Barycentric slack of the triangle test: float round-off must not open cracks along the edges
@@ -84,7 +84,7 @@ PD_HD inline bool first_triangle(const TrimtopesView& v, int32_t i, Vec3 o, Vec3
   real best = tb;  // the nearest crossing so far, kept here and written once at the end
   Vec3 best_normal{0, 0, 0};
   for (int32_t k = v.tri_start[i]; k < v.tri_start[i + 1]; ++k) {
-    const Vec3* p = v.tri_vertex + 3 * int64_t(k);
+    const Vec3* p = v.tri_vertex.sub(3 * int64_t(k), 3).data();
     real tk;
     Vec3 nk;
     if (!line_triangle(o, d, p[0], p[1], p[2], &tk, &nk)) continue;

@@ -41,9 +41,9 @@ class ContactLists {
     c.base = rest_skin_;
     c.per_speed = real(double(dt) * kContactStepsAhead / kContactTrigger);
     c.cap = skin_cap_;
-    c.count = count_.data();
-    c.partner = partner_.data();
-    c.origin = origin_.data();
+    c.count = view_of(count_);
+    c.partner = view_of(partner_);
+    c.origin = view_of(origin_);
     c.moved = exec.flag(kFlagMoved);
     return c;
   }

@@ -46,10 +46,4 @@ class DeviceMemory {
   size_t bytes_ = 0;
 };
 
-// The view of an engine array.
-template <class T, class Exec>
-ArrayView<T> view_of(const DeviceArray<T, Exec>& a) {
-  return {a.data(), int64_t(a.size())};
-}
-
 }  // namespace pd

@@ -33,12 +33,12 @@ struct LatticeState {
   LatticeView view() const {
     LatticeView v;
     v.words = tables.words;
-    v.stencil = stencil.data();
-    v.stencils = stencils.data();
-    v.entries = entries.data();
-    v.present = present.data();
-    v.intact = intact.data();
-    v.weak = weak.data();
+    v.stencil = view_of(stencil);
+    v.stencils = view_of(stencils);
+    v.entries = view_of(entries);
+    v.present = view_of(present);
+    v.intact = view_of(intact);
+    v.weak = view_of(weak);
     return v;
   }
 };

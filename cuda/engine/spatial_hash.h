@@ -52,11 +52,11 @@ struct SpatialHash {
     HashView h;
     h.bins = bins;
     h.inv_cell = inv_cell;
-    h.key = sorted ? key_sorted.data() : key.data();
-    h.sorted = sorted ? ids_sorted.data() : ids.data();
-    h.bin_start = bin_start.data();
-    h.bin_end = bin_end.data();
-    h.record = sorted ? record.data() : nullptr;
+    h.key = view_of(sorted ? key_sorted : key);
+    h.sorted = view_of(sorted ? ids_sorted : ids);
+    h.bin_start = view_of(bin_start);
+    h.bin_end = view_of(bin_end);
+    if (sorted) h.record = view_of(record);
     return h;
   }
 };

@@ -164,7 +164,7 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
                                                   const BondsView& b, Visit& visit) {
   const LatticeView& l = b.lattice;
   const Stencil st = l.stencils[stencil];
-  const StencilEntry* entries = l.entries + st.first;
+  const ArrayView<const StencilEntry> entries = l.entries.sub(st.first, st.size);
   const Vec4 disp_i = p.disp[i];
   const int64_t first_slot = b.slot(i, 0);
   int32_t k0 = 0;  // present bonds in the words before this one

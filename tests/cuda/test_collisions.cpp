@@ -48,15 +48,15 @@ TEST(Collisions, HalfCellSearchFindsEveryCloseNeighbour) {
   std::stable_sort(sorted.begin(), sorted.end(), [&](int32_t a, int32_t b) { return key[a] < key[b]; });
   std::vector<uint32_t> sorted_key(pts.size());
   for (size_t s = 0; s < pts.size(); ++s) sorted_key[s] = key[sorted[s]];
-  h.key = sorted_key.data();
-  h.sorted = sorted.data();
-  h.bin_start = start.data();
-  h.bin_end = end.data();
+  h.key = view_of(sorted_key);
+  h.sorted = view_of(sorted);
+  h.bin_start = view_of(start);
+  h.bin_end = view_of(end);
   for (int32_t s = 0; s < int32_t(pts.size()); ++s) mark_bin_bounds(s, int32_t(pts.size()), h);
   // The sorted records the collisions kernel reads (w: a tag to check the entry).
   std::vector<Vec4> record(pts.size());
   for (size_t s = 0; s < pts.size(); ++s) record[s] = with_w(pts[size_t(sorted[s])], real(sorted[s]));
-  h.record = record.data();
+  h.record = view_of(record);
   auto pos = [&](int32_t j) { return pts[j]; };
   for (size_t i = 0; i < pts.size(); i += 7) {
     std::set<int32_t> from_records, nearby, brute;
@@ -123,23 +123,23 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
     sorted_key[size_t(s)] = key[size_t(i)];
     record[size_t(s)] = with_w(p.position(i), contact_quarter(i, p, mt));  // as `collection` writes it
   }
-  h.key = sorted_key.data();
-  h.sorted = sorted.data();
-  h.bin_start = start.data();
-  h.bin_end = end.data();
-  h.record = record.data();
+  h.key = view_of(sorted_key);
+  h.sorted = view_of(sorted);
+  h.bin_start = view_of(start);
+  h.bin_end = view_of(end);
+  h.record = view_of(record);
   for (int32_t s = 0; s < n; ++s) mark_bin_bounds(s, n, h);
 
   std::vector<Vec4> origin(static_cast<size_t>(n));
   std::vector<int32_t> count(static_cast<size_t>(n));
-  c.origin = origin.data();
-  c.count = count.data();
+  c.origin = view_of(origin);
+  c.count = view_of(count);
   std::vector<int32_t> partner;
   // Room for 4 partners overflows in this cloud; room for 64 does not.
   for (const int32_t capacity : {4, 64}) {
     c.capacity = capacity;
     partner.assign(size_t(capacity) * size_t(n), -1);
-    c.partner = partner.data();
+    c.partner = view_of(partner);
     int32_t overflow = 0, pairs = 0;
     for (int32_t s = 0; s < n; ++s) build_contacts(s, p, h, c, &overflow, &pairs);
     for (int32_t i = 0; i < n; ++i) extend_contacts(i, p, h, c, mt, quarter_max, &overflow, &pairs);
