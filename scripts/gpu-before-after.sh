@@ -3,7 +3,8 @@
 # (e.g. `git archive REV | tar -x -C out/base-src`) and this tree with the cuda preset, compares
 # their golden outputs on the GPU (scripts/golden.sh: every output file's SHA-256), then runs the
 # speed benchmarks of scripts/gpu-check.sh for both binaries in alternation and prints the
-# bond-updates/s of each (springforces summed over its instantiations, and the whole step).
+# bond-updates/s of each (springforces summed over its instantiations, and the whole step), and
+# the renderer's primary rays/s (bench-render as in scripts/render-check.sh).
 #   scripts/gpu-before-after.sh OLD_SOURCE_DIR [ROUNDS]
 # Results go to $OUT/before-after (default out/before-after); exits 1 when the golden lists differ.
 set -uo pipefail
@@ -63,6 +64,27 @@ for w in "${workloads[@]}"; do
       spring=$(rate "$log" "pd/springforces (all)")
       [ -z "$spring" ] && spring=$(rate "$log" "pd/springforces")
       printf '%-26s %-5s %-14s %-14s\n' "$name" $build "$spring" "$(rate "$log" "step (all kernels)")" |
+        tee -a "$OUT/speed.txt"
+    done
+  done
+done
+# The renderer: primary rays/s at 1920 x 1080 (600k tetrahedra opaque and as glass, 600k cubes).
+renders=(
+  "tets|--scene slab --count 600000"
+  "tets-glass|--scene slab --count 600000 --material glass"
+  "cubes|--scene cubes --count 600000"
+)
+printf '%-26s %-5s %-14s\n' render build primary_rays/s | tee -a "$OUT/speed.txt"
+for w in "${renders[@]}"; do
+  name=${w%%|*} args=${w#*|}
+  for ((r = 1; r <= rounds; ++r)); do
+    for build in old new; do
+      bin=$old
+      [ $build = new ] && bin=$new
+      log="$OUT/render-$name-$build-$r.log"
+      # shellcheck disable=SC2086
+      "$bin" bench-render $args --backend cuda --repeat 10 --no-embree --out "$OUT/bench-$build" >"$log" 2>&1
+      printf '%-26s %-5s %-14s\n' "$name" $build "$(awk '/^render/ {for (k = 1; k < NF; ++k) if ($k == "primary") print $(k + 1)}' "$log")" |
         tee -a "$OUT/speed.txt"
     done
   done
