@@ -7,6 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include "cuda/state_fields.h"
+
 namespace pd {
 
 namespace {
@@ -21,13 +23,12 @@ size_t capped(const char* variable, size_t bytes) {
   return std::min(bytes, size_t(mb * 1024 * 1024));
 }
 
-// Particle arrays of EngineImpl: rest, disp, state (16 B each), vel, force (12), inverse mass,
-// strain limit, strain min, intact, count (4), ledger (16), material (2), body (4), flags (1),
-// plus the contact hash (keys, ids, sorted copies: 16 B; sorted records: 16 B; bins: up to 4
-// per particle x 8 B), the contact lists (origin 16 B, length 4 B, room for 8 partners of 4 B)
-// and the slice bookkeeping.
+// Per particle, beyond the state table's arrays (cuda/state_fields.h, a state-based run's): the
+// contact hash (keys, ids, sorted copies: 16 B; sorted records: 16 B; bins: up to 4 per particle
+// x 8 B), the contact lists (origin 16 B, length 4 B, room for 8 partners of 4 B) and the slice
+// bookkeeping.
 constexpr double kEngineParticleBytes =
-    16 * 3 + 12 * 2 + 4 * 5 + 16 + 2 + 4 + 1 + 16 + 16 + 32 + 16 + 4 + 32 + 8;
+    field_bytes<kParticles>(FieldNeeds{true, false, false}) + 16 + 16 + 32 + 16 + 4 + 32 + 8;
 // Sliced-ELL padding: slices of 32 particles are as long as their longest family.
 constexpr double kEllPadding = 1.15;
 
@@ -63,7 +64,8 @@ double engine_bytes_per_particle(double horizon_ratio, bool plastic) {
   // Lattice families: a stencil id (2 B) and the present, intact and (with weakened bonds) weak
   // bits, in 32-bit words.
   const double lattice = 2 + 3 * 4 * std::ceil(bonds / 32);
-  return kEngineParticleBytes + lattice + bonds * kEllPadding * (plastic ? 12 : 4);
+  return kEngineParticleBytes + lattice +
+         bonds * kEllPadding * field_bytes<kSlots>(FieldNeeds{true, plastic, false});
 }
 
 std::string format_bytes(double bytes) {
