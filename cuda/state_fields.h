@@ -5,9 +5,11 @@
 // - the engine's buffers, their views, upload sizes and memory accounting
 //   (cuda/engine/engine_state.h), and the bytes per particle of the memory budget;
 // - EngineSnapshot, save / restore, and the checkpoint file's records (cuda/engine/snapshot.h);
-// - for a partitioned run, what a ghost copy of a particle receives (the halo column).
+// - ParticleState, what every frame reads back for the output files (Engine::read_state);
+// - for a partitioned run, what a ghost copy of a particle receives (the halo column); a
+//   particle that moves to another rank takes every field of length kParticles and its slots.
 //
-// Each entry is X(name, Type, length, when, saved, halo):
+// Each entry is X(name, Type, length, when, saved, halo, frame):
 //   Type    the element type as the kernels see it; const where the kernels only read it
 //   length  kParticles: one per particle; kSlots: one per bond slot of the sliced-ELL families
 //           (BondsView::slot); kSlices: one per slice of kSliceWidth particles, plus one
@@ -18,9 +20,13 @@
 //   halo    kHaloNone: only the owner reads it; kHaloSetup: a partner's bond or contact reads it
 //           and it never changes (sent once); kHaloStep: a partner reads it and it changes every
 //           step (sent before the kernel that reads it)
+//   frame   kFrameAll / kFrameXyz: read back every frame for the output files (ParticleState),
+//           whole or its xyz part (a displacement without tau'); kFrameNone: not
 // Adding a field is one line here plus its use in a kernel (and its start value in
 // EngineState::upload when that is not zero); checkpoints, views and memory follow.
 #pragma once
+
+#include <type_traits>
 
 #include "cuda/vec3.h"
 
@@ -38,58 +44,59 @@ enum FieldLength { kParticles, kSlots, kSlices };
 enum FieldWhen { kForAll, kForStateBased, kForPlastic, kForWeakBonds };
 enum FieldSaved { kDerived, kSaved };
 enum FieldHalo { kHaloNone, kHaloSetup, kHaloStep };
+enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
 
 // Per particle (ParticlesView). What a bond reads of its partner is packed into 16-byte records,
 // one vector load each.
 #define PD_PARTICLE_FIELDS(X)                                                                        \
   /* xyz: reference position X [m]; w: volume V [m^3] */                                             \
-  X(rest, const Vec4, kParticles, kForAll, kDerived, kHaloSetup)                                     \
+  X(rest, const Vec4, kParticles, kForAll, kDerived, kHaloSetup, kFrameNone)                         \
   /* xyz: displacement u [m]; w: effective strain limit tau' (Levine eq. 5), set by `init` */        \
-  X(disp, Vec4, kParticles, kForAll, kSaved, kHaloStep)                                              \
+  X(disp, Vec4, kParticles, kForAll, kSaved, kHaloStep, kFrameXyz)                                   \
   /* velocity v [m/s] */                                                                             \
-  X(vel, Vec3, kParticles, kForAll, kSaved, kHaloNone)                                               \
+  X(vel, Vec3, kParticles, kForAll, kSaved, kHaloNone, kFrameAll)                                    \
   /* total force on the particle [N] */                                                              \
-  X(force, Vec3, kParticles, kForAll, kSaved, kHaloNone)                                             \
+  X(force, Vec3, kParticles, kForAll, kSaved, kHaloNone, kFrameAll)                                  \
   /* 1/m [1/kg] */                                                                                   \
-  X(inv_mass, const real, kParticles, kForAll, kDerived, kHaloNone)                                  \
+  X(inv_mass, const real, kParticles, kForAll, kDerived, kHaloNone, kFrameNone)                      \
   /* index into MaterialTable */                                                                     \
-  X(material, const uint16_t, kParticles, kForAll, kDerived, kHaloSetup)                             \
+  X(material, const uint16_t, kParticles, kForAll, kDerived, kHaloSetup, kFrameNone)                 \
   /* body: bodies do not bond to each other */                                                       \
-  X(body, const int32_t, kParticles, kForAll, kDerived, kHaloSetup)                                  \
+  X(body, const int32_t, kParticles, kForAll, kDerived, kHaloSetup, kFrameNone)                      \
   /* ParticleFlag bits */                                                                            \
-  X(flags, const uint8_t, kParticles, kForAll, kDerived, kHaloNone)                                  \
+  X(flags, const uint8_t, kParticles, kForAll, kDerived, kHaloNone, kFrameNone)                      \
   /* anchor group of an anchored particle (StepParams::anchor) */                                    \
-  X(anchor, const uint8_t, kParticles, kForAll, kDerived, kHaloNone)                                 \
+  X(anchor, const uint8_t, kParticles, kForAll, kDerived, kHaloNone, kFrameNone)                     \
   /* scattered base strain limit tau_i */                                                            \
-  X(strain_limit0, const real, kParticles, kForAll, kDerived, kHaloNone)                             \
+  X(strain_limit0, const real, kParticles, kForAll, kDerived, kHaloNone, kFrameNone)                 \
   /* minimum bond strain of the last force pass */                                                   \
-  X(strain_min, real, kParticles, kForAll, kSaved, kHaloNone)                                        \
+  X(strain_min, real, kParticles, kForAll, kSaved, kHaloNone, kFrameNone)                            \
   /* unbroken bonds, written by `springforces` */                                                    \
-  X(intact, int32_t, kParticles, kForAll, kSaved, kHaloNone)                                         \
+  X(intact, int32_t, kParticles, kForAll, kSaved, kHaloNone, kFrameAll)                              \
   /* energy accounting (Ledger) */                                                                   \
-  X(ledger, Ledger, kParticles, kForAll, kSaved, kHaloNone)                                          \
+  X(ledger, Ledger, kParticles, kForAll, kSaved, kHaloNone, kFrameNone)                              \
   /* x theta_i (dilatation, set by `init`); y 1/m_i, m_i = sum_j omega |xi|^2 beta V_j over the  */  \
   /* initial family; z phi_i = 1 - intact/initial bonds of the last step (damage, set by `init`); */ \
   /* w (plastic materials) the trial deviatoric norm |t^d| that `plasticity` tests (`init`)       */ \
-  X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep)
+  X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep, kFrameNone)
 
 // Per bond slot (BondsView), in sliced-ELL layout.
 #define PD_BOND_FIELDS(X)                                                                          \
   /* start of each slice's slots; n_slices + 1 entries */                                          \
-  X(slice_offset, const int64_t, kSlices, kForAll, kDerived, kHaloNone)                            \
+  X(slice_offset, const int64_t, kSlices, kForAll, kDerived, kHaloNone, kFrameNone)                \
   /* bonds per particle at the start */                                                            \
-  X(count, const int32_t, kParticles, kForAll, kDerived, kHaloNone)                                \
+  X(count, const int32_t, kParticles, kForAll, kDerived, kHaloNone, kFrameNone)                    \
   /* partner index, or ~partner once broken */                                                     \
-  X(neighbor, int32_t, kSlots, kForAll, kSaved, kHaloNone)                                         \
+  X(neighbor, int32_t, kSlots, kForAll, kSaved, kHaloNone, kFrameNone)                             \
   /* e^p of this end's state on the bond [m] */                                                    \
-  X(plastic, real, kSlots, kForPlastic, kSaved, kHaloNone)                                         \
+  X(plastic, real, kSlots, kForPlastic, kSaved, kHaloNone, kFrameNone)                             \
   /* e^p of the partner's end of the same bond, kept at this end's slot by `springforces`      */  \
   /* (plasticity.h), so that it reads and updates both ends' history at its own slots; rebuilt */  \
   /* from `plastic` after a restore                                                             */ \
-  X(plastic_mirror, real, kSlots, kForPlastic, kDerived, kHaloNone)                                \
+  X(plastic_mirror, real, kSlots, kForPlastic, kDerived, kHaloNone, kFrameNone)                    \
   /* per slot, the factor q/255 on the bond's strain limit (cuda/engine/bond_cuts.h), the same  */ \
   /* in both stored directions                                                                  */ \
-  X(strength, const uint8_t, kSlots, kForWeakBonds, kDerived, kHaloNone)
+  X(strength, const uint8_t, kSlots, kForWeakBonds, kDerived, kHaloNone, kFrameNone)
 
 // All of them, particles first.
 #define PD_STATE_FIELDS(X) PD_PARTICLE_FIELDS(X) PD_BOND_FIELDS(X)
@@ -98,6 +105,16 @@ enum FieldHalo { kHaloNone, kHaloSetup, kHaloStep };
 #define PD_IF_SAVED_kSaved(...) __VA_ARGS__
 #define PD_IF_SAVED_kDerived(...)
 #define PD_IF_SAVED(saved, ...) PD_IF_SAVED_##saved(__VA_ARGS__)
+
+// PD_FRAME_MEMBER_TYPE(frame, Type): the element type a frame reads back (none: no member).
+#define PD_IF_FRAME_kFrameAll(...) __VA_ARGS__
+#define PD_IF_FRAME_kFrameXyz(...) __VA_ARGS__
+#define PD_IF_FRAME_kFrameNone(...)
+#define PD_IF_FRAME(frame, ...) PD_IF_FRAME_##frame(__VA_ARGS__)
+#define PD_FRAME_TYPE_kFrameAll(Type) std::remove_const_t<Type>
+#define PD_FRAME_TYPE_kFrameXyz(Type) Vec3
+#define PD_FRAME_TYPE_kFrameNone(Type) void
+#define PD_FRAME_TYPE(frame, Type) PD_FRAME_TYPE_##frame(Type)
 
 // Bytes a particle's own arrays take (every field of length kParticles that exists for a run
 // with these features).

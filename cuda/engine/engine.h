@@ -31,10 +31,13 @@ struct FamilyStats {
   BondCutCounts cuts;
 };
 
-// Per-particle state copied back to the host.
+// Per-particle state copied back to the host every frame: the state table's fields with a frame
+// role (cuda/state_fields.h), named as there: disp (u, without tau'), vel, force, intact.
 struct ParticleState {
-  std::vector<Vec3> disp, vel, force;
-  std::vector<int32_t> intact;  // unbroken bonds
+#define PD_FRAME_MEMBER(name, Type, length, when, saved, halo, frame) \
+  PD_IF_FRAME(frame, std::vector<PD_FRAME_TYPE(frame, Type)> name;)
+  PD_PARTICLE_FIELDS(PD_FRAME_MEMBER)
+#undef PD_FRAME_MEMBER
 };
 
 // Families as stored (sliced ELL, see BondsView), copied back to the host.

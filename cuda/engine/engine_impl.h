@@ -68,15 +68,7 @@ class EngineImpl final : public Engine {
     exec_.flush_stats();
   }
 
-  void read_state(ParticleState& out) override {
-    std::vector<Vec4> disp;
-    state_.disp.download(disp);
-    out.disp.resize(disp.size());
-    for (size_t i = 0; i < disp.size(); ++i) out.disp[i] = xyz(disp[i]);
-    state_.vel.download(out.vel);
-    state_.force.download(out.force);
-    state_.intact.download(out.intact);
-  }
+  void read_state(ParticleState& out) override { state_.read_frame(out); }
 
   void read_bonds(BondLists& out) override { out = download_bonds(state_); }
 

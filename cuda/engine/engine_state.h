@@ -15,6 +15,19 @@
 
 namespace pd {
 
+// Downloads one field for a frame: whole, or the xyz part of each element.
+template <FieldFrame kFrame, class T, class Exec, class Out>
+void read_frame_field(const DeviceArray<T, Exec>& array, std::vector<Out>& out) {
+  if constexpr (kFrame == kFrameXyz) {
+    std::vector<T> whole;
+    array.download(whole);
+    out.resize(whole.size());
+    for (size_t i = 0; i < whole.size(); ++i) out[i] = xyz(whole[i]);
+  } else {
+    array.download(out);
+  }
+}
+
 template <class Exec>
 struct EngineState {
   int32_t n = 0;
@@ -87,6 +100,14 @@ struct EngineState {
 #define PD_STATE_SAVED(name, Type, length, when, saved, ...) PD_IF_SAVED(saved, f(#name, name, s.name);)
     PD_STATE_FIELDS(PD_STATE_SAVED)
 #undef PD_STATE_SAVED
+  }
+
+  // The fields with a frame role, whole or their xyz part (ParticleState).
+  void read_frame(ParticleState& out) const {
+#define PD_STATE_FRAME(name, Type, length, when, saved, halo, frame) \
+  PD_IF_FRAME(frame, read_frame_field<frame>(name, out.name);)
+    PD_PARTICLE_FIELDS(PD_STATE_FRAME)
+#undef PD_STATE_FRAME
   }
 
   void save(EngineSnapshot& out) {

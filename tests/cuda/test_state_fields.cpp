@@ -109,6 +109,18 @@ TEST(StateFieldsEngine, FieldsARunDoesNotHaveAreEmpty) {
   EXPECT_EQ(s.disp.size(), 64u);
   EXPECT_TRUE(s.state.empty());
   EXPECT_TRUE(s.plastic.empty());
+  // A frame reads back the fields with a frame role: the displacement's xyz, velocity, force and
+  // intact bonds, one per particle.
+  ParticleState frame;
+  engine->read_state(frame);
+  EXPECT_EQ(frame.disp.size(), 64u);
+  EXPECT_EQ(frame.vel.size(), 64u);
+  EXPECT_EQ(frame.force.size(), 64u);
+  ASSERT_EQ(frame.intact.size(), 64u);
+  for (size_t i = 0; i < 64; ++i) {
+    EXPECT_EQ(frame.disp[i].x, s.disp[i].x);
+    EXPECT_EQ(frame.intact[i], s.intact[i]);
+  }
 }
 
 TEST(StateFields, BytesPerParticleAndSlotFollowTheTable) {
