@@ -8,6 +8,8 @@
 # same compiler and comparing the two lists (`diff`); bench/golden/ keeps lists so made.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The tetgen program staged by scripts/stage-deps.sh, on a machine without the package.
+[[ -d .deps/bin ]] && export PATH="$PWD/.deps/bin:$PATH" LD_LIBRARY_PATH="$PWD/.deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 backend=${1:-cpu}
 bin=${2:-build/$backend/perifrac}
 out=${GOLDEN_OUT:-out/golden-$backend}
