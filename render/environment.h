@@ -16,9 +16,9 @@
 
 namespace pd {
 
-// What the kernel reads: linear RGB texels, rows from the zenith down. texel == nullptr: none.
+// What the kernel reads: linear RGB texels, rows from the zenith down. texel empty: none.
 struct EnvironmentView {
-  const Vec3* texel = nullptr;
+  ArrayView<const Vec3> texel;
   int32_t width = 0, height = 0;
 };
 
@@ -47,8 +47,8 @@ PD_HD inline Vec3 environment_radiance(const EnvironmentView& e, Vec3 w) {
   const int32_t x1 = x0 + 1 == e.width ? 0 : x0 + 1;
   const int32_t y0 = fy < 0 ? 0 : (int32_t(fy) >= e.height ? e.height - 1 : int32_t(fy));
   const int32_t y1 = y0 + 1 < e.height && fy >= 0 ? y0 + 1 : y0;
-  const Vec3* r0 = e.texel + int64_t(y0) * e.width;
-  const Vec3* r1 = e.texel + int64_t(y1) * e.width;
+  const ArrayView<const Vec3> r0 = e.texel.sub(int64_t(y0) * e.width, e.width);
+  const ArrayView<const Vec3> r1 = e.texel.sub(int64_t(y1) * e.width, e.width);
   return lerp(lerp(r0[x0], r0[x1], sx), lerp(r1[x0], r1[x1], sx), sy);
 }
 
@@ -59,7 +59,7 @@ struct EnvironmentMap {
   std::vector<Vec3> texel;  // width * height, rows from the zenith down
   Sh9 sh;                   // environment_sh9 of the texels (set by load_environment)
 
-  EnvironmentView view() const { return {texel.data(), width, height}; }
+  EnvironmentView view() const { return {view_of(texel), width, height}; }
 };
 
 // A map that cannot be used: a user mistake (what() names the file and what is allowed).

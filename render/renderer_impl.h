@@ -28,8 +28,8 @@ constexpr int kTileWidth = 8, kTileHeight = 4, kTilePixels = kTileWidth * kTileH
 struct PixelKernelParams {
   KdTreeView tree;
   PrimitivesView prims;
-  const Vec3* albedo = nullptr;
-  const uint8_t* material = nullptr;  // SurfaceMaterial per primitive; null: all opaque
+  ArrayView<const Vec3> albedo;
+  ArrayView<const uint8_t> material;  // SurfaceMaterial per primitive; empty: all opaque
   real ior = real(1.5);               // index of refraction of glass
   real join_gap = 0;                  // union tolerance of touching elements (union_walk.h)
   CameraFrame camera;
@@ -39,7 +39,7 @@ struct PixelKernelParams {
   int32_t tiles_x = 0;
   int64_t tiles = 0;
   int64_t tile_step = 1;          // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
-  uint32_t* ray_count = nullptr;  // per pixel: the rays it traced (nearest-hit queries); null: not kept
+  ArrayView<uint32_t> ray_count;  // per pixel: the rays it traced (nearest-hit queries); empty: not kept
 };
 
 // The nearest primitive or floor crossing of `ray`: hit.prim >= 0 for a primitive; else
@@ -184,14 +184,14 @@ class RendererImpl final : public Renderer {
     p.camera = camera_frame(camera, s.width, s.height);
     p.prims = primitives_view(ps.size(), prims);
     p.tree = {view_of(nodes), view_of(prim_index), scene.tree.bounds};
-    p.albedo = albedo.data();
-    p.material = scene.material.empty() ? nullptr : material.data();
+    p.albedo = view_of(albedo);
+    if (!scene.material.empty()) p.material = view_of(material);
     p.ior = s.ior;
     p.join_gap = scene.join_gap;
     p.spp = s.spp;
     p.exposure = s.exposure;
     p.shading = make_shading_params(s);
-    if (s.environment) p.shading.env = {env.data(), s.environment->width, s.environment->height};
+    if (s.environment) p.shading.env = {view_of(env), s.environment->width, s.environment->height};
     p.tiles_x = (s.width + kTileWidth - 1) / kTileWidth;
     p.tiles = int64_t(p.tiles_x) * ((s.height + kTileHeight - 1) / kTileHeight);
     p.tile_step = std::max<int64_t>(1, std::llround(0.618 * double(p.tiles)));
@@ -200,7 +200,7 @@ class RendererImpl final : public Renderer {
     // Render and read back.
     DeviceArray<uint8_t, Exec> image(&exec_, 3 * size_t(s.width) * size_t(s.height));
     DeviceArray<uint32_t, Exec> ray_count(&exec_, s.count_rays ? size_t(s.width) * size_t(s.height) : 0);
-    if (s.count_rays) p.ray_count = ray_count.data();
+    if (s.count_rays) p.ray_count = view_of(ray_count);
     const auto t0 = std::chrono::steady_clock::now();
     launch_render_pixels(exec_, p, image.data());
     exec_.flush_stats();  // waits for the device and reports kernel errors

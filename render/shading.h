@@ -15,7 +15,7 @@ struct ShadingParams {
   Sky sky;
   Vec3 sun{0, 1, 0};           // normalised sun direction
   Sh9 sky_sh;                  // SH coefficients of the environment's radiance
-  EnvironmentView env;         // an .hdr map in place of the sky; texel == nullptr: the sky
+  EnvironmentView env;         // an .hdr map in place of the sky; texel empty: the sky
   real specular = real(0.04);  // Blinn-Phong k_s
   real shininess = 60;         // Blinn-Phong exponent m
   uint8_t floor = 1;           // draw the floor plane y = floor_y
