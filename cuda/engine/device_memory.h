@@ -5,7 +5,6 @@
 #include <cstddef>
 #include <vector>
 
-#include "cuda/array_view.h"
 #include "cuda/device_array.h"
 
 namespace pd {

@@ -72,11 +72,9 @@ struct EngineState {
   ParticlesView particles() const {
     ParticlesView p;
     p.n = n;
-#define PD_STATE_VIEW(name, Type, length, ...) PD_STATE_VIEW_##length(p, name)
-#define PD_STATE_VIEW_kParticles(v, name) v.name = view_of(name);
-#define PD_STATE_VIEW_kSlots(v, name)
-#define PD_STATE_VIEW_kSlices(v, name)
+#define PD_STATE_VIEW(name, ...) p.name = view_of(name);
     PD_PARTICLE_FIELDS(PD_STATE_VIEW)
+#undef PD_STATE_VIEW
     return p;
   }
 
@@ -89,10 +87,6 @@ struct EngineState {
 #undef PD_STATE_BOND_VIEW
     return b;
   }
-#undef PD_STATE_VIEW
-#undef PD_STATE_VIEW_kParticles
-#undef PD_STATE_VIEW_kSlots
-#undef PD_STATE_VIEW_kSlices
 
   // f(name, array, snapshot vector) for every saved field (save, restore).
   template <class Snapshot, class F>
