@@ -101,7 +101,7 @@ void launch_build_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c,
   ex.parallel_for("pd/contact_extend", p.n, [=] PD_HD(int64_t i) {
     extend_contacts(int32_t(i), p, h, c, mt, quarter_max, overflow, pairs);
   });
-  ex.parallel_for("pd/contact_sort", p.n, [=] PD_HD(int64_t i) { sort_contacts(int32_t(i), c); });
+  ex.parallel_for("pd/contact_sort", p.n, [=] PD_HD(int64_t i) { sort_contacts(int32_t(i), p, c); });
 }
 
 // Kernel 3, over the particles' contact lists.
@@ -204,7 +204,7 @@ template <class Exec>
 void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt, BondsView b) {
   ex.parallel_for("family/fill", p.n, [=] PD_HD(int64_t i) {
     fill_family(int32_t(i), p, h, mt, b);
-    sort_family(int32_t(i), b);
+    sort_family(int32_t(i), p, b);
   });
 }
 

@@ -14,7 +14,8 @@
 //   length  kParticles: one per particle; kSlots: one per bond slot of the sliced-ELL families
 //           (BondsView::slot); kSlices: one per slice of kSliceWidth particles, plus one
 //   when    kForAll; kForStateBased, kForPlastic: state-based / plastic materials only; kForWeakBonds:
-//           scenes whose cuts weaken bonds. Otherwise the array is empty (a null view).
+//           scenes whose cuts weaken bonds; kForPartitioned: runs over several ranks
+//           (cuda/parallel/). Otherwise the array is empty (a null view).
 //   saved   kSaved: a run changes it, so checkpoints save it and a restore puts it back bit for
 //           bit; kDerived: it follows from the scene (or, for plastic_mirror, from `plastic`)
 //   halo    kHaloNone: only the owner reads it; kHaloSetup: a partner's bond or contact reads it
@@ -41,7 +42,7 @@ struct Ledger {
 };
 
 enum FieldLength { kParticles, kSlots, kSlices };
-enum FieldWhen { kForAll, kForStateBased, kForPlastic, kForWeakBonds };
+enum FieldWhen { kForAll, kForStateBased, kForPlastic, kForWeakBonds, kForPartitioned };
 enum FieldSaved { kDerived, kSaved };
 enum FieldHalo { kHaloNone, kHaloSetup, kHaloStep };
 enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
@@ -78,7 +79,9 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
   /* x theta_i (dilatation, set by `init`); y 1/m_i, m_i = sum_j omega |xi|^2 beta V_j over the  */  \
   /* initial family; z phi_i = 1 - intact/initial bonds of the last step (damage, set by `init`); */ \
   /* w (plastic materials) the trial deviatoric norm |t^d| that `plasticity` tests (`init`)       */ \
-  X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep, kFrameNone)
+  X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep, kFrameNone)                         \
+  /* index of the particle in the whole run, which orders families and contact lists (order_of) */   \
+  X(global_id, const int32_t, kParticles, kForPartitioned, kDerived, kHaloNone, kFrameNone)
 
 // Per bond slot (BondsView), in sliced-ELL layout.
 #define PD_BOND_FIELDS(X)                                                                          \
@@ -119,10 +122,10 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
 // Bytes a particle's own arrays take (every field of length kParticles that exists for a run
 // with these features).
 struct FieldNeeds {
-  bool state_based = false, plastic = false, weak_bonds = false;
+  bool state_based = false, plastic = false, weak_bonds = false, partitioned = false;
   constexpr bool operator()(FieldWhen w) const {
     return w == kForAll || (w == kForStateBased && state_based) || (w == kForPlastic && plastic) ||
-           (w == kForWeakBonds && weak_bonds);
+           (w == kForWeakBonds && weak_bonds) || (w == kForPartitioned && partitioned);
   }
 };
 

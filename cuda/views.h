@@ -81,6 +81,12 @@ struct BondsView {
 };
 #undef PD_VIEW_MEMBER
 
+// The order families and contact lists keep partners in: the particle's index in the whole run
+// (its own index, unless the run is partitioned), so sums over them do not depend on the ranks.
+PD_HD inline int32_t order_of(const ParticlesView& p, int32_t j) {
+  return p.global_id ? p.global_id[j] : j;
+}
+
 PD_HD inline bool bond_intact(int32_t nb) {
   return nb >= 0;
 }

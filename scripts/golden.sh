@@ -6,6 +6,8 @@
 #   scripts/golden.sh [cpu|cuda] [BINARY] > sums.txt
 # A change that must not move results is checked by running this before and after it with the
 # same compiler and comparing the two lists (`diff`); bench/golden/ keeps lists so made.
+# GOLDEN_LAUNCH (e.g. "mpirun -np 3") starts the runs through a launcher, GOLDEN_RUN_ARGS adds
+# options to every run (scripts/mpi-equivalence.sh compares ranks this way).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # The tetgen program staged by scripts/stage-deps.sh, on a machine without the package.
@@ -26,7 +28,7 @@ cases=(
 )
 for c in "${cases[@]}"; do
   read -r name scene scale frames spf <<<"$c"
-  "$bin" run "$scene" --backend "$backend" --scale "$scale" --frames "$frames" --steps-per-frame "$spf" \
+  ${GOLDEN_LAUNCH:-} "$bin" run "$scene" ${GOLDEN_RUN_ARGS:-} --backend "$backend" --scale "$scale" --frames "$frames" --steps-per-frame "$spf" \
     --out "$out/$name" >"$out/$name.log" 2>&1 || { echo "golden: $name failed, see $out/$name.log" >&2; exit 1; }
   "$bin" render "$out/$name" --backend "$backend" --width 96 --height 64 --spp 1 >>"$out/$name.log" 2>&1 ||
     { echo "golden: rendering $name failed, see $out/$name.log" >&2; exit 1; }

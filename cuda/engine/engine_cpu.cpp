@@ -5,6 +5,7 @@
 
 #include "cuda/engine/engine_impl.h"
 #include "cuda/exec_cpu.h"
+#include "cuda/parallel/partitioned_engine.h"
 
 namespace pd {
 
@@ -23,6 +24,7 @@ std::string cpu_description() {
 }  // namespace
 
 std::unique_ptr<Engine> make_cpu_engine(const SimulationInput& in) {
+  if (auto world = world_comm()) return make_partitioned_engine<CpuExec>(in, world, cpu_description());
   return std::make_unique<EngineImpl<CpuExec>>(in, cpu_description());
 }
 

@@ -3,6 +3,7 @@
 
 #include "cuda/engine/engine_impl.h"
 #include "cuda/exec_cuda.cuh"
+#include "cuda/parallel/partitioned_engine.h"
 
 namespace pd {
 
@@ -37,14 +38,22 @@ void profiler_range_pop() {
 std::unique_ptr<Engine> make_cuda_engine(const SimulationInput& in) {
   std::string why;
   if (!cuda_device_available(&why)) throw std::runtime_error("CUDA backend unavailable: " + why);
+  // A partitioned run: each rank of a host takes the next GPU (several ranks share one when the
+  // host has fewer GPUs than ranks).
+  const std::shared_ptr<Comm> world = world_comm();
+  int device = 0, devices = 1;
+  cuda_check(cudaGetDeviceCount(&devices), "cudaGetDeviceCount");
+  if (world) device = world->local_rank() % devices;
+  cuda_check(cudaSetDevice(device), "cudaSetDevice");
   cudaDeviceProp prop{};
-  cuda_check(cudaGetDeviceProperties(&prop, 0), "cudaGetDeviceProperties");
+  cuda_check(cudaGetDeviceProperties(&prop, device), "cudaGetDeviceProperties");
   int driver = 0;
   cudaDriverGetVersion(&driver);
   const std::string name = std::string(prop.name) + " (sm_" + std::to_string(prop.major) +
                            std::to_string(prop.minor) + ", " + std::to_string(prop.multiProcessorCount) +
                            " SMs, driver API " + std::to_string(driver / 1000) + "." +
                            std::to_string(driver % 1000 / 10) + ")";
+  if (world) return make_partitioned_engine<CudaExec>(in, world, name);
   return std::make_unique<EngineImpl<CudaExec>>(in, name);
 }
 

@@ -13,13 +13,18 @@
 #include "cuda/engine/engine_state.h"
 #include "cuda/engine/family_builder.h"
 #include "cuda/launch.h"
+#include "cuda/parallel/halo.h"
 
 namespace pd {
 
 template <class Exec>
 class EngineImpl final : public Engine {
  public:
-  EngineImpl(const SimulationInput& in, std::string device)
+  // One rank of a partitioned run when `rank` is given (cuda/parallel/partitioned_engine.h): `in`
+  // holds the rank's particles in its layout's order, its own first; the kernels of a step run
+  // over those, and the ghosts after them are refreshed from their owners through `comm`.
+  EngineImpl(const SimulationInput& in, std::string device, const RankLayout* rank = nullptr,
+             Comm* comm = nullptr)
       : exec_(&stats_),
         mem_(&exec_),
         device_(std::move(device)),
@@ -30,10 +35,16 @@ class EngineImpl final : public Engine {
         screen_(in.screen) {
     features_ = features_of(materials_, contact_);
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");
-    state_.upload(mem_, in.particles, FieldNeeds{features_.state_based, features_.plastic, false});
-    build_families(mem_, state_, materials_, features_, backend(), family_);
-    if (!in.cuts.empty()) features_.weak_bonds = apply_cuts(mem_, state_, in, family_);
-    if (in.lattice_families)
+    state_.upload(mem_, in.particles, FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr});
+    owned_ = state_.n;
+    if (rank) {
+      owned_ = rank->owned;
+      state_.global_id.upload(rank->global);
+      halo_ = Halo<Exec>(mem_, *rank, *comm);
+    }
+    build_families(mem_, state_, owned_, materials_, features_, backend(), family_);
+    if (!in.cuts.empty()) features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_);
+    if (in.lattice_families && !rank)  // (lattice offsets are indices of the whole run)
       features_.lattice = build_lattice_families(mem_, state_, in.particles, materials_, features_.weak_bonds,
                                                  lattice_, family_);
     critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_);
@@ -83,7 +94,7 @@ class EngineImpl final : public Engine {
     if (reduce_non_finite(exec_, particles()) == 0) return -1;
     ParticleState s;
     read_state(s);
-    for (int32_t i = 0; i < state_.n; ++i)
+    for (int32_t i = 0; i < owned_; ++i)
       if (!is_finite(s.disp[i]) || !is_finite(s.vel[i]) || !is_finite(s.force[i])) return i;
     return -1;
   }
@@ -111,8 +122,54 @@ class EngineImpl final : public Engine {
     contacts_.invalidate();
   }
 
+  // A partitioned rank's part of the collective calls (cuda/parallel/partitioned_engine.h).
+  int32_t owned() const { return owned_; }
+  // Each own particle's energy terms, in local order.
+  std::vector<Energy> owned_energies() {
+    if (contact_) contacts_.refresh(mem_, particles(), materials_, step_params_.dt);
+    auto terms = mem_.template make<Energy>(size_t(owned_));
+    const ArrayView<Energy> out = view_of(terms);
+    const ParticlesView p = particles();
+    const BondsView b = bonds();
+    const ContactView c = contact_view();
+    const MaterialTable mt = materials_;
+    const StepParams sp = step_params_;
+    const bool contact = contact_;
+    exec_.parallel_for("stats/energy_terms", owned_, [=] PD_HD(int64_t i) {
+      out[i] = particle_energy(int32_t(i), p, b, c, mt, sp, contact);
+    });
+    std::vector<Energy> host;
+    terms.download(host);
+    mem_.drop(terms);
+    return host;
+  }
+  // The sum of the whole run's terms, in global order, as `energy` adds one rank's.
+  Energy sum_energies(const std::vector<Energy>& terms) {
+    auto all = mem_.make_from(terms);
+    const ArrayView<const Energy> in = view_of(all);
+    const Energy total = exec_.template reduce_sum<Energy>("stats/energy", int64_t(terms.size()),
+                                                          [=] PD_HD(int64_t i) { return in[i]; });
+    mem_.drop(all);
+    return total;
+  }
+  // A restore whose plastic mirror (the partners' history, not all held here) comes with it.
+  void restore_with_mirror(const EngineSnapshot& in, const std::vector<real>& plastic_mirror) {
+    state_.check_sizes(in);
+    step_ = in.step;
+    time_ = in.time;
+    motion_.apply(time_, step_params_);
+    state_.upload_saved(in);
+    if (features_.plastic) state_.plastic_mirror.upload(plastic_mirror);
+    contacts_.invalidate();
+  }
+
  private:
-  ParticlesView particles() const { return state_.particles(); }
+  // The particles the kernels of a step run over: all, or a partitioned rank's own.
+  ParticlesView particles() const {
+    ParticlesView p = state_.particles();
+    p.n = owned_;
+    return p;
+  }
   BondsView bonds() const {
     BondsView b = state_.bonds();
     b.lattice = lattice_.view();
@@ -132,8 +189,15 @@ class EngineImpl final : public Engine {
   void compute_forces() {
     const ParticlesView p = particles();
     const BondsView b = bonds();
+    // A partitioned rank's ghosts: positions before `init` sums dilatations over partners, and
+    // what `springforces` reads of a partner (strain limit, dilatation, damage) after it.
+    if (halo_.active() && features_.state_based) halo_.exchange(state_.disp);
     launch_init(exec_, p, b, materials_, features_);
     if (features_.plastic) launch_plasticity(exec_, p, materials_);
+    if (halo_.active()) {
+      halo_.exchange(state_.disp);
+      if (features_.state_based) halo_.exchange(state_.state);
+    }
     queue_springforces(p, b);
     if (contact_) {  // after springforces is queued: waiting for position_update's flag idles nothing
       if (contacts_.refresh(mem_, p, materials_, step_params_.dt))
@@ -182,6 +246,8 @@ class EngineImpl final : public Engine {
   double time_ = 0;
   double critical_dt_ = 0;
   FamilyStats family_;
+  int32_t owned_ = 0;  // particles the step kernels run over (ParticlesView::n)
+  Halo<Exec> halo_;    // a partitioned rank's ghost refresh (inactive otherwise)
 
   EngineState<Exec> state_;
   LatticeState<Exec> lattice_;

@@ -53,13 +53,14 @@ BondLists download_bonds(const EngineState<Exec>& s) {
   return out;
 }
 
-// Counts, smallest, largest and mean family of the families as stored.
-inline void count_family_stats(FamilyStats& family, const std::vector<int32_t>& counts) {
-  family.min = *std::min_element(counts.begin(), counts.end());
-  family.max = *std::max_element(counts.begin(), counts.end());
+// Counts, smallest, largest and mean family of the first `owned` families as stored.
+inline void count_family_stats(FamilyStats& family, const std::vector<int32_t>& counts, int32_t owned) {
+  const auto end = counts.begin() + owned;
+  family.min = owned > 0 ? *std::min_element(counts.begin(), end) : 0;
+  family.max = owned > 0 ? *std::max_element(counts.begin(), end) : 0;
   family.bonds = 0;
-  for (int32_t c : counts) family.bonds += c;
-  family.mean = double(family.bonds) / double(counts.size());
+  for (auto c = counts.begin(); c != end; ++c) family.bonds += *c;
+  family.mean = owned > 0 ? double(family.bonds) / double(owned) : 0;
 }
 
 // The bond arrays are the bulk of the memory: refused with a clear message, before they are
@@ -78,18 +79,21 @@ void check_bond_memory(int64_t slots, int32_t n, const KernelFeatures& features,
 }
 
 // Partners within each particle's horizon (plus the partial-volume reach), in the order the
-// kernels visit them; `count` and `intact` start as the family sizes.
+// kernels visit them; `count` and `intact` start as the family sizes. Families are built for the
+// first `owned` particles (a partitioned rank's own; the ghosts after them have none) from every
+// particle the state holds.
 template <class Exec>
-void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, const MaterialTable& materials,
+void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned, const MaterialTable& materials,
                     const KernelFeatures& features, Backend backend, FamilyStats& family) {
   Exec& exec = mem.exec();
   real horizon = 0;
   for (int m = 0; m < materials.count; ++m) horizon = std::max(horizon, materials.m[m].family_radius());
   SpatialHash<Exec> hash;
   hash.allocate(mem, s.n, real(horizon * (1.0 + 2 * kHorizonSlack)));
-  const ParticlesView p = s.particles();
+  ParticlesView p = s.particles();
   launch_reset_bins(exec, "family/reset", hash.view(true));
   launch_collection<false>(exec, "family/collection", p, hash.view(false), hash.view(true));
+  p.n = owned;
 
   launch_count_family(exec, p, hash.view(true), materials, s.count.data());
   const int64_t slices = (int64_t(s.n) + kSliceWidth - 1) / kSliceWidth;
@@ -108,7 +112,7 @@ void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, const Materia
   std::vector<int32_t> counts;
   s.count.download(counts);
   family.slots = slots;
-  count_family_stats(family, counts);
+  count_family_stats(family, counts, owned);
   s.intact.upload(counts);
 }
 
@@ -116,7 +120,7 @@ void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, const Materia
 // host) or keep a strength factor, before anything is derived from the families. Returns
 // whether some bond was weakened (the `strength` field then exists).
 template <class Exec>
-bool apply_cuts(DeviceMemory<Exec>& mem, EngineState<Exec>& s, const SimulationInput& in,
+bool apply_cuts(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned, const SimulationInput& in,
                 FamilyStats& family) {
   BondLists lists = download_bonds(s);
   std::vector<uint8_t> strength;
@@ -124,7 +128,7 @@ bool apply_cuts(DeviceMemory<Exec>& mem, EngineState<Exec>& s, const SimulationI
   s.neighbor.upload(lists.neighbor);
   s.count.upload(lists.count);
   s.intact.upload(lists.count);
-  count_family_stats(family, lists.count);
+  count_family_stats(family, lists.count, owned);
   if (strength.empty()) return false;
   s.strength = mem.make_from(strength);
   return true;

@@ -99,7 +99,7 @@ PD_HD inline void build_contacts(int32_t s, ParticlesView p, HashView h, Contact
 
 // Pass 2 per particle, for the particles whose skin exceeds the one at rest: the pairs beyond the
 // first pass's reach but within the pair's contact distance plus both skins, added to both lists
-// (between two such particles by the one of lower index). The search covers every cell within
+// (between two such particles by the one of lower index, order_of). The search covers every cell within
 // the largest such reach.
 PD_HD inline void extend_contacts(int32_t f, ParticlesView p, HashView h, ContactView c,
                                   const MaterialTable& mt, real quarter_max, int32_t* overflow,
@@ -120,7 +120,7 @@ PD_HD inline void extend_contacts(int32_t f, ParticlesView p, HashView h, Contac
           const int32_t j = h.sorted[t];
           if (j == f || within_contact_reach(rf, rt, 2 * c.base)) return;  // listed by pass 1
           const real skin_j = c.origin[j].w;
-          if (skin_j > c.base && j < f) return;  // listed from j
+          if (skin_j > c.base && order_of(p, j) < order_of(p, f)) return;  // listed from j
           if (!within_contact_reach(rf, rt, skin_f + skin_j)) return;
           append_contact(f, j, c, overflow);
           append_contact(j, f, c, overflow);
@@ -129,15 +129,17 @@ PD_HD inline void extend_contacts(int32_t f, ParticlesView p, HashView h, Contac
       }
 }
 
-// Pass 3 per particle: its list sorted by index, so that its contact forces add up in one order
-// whatever the hash and the appends did (CPU and GPU, a resumed run and an uninterrupted one).
-PD_HD inline void sort_contacts(int32_t i, ContactView c) {
+// Pass 3 per particle: its list sorted by index (order_of), so that its contact forces add up in
+// one order whatever the hash and the appends did (CPU and GPU, a resumed run and an
+// uninterrupted one, one rank or several).
+PD_HD inline void sort_contacts(int32_t i, const ParticlesView& p, ContactView c) {
   const int32_t count = c.count[i];
   if (count > c.capacity) return;  // overflowed: built again
   for (int32_t k = 1; k < count; ++k) {
     const int32_t j = c.partner[c.slot(i, k)];
+    const int32_t key = order_of(p, j);
     int32_t q = k;
-    for (; q > 0 && c.partner[c.slot(i, q - 1)] > j; --q)
+    for (; q > 0 && order_of(p, c.partner[c.slot(i, q - 1)]) > key; --q)
       c.partner[c.slot(i, q)] = c.partner[c.slot(i, q - 1)];
     c.partner[c.slot(i, q)] = j;
   }

@@ -49,13 +49,15 @@ PD_HD inline void fill_family(int32_t i, ParticlesView p, HashView h, const Mate
   for_each_family_member(i, p, h, mt, [&](int32_t j) { b.neighbor[b.slot(i, k++)] = j; });
 }
 
-// Families are kept in ascending partner order (an insertion sort of the few hundred slots, once
-// at set-up): the order lattice families walk their stencils in (host/lattice_families.h).
-PD_HD inline void sort_family(int32_t i, BondsView b) {
+// Families are kept in ascending partner order (order_of; an insertion sort of the few hundred
+// slots, once at set-up): the order lattice families walk their stencils in
+// (host/lattice_families.h).
+PD_HD inline void sort_family(int32_t i, const ParticlesView& p, BondsView b) {
   for (int32_t k = 1; k < b.count[i]; ++k) {
     const int32_t j = b.neighbor[b.slot(i, k)];
+    const int32_t key = order_of(p, j);
     int32_t q = k;
-    for (; q > 0 && b.neighbor[b.slot(i, q - 1)] > j; --q)
+    for (; q > 0 && order_of(p, b.neighbor[b.slot(i, q - 1)]) > key; --q)
       b.neighbor[b.slot(i, q)] = b.neighbor[b.slot(i, q - 1)];
     b.neighbor[b.slot(i, q)] = j;
   }

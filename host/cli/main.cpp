@@ -10,6 +10,7 @@
 
 #include "cuda/engine/engine.h"
 #include "cuda/engine/memory_budget.h"
+#include "cuda/parallel/comm.h"
 #include "host/app/bench.h"
 #include "host/app/bench_fragments.h"
 #include "host/app/bench_geometry.h"
@@ -76,6 +77,8 @@ void add_run(CLI::App& app, int* exit_code) {
   cmd->add_option("--out", run->out, "output folder (default: out/<scene name>)");
   cmd->add_option("--scale", run->scale, "particle-count factor, e.g. 0.05 for a small CPU run");
   cmd->add_flag("--allow-unstable-dt", run->allow_unstable_dt, "run even if dt exceeds the stable time step");
+  cmd->add_flag("--explicit-families", run->explicit_families,
+                "listed families for box-grid bodies too (as on several ranks: the same bits on one)");
   cmd->add_option("--blend-frames", run->blend_frames,
                   "blend a split fragment's transform over N frames (0: off)")
       ->check(CLI::NonNegativeNumber);
@@ -322,6 +325,18 @@ void add_info(CLI::App& app, int* exit_code) {
 
 int main(int argc, char** argv) {
   using namespace pd;
+  // Under mpirun, rank 0 runs the command and the engine's other ranks serve it
+  // (cuda/parallel/partitioned_engine.h): they print nothing but errors.
+  if (const auto world = world_comm()) {
+    const std::string command = argc > 1 ? argv[1] : "";
+    if (command != "run" && command != "bench") {
+      if (world->rank() == 0)
+        std::fprintf(stderr, "error: under mpirun only `perifrac run` and `perifrac bench` use the ranks; "
+                             "start `perifrac %s` without mpirun\n", command.c_str());
+      return int(kExitUsage);
+    }
+    if (world->rank() != 0 && !std::freopen("/dev/null", "w", stdout)) return int(kExitRuntime);
+  }
   CLI::App app{"perifrac: peridynamic fracture simulation on GPU and CPU"};
   app.set_version_flag("--version", std::string("perifrac ") + PERIFRAC_VERSION);
   app.require_subcommand(1);
@@ -331,5 +346,6 @@ int main(int argc, char** argv) {
                          add_bench_fragments, add_profile, add_validate, add_render, add_compare, add_info})
     add(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
+  leave_world();
   return exit_code;
 }

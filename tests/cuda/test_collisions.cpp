@@ -143,7 +143,7 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
     int32_t overflow = 0, pairs = 0;
     for (int32_t s = 0; s < n; ++s) build_contacts(s, p, h, c, &overflow, &pairs);
     for (int32_t i = 0; i < n; ++i) extend_contacts(i, p, h, c, mt, quarter_max, &overflow, &pairs);
-    for (int32_t i = 0; i < n; ++i) sort_contacts(i, c);
+    for (int32_t i = 0; i < n; ++i) sort_contacts(i, p, c);
     EXPECT_EQ(overflow, capacity == 4 ? 1 : 0) << "room for " << capacity;
     EXPECT_EQ(pairs, 1);
   }

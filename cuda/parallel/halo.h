@@ -1,0 +1,85 @@
+// The halo exchange of a partitioned run: each rank sends its own particles' values of a field to
+// the ranks that hold them as ghosts, and receives its ghosts' values from their owners. Packed
+// and unpacked by kernels on the backend, sent as one message per peer (cuda/parallel/comm.h);
+// from the GPU, through host buffers.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cuda/engine/device_memory.h"
+#include "cuda/parallel/comm.h"
+#include "cuda/parallel/partition.h"
+
+namespace pd {
+
+template <class Exec>
+class Halo {
+ public:
+  Halo() = default;
+  Halo(DeviceMemory<Exec>& mem, const RankLayout& layout, Comm& comm) : exec_(&mem.exec()), comm_(&comm) {
+    std::vector<int32_t> send, recv;
+    concatenate(layout.send, send, send_first_);
+    concatenate(layout.recv, recv, recv_first_);
+    send_index_ = mem.make_from(send);
+    recv_index_ = mem.make_from(recv);
+  }
+
+  bool active() const { return comm_ != nullptr; }
+  int64_t bytes_sent() const { return bytes_sent_; }
+  int64_t exchanges() const { return exchanges_; }
+
+  // Every ghost's entry of `field` replaced by its owner's.
+  template <class T>
+  void exchange(DeviceArray<T, Exec>& field) {
+    const int64_t sends = int64_t(send_index_.size()), recvs = int64_t(recv_index_.size());
+    reserve(sends * int64_t(sizeof(T)), send_buffer_);
+    reserve(recvs * int64_t(sizeof(T)), recv_buffer_);
+    const ArrayView<const int32_t> send_index = view_of(send_index_), recv_index = view_of(recv_index_);
+    const ArrayView<T> values = view_of(field);
+    const ArrayView<T> packed{reinterpret_cast<T*>(send_buffer_.data()), sends};
+    exec_->parallel_for("halo/pack", sends, [=] PD_HD(int64_t k) { packed[k] = values[send_index[k]]; });
+    std::vector<std::vector<char>> out(size_t(comm_->size())), in(size_t(comm_->size()));
+    std::vector<char> host(size_t(sends) * sizeof(T));
+    if (sends > 0) exec_->download(host.data(), send_buffer_.data(), host.size());
+    for (size_t r = 0; r < out.size(); ++r) {
+      out[r].assign(host.begin() + std::ptrdiff_t(send_first_[r] * int64_t(sizeof(T))),
+                    host.begin() + std::ptrdiff_t(send_first_[r + 1] * int64_t(sizeof(T))));
+      in[r].resize(size_t(recv_first_[r + 1] - recv_first_[r]) * sizeof(T));
+    }
+    comm_->exchange(out, in);
+    host.resize(size_t(recvs) * sizeof(T));
+    for (size_t r = 0; r < in.size(); ++r)
+      std::copy(in[r].begin(), in[r].end(), host.begin() + std::ptrdiff_t(recv_first_[r] * int64_t(sizeof(T))));
+    if (recvs > 0) exec_->upload(recv_buffer_.data(), host.data(), host.size());
+    const ArrayView<const T> unpacked{reinterpret_cast<const T*>(recv_buffer_.data()), recvs};
+    exec_->parallel_for("halo/unpack", recvs, [=] PD_HD(int64_t k) { values[recv_index[k]] = unpacked[k]; });
+    bytes_sent_ += sends * int64_t(sizeof(T));
+    ++exchanges_;
+  }
+
+ private:
+  static void concatenate(const std::vector<std::vector<int32_t>>& lists, std::vector<int32_t>& all,
+                          std::vector<int64_t>& first) {
+    first.assign(lists.size() + 1, 0);
+    for (size_t r = 0; r < lists.size(); ++r) {
+      all.insert(all.end(), lists[r].begin(), lists[r].end());
+      first[r + 1] = int64_t(all.size());
+    }
+  }
+
+  // A byte buffer of at least `bytes` (grown, never shrunk), 16-byte aligned as the backend allocates.
+  void reserve(int64_t bytes, DeviceArray<char, Exec>& buffer) {
+    if (int64_t(buffer.size()) >= bytes) return;
+    buffer = DeviceArray<char, Exec>(exec_, size_t(bytes));
+  }
+
+  Exec* exec_ = nullptr;
+  Comm* comm_ = nullptr;
+  DeviceArray<int32_t, Exec> send_index_, recv_index_;
+  std::vector<int64_t> send_first_, recv_first_;
+  DeviceArray<char, Exec> send_buffer_, recv_buffer_;
+  int64_t bytes_sent_ = 0, exchanges_ = 0;
+};
+
+}  // namespace pd

@@ -1,0 +1,143 @@
+#include "cuda/parallel/partition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace pd {
+
+namespace {
+
+// Bonds a particle is expected to have: the particles of its volume that fit in its family's ball.
+double expected_bonds(const ParticleSet& ps, const MaterialTable& mt, size_t i) {
+  const double r = double(mt.m[ps.material[i]].family_radius());
+  return std::max(1.0, 4.18879020478639098 * r * r * r / std::max(double(ps.volume[i]), 1e-300));
+}
+
+struct Box {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  void add(const Vec3& p) {
+    const double c[3] = {p.x, p.y, p.z};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  }
+  bool contains(const Vec3& p, double margin) const {
+    const double c[3] = {p.x, p.y, p.z};
+    for (int a = 0; a < 3; ++a)
+      if (c[a] < lo[a] - margin || c[a] > hi[a] + margin) return false;
+    return true;
+  }
+};
+
+double coordinate(const Vec3& p, int axis) {
+  return axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+}
+
+// Recursive coordinate bisection of `ids` over ranks [first, first + count): split across the
+// box's longest side where the expected bonds divide as the ranks do.
+void bisect(const ParticleSet& ps, const std::vector<double>& weight, std::vector<int32_t> ids, int first,
+            int count, Partition& out) {
+  if (count == 1 || ids.empty()) {
+    for (int32_t i : ids) out.owner[size_t(i)] = first;
+    return;
+  }
+  Box box;
+  for (int32_t i : ids) box.add(ps.rest[size_t(i)]);
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
+  std::sort(ids.begin(), ids.end(), [&](int32_t a, int32_t b) {
+    const double ca = coordinate(ps.rest[size_t(a)], axis), cb = coordinate(ps.rest[size_t(b)], axis);
+    return ca < cb || (ca == cb && a < b);
+  });
+  const int left = count / 2;
+  double total = 0;
+  for (int32_t i : ids) total += weight[size_t(i)];
+  const double target = total * double(left) / double(count);
+  size_t cut = 0;
+  for (double sum = 0; cut < ids.size() && sum + 0.5 * weight[size_t(ids[cut])] < target; ++cut)
+    sum += weight[size_t(ids[cut])];
+  std::vector<int32_t> low(ids.begin(), ids.begin() + std::ptrdiff_t(cut));
+  std::vector<int32_t> high(ids.begin() + std::ptrdiff_t(cut), ids.end());
+  ids = {};
+  bisect(ps, weight, std::move(low), first, left, out);
+  bisect(ps, weight, std::move(high), first + left, count - left, out);
+}
+
+}  // namespace
+
+Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, int ranks) {
+  const size_t n = ps.size();
+  Partition p;
+  p.ranks = ranks;
+  p.owner.assign(n, 0);
+  std::vector<double> weight(n);
+  for (size_t i = 0; i < n; ++i) weight[i] = expected_bonds(ps, mt, i);
+  std::vector<int32_t> ids(n);
+  std::iota(ids.begin(), ids.end(), 0);
+  bisect(ps, weight, std::move(ids), 0, ranks, p);
+
+  p.owned.assign(size_t(ranks), {});
+  for (size_t i = 0; i < n; ++i) p.owned[size_t(p.owner[i])].push_back(int32_t(i));
+  // A rank's ghosts: every other rank's particle within the largest family radius (with room for
+  // round-off) of the box around its own. A superset of the partners its families find.
+  double reach = 0;
+  for (int m = 0; m < mt.count; ++m) reach = std::max(reach, double(mt.m[m].family_radius()));
+  reach *= 1.0 + 1e-4;
+  std::vector<Box> boxes(static_cast<size_t>(ranks));
+  for (size_t i = 0; i < n; ++i) boxes[size_t(p.owner[i])].add(ps.rest[i]);
+  p.ghosts.assign(size_t(ranks), {});
+  for (size_t i = 0; i < n; ++i)
+    for (int r = 0; r < ranks; ++r)
+      if (r != p.owner[i] && boxes[size_t(r)].contains(ps.rest[i], reach)) p.ghosts[size_t(r)].push_back(int32_t(i));
+  return p;
+}
+
+RankLayout rank_layout(const Partition& p, int rank) {
+  RankLayout l;
+  l.rank = rank;
+  const auto& own = p.owned[size_t(rank)];
+  const auto& ghosts = p.ghosts[size_t(rank)];
+  l.owned = int32_t(own.size());
+  l.global = own;
+  l.global.insert(l.global.end(), ghosts.begin(), ghosts.end());
+  l.send.assign(size_t(p.ranks), {});
+  l.recv.assign(size_t(p.ranks), {});
+  for (int s = 0; s < p.ranks; ++s) {
+    if (s == rank) continue;
+    for (int32_t g : p.ghosts[size_t(s)])
+      if (p.owner[size_t(g)] == rank)
+        l.send[size_t(s)].push_back(int32_t(std::lower_bound(own.begin(), own.end(), g) - own.begin()));
+  }
+  for (size_t k = 0; k < ghosts.size(); ++k)
+    l.recv[size_t(p.owner[size_t(ghosts[k])])].push_back(l.owned + int32_t(k));
+  return l;
+}
+
+ParticleSet local_particles(const ParticleSet& all, const RankLayout& layout) {
+  ParticleSet ps;
+  ps.reserve(layout.global.size());
+  const bool anchors = all.anchor.size() == all.size();
+  for (int32_t g : layout.global) {
+    const size_t i = size_t(g);
+    ps.add(all.rest[i], all.velocity[i], all.volume[i], all.mass[i], all.strain_limit0[i], all.material[i],
+           all.body[i], all.flags[i], anchors ? all.anchor[i] : uint8_t(0));
+  }
+  return ps;
+}
+
+PartitionBalance partition_balance(const Partition& p, const ParticleSet& ps, const MaterialTable& mt) {
+  PartitionBalance b;
+  b.particles.assign(size_t(p.ranks), 0);
+  b.ghosts.assign(size_t(p.ranks), 0);
+  b.weight.assign(size_t(p.ranks), 0);
+  for (int r = 0; r < p.ranks; ++r) {
+    b.particles[size_t(r)] = int64_t(p.owned[size_t(r)].size());
+    b.ghosts[size_t(r)] = int64_t(p.ghosts[size_t(r)].size());
+    for (int32_t i : p.owned[size_t(r)]) b.weight[size_t(r)] += expected_bonds(ps, mt, size_t(i));
+  }
+  const double mean = std::accumulate(b.weight.begin(), b.weight.end(), 0.0) / double(p.ranks);
+  b.imbalance = mean > 0 ? *std::max_element(b.weight.begin(), b.weight.end()) / mean : 1;
+  return b;
+}
+
+}  // namespace pd

@@ -1,0 +1,413 @@
+// A run over several ranks (MPI; one GPU or one CPU socket each) that answers as one engine of
+// the whole run. Every rank builds the same input, partitions it the same way
+// (cuda/parallel/partition.h) and runs an EngineImpl over its own particles and their ghosts,
+// whose halo is refreshed inside the step. Rank 0 drives: the program runs there as it does
+// with one rank, and each Engine call is broadcast as a command that every rank carries out
+// together (gathers, reductions). The other ranks only serve those commands.
+//
+// The same bits as one rank: families and contact lists keep partners in global index order
+// (order_of), so every per-particle sum runs in the order of the one-rank run; the energy is
+// summed on rank 0 over the gathered per-particle terms by the same reduction; frames, bonds and
+// snapshots are gathered into the one-rank layout (a checkpoint resumes on any number of ranks).
+#pragma once
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cuda/engine/engine_impl.h"
+#include "cuda/parallel/comm.h"
+#include "cuda/parallel/partition.h"
+
+namespace pd {
+
+template <class Exec>
+class PartitionedEngine final : public Engine {
+ public:
+  PartitionedEngine(const SimulationInput& in, std::shared_ptr<Comm> comm, const std::string& device)
+      : comm_(std::move(comm)), n_(int64_t(in.particles.size())) {
+    partition_ = partition_particles(in.particles, in.materials, comm_->size());
+    layout_ = rank_layout(partition_, comm_->rank());
+    SimulationInput local_input;
+    local_input.particles = local_particles(in.particles, layout_);
+    local_input.materials = in.materials;
+    local_input.step = in.step;
+    local_input.motion = in.motion;
+    local_input.cuts = in.cuts;
+    local_input.contact = in.contact;
+    local_input.lattice_families = false;
+    local_input.screen = in.screen;
+    if (local_input.particles.size() == 0)
+      throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " + std::to_string(comm_->size()) +
+                               " holds no particle: run on fewer ranks");
+    local_ = std::make_unique<EngineImpl<Exec>>(local_input, device, &layout_, comm_.get());
+    global_families();
+    device_ = local_->device_name() + " x " + std::to_string(comm_->size()) + " ranks";
+    critical_dt_ = comm_->min(local_->critical_time_step());
+    memory_ = size_t(comm_->sum(int64_t(local_->memory_bytes())));
+    if (comm_->rank() == 0) report_balance(in);
+  }
+
+  ~PartitionedEngine() override {
+    if (comm_->rank() == 0) command(Op::kFinish);
+  }
+
+  // A rank other than 0: carries out rank 0's commands until it finishes.
+  void serve() {
+    for (;;) {
+      int64_t message[2] = {0, 0};
+      comm_->broadcast(message, sizeof(message), 0);
+      const Op op = Op(message[0]);
+      if (op == Op::kFinish) return;
+      perform(op, message[1]);
+    }
+  }
+
+  Backend backend() const override { return local_->backend(); }
+  std::string device_name() const override { return device_; }
+  const FamilyStats& family_stats() const override { return family_; }
+  void advance(int64_t steps) override { command(Op::kAdvance, steps); }
+  int64_t step() const override { return local_->step(); }
+  double time() const override { return local_->time(); }
+  void read_state(ParticleState& out) override {
+    command(Op::kReadState);
+    out = std::move(state_out_);
+  }
+  void read_bonds(BondLists& out) override {
+    command(Op::kReadBonds);
+    out = std::move(bonds_out_);
+  }
+  int64_t broken_bonds() override {
+    command(Op::kBroken);
+    return count_out_;
+  }
+  Energy energy() override {
+    command(Op::kEnergy);
+    return energy_out_;
+  }
+  int64_t first_non_finite() override {
+    command(Op::kNonFinite);
+    return count_out_;
+  }
+  KernelStats& stats() override { return local_->stats(); }
+  void save(EngineSnapshot& out) override {
+    command(Op::kSave);
+    out = std::move(snapshot_);
+  }
+  void restore(const EngineSnapshot& in) override {
+    check_global_sizes(in);
+    snapshot_ = in;
+    command(Op::kRestore);
+    snapshot_ = {};
+  }
+  double critical_time_step() const override { return critical_dt_; }
+  size_t memory_bytes() const override { return memory_; }
+  int64_t force_passes() const override { return local_->force_passes(); }
+  int64_t screened_passes() const override { return local_->screened_passes(); }
+
+ private:
+  enum class Op : int64_t { kFinish, kAdvance, kReadState, kReadBonds, kBroken, kEnergy, kNonFinite, kSave, kRestore };
+
+  // Rank 0: every rank carries out `op` together.
+  void command(Op op, int64_t arg = 0) {
+    int64_t message[2] = {int64_t(op), arg};
+    comm_->broadcast(message, sizeof(message), 0);
+    if (op != Op::kFinish) perform(op, arg);
+  }
+
+  void perform(Op op, int64_t arg) {
+    switch (op) {
+      case Op::kAdvance: local_->advance(arg); break;
+      case Op::kReadState: gather_state(); break;
+      case Op::kReadBonds: gather_bonds(); break;
+      case Op::kBroken: count_out_ = comm_->sum(local_->broken_bonds()); break;
+      case Op::kEnergy: gather_energy(); break;
+      case Op::kNonFinite: {
+        const int64_t bad = local_->first_non_finite();
+        const double first = comm_->min(bad < 0 ? 1e300 : double(layout_.global[size_t(bad)]));
+        count_out_ = first < 1e300 ? int64_t(first) : -1;
+        break;
+      }
+      case Op::kSave: gather_snapshot(); break;
+      case Op::kRestore: scatter_snapshot(); break;
+      case Op::kFinish: break;
+    }
+  }
+
+  // ---- The one-rank layout of the families ----------------------------------------------------
+  int64_t global_slot(int32_t g, int32_t k) const {
+    return global_offset_[size_t(g) / kSliceWidth] + int64_t(k) * kSliceWidth + g % kSliceWidth;
+  }
+
+  // Every rank learns every particle's family size (the one-rank sliced-ELL layout follows), and
+  // the family statistics of the whole run.
+  void global_families() {
+    local_->read_bonds(local_bonds_);
+    std::vector<int32_t> own(local_bonds_.count.begin(), local_bonds_.count.begin() + layout_.owned);
+    global_count_ = gather_particles(own);
+    global_count_.resize(size_t(n_));
+    comm_->broadcast(global_count_.data(), global_count_.size() * sizeof(int32_t), 0);
+    const int64_t slices = (n_ + kSliceWidth - 1) / kSliceWidth;
+    global_offset_.assign(size_t(slices + 1), 0);
+    for (int64_t s = 0; s < slices; ++s) {
+      int32_t longest = 0;
+      for (int64_t i = s * kSliceWidth; i < n_ && i < (s + 1) * kSliceWidth; ++i)
+        longest = std::max(longest, global_count_[size_t(i)]);
+      global_offset_[size_t(s + 1)] = global_offset_[size_t(s)] + int64_t(longest) * kSliceWidth;
+    }
+    const FamilyStats& mine = local_->family_stats();
+    family_.bonds = comm_->sum(mine.bonds);
+    family_.min = *std::min_element(global_count_.begin(), global_count_.end());
+    family_.max = *std::max_element(global_count_.begin(), global_count_.end());
+    family_.mean = double(family_.bonds) / double(n_);
+    family_.slots = global_offset_.back();
+    family_.lattice_particles = 0;
+    family_.cuts.removed = comm_->sum(mine.cuts.removed);
+    family_.cuts.weakened = comm_->sum(mine.cuts.weakened);
+  }
+
+  // ---- Gathers to rank 0, in global order ----------------------------------------------------
+  // The own entries of a per-particle array (local order), as the whole run's array on rank 0.
+  template <class T>
+  std::vector<T> gather_particles(const std::vector<T>& local) {
+    std::vector<T> own(local.begin(), local.begin() + std::min<size_t>(local.size(), size_t(layout_.owned)));
+    std::vector<std::vector<char>> parts;
+    comm_->gather(to_bytes(own), parts, 0);
+    std::vector<T> all;
+    if (comm_->rank() != 0) return all;
+    all.resize(size_t(n_));
+    for (int r = 0; r < comm_->size(); ++r) {
+      const std::vector<T> values = from_bytes<T>(parts[size_t(r)]);
+      const auto& ids = partition_.owned[size_t(r)];
+      for (size_t k = 0; k < values.size() && k < ids.size(); ++k) all[size_t(ids[k])] = values[k];
+    }
+    return all;
+  }
+
+  // The own families' entries of a per-slot array (local layout), in the one-rank layout on rank 0.
+  template <class T>
+  std::vector<T> gather_slots(const std::vector<T>& local) {
+    std::vector<T> own;
+    for (int32_t i = 0; i < layout_.owned; ++i)
+      for (int32_t k = 0; k < local_bonds_.count[size_t(i)]; ++k) own.push_back(local[size_t(local_slot(i, k))]);
+    std::vector<std::vector<char>> parts;
+    comm_->gather(to_bytes(own), parts, 0);
+    std::vector<T> all;
+    if (comm_->rank() != 0) return all;
+    all.assign(size_t(std::max<int64_t>(global_offset_.back(), 1)), T{});
+    for (int r = 0; r < comm_->size(); ++r) {
+      const std::vector<T> values = from_bytes<T>(parts[size_t(r)]);
+      size_t at = 0;
+      for (int32_t g : partition_.owned[size_t(r)])
+        for (int32_t k = 0; k < global_count_[size_t(g)]; ++k) all[size_t(global_slot(g, k))] = values[at++];
+    }
+    return all;
+  }
+
+  int64_t local_slot(int32_t i, int32_t k) const {
+    return local_bonds_.slice_offset[size_t(i) / kSliceWidth] + int64_t(k) * kSliceWidth + i % kSliceWidth;
+  }
+
+  // Partner entries (index, or ~index once broken) from local to global indices and back.
+  std::vector<int32_t> partners_to_global(std::vector<int32_t> nb) const {
+    for (int32_t i = 0; i < layout_.owned; ++i)
+      for (int32_t k = 0; k < local_bonds_.count[size_t(i)]; ++k) {
+        int32_t& e = nb[size_t(local_slot(i, k))];
+        const int32_t g = layout_.global[size_t(bond_partner(e))];
+        e = bond_intact(e) ? g : ~g;
+      }
+    return nb;
+  }
+  int32_t local_index(int32_t g) const {
+    const auto own_end = layout_.global.begin() + layout_.owned;
+    auto it = std::lower_bound(layout_.global.begin(), own_end, g);
+    if (it == own_end || *it != g) it = std::lower_bound(own_end, layout_.global.end(), g);
+    if (it == layout_.global.end() || *it != g) throw std::logic_error("partner outside the rank's ghosts");
+    return int32_t(it - layout_.global.begin());
+  }
+
+  void gather_state() {
+    ParticleState local;
+    local_->read_state(local);
+    state_out_ = {};
+#define PD_GATHER_FRAME(name, Type, length, when, saved, halo, frame) \
+  PD_IF_FRAME(frame, state_out_.name = gather_particles(local.name);)
+    PD_PARTICLE_FIELDS(PD_GATHER_FRAME)
+#undef PD_GATHER_FRAME
+  }
+
+  void gather_bonds() {
+    BondLists local;
+    local_->read_bonds(local);
+    bonds_out_ = {};
+    bonds_out_.neighbor = gather_slots(partners_to_global(local.neighbor));
+    if (comm_->rank() != 0) return;
+    bonds_out_.slice_offset = global_offset_;
+    bonds_out_.count = global_count_;
+  }
+
+  void gather_energy() {
+    const std::vector<Energy> terms = gather_particles(local_->owned_energies());
+    energy_out_ = comm_->rank() == 0 ? local_->sum_energies(terms) : Energy{};
+  }
+
+  // Each saved field in the one-rank layout (per particle or per slot, by the table's length).
+  template <FieldLength kLength, class T>
+  std::vector<T> gather_field(const std::vector<T>& local) {
+    if (local.empty()) return {};
+    if constexpr (kLength == kSlots) return gather_slots(local);
+    return gather_particles(local);
+  }
+
+  void gather_snapshot() {
+    EngineSnapshot local;
+    local_->save(local);
+    local.neighbor = partners_to_global(local.neighbor);
+    snapshot_ = {};
+    snapshot_.step = local.step;
+    snapshot_.time = local.time;
+#define PD_GATHER_SAVED(name, Type, length, when, saved, ...) \
+  PD_IF_SAVED(saved, snapshot_.name = gather_field<length>(local.name);)
+    PD_STATE_FIELDS(PD_GATHER_SAVED)
+#undef PD_GATHER_SAVED
+  }
+
+  // ---- Restore: rank 0's snapshot, each rank's part ------------------------------------------
+  // Rank 0, before any rank is told: a snapshot of another run is refused, changing nothing.
+  void check_global_sizes(const EngineSnapshot& in) const {
+    for_each_snapshot_field(in, [&](const char* what, const auto& v) {
+      const size_t want = expected_size(what);
+      if (!v.empty() && v.size() != want)
+        throw std::invalid_argument(std::string("snapshot ") + what + " has " + std::to_string(v.size()) +
+                                    " entries, the engine " + std::to_string(want));
+    });
+  }
+  size_t expected_size(const char* what) const {
+#define PD_SIZE_OF(name, Type, length, when, saved, ...) \
+  if (std::string(#name) == what) return length == kSlots ? size_t(std::max<int64_t>(global_offset_.back(), 1)) : size_t(n_);
+    PD_STATE_FIELDS(PD_SIZE_OF)
+#undef PD_SIZE_OF
+    return 0;
+  }
+
+  template <class T>
+  void broadcast_vector(std::vector<T>& v) {
+    uint64_t size = v.size();
+    comm_->broadcast(&size, sizeof(size), 0);
+    v.resize(size_t(size));
+    comm_->broadcast(v.data(), v.size() * sizeof(T), 0);
+  }
+
+  void scatter_snapshot() {
+    EngineSnapshot& all = snapshot_;
+    comm_->broadcast(&all.step, sizeof(all.step), 0);
+    comm_->broadcast(&all.time, sizeof(all.time), 0);
+    for_each_snapshot_field(all, [&](const char*, auto& v) { broadcast_vector(v); });
+    EngineSnapshot local;
+    local_->save(local);  // the local sizes
+    local.step = all.step;
+    local.time = all.time;
+#define PD_SCATTER_SAVED(name, Type, length, when, saved, ...) \
+  PD_IF_SAVED(saved, scatter_field<length>(all.name, local.name);)
+    PD_STATE_FIELDS(PD_SCATTER_SAVED)
+#undef PD_SCATTER_SAVED
+    // Partners back to local indices.
+    for (int32_t i = 0; i < layout_.owned; ++i)
+      for (int32_t k = 0; k < local_bonds_.count[size_t(i)]; ++k) {
+        int32_t& e = local.neighbor[size_t(local_slot(i, k))];
+        const int32_t l = local_index(bond_partner(e));
+        e = bond_intact(e) ? l : ~l;
+      }
+    local_->restore_with_mirror(local, plastic_mirror(all));
+    if (comm_->rank() != 0) snapshot_ = {};
+  }
+
+  template <FieldLength kLength, class T>
+  void scatter_field(const std::vector<T>& all, std::vector<T>& local) {
+    if (all.empty() || local.empty()) return;
+    if constexpr (kLength == kSlots) {
+      for (int32_t i = 0; i < layout_.owned; ++i)
+        for (int32_t k = 0; k < local_bonds_.count[size_t(i)]; ++k)
+          local[size_t(local_slot(i, k))] = all[size_t(global_slot(layout_.global[size_t(i)], k))];
+    } else {
+      for (size_t i = 0; i < local.size(); ++i) local[i] = all[size_t(layout_.global[i])];
+    }
+  }
+
+  // Each own bond end's mirror: the partner's e^p on the same bond (plasticity.h), from the whole
+  // run's history.
+  std::vector<real> plastic_mirror(const EngineSnapshot& all) const {
+    if (all.plastic.empty()) return {};
+    BondLists global;
+    global.slice_offset = global_offset_;
+    global.count = global_count_;
+    global.neighbor = all.neighbor;
+    const BondsView b = global.view();
+    std::vector<real> mirror(local_bonds_.neighbor.size(), real(0));
+    for (int32_t i = 0; i < layout_.owned; ++i) {
+      const int32_t g = layout_.global[size_t(i)];
+      for (int32_t k = 0; k < global_count_[size_t(g)]; ++k) {
+        const int32_t j = bond_partner(all.neighbor[size_t(global_slot(g, k))]);
+        const int32_t q = position_in_family(b, j, g);
+        if (q >= 0) mirror[size_t(local_slot(i, k))] = all.plastic[size_t(global_slot(j, q))];
+      }
+    }
+    return mirror;
+  }
+
+  // Rank 0: particles, ghosts and expected bonds per rank.
+  void report_balance(const SimulationInput& in) const {
+    const PartitionBalance b = partition_balance(partition_, in.particles, in.materials);
+    const auto [lo, hi] = std::minmax_element(b.particles.begin(), b.particles.end());
+    const auto [glo, ghi] = std::minmax_element(b.ghosts.begin(), b.ghosts.end());
+    std::printf("ranks      %d: particles per rank %lld to %lld, ghosts %lld to %lld, imbalance %.3f\n",
+                comm_->size(), (long long)*lo, (long long)*hi, (long long)*glo, (long long)*ghi, b.imbalance);
+  }
+
+  std::shared_ptr<Comm> comm_;
+  int64_t n_ = 0;  // particles of the whole run
+  Partition partition_;
+  RankLayout layout_;
+  std::unique_ptr<EngineImpl<Exec>> local_;
+  std::string device_;
+  FamilyStats family_;
+  double critical_dt_ = 0;
+  size_t memory_ = 0;
+  BondLists local_bonds_;                 // the rank's families as built (layout, sizes)
+  std::vector<int32_t> global_count_;     // every particle's family size
+  std::vector<int64_t> global_offset_;    // the one-rank slice offsets
+  // Rank 0's results of the last command.
+  ParticleState state_out_;
+  BondLists bonds_out_;
+  EngineSnapshot snapshot_;
+  Energy energy_out_;
+  int64_t count_out_ = 0;
+};
+
+// The engine of this rank of a partitioned run. Rank 0 gets it; any other rank serves rank 0's
+// commands and then ends its process here. An error on one rank ends every rank (the others
+// may be waiting for it), with its message.
+template <class Exec>
+std::unique_ptr<Engine> make_partitioned_engine(const SimulationInput& in, std::shared_ptr<Comm> comm,
+                                                const std::string& device) {
+  const int rank = comm->rank();
+  std::unique_ptr<PartitionedEngine<Exec>> engine;
+  try {
+    engine = std::make_unique<PartitionedEngine<Exec>>(in, comm, device);
+    if (rank == 0) return engine;
+    engine->serve();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: rank %d of %d: %s\n", rank, comm->size(), e.what());
+    comm->abort(2);
+  }
+  engine.reset();
+  std::fflush(stdout);
+  leave_world();
+  std::exit(0);
+}
+
+}  // namespace pd
