@@ -4,10 +4,12 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 
 #include "cuda/engine/device_memory.h"
 #include "cuda/engine/spatial_hash.h"
 #include "cuda/launch.h"
+#include "cuda/parallel/comm.h"
 
 namespace pd {
 
@@ -27,12 +29,14 @@ class ContactLists {
     quarter_max_ = real(0.25) * spacing;
     rest_skin_ = real(kContactRestSkin * contact_distance);
     skin_cap_ = real(kContactSkinCap * contact_distance);
-    hash_.allocate(mem, n, real(2 * (contact_distance + 2 * double(rest_skin_))));
-    hash_.record = mem.template make<Vec4>(size_t(n));
-    origin_ = mem.template make<Vec4>(size_t(n));
-    count_ = mem.template make<int32_t>(size_t(n));
-    partner_ = mem.template make<int32_t>(size_t(kContactCapacity) * size_t(n));
+    cell_ = real(2 * (contact_distance + 2 * double(rest_skin_)));
+    reach_ = contact_distance + 2 * double(skin_cap_);
+    size_lists(mem, n, kContactCapacity);
   }
+
+  // The farthest two particles can be and still be listed: the largest contact distance plus two
+  // of the largest skins (a partitioned run's contact ghosts lie within it of a rank's own).
+  double reach() const { return reach_; }
 
   ContactView view(Exec& exec, real dt) const {
     ContactView c;
@@ -51,10 +55,19 @@ class ContactLists {
   // Builds the lists at the current positions if a particle has left its skin since the last
   // build, or if there are none yet. A list that overflows its room doubles the room of all and
   // builds again. Returns whether some list is not empty (else `collisions` need not run).
-  bool refresh(DeviceMemory<Exec>& mem, const ParticlesView& p, const MaterialTable& materials, real dt) {
+  // In a partitioned run (`world` given) every rank builds when any particle has moved, and
+  // `gather_ghosts` first brings in the other ranks' particles within reach, returning the view of
+  // every particle the rank then holds: the lists are built over them all.
+  bool refresh(DeviceMemory<Exec>& mem, ParticlesView p, const MaterialTable& materials, real dt,
+               Comm* world = nullptr, const std::function<ParticlesView()>& gather_ghosts = {}) {
     Exec& exec = mem.exec();
-    const bool moved = exec.take_flags(kContactFlagMask, kFlagEvent) & (1u << kFlagMoved);
+    bool moved = exec.take_flags(kContactFlagMask, kFlagEvent) & (1u << kFlagMoved);
+    if (world) moved = world->bit_or(moved) != 0;
     if (built_ && !moved) return pairs_;
+    if (gather_ghosts) {
+      p = gather_ghosts();
+      if (p.n != n_) size_lists(mem, p.n, int32_t(partner_.size() / size_t(std::max(n_, 1))));
+    }
     launch_reset_bins(exec, "pd/collection_reset", hash_.view(true));
     launch_collection<true>(exec, "pd/collection", p, hash_.view(false), hash_.view(true), materials);
     for (;;) {
@@ -72,6 +85,20 @@ class ContactLists {
     return pairs_;
   }
 
+  // The hash and lists for n particles with room for `capacity` partners each.
+  void size_lists(DeviceMemory<Exec>& mem, int32_t n, int32_t capacity) {
+    hash_.release(mem);
+    mem.drop(origin_);
+    mem.drop(count_);
+    mem.drop(partner_);
+    n_ = n;
+    hash_.allocate(mem, n, cell_);
+    hash_.record = mem.template make<Vec4>(size_t(n));
+    origin_ = mem.template make<Vec4>(size_t(n));
+    count_ = mem.template make<int32_t>(size_t(n));
+    partner_ = mem.template make<int32_t>(size_t(std::max(capacity, 1)) * size_t(n));
+  }
+
   // The lists are built again from the next positions (after a restore).
   void invalidate() { built_ = false; }
   bool pairs() const { return pairs_; }
@@ -79,7 +106,8 @@ class ContactLists {
  private:
   int32_t n_ = 0;
   SpatialHash<Exec> hash_;
-  real quarter_max_ = 0, rest_skin_ = 0, skin_cap_ = 0;
+  real quarter_max_ = 0, rest_skin_ = 0, skin_cap_ = 0, cell_ = 0;
+  double reach_ = 0;
   bool built_ = false;
   bool pairs_ = false;  // some list is not empty
   DeviceArray<Vec4, Exec> origin_;

@@ -13,6 +13,7 @@
 #include "cuda/engine/engine_state.h"
 #include "cuda/engine/family_builder.h"
 #include "cuda/launch.h"
+#include "cuda/parallel/contact_ghosts.h"
 #include "cuda/parallel/halo.h"
 
 namespace pd {
@@ -41,6 +42,8 @@ class EngineImpl final : public Engine {
       owned_ = rank->owned;
       state_.global_id.upload(rank->global);
       halo_ = Halo<Exec>(mem_, *rank, *comm);
+      ghosts_ = ContactGhosts<Exec>(*rank, in.particles, *comm);
+      world_ = comm;
     }
     build_families(mem_, state_, owned_, materials_, features_, backend(), family_);
     if (!in.cuts.empty()) features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_);
@@ -86,7 +89,7 @@ class EngineImpl final : public Engine {
   int64_t broken_bonds() override { return reduce_broken_bonds(exec_, bonds(), state_.intact.data()); }
 
   Energy energy() override {
-    if (contact_) contacts_.refresh(mem_, particles(), materials_, step_params_.dt);
+    if (contact_) refresh_contacts();
     return reduce_energy(exec_, particles(), bonds(), contact_view(), materials_, step_params_, contact_);
   }
 
@@ -126,7 +129,7 @@ class EngineImpl final : public Engine {
   int32_t owned() const { return owned_; }
   // Each own particle's energy terms, in local order.
   std::vector<Energy> owned_energies() {
-    if (contact_) contacts_.refresh(mem_, particles(), materials_, step_params_.dt);
+    if (contact_) refresh_contacts();
     auto terms = mem_.template make<Energy>(size_t(owned_));
     const ArrayView<Energy> out = view_of(terms);
     const ParticlesView p = particles();
@@ -199,11 +202,24 @@ class EngineImpl final : public Engine {
       if (features_.state_based) halo_.exchange(state_.state);
     }
     queue_springforces(p, b);
+    // (After a contact build that brought in contact ghosts the state may have moved: the views
+    // are taken again.)
     if (contact_) {  // after springforces is queued: waiting for position_update's flag idles nothing
-      if (contacts_.refresh(mem_, p, materials_, step_params_.dt))
-        launch_collisions(exec_, p, contact_view(), materials_, step_params_.contact_stiffness);
+      if (refresh_contacts())
+        launch_collisions(exec_, particles(), contact_view(), materials_, step_params_.contact_stiffness);
     }
-    if (body_forces_) launch_bodyforces(exec_, p, step_params_);
+    if (body_forces_) launch_bodyforces(exec_, particles(), step_params_);
+  }
+
+  // The contact lists at the current positions (ContactLists::refresh); on a partitioned rank
+  // with the contact ghosts gathered first, their skins from their velocities.
+  bool refresh_contacts() {
+    if (!halo_.active()) return contacts_.refresh(mem_, particles(), materials_, step_params_.dt);
+    return contacts_.refresh(mem_, particles(), materials_, step_params_.dt, world_, [&] {
+      halo_.exchange(state_.vel);
+      ghosts_.gather(mem_, state_, halo_, contacts_.reach());
+      return state_.particles();
+    });
   }
 
   // Kernel 4 in the form chosen from the pass before the last (bond_screen.h): that pass's
@@ -248,6 +264,8 @@ class EngineImpl final : public Engine {
   FamilyStats family_;
   int32_t owned_ = 0;  // particles the step kernels run over (ParticlesView::n)
   Halo<Exec> halo_;    // a partitioned rank's ghost refresh (inactive otherwise)
+  ContactGhosts<Exec> ghosts_;
+  Comm* world_ = nullptr;
 
   EngineState<Exec> state_;
   LatticeState<Exec> lattice_;

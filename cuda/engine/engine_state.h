@@ -28,6 +28,17 @@ void read_frame_field(const DeviceArray<T, Exec>& array, std::vector<Out>& out) 
   }
 }
 
+// `a` with room for n entries, its entries kept and the new ones zero.
+template <class T, class Exec>
+void grow(DeviceMemory<Exec>& mem, DeviceArray<T, Exec>& a, size_t n) {
+  auto bigger = mem.template make_zeroed<T>(n);
+  const ArrayView<const T> from = view_of(a);
+  const ArrayView<T> to = view_of(bigger);
+  mem.exec().parallel_for("state/grow", from.size, [=] PD_HD(int64_t i) { to[i] = from[i]; });
+  mem.drop(a);
+  a = std::move(bigger);
+}
+
 template <class Exec>
 struct EngineState {
   int32_t n = 0;
@@ -67,6 +78,15 @@ struct EngineState {
     flags.upload(ps.flags);
     if (ps.anchor.size() == ps.size()) anchor.upload(ps.anchor);
     strain_limit0.upload(ps.strain_limit0);
+  }
+
+  // Room for `capacity` particles in every per-particle field it has (kept entries, new ones
+  // zero): a partitioned rank's contact ghosts come and go after its own and its bond ghosts.
+  void reserve_particles(DeviceMemory<Exec>& mem, size_t capacity) {
+#define PD_STATE_GROW(name, Type, length, when, ...) \
+  if (length == kParticles && name.size() > 0 && name.size() < capacity) grow(mem, name, capacity);
+    PD_STATE_FIELDS(PD_STATE_GROW)
+#undef PD_STATE_GROW
   }
 
   ParticlesView particles() const {

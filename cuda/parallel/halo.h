@@ -17,12 +17,21 @@ template <class Exec>
 class Halo {
  public:
   Halo() = default;
-  Halo(DeviceMemory<Exec>& mem, const RankLayout& layout, Comm& comm) : exec_(&mem.exec()), comm_(&comm) {
-    std::vector<int32_t> send, recv;
-    concatenate(layout.send, send, send_first_);
-    concatenate(layout.recv, recv, recv_first_);
-    send_index_ = mem.make_from(send);
-    recv_index_ = mem.make_from(recv);
+  Halo(DeviceMemory<Exec>& mem, const RankLayout& layout, Comm& comm)
+      : exec_(&mem.exec()), mem_(&mem), comm_(&comm), base_send_(layout.send), base_recv_(layout.recv) {
+    set_extra(std::vector<std::vector<int32_t>>(base_send_.size()), std::vector<std::vector<int32_t>>(base_recv_.size()));
+  }
+
+  // Per peer, more particles sent and received after the bond ghosts' (contact ghosts,
+  // cuda/parallel/contact_ghosts.h), replacing the last ones given.
+  void set_extra(const std::vector<std::vector<int32_t>>& send, const std::vector<std::vector<int32_t>>& recv) {
+    std::vector<int32_t> all_send, all_recv;
+    concatenate(base_send_, send, all_send, send_first_);
+    concatenate(base_recv_, recv, all_recv, recv_first_);
+    mem_->drop(send_index_);
+    mem_->drop(recv_index_);
+    send_index_ = mem_->make_from(all_send);
+    recv_index_ = mem_->make_from(all_recv);
   }
 
   bool active() const { return comm_ != nullptr; }
@@ -59,11 +68,14 @@ class Halo {
   }
 
  private:
-  static void concatenate(const std::vector<std::vector<int32_t>>& lists, std::vector<int32_t>& all,
+  // Per peer, its base list then its extra one, all peers in rank order.
+  static void concatenate(const std::vector<std::vector<int32_t>>& base,
+                          const std::vector<std::vector<int32_t>>& extra, std::vector<int32_t>& all,
                           std::vector<int64_t>& first) {
-    first.assign(lists.size() + 1, 0);
-    for (size_t r = 0; r < lists.size(); ++r) {
-      all.insert(all.end(), lists[r].begin(), lists[r].end());
+    first.assign(base.size() + 1, 0);
+    for (size_t r = 0; r < base.size(); ++r) {
+      all.insert(all.end(), base[r].begin(), base[r].end());
+      all.insert(all.end(), extra[r].begin(), extra[r].end());
       first[r + 1] = int64_t(all.size());
     }
   }
@@ -75,7 +87,9 @@ class Halo {
   }
 
   Exec* exec_ = nullptr;
+  DeviceMemory<Exec>* mem_ = nullptr;
   Comm* comm_ = nullptr;
+  std::vector<std::vector<int32_t>> base_send_, base_recv_;  // the bond ghosts' lists
   DeviceArray<int32_t, Exec> send_index_, recv_index_;
   std::vector<int64_t> send_first_, recv_first_;
   DeviceArray<char, Exec> send_buffer_, recv_buffer_;

@@ -334,7 +334,8 @@ class PartitionedEngine final : public Engine {
         for (int32_t k = 0; k < local_bonds_.count[size_t(i)]; ++k)
           local[size_t(local_slot(i, k))] = all[size_t(global_slot(layout_.global[size_t(i)], k))];
     } else {
-      for (size_t i = 0; i < local.size(); ++i) local[i] = all[size_t(layout_.global[i])];
+      // (own and bond ghosts; contact ghosts are gathered again at the next contact build)
+      for (size_t i = 0; i < local.size() && i < layout_.global.size(); ++i) local[i] = all[size_t(layout_.global[i])];
     }
   }
 
