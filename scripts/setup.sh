@@ -4,8 +4,9 @@
 #   scripts/setup.sh                          build the preset that fits this machine (cuda with a GPU, else cpu)
 #   PERIFRAC_PRESET=cpu-asan scripts/setup.sh build a named preset from CMakePresets.json
 # Needs: a C++17 compiler, CMake >= 3.24, Ninja, and the headers of GoogleTest, Eigen, toml++,
-# CLI11 and stb. Missing ones are installed with apt-get (Debian/Ubuntu package names below);
-# header-only ones may instead be staged in .deps/include (scripts/stage-deps.sh).
+# CLI11 and stb, and Open MPI (runs over several ranks). Missing ones are installed with apt-get
+# (Debian/Ubuntu package names below); header-only ones may instead be staged in .deps/include
+# (scripts/stage-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,6 +15,7 @@ needs=(
   "cmd:g++:build-essential" "cmd:cmake:cmake" "cmd:ninja:ninja-build"
   "hdr:gtest/gtest.h:libgtest-dev" "hdr:eigen3/Eigen/Dense:libeigen3-dev" "hdr:toml++/toml.h:libtomlplusplus-dev"
   "hdr:CLI/CLI.hpp:libcli11-dev" "hdr:stb/stb_image_write.h:libstb-dev"
+  "cmd:mpicxx:libopenmpi-dev" "cmd:mpirun:openmpi-bin"
 )
 # Optional: tetrahedral particles run the TetGen program (AGPL, kept as a separate program);
 # ffmpeg turns rendered frames into movie.mp4; Embree (Apache-2.0) is the renderer's test oracle

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# A run over several MPI ranks writes the files of the one-rank run, bit for bit: the golden
+# scenes (scripts/golden.sh: bond-based and state-based, plastic, anisotropic, pre-cracks,
+# anchors, a projectile, contact, tets and Voronoi cells) on 1, 2 and 3 ranks, and a run
+# checkpointed on 3 ranks resumed on 2 against the uninterrupted one-rank run.
+#   scripts/mpi-equivalence.sh [BINARY] [cpu|cuda]
+# Box-grid bodies run with listed families on several ranks, so every run here passes
+# --explicit-families (docs/parallel.md). Ranks share the machine's cores (--oversubscribe);
+# one OpenMP thread each, as the energy sum's order follows the thread count.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${1:-build/cpu/perifrac}
+backend=${2:-cpu}
+out=${MPI_EQUIVALENCE_OUT:-out/mpi-equivalence-$backend}
+command -v mpirun >/dev/null || { echo "mpi-equivalence: no mpirun (Debian: openmpi-bin)" >&2; exit 1; }
+export OMP_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+rm -rf "$out"
+mkdir -p "$out"
+sums() { GOLDEN_OUT="$out/$1" GOLDEN_LAUNCH="${2:-}" GOLDEN_RUN_ARGS="--explicit-families" scripts/golden.sh "$backend" "$bin" >"$out/$1.txt"; }
+sums ranks1
+status=0
+for n in 2 3; do
+  sums "ranks$n" "mpirun -np $n"
+  if diff -q "$out/ranks1.txt" "$out/ranks$n.txt" >/dev/null; then
+    echo "mpi-equivalence: $n ranks: $(wc -l <"$out/ranks$n.txt") files identical to one rank"
+  else
+    echo "mpi-equivalence: $n ranks differ from one rank:" >&2
+    diff "$out/ranks1.txt" "$out/ranks$n.txt" >&2 || true
+    status=1
+  fi
+done
+
+# Checkpointed on 3 ranks after frame 2, resumed on 2 to frame 4; against one rank's 4 frames.
+scene="scenes/glass_plate_projectile.toml --scale 0.02 --steps-per-frame 40 --explicit-families --backend $backend"
+"$bin" run $scene --frames 4 --out "$out/whole" >"$out/whole.log" 2>&1
+mpirun -np 3 "$bin" run $scene --frames 2 --checkpoint-every 1 --out "$out/resumed" >"$out/resumed.log" 2>&1
+mpirun -np 2 "$bin" run --resume "$out/resumed" --frames 4 >>"$out/resumed.log" 2>&1
+for f in frame_00004.pfr energy.csv fragments_00004.pfg fragments.obj; do
+  if ! cmp -s "$out/whole/$f" "$out/resumed/$f"; then
+    echo "mpi-equivalence: $f of the run resumed on 2 ranks differs from one rank's" >&2
+    status=1
+  fi
+done
+[ $status -eq 0 ] && echo "mpi-equivalence: checkpoint of 3 ranks resumed on 2: identical to one rank"
+exit $status

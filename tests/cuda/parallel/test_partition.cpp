@@ -1,0 +1,93 @@
+// Domain decomposition (cuda/parallel/partition.h): ownership, ghosts that hold every bond
+// partner, and send and receive lists that pair up across ranks.
+#include "cuda/parallel/partition.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace pd {
+namespace {
+
+constexpr double kLambda = 0.01;
+
+// A block of nx x ny x nz particles at spacing lambda, horizon 3 lambda, partial volumes on.
+struct Block {
+  ParticleSet ps;
+  MaterialTable mt;
+  Block(int nx, int ny, int nz) {
+    mt.count = 1;
+    mt.m[0].horizon = real(3 * kLambda);
+    mt.m[0].spacing = real(kLambda);
+    const real v = real(kLambda * kLambda * kLambda);
+    for (int z = 0; z < nz; ++z)
+      for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x)
+          ps.add({real(x * kLambda), real(y * kLambda), real(z * kLambda)}, {0, 0, 0}, v, v * 1000, real(0.01), 0, 0);
+  }
+};
+
+TEST(Partition, EveryParticleHasOneOwnerAndRanksAreBalanced) {
+  const Block b(24, 10, 6);
+  for (int ranks : {1, 2, 3, 5, 8}) {
+    const Partition p = partition_particles(b.ps, b.mt, ranks);
+    std::vector<int> seen(b.ps.size(), 0);
+    for (int r = 0; r < ranks; ++r) {
+      EXPECT_TRUE(std::is_sorted(p.owned[size_t(r)].begin(), p.owned[size_t(r)].end()));
+      for (int32_t i : p.owned[size_t(r)]) {
+        ++seen[size_t(i)];
+        EXPECT_EQ(p.owner[size_t(i)], r);
+      }
+    }
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+    // Equal expected bonds per particle here: the counts split as evenly as a bisection can.
+    EXPECT_LT(partition_balance(p, b.ps, b.mt).imbalance, 1.02) << ranks << " ranks";
+  }
+}
+
+TEST(Partition, GhostsHoldEveryPartnerWithinTheFamilyRadius) {
+  const Block b(20, 8, 5);
+  const Partition p = partition_particles(b.ps, b.mt, 4);
+  const double radius = double(b.mt.m[0].family_radius()) * (1 + 1e-6);
+  for (int r = 0; r < 4; ++r) {
+    const RankLayout l = rank_layout(p, r);
+    std::vector<char> held(b.ps.size(), 0);
+    for (int32_t g : l.global) held[size_t(g)] = 1;
+    for (int32_t i : p.owned[size_t(r)])
+      for (size_t j = 0; j < b.ps.size(); ++j) {
+        const Vec3 d = b.ps.rest[j] - b.ps.rest[size_t(i)];
+        if (double(length(d)) <= radius) {
+          EXPECT_TRUE(held[j]) << "rank " << r << " lacks partner " << j << " of " << i;
+        }
+      }
+    // Own particles first, then ghosts, each ascending.
+    EXPECT_TRUE(std::is_sorted(l.global.begin(), l.global.begin() + l.owned));
+    EXPECT_TRUE(std::is_sorted(l.global.begin() + l.owned, l.global.end()));
+  }
+}
+
+TEST(Partition, SendAndReceiveListsPairUpAcrossRanks) {
+  const Block b(16, 12, 4);
+  const int ranks = 3;
+  const Partition p = partition_particles(b.ps, b.mt, ranks);
+  std::vector<RankLayout> layouts;
+  for (int r = 0; r < ranks; ++r) layouts.push_back(rank_layout(p, r));
+  for (int r = 0; r < ranks; ++r)
+    for (int s = 0; s < ranks; ++s) {
+      if (r == s) continue;
+      const RankLayout &from = layouts[size_t(r)], &to = layouts[size_t(s)];
+      ASSERT_EQ(from.send[size_t(s)].size(), to.recv[size_t(r)].size());
+      for (size_t k = 0; k < from.send[size_t(s)].size(); ++k) {
+        EXPECT_LT(from.send[size_t(s)][k], from.owned);
+        EXPECT_GE(to.recv[size_t(r)][k], to.owned);
+        EXPECT_EQ(from.global[size_t(from.send[size_t(s)][k])], to.global[size_t(to.recv[size_t(r)][k])]);
+      }
+    }
+  // The local particle set follows the layout.
+  const ParticleSet local = local_particles(b.ps, layouts[1]);
+  ASSERT_EQ(local.size(), layouts[1].global.size());
+  for (size_t k = 0; k < local.size(); ++k) EXPECT_EQ(local.rest[k].x, b.ps.rest[size_t(layouts[1].global[k])].x);
+}
+
+}  // namespace
+}  // namespace pd
