@@ -55,6 +55,10 @@ step determinism-compare same_files "$OUT/equiv-gpu" "$OUT/equiv-gpu-again" fram
 step resume-first "$bin" run "$walls" --backend cuda --scale 0.02 --frames 2 --checkpoint-every 2 --out "$OUT/resume"
 step resume-rest "$bin" run --resume "$OUT/resume" --frames 4
 step resume-compare same_files "$OUT/equiv-walls-gpu" "$OUT/resume" frame_00004.pfr energy.csv fragments_00004.pfg
+# Runs over several MPI ranks (sharing the GPUs there are) against one rank, bit for bit.
+if command -v mpirun >/dev/null; then
+  step mpi-equivalence env MPI_EQUIVALENCE_OUT="$OUT/mpi-equivalence" scripts/mpi-equivalence.sh "$bin" cuda
+fi
 # compute-sanitizer on a small scene of each material model, and on the renderer.
 for tool in memcheck racecheck; do
   step "sanitizer-$tool" compute-sanitizer --tool "$tool" --error-exitcode 9 \
