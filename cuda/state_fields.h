@@ -79,7 +79,7 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
   /* x theta_i (dilatation, set by `init`); y 1/m_i, m_i = sum_j omega |xi|^2 beta V_j over the  */  \
   /* initial family; z phi_i = 1 - intact/initial bonds of the last step (damage, set by `init`); */ \
   /* w (plastic materials) the trial deviatoric norm |t^d| that `plasticity` tests (`init`)       */ \
-  X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep, kFrameNone)                         \
+  X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep, kFrameNone)                          \
   /* index of the particle in the whole run, which orders families and contact lists (order_of) */   \
   X(global_id, const int32_t, kParticles, kForPartitioned, kDerived, kHaloNone, kFrameNone)
 

@@ -36,7 +36,8 @@ class EngineImpl final : public Engine {
         screen_(in.screen) {
     features_ = features_of(materials_, contact_);
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");
-    state_.upload(mem_, in.particles, FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr});
+    state_.upload(mem_, in.particles,
+                  FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr});
     owned_ = state_.n;
     if (rank) {
       owned_ = rank->owned;
@@ -151,7 +152,7 @@ class EngineImpl final : public Engine {
     auto all = mem_.make_from(terms);
     const ArrayView<const Energy> in = view_of(all);
     const Energy total = exec_.template reduce_sum<Energy>("stats/energy", int64_t(terms.size()),
-                                                          [=] PD_HD(int64_t i) { return in[i]; });
+                                                           [=] PD_HD(int64_t i) { return in[i]; });
     mem_.drop(all);
     return total;
   }

@@ -83,8 +83,9 @@ void check_bond_memory(int64_t slots, int32_t n, const KernelFeatures& features,
 // first `owned` particles (a partitioned rank's own; the ghosts after them have none) from every
 // particle the state holds.
 template <class Exec>
-void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned, const MaterialTable& materials,
-                    const KernelFeatures& features, Backend backend, FamilyStats& family) {
+void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned,
+                    const MaterialTable& materials, const KernelFeatures& features, Backend backend,
+                    FamilyStats& family) {
   Exec& exec = mem.exec();
   real horizon = 0;
   for (int m = 0; m < materials.count; ++m) horizon = std::max(horizon, materials.m[m].family_radius());

@@ -58,7 +58,8 @@ class MpiComm final : public Comm {
   void broadcast(void* data, size_t bytes, int root) override {
     char* p = static_cast<char*>(data);
     for (size_t at = 0; at < bytes; at += kPiece)
-      check(MPI_Bcast(p + at, int(std::min(kPiece, bytes - at)), MPI_BYTE, root, MPI_COMM_WORLD), "broadcast");
+      check(MPI_Bcast(p + at, int(std::min(kPiece, bytes - at)), MPI_BYTE, root, MPI_COMM_WORLD),
+            "broadcast");
   }
 
   int64_t sum(int64_t value) override {

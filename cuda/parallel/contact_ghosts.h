@@ -37,7 +37,8 @@ class ContactGhosts {
     rest_.resize(size_t(owned_));
     material_.assign(local.material.begin(), local.material.begin() + owned_);
     body_.assign(local.body.begin(), local.body.begin() + owned_);
-    for (int32_t i = 0; i < owned_; ++i) rest_[size_t(i)] = with_w(local.rest[size_t(i)], local.volume[size_t(i)]);
+    for (int32_t i = 0; i < owned_; ++i)
+      rest_[size_t(i)] = with_w(local.rest[size_t(i)], local.volume[size_t(i)]);
     bond_ghost_of_.assign(layout.send.size(), std::vector<uint8_t>(size_t(owned_), 0));
     for (size_t s = 0; s < layout.send.size(); ++s)
       for (int32_t i : layout.send[s]) bond_ghost_of_[s][size_t(i)] = 1;
@@ -61,10 +62,13 @@ class ContactGhosts {
       const double x[3] = {double(rest_[size_t(i)].x) + disp[size_t(i)].x,
                            double(rest_[size_t(i)].y) + disp[size_t(i)].y,
                            double(rest_[size_t(i)].z) + disp[size_t(i)].z};
-      for (int a = 0; a < 3; ++a) box[size_t(a)] = std::min(box[size_t(a)], x[a]), box[size_t(a + 3)] = std::max(box[size_t(a + 3)], x[a]);
+      for (int a = 0; a < 3; ++a)
+        box[size_t(a)] = std::min(box[size_t(a)], x[a]),
+        box[size_t(a + 3)] = std::max(box[size_t(a + 3)], x[a]);
     }
     std::vector<std::vector<char>> out(peers, to_bytes(box)), in(peers);
-    for (int r = 0; r < ranks; ++r) in[size_t(r)].resize(r == comm_->rank() ? 0 : box.size() * sizeof(double));
+    for (int r = 0; r < ranks; ++r)
+      in[size_t(r)].resize(r == comm_->rank() ? 0 : box.size() * sizeof(double));
     out[size_t(comm_->rank())].clear();
     comm_->exchange(out, in);
 
@@ -81,7 +85,8 @@ class ContactGhosts {
                              double(rest_[size_t(i)].y) + disp[size_t(i)].y,
                              double(rest_[size_t(i)].z) + disp[size_t(i)].z};
         bool near = true;
-        for (int a = 0; a < 3; ++a) near = near && x[a] >= peer[size_t(a)] - margin && x[a] <= peer[size_t(a + 3)] + margin;
+        for (int a = 0; a < 3; ++a)
+          near = near && x[a] >= peer[size_t(a)] - margin && x[a] <= peer[size_t(a + 3)] + margin;
         if (!near) continue;
         send[size_t(s)].push_back(i);
         records[size_t(s)].push_back({rest_[size_t(i)], disp[size_t(i)], vel[size_t(i)], global_[size_t(i)],
@@ -90,7 +95,9 @@ class ContactGhosts {
     }
     // Their counts, then the records.
     for (int s = 0; s < ranks; ++s) {
-      out[size_t(s)] = s == comm_->rank() ? std::vector<char>{} : to_bytes(std::vector<int64_t>{int64_t(records[size_t(s)].size())});
+      out[size_t(s)] = s == comm_->rank()
+                           ? std::vector<char>{}
+                           : to_bytes(std::vector<int64_t>{int64_t(records[size_t(s)].size())});
       in[size_t(s)].assign(s == comm_->rank() ? 0 : sizeof(int64_t), 0);
     }
     comm_->exchange(out, in);

@@ -19,12 +19,14 @@ class Halo {
   Halo() = default;
   Halo(DeviceMemory<Exec>& mem, const RankLayout& layout, Comm& comm)
       : exec_(&mem.exec()), mem_(&mem), comm_(&comm), base_send_(layout.send), base_recv_(layout.recv) {
-    set_extra(std::vector<std::vector<int32_t>>(base_send_.size()), std::vector<std::vector<int32_t>>(base_recv_.size()));
+    set_extra(std::vector<std::vector<int32_t>>(base_send_.size()),
+              std::vector<std::vector<int32_t>>(base_recv_.size()));
   }
 
   // Per peer, more particles sent and received after the bond ghosts' (contact ghosts,
   // cuda/parallel/contact_ghosts.h), replacing the last ones given.
-  void set_extra(const std::vector<std::vector<int32_t>>& send, const std::vector<std::vector<int32_t>>& recv) {
+  void set_extra(const std::vector<std::vector<int32_t>>& send,
+                 const std::vector<std::vector<int32_t>>& recv) {
     std::vector<int32_t> all_send, all_recv;
     concatenate(base_send_, send, all_send, send_first_);
     concatenate(base_recv_, recv, all_recv, recv_first_);
@@ -59,7 +61,8 @@ class Halo {
     comm_->exchange(out, in);
     host.resize(size_t(recvs) * sizeof(T));
     for (size_t r = 0; r < in.size(); ++r)
-      std::copy(in[r].begin(), in[r].end(), host.begin() + std::ptrdiff_t(recv_first_[r] * int64_t(sizeof(T))));
+      std::copy(in[r].begin(), in[r].end(),
+                host.begin() + std::ptrdiff_t(recv_first_[r] * int64_t(sizeof(T))));
     if (recvs > 0) exec_->upload(recv_buffer_.data(), host.data(), host.size());
     const ArrayView<const T> unpacked{reinterpret_cast<const T*>(recv_buffer_.data()), recvs};
     exec_->parallel_for("halo/unpack", recvs, [=] PD_HD(int64_t k) { values[recv_index[k]] = unpacked[k]; });

@@ -88,7 +88,8 @@ Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, in
   p.ghosts.assign(size_t(ranks), {});
   for (size_t i = 0; i < n; ++i)
     for (int r = 0; r < ranks; ++r)
-      if (r != p.owner[i] && boxes[size_t(r)].contains(ps.rest[i], reach)) p.ghosts[size_t(r)].push_back(int32_t(i));
+      if (r != p.owner[i] && boxes[size_t(r)].contains(ps.rest[i], reach))
+        p.ghosts[size_t(r)].push_back(int32_t(i));
   return p;
 }
 

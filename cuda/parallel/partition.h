@@ -15,8 +15,8 @@ namespace pd {
 
 struct Partition {
   int ranks = 1;
-  std::vector<int32_t> owner;               // per global particle
-  std::vector<std::vector<int32_t>> owned;  // per rank: its particles, ascending
+  std::vector<int32_t> owner;                // per global particle
+  std::vector<std::vector<int32_t>> owned;   // per rank: its particles, ascending
   std::vector<std::vector<int32_t>> ghosts;  // per rank: the bond ghosts it reads, ascending
 };
 

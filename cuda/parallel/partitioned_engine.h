@@ -42,8 +42,8 @@ class PartitionedEngine final : public Engine {
     local_input.lattice_families = false;
     local_input.screen = in.screen;
     if (local_input.particles.size() == 0)
-      throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " + std::to_string(comm_->size()) +
-                               " holds no particle: run on fewer ranks");
+      throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
+                               std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");
     local_ = std::make_unique<EngineImpl<Exec>>(local_input, device, &layout_, comm_.get());
     global_families();
     device_ = local_->device_name() + " x " + std::to_string(comm_->size()) + " ranks";
@@ -110,7 +110,17 @@ class PartitionedEngine final : public Engine {
   int64_t screened_passes() const override { return local_->screened_passes(); }
 
  private:
-  enum class Op : int64_t { kFinish, kAdvance, kReadState, kReadBonds, kBroken, kEnergy, kNonFinite, kSave, kRestore };
+  enum class Op : int64_t {
+    kFinish,
+    kAdvance,
+    kReadState,
+    kReadBonds,
+    kBroken,
+    kEnergy,
+    kNonFinite,
+    kSave,
+    kRestore
+  };
 
   // Rank 0: every rank carries out `op` together.
   void command(Op op, int64_t arg = 0) {
@@ -121,20 +131,35 @@ class PartitionedEngine final : public Engine {
 
   void perform(Op op, int64_t arg) {
     switch (op) {
-      case Op::kAdvance: local_->advance(arg); break;
-      case Op::kReadState: gather_state(); break;
-      case Op::kReadBonds: gather_bonds(); break;
-      case Op::kBroken: count_out_ = comm_->sum(local_->broken_bonds()); break;
-      case Op::kEnergy: gather_energy(); break;
+      case Op::kAdvance:
+        local_->advance(arg);
+        break;
+      case Op::kReadState:
+        gather_state();
+        break;
+      case Op::kReadBonds:
+        gather_bonds();
+        break;
+      case Op::kBroken:
+        count_out_ = comm_->sum(local_->broken_bonds());
+        break;
+      case Op::kEnergy:
+        gather_energy();
+        break;
       case Op::kNonFinite: {
         const int64_t bad = local_->first_non_finite();
         const double first = comm_->min(bad < 0 ? 1e300 : double(layout_.global[size_t(bad)]));
         count_out_ = first < 1e300 ? int64_t(first) : -1;
         break;
       }
-      case Op::kSave: gather_snapshot(); break;
-      case Op::kRestore: scatter_snapshot(); break;
-      case Op::kFinish: break;
+      case Op::kSave:
+        gather_snapshot();
+        break;
+      case Op::kRestore:
+        scatter_snapshot();
+        break;
+      case Op::kFinish:
+        break;
     }
   }
 
@@ -193,7 +218,8 @@ class PartitionedEngine final : public Engine {
   std::vector<T> gather_slots(const std::vector<T>& local) {
     std::vector<T> own;
     for (int32_t i = 0; i < layout_.owned; ++i)
-      for (int32_t k = 0; k < local_bonds_.count[size_t(i)]; ++k) own.push_back(local[size_t(local_slot(i, k))]);
+      for (int32_t k = 0; k < local_bonds_.count[size_t(i)]; ++k)
+        own.push_back(local[size_t(local_slot(i, k))]);
     std::vector<std::vector<char>> parts;
     comm_->gather(to_bytes(own), parts, 0);
     std::vector<T> all;
@@ -288,7 +314,8 @@ class PartitionedEngine final : public Engine {
   }
   size_t expected_size(const char* what) const {
 #define PD_SIZE_OF(name, Type, length, when, saved, ...) \
-  if (std::string(#name) == what) return length == kSlots ? size_t(std::max<int64_t>(global_offset_.back(), 1)) : size_t(n_);
+  if (std::string(#name) == what)                        \
+    return length == kSlots ? size_t(std::max<int64_t>(global_offset_.back(), 1)) : size_t(n_);
     PD_STATE_FIELDS(PD_SIZE_OF)
 #undef PD_SIZE_OF
     return 0;
@@ -335,7 +362,8 @@ class PartitionedEngine final : public Engine {
           local[size_t(local_slot(i, k))] = all[size_t(global_slot(layout_.global[size_t(i)], k))];
     } else {
       // (own and bond ghosts; contact ghosts are gathered again at the next contact build)
-      for (size_t i = 0; i < local.size() && i < layout_.global.size(); ++i) local[i] = all[size_t(layout_.global[i])];
+      for (size_t i = 0; i < local.size() && i < layout_.global.size(); ++i)
+        local[i] = all[size_t(layout_.global[i])];
     }
   }
 
@@ -378,9 +406,9 @@ class PartitionedEngine final : public Engine {
   FamilyStats family_;
   double critical_dt_ = 0;
   size_t memory_ = 0;
-  BondLists local_bonds_;                 // the rank's families as built (layout, sizes)
-  std::vector<int32_t> global_count_;     // every particle's family size
-  std::vector<int64_t> global_offset_;    // the one-rank slice offsets
+  BondLists local_bonds_;               // the rank's families as built (layout, sizes)
+  std::vector<int32_t> global_count_;   // every particle's family size
+  std::vector<int64_t> global_offset_;  // the one-rank slice offsets
   // Rank 0's results of the last command.
   ParticleState state_out_;
   BondLists bonds_out_;

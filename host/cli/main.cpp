@@ -331,8 +331,10 @@ int main(int argc, char** argv) {
     const std::string command = argc > 1 ? argv[1] : "";
     if (command != "run" && command != "bench") {
       if (world->rank() == 0)
-        std::fprintf(stderr, "error: under mpirun only `perifrac run` and `perifrac bench` use the ranks; "
-                             "start `perifrac %s` without mpirun\n", command.c_str());
+        std::fprintf(stderr,
+                     "error: under mpirun only `perifrac run` and `perifrac bench` use the ranks; "
+                     "start `perifrac %s` without mpirun\n",
+                     command.c_str());
       return int(kExitUsage);
     }
     if (world->rank() != 0 && !std::freopen("/dev/null", "w", stdout)) return int(kExitRuntime);

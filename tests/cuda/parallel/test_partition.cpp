@@ -23,7 +23,8 @@ struct Block {
     for (int z = 0; z < nz; ++z)
       for (int y = 0; y < ny; ++y)
         for (int x = 0; x < nx; ++x)
-          ps.add({real(x * kLambda), real(y * kLambda), real(z * kLambda)}, {0, 0, 0}, v, v * 1000, real(0.01), 0, 0);
+          ps.add({real(x * kLambda), real(y * kLambda), real(z * kLambda)}, {0, 0, 0}, v, v * 1000,
+                 real(0.01), 0, 0);
   }
 };
 
@@ -86,7 +87,8 @@ TEST(Partition, SendAndReceiveListsPairUpAcrossRanks) {
   // The local particle set follows the layout.
   const ParticleSet local = local_particles(b.ps, layouts[1]);
   ASSERT_EQ(local.size(), layouts[1].global.size());
-  for (size_t k = 0; k < local.size(); ++k) EXPECT_EQ(local.rest[k].x, b.ps.rest[size_t(layouts[1].global[k])].x);
+  for (size_t k = 0; k < local.size(); ++k)
+    EXPECT_EQ(local.rest[k].x, b.ps.rest[size_t(layouts[1].global[k])].x);
 }
 
 }  // namespace
