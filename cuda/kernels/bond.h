@@ -159,10 +159,7 @@ PD_HD inline int32_t bit_count(uint32_t x) {
 // weakened and plastic bonds), so the loop itself tests one bit per entry; the bonds still
 // intact are counted from the bits after each word. kUnroll: the entry loop unrolled that many
 // times, chosen per kernel as measured (bench/NOTES.md; 2 is what the compiler picks alone).
-// kListed: partners read from the family's list (a partitioned rank, LatticeView::listed_partners)
-// instead of found at the entry's offset; a loop of its own, as a test per bond costs ~15% on the
-// H100 (measured 2026-11-25).
-template <int kUnroll, bool kListed, class Visit>
+template <int kUnroll, class Visit>
 PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
                                                   const BondsView& b, Visit& visit) {
   const LatticeView& l = b.lattice;
@@ -183,7 +180,7 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
       if (!(intact >> q & 1u)) continue;
       const StencilEntry& e = entries[w0 + q];
       const int64_t slot = first_slot + int64_t(k0 + bit_count(present & ((1u << q) - 1u))) * kSliceWidth;
-      const int32_t j = kListed ? bond_partner(b.neighbor[slot]) : i + e.offset;
+      const int32_t j = l.listed_partners ? bond_partner(b.neighbor[slot]) : i + e.offset;
       if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
@@ -204,9 +201,7 @@ template <bool kLattice = true, int kUnroll = 2, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                           Visit&& visit) {
   const int32_t stencil = kLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
-  if (kLattice && stencil >= 0)
-    return b.lattice.listed_partners ? for_each_intact_lattice_bond<kUnroll, true>(i, stencil, p, b, visit)
-                                     : for_each_intact_lattice_bond<kUnroll, false>(i, stencil, p, b, visit);
+  if (kLattice && stencil >= 0) return for_each_intact_lattice_bond<kUnroll>(i, stencil, p, b, visit);
   return for_each_intact_listed_bond(i, p, b, visit);
 }
 
