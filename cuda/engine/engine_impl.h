@@ -5,7 +5,6 @@
 #pragma once
 
 #include <algorithm>
-#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -25,10 +24,8 @@ class EngineImpl final : public Engine {
   // One rank of a partitioned run when `rank` is given (cuda/parallel/partitioned_engine.h): `in`
   // holds the rank's particles in its layout's order, its own first; the kernels of a step run
   // over those, and the ghosts after them are refreshed from their owners through `comm`.
-  // `rank_lattice` gives the rank its part of the whole run's lattice tables from its families
-  // as built (empty tables: none).
   EngineImpl(const SimulationInput& in, std::string device, const RankLayout* rank = nullptr,
-             Comm* comm = nullptr, const std::function<LatticeFamilies(const BondLists&)>& rank_lattice = {})
+             Comm* comm = nullptr)
       : exec_(&stats_),
         mem_(&exec_),
         device_(std::move(device)),
@@ -42,7 +39,6 @@ class EngineImpl final : public Engine {
     state_.upload(mem_, in.particles,
                   FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr});
     owned_ = state_.n;
-    held_ = state_.n;
     if (rank) {
       owned_ = rank->owned;
       state_.global_id.upload(rank->global);
@@ -55,11 +51,6 @@ class EngineImpl final : public Engine {
     if (in.lattice_families && !rank)  // (lattice offsets are indices of the whole run)
       features_.lattice = build_lattice_families(mem_, state_, in.particles, materials_, features_.weak_bonds,
                                                  lattice_, family_);
-    if (rank_lattice) {
-      lattice_.listed_partners = true;
-      features_.lattice = upload_lattice_families(mem_, state_, rank_lattice(download_bonds(state_)),
-                                                  features_.weak_bonds, lattice_, family_);
-    }
     critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_);
     if (features_.state_based) set_up_state_based();
     if (contact_) contacts_.allocate(mem_, state_.n, materials_);
@@ -168,13 +159,11 @@ class EngineImpl final : public Engine {
   // A restore whose plastic mirror (the partners' history, not all held here) comes with it.
   void restore_with_mirror(const EngineSnapshot& in, const std::vector<real>& plastic_mirror) {
     state_.check_sizes(in);
-    if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
     step_ = in.step;
     time_ = in.time;
     motion_.apply(time_, step_params_);
     state_.upload_saved(in);
     if (features_.plastic) state_.plastic_mirror.upload(plastic_mirror);
-    if (!lattice_.empty()) lattice_.intact.upload(lattice_.tables.intact);
     contacts_.invalidate();
   }
 
@@ -187,7 +176,6 @@ class EngineImpl final : public Engine {
   }
   BondsView bonds() const {
     BondsView b = state_.bonds();
-    b.n = held_;  // (not a partitioned rank's contact ghosts: the lattice masks' stride)
     b.lattice = lattice_.view();
     return b;
   }
@@ -276,7 +264,6 @@ class EngineImpl final : public Engine {
   double critical_dt_ = 0;
   FamilyStats family_;
   int32_t owned_ = 0;  // particles the step kernels run over (ParticlesView::n)
-  int32_t held_ = 0;   // particles with a place in the families (BondsView::n): own and bond ghosts
   Halo<Exec> halo_;    // a partitioned rank's ghost refresh (inactive otherwise)
   ContactGhosts<Exec> ghosts_;
   Comm* world_ = nullptr;

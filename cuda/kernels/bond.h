@@ -179,8 +179,8 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
     for (int32_t q = 0; q < 32; ++q) {
       if (!(intact >> q & 1u)) continue;
       const StencilEntry& e = entries[w0 + q];
+      const int32_t j = i + e.offset;
       const int64_t slot = first_slot + int64_t(k0 + bit_count(present & ((1u << q) - 1u))) * kSliceWidth;
-      const int32_t j = l.listed_partners ? bond_partner(b.neighbor[slot]) : i + e.offset;
       if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);

@@ -35,6 +35,7 @@ std::string meta_text(const RunCheckpoint& c) {
     << "frames " << c.frames << "\n"
     << "blend_frames " << c.blend_frames << "\n"
     << "allow_unstable_dt " << int(c.allow_unstable_dt) << "\n"
+    << "explicit_families " << int(c.explicit_families) << "\n"
     << "backend " << c.backend << "\n"
     << "frame " << c.frame << "\n"
     << "step " << c.engine.step << "\n"
@@ -85,6 +86,7 @@ void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) 
   c.frames = int64_t(integer("frames"));
   c.blend_frames = int(integer("blend_frames"));
   c.allow_unstable_dt = integer("allow_unstable_dt") != 0;
+  c.explicit_families = kv.count("explicit_families") && integer("explicit_families") != 0;  // (added later)
   c.backend = get("backend");
   c.frame = int64_t(integer("frame"));
   c.engine.step = int64_t(integer("step"));

@@ -35,6 +35,7 @@ struct RunCheckpoint {
   int64_t steps_per_frame = 0, frames = 0;
   int blend_frames = 0;
   bool allow_unstable_dt = false;
+  bool explicit_families = false;
   std::string backend;  // where it ran
   // Where it stands.
   int64_t frame = 0;  // the last frame written

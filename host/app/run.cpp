@@ -132,6 +132,9 @@ RunCheckpoint open_resume(RunOptions& opt) {
   opt.scale = c.scale;
   opt.blend_frames = c.blend_frames;
   opt.allow_unstable_dt = opt.allow_unstable_dt || c.allow_unstable_dt;
+  if (opt.explicit_families != c.explicit_families && opt.explicit_families)
+    throw ResumeError("--explicit-families was not given to the checkpointed run");
+  opt.explicit_families = c.explicit_families;
   if (opt.steps_per_frame >= 1 && opt.steps_per_frame != c.steps_per_frame)
     throw ResumeError("--steps-per-frame " + std::to_string(opt.steps_per_frame) + " differs from the " +
                       std::to_string(c.steps_per_frame) + " of the checkpointed run");
@@ -187,6 +190,7 @@ Simulation set_up_simulation(const RunOptions& opt, const std::optional<RunCheck
 void start_engine(Simulation& sim, const RunOptions& opt) {
   const SetupResult& setup = sim.setup;
   const auto t_setup = std::chrono::steady_clock::now();
+  if (opt.explicit_families) sim.setup.input.lattice_families = false;
   sim.engine = make_engine(sim.backend, setup.input);
   Engine& engine = *sim.engine;
   const FamilyStats& fam = engine.family_stats();
@@ -381,6 +385,7 @@ void write_run_checkpoint(const Simulation& sim, const RunOptions& opt, RunOutpu
   c.frames = sim.scene.frames;
   c.blend_frames = opt.blend_frames;
   c.allow_unstable_dt = opt.allow_unstable_dt;
+  c.explicit_families = opt.explicit_families;
   c.backend = backend_name(sim.backend);
   c.frame = frame;
   sim.engine->save(c.engine);

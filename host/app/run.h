@@ -15,6 +15,9 @@ struct RunOptions {
   std::string out;               // empty: out/<scene name>
   double scale = 1.0;
   bool allow_unstable_dt = false;
+  // Every particle finds its partners from its listed family, box-grid bodies too (no lattice
+  // families): the families a run over several ranks uses, so one rank gives its bits.
+  bool explicit_families = false;
   int blend_frames = 0;  // fragment split blending (host/fragments/smoothing.h); 0: off
   // Checkpoints (host/app/checkpoint.h) after every N frames and every M minutes of wall time
   // (0: off), and on SIGINT/SIGTERM. `resume`: an output folder to continue from its checkpoint.
