@@ -2,7 +2,8 @@
 # A run over several MPI ranks writes the files of the one-rank run, bit for bit: the golden
 # scenes (scripts/golden.sh: bond-based and state-based, plastic, anisotropic, pre-cracks,
 # anchors, a projectile, contact, tets and Voronoi cells) on 1, 2 and 3 ranks, and a run
-# checkpointed on 3 ranks resumed on 2 against the uninterrupted one-rank run.
+# checkpointed on 3 ranks resumed on 2 against the uninterrupted one-rank run; and the per-rank
+# report of `perifrac bench`.
 #   scripts/mpi-equivalence.sh [BINARY] [cpu|cuda]
 # Box-grid bodies run with listed families on several ranks, so every run here passes
 # --explicit-families (docs/parallel.md). Ranks share the machine's cores (--oversubscribe);
@@ -45,4 +46,14 @@ for f in frame_00004.pfr energy.csv fragments_00004.pfg fragments.obj; do
   fi
 done
 [ $status -eq 0 ] && echo "mpi-equivalence: checkpoint of 3 ranks resumed on 2: identical to one rank"
+
+# `perifrac bench` under mpirun reports every rank: particles, ghosts, rate and halo traffic.
+mpirun -np 2 "$bin" bench --lattice 16 --steps 5 --warmup 1 --backend "$backend" --out "$out/bench" >"$out/bench.log" 2>&1
+json=$(ls "$out"/bench/*.json)
+if [ "$(grep -c '"halo_bytes_per_step": [1-9]' "$json")" -ne 2 ]; then
+  echo "mpi-equivalence: bench on 2 ranks does not report two ranks with halo traffic ($json)" >&2
+  status=1
+else
+  echo "mpi-equivalence: bench on 2 ranks reports both ranks"
+fi
 exit $status

@@ -77,6 +77,18 @@ void for_each_snapshot_field(Snapshot& s, F f) {
 #undef PD_SNAPSHOT_VISIT
 }
 
+// One rank of a partitioned run (cuda/parallel/), counted since its set-up: what it holds and
+// where its step time went.
+struct RankStats {
+  int64_t particles = 0;    // its own
+  int64_t ghosts = 0;       // bond and contact ghosts it holds now
+  int64_t bonds = 0;        // its own particles' bonds as built
+  double step_seconds = 0;  // wall time in `advance`, exchanges included
+  double halo_seconds = 0;  // of which exchanging ghosts
+  int64_t halo_bytes = 0;   // sent to other ranks
+  int64_t halo_exchanges = 0;
+};
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -108,6 +120,8 @@ class Engine {
   // (cuda/kernels/bond_screen.h).
   virtual int64_t force_passes() const = 0;
   virtual int64_t screened_passes() const = 0;
+  // Per rank of a partitioned run, in rank order; empty for a run on one rank.
+  virtual std::vector<RankStats> rank_stats() { return {}; }
 };
 
 std::unique_ptr<Engine> make_cpu_engine(const SimulationInput& in);

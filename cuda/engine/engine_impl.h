@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
@@ -69,6 +70,7 @@ class EngineImpl final : public Engine {
   KernelStats& stats() override { return stats_; }
 
   void advance(int64_t steps) override {
+    const auto t0 = std::chrono::steady_clock::now();
     const real dt = step_params_.dt;
     for (int64_t s = 0; s < steps; ++s) {
       step_params_.time = real(time_ + dt);
@@ -81,6 +83,23 @@ class EngineImpl final : public Engine {
       ++step_;
     }
     exec_.flush_stats();
+    if (halo_.active()) {
+      exec_.synchronize();
+      step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+  }
+
+  // This rank's part of a partitioned run (PartitionedEngine::rank_stats).
+  RankStats local_rank_stats() const {
+    RankStats r;
+    r.particles = owned_;
+    r.ghosts = state_.n - owned_;
+    r.bonds = family_.bonds;
+    r.step_seconds = step_seconds_;
+    r.halo_seconds = halo_.seconds();
+    r.halo_bytes = halo_.bytes_sent();
+    r.halo_exchanges = halo_.exchanges();
+    return r;
   }
 
   void read_state(ParticleState& out) override { state_.read_frame(out); }
@@ -263,8 +282,9 @@ class EngineImpl final : public Engine {
   double time_ = 0;
   double critical_dt_ = 0;
   FamilyStats family_;
-  int32_t owned_ = 0;  // particles the step kernels run over (ParticlesView::n)
-  Halo<Exec> halo_;    // a partitioned rank's ghost refresh (inactive otherwise)
+  int32_t owned_ = 0;        // particles the step kernels run over (ParticlesView::n)
+  double step_seconds_ = 0;  // a partitioned rank's wall time in `advance`
+  Halo<Exec> halo_;          // a partitioned rank's ghost refresh (inactive otherwise)
   ContactGhosts<Exec> ghosts_;
   Comm* world_ = nullptr;
 

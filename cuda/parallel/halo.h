@@ -4,6 +4,7 @@
 // from the GPU, through host buffers.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -39,10 +40,12 @@ class Halo {
   bool active() const { return comm_ != nullptr; }
   int64_t bytes_sent() const { return bytes_sent_; }
   int64_t exchanges() const { return exchanges_; }
+  double seconds() const { return seconds_; }
 
   // Every ghost's entry of `field` replaced by its owner's.
   template <class T>
   void exchange(DeviceArray<T, Exec>& field) {
+    const auto t0 = std::chrono::steady_clock::now();
     const int64_t sends = int64_t(send_index_.size()), recvs = int64_t(recv_index_.size());
     reserve(sends * int64_t(sizeof(T)), send_buffer_);
     reserve(recvs * int64_t(sizeof(T)), recv_buffer_);
@@ -68,6 +71,8 @@ class Halo {
     exec_->parallel_for("halo/unpack", recvs, [=] PD_HD(int64_t k) { values[recv_index[k]] = unpacked[k]; });
     bytes_sent_ += sends * int64_t(sizeof(T));
     ++exchanges_;
+    exec_->synchronize();  // (the unpack, so the time is the exchange's)
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
  private:
@@ -97,6 +102,7 @@ class Halo {
   std::vector<int64_t> send_first_, recv_first_;
   DeviceArray<char, Exec> send_buffer_, recv_buffer_;
   int64_t bytes_sent_ = 0, exchanges_ = 0;
+  double seconds_ = 0;
 };
 
 }  // namespace pd

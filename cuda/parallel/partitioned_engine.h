@@ -108,6 +108,10 @@ class PartitionedEngine final : public Engine {
   size_t memory_bytes() const override { return memory_; }
   int64_t force_passes() const override { return local_->force_passes(); }
   int64_t screened_passes() const override { return local_->screened_passes(); }
+  std::vector<RankStats> rank_stats() override {
+    command(Op::kRankStats);
+    return std::move(ranks_out_);
+  }
 
  private:
   enum class Op : int64_t {
@@ -119,7 +123,8 @@ class PartitionedEngine final : public Engine {
     kEnergy,
     kNonFinite,
     kSave,
-    kRestore
+    kRestore,
+    kRankStats
   };
 
   // Rank 0: every rank carries out `op` together.
@@ -157,6 +162,9 @@ class PartitionedEngine final : public Engine {
         break;
       case Op::kRestore:
         scatter_snapshot();
+        break;
+      case Op::kRankStats:
+        gather_rank_stats();
         break;
       case Op::kFinish:
         break;
@@ -274,6 +282,13 @@ class PartitionedEngine final : public Engine {
     if (comm_->rank() != 0) return;
     bonds_out_.slice_offset = global_offset_;
     bonds_out_.count = global_count_;
+  }
+
+  void gather_rank_stats() {
+    std::vector<std::vector<char>> parts;
+    comm_->gather(to_bytes(std::vector<RankStats>{local_->local_rank_stats()}), parts, 0);
+    ranks_out_.clear();
+    for (const auto& part : parts) ranks_out_.push_back(from_bytes<RankStats>(part).at(0));
   }
 
   void gather_energy() {
@@ -415,6 +430,7 @@ class PartitionedEngine final : public Engine {
   EngineSnapshot snapshot_;
   Energy energy_out_;
   int64_t count_out_ = 0;
+  std::vector<RankStats> ranks_out_;
 };
 
 // The engine of this rank of a partitioned run. Rank 0 gets it; any other rank serves rank 0's

@@ -20,6 +20,16 @@
 namespace pd {
 
 namespace {
+// What each rank of a partitioned run did between two readings of its counters.
+std::vector<RankStats> rank_deltas(const std::vector<RankStats>& before, std::vector<RankStats> after) {
+  for (size_t r = 0; r < after.size() && r < before.size(); ++r) {
+    after[r].step_seconds -= before[r].step_seconds;
+    after[r].halo_seconds -= before[r].halo_seconds;
+    after[r].halo_bytes -= before[r].halo_bytes;
+    after[r].halo_exchanges -= before[r].halo_exchanges;
+  }
+  return after;
+}
 
 // A glass-like cube of n^3 simple-cubic particles, 1 mm apart, that stays elastic under
 // random velocities of 1e-3 m/s (so the break test runs but no bond breaks). The plastic
@@ -113,12 +123,14 @@ int bench_command(const BenchOptions& opt) {
   engine->advance(opt.warmup);
   engine->stats().reset_times();
   const int64_t screened_before = engine->screened_passes();
+  const std::vector<RankStats> ranks_before = engine->rank_stats();
   const auto t0 = std::chrono::steady_clock::now();
   profiler_range_push("pd-bench-timed");  // what scripts/profile.sh profiles after a long warm-up
   engine->advance(opt.steps);
   profiler_range_pop();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const int64_t screened = engine->screened_passes() - screened_before;
+  const std::vector<RankStats> ranks = rank_deltas(ranks_before, engine->rank_stats());
 
   const std::string date = utc_now("%Y-%m-%dT%H:%M:%SZ"), rev = git_revision();
   const auto rows = kernel_rows(engine->stats(), "pd/", fam.bonds, opt.steps);
@@ -134,6 +146,13 @@ int bench_command(const BenchOptions& opt) {
               (long long)screened, (long long)opt.steps);
   std::printf("wall       %.3f s for %lld steps: %.3e bond-updates/s end to end\n", wall,
               (long long)opt.steps, double(fam.bonds) * double(opt.steps) / wall);
+  for (size_t r = 0; r < ranks.size(); ++r) {
+    const RankStats& k = ranks[r];
+    std::printf(
+        "rank %-5zu %lld particles, %lld ghosts: %.3e bond-updates/s, halo %.1f KiB and %.3f ms per step\n",
+        r, (long long)k.particles, (long long)k.ghosts, double(k.bonds) * double(opt.steps) / k.step_seconds,
+        double(k.halo_bytes) / double(opt.steps) / 1024, 1e3 * k.halo_seconds / double(opt.steps));
+  }
 
   // Results file: one JSON document per run.
   ensure_directory(opt.out);
@@ -152,6 +171,17 @@ int bench_command(const BenchOptions& opt) {
        << ", \"share\": " << r.share << ", \"bond_updates_per_s\": " << r.bond_updates_per_s
        << ", \"registers\": " << r.registers << ", \"occupancy\": " << r.occupancy << "}"
        << (k + 1 < rows.size() ? "," : "") << "\n";
+  }
+  js << "  ],\n  \"ranks\": [\n";
+  for (size_t r = 0; r < ranks.size(); ++r) {
+    const RankStats& k = ranks[r];
+    js << "    {\"rank\": " << r << ", \"particles\": " << k.particles << ", \"ghosts\": " << k.ghosts
+       << ", \"bonds\": " << k.bonds << ", \"step_seconds\": " << k.step_seconds
+       << ", \"bond_updates_per_s\": " << double(k.bonds) * double(opt.steps) / k.step_seconds
+       << ", \"halo_bytes_per_step\": " << double(k.halo_bytes) / double(opt.steps)
+       << ", \"halo_exchanges_per_step\": " << double(k.halo_exchanges) / double(opt.steps)
+       << ", \"halo_seconds_per_step\": " << k.halo_seconds / double(opt.steps) << "}"
+       << (r + 1 < ranks.size() ? "," : "") << "\n";
   }
   js << "  ]\n}\n";
   const std::string file =
