@@ -77,10 +77,13 @@ std::string format_bytes(double bytes) {
   return buf;
 }
 
-ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic) {
-  const double engine = engine_bytes_per_particle(horizon_ratio, plastic);
+ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic, int ranks, int ranks_per_host) {
+  // Engine bytes per particle of the whole run, on one rank's backend.
+  const double share = ranks > 1 ? kRankGhostAllowance / double(ranks) : 1.0;
+  const double engine = engine_bytes_per_particle(horizon_ratio, plastic) * share;
   const double host_free = double(host_available_bytes());
-  const double host_per = kHostBytesPerParticle + (b == Backend::kCpu ? engine : 0);
+  const double host_per =
+      double(std::max(ranks_per_host, 1)) * (kHostBytesPerParticle + (b == Backend::kCpu ? engine : 0));
   ParticleBudget budget;
   budget.max_particles = int64_t(host_free / host_per);
   budget.why = "what fits in the " + format_bytes(host_free) + " of free host memory at ~" +
@@ -96,7 +99,8 @@ ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic) {
   }
   char ratio[32];
   std::snprintf(ratio, sizeof ratio, "%g", horizon_ratio);
-  budget.why += std::string(" (horizon ") + ratio + " spacings" + (plastic ? ", plastic" : "") + ")";
+  budget.why += std::string(" (horizon ") + ratio + " spacings" + (plastic ? ", plastic" : "") +
+                (ranks > 1 ? ", split over " + std::to_string(ranks) + " ranks" : "") + ")";
   return budget;
 }
 

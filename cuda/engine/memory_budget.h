@@ -39,8 +39,14 @@ struct ParticleBudget {
 };
 
 // The largest particle count a run on `b` can hold, given the largest horizon ratio of its
-// materials and whether any is plastic; the CPU engine shares the host's memory.
-ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic);
+// materials and whether any is plastic; the CPU engine shares the host's memory. A run over
+// `ranks` ranks (cuda/parallel/), `ranks_per_host` of them on this host: each rank's engine holds
+// its share plus ghosts, every rank holds the whole particle set on the host while it sets up.
+ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic, int ranks = 1,
+                               int ranks_per_host = 1);
+
+// The share of the particles a rank's engine holds, ghosts included, as the budget assumes it.
+inline constexpr double kRankGhostAllowance = 1.15;
 
 // "1.5 GiB", "320 MiB": for messages.
 std::string format_bytes(double bytes);

@@ -17,8 +17,9 @@ class Comm {
   virtual ~Comm() = default;
   virtual int rank() const = 0;
   virtual int size() const = 0;
-  // The rank's place among the ranks of its host (the GPU it takes).
+  // The rank's place among the ranks of its host (the GPU it takes), and how many share the host.
   virtual int local_rank() const = 0;
+  virtual int local_size() const = 0;
 
   // `bytes` at `data` on `root` copied to every rank's `data`.
   virtual void broadcast(void* data, size_t bytes, int root) = 0;

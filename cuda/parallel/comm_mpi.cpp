@@ -23,6 +23,13 @@ int launched_world_size() {
   return 0;
 }
 
+int launched_local_size() {
+  for (const char* var : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"}) {
+    if (const char* v = std::getenv(var)) return std::max(1, std::atoi(v));
+  }
+  return 1;
+}
+
 int launched_local_rank() {
   for (const char* var : {"OMPI_COMM_WORLD_LOCAL_RANK", "MPI_LOCALRANKID", "SLURM_LOCALID"}) {
     if (const char* v = std::getenv(var)) return std::max(0, std::atoi(v));
@@ -48,12 +55,14 @@ class MpiComm final : public Comm {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
     local_rank_ = launched_local_rank();
+    local_size_ = launched_local_size();
   }
   ~MpiComm() override { leave_world(); }
 
   int rank() const override { return rank_; }
   int size() const override { return size_; }
   int local_rank() const override { return local_rank_; }
+  int local_size() const override { return local_size_; }
 
   void broadcast(void* data, size_t bytes, int root) override {
     char* p = static_cast<char*>(data);
@@ -133,7 +142,7 @@ class MpiComm final : public Comm {
     }
   }
 
-  int rank_ = 0, size_ = 1, local_rank_ = 0;
+  int rank_ = 0, size_ = 1, local_rank_ = 0, local_size_ = 1;
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "cuda/engine/bond_cuts.h"
 #include "cuda/engine/material.h"
 #include "cuda/engine/memory_budget.h"
+#include "cuda/parallel/comm.h"
 #include "host/geometry/box_grid.h"
 #include "host/geometry/grid_particles.h"
 #include "host/geometry/mesh_check.h"
@@ -329,7 +330,10 @@ SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend
     horizon = std::max(horizon, m.horizon);
     plastic = plastic || m.plastic.has_value();
   }
-  const ParticleBudget budget = particle_budget(backend, horizon, plastic);
+  const auto world = world_comm();  // a run split over MPI ranks budgets per rank
+  const ParticleBudget budget =
+      world ? particle_budget(backend, horizon, plastic, world->size(), world->local_size())
+            : particle_budget(backend, horizon, plastic);
   SetupOptions o(scale);
   o.max_particles = budget.max_particles;
   o.budget_why = budget.why;

@@ -46,6 +46,17 @@ TEST(MemoryBudget, BudgetFollowsTheFreeMemory) {
   EXPECT_NE(b.why.find("free host memory"), std::string::npos) << b.why;
 }
 
+// Split over 4 ranks, 2 on this host: each rank's engine holds a quarter (and its ghosts), while
+// both ranks of the host hold the whole particle set.
+TEST(MemoryBudget, RanksShareTheEngineButEachHoldsTheParticleSet) {
+  const ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", "100");
+  const ParticleBudget b = particle_budget(Backend::kCpu, 3, false, 4, 2);
+  const double per =
+      2 * (kHostBytesPerParticle + engine_bytes_per_particle(3, false) * kRankGhostAllowance / 4);
+  EXPECT_EQ(b.max_particles, int64_t(100.0 * (1 << 20) / per));
+  EXPECT_NE(b.why.find("split over 4 ranks"), std::string::npos) << b.why;
+}
+
 // A million-particle box against a 20 MiB budget: refused at once, naming the key and the limit.
 TEST(MemoryBudget, OversizedSceneIsRefusedBeforeItsParticlesAreMade) {
   const Scene scene = parse_scene(
