@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -55,16 +56,21 @@ class ContactGhosts {
     Exec& exec = mem.exec();
     exec.download(disp.data(), state.disp.data(), disp.size() * sizeof(Vec4));
     exec.download(vel.data(), state.vel.data(), vel.size() * sizeof(Vec3));
+    // Own particles' current positions, once for the box and every peer's test.
+    std::vector<std::array<double, 3>> position(static_cast<size_t>(owned_));
+    for (int32_t i = 0; i < owned_; ++i) {
+      const Vec4 &x = rest_[size_t(i)], &u = disp[size_t(i)];
+      position[size_t(i)] = {double(x.x) + u.x, double(x.y) + u.y, double(x.z) + u.z};
+    }
 
     // Every rank's box around its own particles' current positions.
     std::vector<double> box = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (int32_t i = 0; i < owned_; ++i) {
-      const double x[3] = {double(rest_[size_t(i)].x) + disp[size_t(i)].x,
-                           double(rest_[size_t(i)].y) + disp[size_t(i)].y,
-                           double(rest_[size_t(i)].z) + disp[size_t(i)].z};
-      for (int a = 0; a < 3; ++a)
-        box[size_t(a)] = std::min(box[size_t(a)], x[a]),
+      const std::array<double, 3>& x = position[size_t(i)];
+      for (int a = 0; a < 3; ++a) {
+        box[size_t(a)] = std::min(box[size_t(a)], x[a]);
         box[size_t(a + 3)] = std::max(box[size_t(a + 3)], x[a]);
+      }
     }
     std::vector<std::vector<char>> out(peers, to_bytes(box)), in(peers);
     for (int r = 0; r < ranks; ++r)
@@ -81,9 +87,7 @@ class ContactGhosts {
       const std::vector<double> peer = from_bytes<double>(in[size_t(s)]);
       for (int32_t i = 0; i < owned_; ++i) {
         if (bond_ghost_of_[size_t(s)][size_t(i)]) continue;
-        const double x[3] = {double(rest_[size_t(i)].x) + disp[size_t(i)].x,
-                             double(rest_[size_t(i)].y) + disp[size_t(i)].y,
-                             double(rest_[size_t(i)].z) + disp[size_t(i)].z};
+        const std::array<double, 3>& x = position[size_t(i)];
         bool near = true;
         for (int a = 0; a < 3; ++a)
           near = near && x[a] >= peer[size_t(a)] - margin && x[a] <= peer[size_t(a + 3)] + margin;

@@ -53,8 +53,13 @@ class Halo {
     const ArrayView<T> values = view_of(field);
     const ArrayView<T> packed{reinterpret_cast<T*>(send_buffer_.data()), sends};
     exec_->parallel_for("halo/pack", sends, [=] PD_HD(int64_t k) { packed[k] = values[send_index[k]]; });
-    std::vector<std::vector<char>> out(size_t(comm_->size())), in(size_t(comm_->size()));
-    std::vector<char> host(size_t(sends) * sizeof(T));
+    // Host staging buffers kept between exchanges (their capacity is reused every step).
+    std::vector<std::vector<char>>& out = host_out_;
+    std::vector<std::vector<char>>& in = host_in_;
+    std::vector<char>& host = host_;
+    out.resize(size_t(comm_->size()));
+    in.resize(size_t(comm_->size()));
+    host.resize(size_t(sends) * sizeof(T));
     if (sends > 0) exec_->download(host.data(), send_buffer_.data(), host.size());
     for (size_t r = 0; r < out.size(); ++r) {
       out[r].assign(host.begin() + std::ptrdiff_t(send_first_[r] * int64_t(sizeof(T))),
@@ -101,6 +106,8 @@ class Halo {
   DeviceArray<int32_t, Exec> send_index_, recv_index_;
   std::vector<int64_t> send_first_, recv_first_;
   DeviceArray<char, Exec> send_buffer_, recv_buffer_;
+  std::vector<std::vector<char>> host_out_, host_in_;
+  std::vector<char> host_;
   int64_t bytes_sent_ = 0, exchanges_ = 0;
   double seconds_ = 0;
 };
