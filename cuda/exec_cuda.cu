@@ -51,6 +51,45 @@ CudaExec::~CudaExec() {
   if (flag_host_) cudaFreeHost(flag_host_);
   for (cudaEvent_t e : flag_event_)
     if (e) cudaEventDestroy(e);
+  for (auto& p : side_spans_) {
+    cudaEventDestroy(p.start);
+    cudaEventDestroy(p.stop);
+  }
+  if (fork_) cudaEventDestroy(fork_);
+  if (join_) cudaEventDestroy(join_);
+  if (side_) cudaStreamDestroy(side_);
+}
+
+int CudaExec::device_count() const {
+  int n = 0;
+  cuda_check(cudaGetDeviceCount(&n), "cudaGetDeviceCount");
+  return n;
+}
+
+void CudaExec::begin_side() {
+  if (!side_) {
+    cuda_check(cudaStreamCreateWithFlags(&side_, cudaStreamNonBlocking), "cudaStreamCreateWithFlags");
+    cuda_check(cudaEventCreateWithFlags(&fork_, cudaEventDisableTiming), "cudaEventCreate");
+    cuda_check(cudaEventCreateWithFlags(&join_, cudaEventDisableTiming), "cudaEventCreate");
+  }
+  cuda_check(cudaEventRecord(fork_, nullptr), "cudaEventRecord");
+  cuda_check(cudaStreamWaitEvent(side_, fork_, 0), "cudaStreamWaitEvent");
+  stream_ = side_;
+  cudaEvent_t start = take_event();
+  cuda_check(cudaEventRecord(start, side_), "cudaEventRecord");
+  side_spans_.push_back({"side", start, nullptr});
+}
+
+void CudaExec::end_side() {
+  cudaEvent_t stop = take_event();
+  cuda_check(cudaEventRecord(stop, side_), "cudaEventRecord");
+  side_spans_.back().stop = stop;
+  cuda_check(cudaEventRecord(join_, side_), "cudaEventRecord");
+  stream_ = nullptr;
+}
+
+void CudaExec::wait_side() {
+  cuda_check(cudaStreamWaitEvent(nullptr, join_, 0), "cudaStreamWaitEvent");
 }
 
 void CudaExec::describe(KernelStat* s, const void* kernel) {
@@ -82,7 +121,7 @@ cudaEvent_t CudaExec::take_event() {
 cudaEvent_t CudaExec::begin_timing() {
   if (!stats_) return nullptr;
   cudaEvent_t e = take_event();
-  cuda_check(cudaEventRecord(e), "cudaEventRecord");
+  cuda_check(cudaEventRecord(e, stream_), "cudaEventRecord");
   return e;
 }
 
@@ -90,7 +129,7 @@ void CudaExec::end_timing(const char* name, cudaEvent_t start) {
   last_name_ = name;
   if (!stats_) return;
   cudaEvent_t stop = take_event();
-  cuda_check(cudaEventRecord(stop), "cudaEventRecord");
+  cuda_check(cudaEventRecord(stop, stream_), "cudaEventRecord");
   pending_.push_back({name, start, stop});
   // Bound the event backlog on long runs without a flush.
   if (pending_.size() >= 4096) flush_stats();
@@ -111,6 +150,17 @@ void CudaExec::flush_stats() {
     free_events_.push_back(p.stop);
   }
   pending_.clear();
+  // (A span still open, when a flush falls between begin_side and end_side, is kept.)
+  const bool open = !side_spans_.empty() && !side_spans_.back().stop;
+  for (size_t k = 0; k + (open ? 1 : 0) < side_spans_.size(); ++k) {
+    const Pending& p = side_spans_[k];
+    float ms = 0;
+    cuda_check(cudaEventElapsedTime(&ms, p.start, p.stop), "cudaEventElapsedTime");
+    side_seconds_ += 1e-3 * ms;
+    free_events_.push_back(p.start);
+    free_events_.push_back(p.stop);
+  }
+  side_spans_.erase(side_spans_.begin(), side_spans_.end() - (open ? 1 : 0));
 }
 
 void* CudaExec::scratch(int slot, size_t bytes) {

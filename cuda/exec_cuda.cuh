@@ -64,9 +64,9 @@ class CudaExec {
     }
     cudaEvent_t start = begin_timing();
     if constexpr (kMinBlocks > 0)
-      parallel_for_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize>>>(n, f);
+      parallel_for_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(n, f);
     else
-      parallel_for_kernel<<<unsigned(blocks), kBlockSize>>>(n, f);
+      parallel_for_kernel<<<unsigned(blocks), kBlockSize, 0, stream_>>>(n, f);
     cuda_check(cudaGetLastError(), name);
     end_timing(name, start);
   }
@@ -110,6 +110,17 @@ class CudaExec {
   int32_t* flag(int k);
   void mark_flags(int event);
   uint32_t take_flags(uint32_t mask, int event);
+  // A second stream for work that overlaps the main one's (a partitioned run's halo): the
+  // launches between begin_side() and end_side() go to it, after everything queued on the main
+  // stream before begin_side(); wait_side() makes main-stream work queued after it wait for them.
+  // stream() is the stream launches go to now (a cudaStream_t); side_seconds() the side's time
+  // (between begin_side and end_side) up to the last flush_stats.
+  void begin_side();
+  void end_side();
+  void wait_side();
+  void* stream() { return stream_; }
+  int device_count() const;  // GPUs this process sees
+  double side_seconds() const { return side_seconds_; }
   // Waits for the device, adds the timed launches to the stats, and reports any
   // asynchronous kernel error with the name of the kernel family last launched.
   void flush_stats();
@@ -134,6 +145,11 @@ class CudaExec {
   int32_t* flag_host_ = nullptr;
   int32_t* flag_device_ = nullptr;
   cudaEvent_t flag_event_[kFlagEvents] = {};
+  cudaStream_t stream_ = nullptr;  // where launches go: the main (legacy default) stream or the side
+  cudaStream_t side_ = nullptr;
+  cudaEvent_t fork_ = nullptr, join_ = nullptr;
+  std::vector<Pending> side_spans_;  // begin_side to end_side, resolved in flush_stats
+  double side_seconds_ = 0;
 };
 
 }  // namespace pd

@@ -31,24 +31,35 @@ inline std::string kernel_variant(const char* kernel,
   return set.empty() ? name : name + "[" + set + "]";
 }
 
+// The particles a launch runs over: [first, first + count) of the view's (a partitioned rank
+// runs the force kernels over its interior particles while the halo travels, then over the rest).
+struct ParticleRange {
+  int32_t first = 0, count = 0;
+};
+inline ParticleRange all_particles(const ParticlesView& p) {
+  return {0, p.n};
+}
+
 // Kernel 1.
 template <bool kStateBased, bool kAnisotropic, bool kLattice, bool kPlastic, class Exec>
-void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r) {
   static const std::string name = kernel_variant(
       "pd/init",
       {{"state", kStateBased}, {"aniso", kAnisotropic}, {"lattice", kLattice}, {"plastic", kPlastic}});
-  ex.parallel_for(name.c_str(), p.n, [=] PD_HD(int64_t i) {
-    init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(int32_t(i), p, b, mt);
+  const int32_t first = r.first;
+  ex.parallel_for(name.c_str(), r.count, [=] PD_HD(int64_t k) {
+    init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(first + int32_t(k), p, b, mt);
   });
 }
 
 template <class Exec>
-void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f) {
-  if (!f.state_based) return launch_init_variant<false, false, false, false>(ex, p, b, mt);
+void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
+                 ParticleRange r) {
+  if (!f.state_based) return launch_init_variant<false, false, false, false>(ex, p, b, mt, r);
   static_bools(
       [&](auto anisotropic, auto lattice, auto plastic) {
         launch_init_variant<true, decltype(anisotropic)::value, decltype(lattice)::value,
-                            decltype(plastic)::value>(ex, p, b, mt);
+                            decltype(plastic)::value>(ex, p, b, mt, r);
       },
       f.anisotropic, f.lattice, f.plastic);
 }
@@ -129,7 +140,8 @@ PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const Bon
 
 template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, bool kScreened,
           class Exec>
-void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, int32_t* broke) {
+void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r,
+                                 int32_t* broke) {
   // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
   // with weakened bonds or screened 5 (48 registers; they would take 55-56 and run 4);
   // state-based 4 (at most 64; they spill at 48). The plain bond-based breaking pass has 48
@@ -141,15 +153,16 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
                                                                      {"weak", kWeak},
                                                                      {"lattice", kLattice},
                                                                      {"screened", kScreened}});
-  ex.template parallel_for<kMinBlocks>(name.c_str(), p.n, [=] PD_HD(int64_t i) {
-    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(int32_t(i), p, b, mt,
-                                                                                       broke);
+  const int32_t first = r.first;
+  ex.template parallel_for<kMinBlocks>(name.c_str(), r.count, [=] PD_HD(int64_t k) {
+    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(first + int32_t(k), p,
+                                                                                       b, mt, broke);
   });
 }
 
 template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
-                         bool screened, int32_t* broke) {
+                         ParticleRange r, bool screened, int32_t* broke) {
   static_bools(
       [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto screen) {
         constexpr bool kState = decltype(state_based)::value;
@@ -158,7 +171,8 @@ void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable m
         // Plasticity and anisotropy exist only for state-based materials: no bond-based copies.
         if constexpr (kState || (!decltype(plastic)::value && !decltype(anisotropic)::value))
           launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
-                                      decltype(lattice)::value, decltype(screen)::value>(ex, p, b, mt, broke);
+                                      decltype(lattice)::value, decltype(screen)::value>(ex, p, b, mt, r,
+                                                                                         broke);
       },
       f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds, f.lattice,
       screened);

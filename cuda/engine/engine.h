@@ -87,6 +87,9 @@ struct RankStats {
   double halo_seconds = 0;  // of which exchanging ghosts
   int64_t halo_bytes = 0;   // sent to other ranks
   int64_t halo_exchanges = 0;
+  int64_t interior = 0;          // own particles that read no ghost
+  char halo_transport[24] = {};  // "nccl", "mpi via host memory" or "mpi"
+  int32_t overlapped = 0;        // 1: interior forces computed while the halo travels
 };
 
 class Engine {

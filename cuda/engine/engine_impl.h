@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -42,8 +43,11 @@ class EngineImpl final : public Engine {
     owned_ = state_.n;
     if (rank) {
       owned_ = rank->owned;
+      interior_ = rank->interior;
       state_.global_id.upload(rank->global);
-      halo_ = Halo<Exec>(mem_, *rank, *comm);
+      const HaloOptions halo = halo_options_from_env();
+      overlap_ = halo.overlap;
+      halo_ = Halo<Exec>(mem_, *rank, *comm, halo);
       ghosts_ = ContactGhosts<Exec>(*rank, in.particles, *comm);
       world_ = comm;
     }
@@ -99,6 +103,9 @@ class EngineImpl final : public Engine {
     r.halo_seconds = halo_.seconds();
     r.halo_bytes = halo_.bytes_sent();
     r.halo_exchanges = halo_.exchanges();
+    r.interior = interior_;
+    std::snprintf(r.halo_transport, sizeof(r.halo_transport), "%s", halo_.transport());
+    r.overlapped = overlap_ ? 1 : 0;
     return r;
   }
 
@@ -212,16 +219,21 @@ class EngineImpl final : public Engine {
   void compute_forces() {
     const ParticlesView p = particles();
     const BondsView b = bonds();
-    // A partitioned rank's ghosts: positions before `init` sums dilatations over partners, and
-    // what `springforces` reads of a partner (strain limit, dilatation, damage) after it.
-    if (halo_.active() && features_.state_based) halo_.exchange(state_.disp);
-    launch_init(exec_, p, b, materials_, features_);
+    // On a partitioned rank, the ghosts' positions before `init` sums dilatations over partners
+    // (state-based), and what `springforces` reads of a partner (strain limit, dilatation,
+    // damage) after it, each while the interior particles' part runs.
+    const auto init = [&](ParticleRange r) { launch_init(exec_, p, b, materials_, features_, r); };
+    if (features_.state_based)
+      with_halo(init, state_.disp);
+    else
+      init(all_particles(p));
     if (features_.plastic) launch_plasticity(exec_, p, materials_);
-    if (halo_.active()) {
-      halo_.exchange(state_.disp);
-      if (features_.state_based) halo_.exchange(state_.state);
-    }
-    queue_springforces(p, b);
+    const auto springforces = [&](ParticleRange r) { queue_springforces(p, b, r); };
+    if (features_.state_based)
+      with_halo(springforces, state_.disp, state_.state);
+    else
+      with_halo(springforces, state_.disp);
+    take_broke_flags();
     // (After a contact build that brought in contact ghosts the state may have moved: the views
     // are taken again.)
     if (contact_) {  // after springforces is queued: waiting for position_update's flag idles nothing
@@ -229,6 +241,18 @@ class EngineImpl final : public Engine {
         launch_collisions(exec_, particles(), contact_view(), materials_, step_params_.contact_stiffness);
     }
     if (body_forces_) launch_bodyforces(exec_, particles(), step_params_);
+  }
+
+  // `launch` over the own particles with the ghosts' `fields` brought up to date first: on a
+  // partitioned rank the interior particles' part (they read no ghost) runs while the halo
+  // travels, then the boundary's.
+  template <class Launch, class... T>
+  void with_halo(const Launch& launch, DeviceArray<T, Exec>&... fields) {
+    if (!halo_.active()) return launch(ParticleRange{0, owned_});
+    halo_.start(fields...);
+    if (overlap_) launch(ParticleRange{0, interior_});
+    halo_.finish();
+    launch(overlap_ ? ParticleRange{interior_, owned_ - interior_} : ParticleRange{0, owned_});
   }
 
   // The contact lists at the current positions (ContactLists::refresh); on a partitioned rank
@@ -242,15 +266,21 @@ class EngineImpl final : public Engine {
     });
   }
 
-  // Kernel 4 in the form chosen from the pass before the last (bond_screen.h): that pass's
-  // flag is read after this one is queued, so the host waits for nothing the device still runs.
-  void queue_springforces(const ParticlesView& p, const BondsView& b) {
+  // Kernel 4 in the form chosen from the pass before the last (bond_screen.h), over `r`; the
+  // pass's flag is read by take_broke_flags once the whole pass is queued, and the host waits
+  // only for the pass before, not for what the device still runs.
+  void queue_springforces(const ParticlesView& p, const BondsView& b, ParticleRange r) {
     const bool screened =
         screen_ == BondScreen::kAlways || (screen_ == BondScreen::kAuto && breaking_hold_ == 0);
     const int parity = int(force_passes_ % kBrokeFlags);
-    launch_springforces(exec_, p, b, materials_, features_, screened, exec_.flag(kFlagBroke + parity));
+    launch_springforces(exec_, p, b, materials_, features_, r, screened, exec_.flag(kFlagBroke + parity));
+    pass_screened_ = screened;
+  }
+
+  void take_broke_flags() {
+    const int parity = int(force_passes_ % kBrokeFlags);
     exec_.mark_flags(kBrokeFlagEvent + parity);
-    screened_passes_ += screened;
+    screened_passes_ += pass_screened_;
     if (force_passes_++ == 0) return;
     const int last = int((force_passes_ - 2) % kBrokeFlags);
     const bool broke = exec_.take_flags(1u << (kFlagBroke + last), kBrokeFlagEvent + last) != 0;
@@ -275,7 +305,8 @@ class EngineImpl final : public Engine {
   bool contact_ = false;
   BondScreen screen_ = BondScreen::kAuto;
   int64_t force_passes_ = 0, screened_passes_ = 0;
-  int breaking_hold_ = 0;  // passes left to run with the breaking pass
+  int breaking_hold_ = 0;       // passes left to run with the breaking pass
+  bool pass_screened_ = false;  // the form of the pass being queued
   KernelFeatures features_;
   bool body_forces_ = false;
   int64_t step_ = 0;
@@ -283,6 +314,8 @@ class EngineImpl final : public Engine {
   double critical_dt_ = 0;
   FamilyStats family_;
   int32_t owned_ = 0;        // particles the step kernels run over (ParticlesView::n)
+  int32_t interior_ = 0;     // of which the first read no ghost (a partitioned rank's)
+  bool overlap_ = true;      // a partitioned rank runs the interior part while the halo travels
   double step_seconds_ = 0;  // a partitioned rank's wall time in `advance`
   Halo<Exec> halo_;          // a partitioned rank's ghost refresh (inactive otherwise)
   ContactGhosts<Exec> ghosts_;

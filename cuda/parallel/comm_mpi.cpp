@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "cuda/parallel/comm.h"
 
@@ -85,13 +86,24 @@ class MpiComm final : public Comm {
   }
 
   void exchange(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& recv) override {
-    std::vector<MPI_Request> requests;
+    std::vector<Buffer> out(send.size()), in(recv.size());
+    for (size_t r = 0; r < send.size(); ++r) out[r] = {const_cast<char*>(send[r].data()), send[r].size()};
+    for (size_t r = 0; r < recv.size(); ++r) in[r] = {recv[r].data(), recv[r].size()};
+    start_exchange(out, in);
+    finish_exchanges();
+  }
+
+  void start_exchange(const std::vector<Buffer>& send, const std::vector<Buffer>& recv) override {
     for (int r = 0; r < size_; ++r) {
       if (r == rank_) continue;
-      post(const_cast<char*>(send[size_t(r)].data()), send[size_t(r)].size(), r, true, requests);
-      post(recv[size_t(r)].data(), recv[size_t(r)].size(), r, false, requests);
+      post(send[size_t(r)].data, send[size_t(r)].bytes, r, true, pending_);
+      post(recv[size_t(r)].data, recv[size_t(r)].bytes, r, false, pending_);
     }
-    check(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "exchange");
+  }
+
+  void finish_exchanges() override {
+    check(MPI_Waitall(int(pending_.size()), pending_.data(), MPI_STATUSES_IGNORE), "exchange");
+    pending_.clear();
   }
 
   void gather(const std::vector<char>& data, std::vector<std::vector<char>>& out, int root) override {
@@ -143,6 +155,7 @@ class MpiComm final : public Comm {
   }
 
   int rank_ = 0, size_ = 1, local_rank_ = 0, local_size_ = 1;
+  std::vector<MPI_Request> pending_;  // started exchanges' requests
 };
 
 }  // namespace

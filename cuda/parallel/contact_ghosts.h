@@ -40,6 +40,10 @@ class ContactGhosts {
     body_.assign(local.body.begin(), local.body.begin() + owned_);
     for (int32_t i = 0; i < owned_; ++i)
       rest_[size_t(i)] = with_w(local.rest[size_t(i)], local.volume[size_t(i)]);
+    by_global_.resize(size_t(owned_));
+    for (int32_t i = 0; i < owned_; ++i) by_global_[size_t(i)] = i;
+    std::sort(by_global_.begin(), by_global_.end(),
+              [&](int32_t a, int32_t b) { return global_[size_t(a)] < global_[size_t(b)]; });
     bond_ghost_of_.assign(layout.send.size(), std::vector<uint8_t>(size_t(owned_), 0));
     for (size_t s = 0; s < layout.send.size(); ++s)
       for (int32_t i : layout.send[s]) bond_ghost_of_[s][size_t(i)] = 1;
@@ -78,14 +82,15 @@ class ContactGhosts {
     out[size_t(comm_->rank())].clear();
     comm_->exchange(out, in);
 
-    // Own particles within reach of each peer's box that the peer does not hold already.
+    // Own particles within reach of each peer's box that the peer does not hold already, in
+    // ascending global index (the order the peer places them in).
     std::vector<std::vector<int32_t>> send(peers), recv(peers);
     std::vector<std::vector<GhostRecord>> records(peers);
     const double margin = reach * 1.01;
     for (int s = 0; s < ranks; ++s) {
       if (s == comm_->rank()) continue;
       const std::vector<double> peer = from_bytes<double>(in[size_t(s)]);
-      for (int32_t i = 0; i < owned_; ++i) {
+      for (const int32_t i : by_global_) {
         if (bond_ghost_of_[size_t(s)][size_t(i)]) continue;
         const std::array<double, 3>& x = position[size_t(i)];
         bool near = true;
@@ -164,6 +169,7 @@ class ContactGhosts {
   Comm* comm_ = nullptr;
   int32_t owned_ = 0, held_ = 0;  // own particles; own and bond ghosts
   std::vector<int32_t> global_;
+  std::vector<int32_t> by_global_;  // own particles' local indices in ascending global index
   std::vector<Vec4> rest_;
   std::vector<uint16_t> material_;
   std::vector<int32_t> body_;

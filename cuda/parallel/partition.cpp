@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 namespace pd {
 
@@ -76,8 +77,6 @@ Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, in
   std::iota(ids.begin(), ids.end(), 0);
   bisect(ps, weight, std::move(ids), 0, ranks, p);
 
-  p.owned.assign(size_t(ranks), {});
-  for (size_t i = 0; i < n; ++i) p.owned[size_t(p.owner[i])].push_back(int32_t(i));
   // A rank's ghosts: every other rank's particle within the largest family radius (with room for
   // round-off) of the box around its own. A superset of the partners its families find.
   double reach = 0;
@@ -86,10 +85,24 @@ Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, in
   std::vector<Box> boxes(static_cast<size_t>(ranks));
   for (size_t i = 0; i < n; ++i) boxes[size_t(p.owner[i])].add(ps.rest[i]);
   p.ghosts.assign(size_t(ranks), {});
+  std::vector<char> boundary(n, 0);  // a ghost of some rank
   for (size_t i = 0; i < n; ++i)
     for (int r = 0; r < ranks; ++r)
-      if (r != p.owner[i] && boxes[size_t(r)].contains(ps.rest[i], reach))
+      if (r != p.owner[i] && boxes[size_t(r)].contains(ps.rest[i], reach)) {
         p.ghosts[size_t(r)].push_back(int32_t(i));
+        boundary[i] = 1;
+      }
+  // Own particles, interior then boundary. A partner j of i (owned by another rank) lies within
+  // the family radius of i, so i lies within reach of j's owner's box and is a ghost there: an
+  // interior particle's partners are all its own rank's.
+  p.owned.assign(size_t(ranks), {});
+  p.interior.assign(size_t(ranks), 0);
+  for (int pass = 0; pass < 2; ++pass)
+    for (size_t i = 0; i < n; ++i)
+      if (boundary[i] == pass) {
+        p.owned[size_t(p.owner[i])].push_back(int32_t(i));
+        if (pass == 0) ++p.interior[size_t(p.owner[i])];
+      }
   return p;
 }
 
@@ -99,15 +112,21 @@ RankLayout rank_layout(const Partition& p, int rank) {
   const auto& own = p.owned[size_t(rank)];
   const auto& ghosts = p.ghosts[size_t(rank)];
   l.owned = int32_t(own.size());
+  l.interior = p.interior[size_t(rank)];
   l.global = own;
   l.global.insert(l.global.end(), ghosts.begin(), ghosts.end());
+  // Own particles by global index, for the send lists.
+  std::vector<std::pair<int32_t, int32_t>> by_global(own.size());
+  for (size_t k = 0; k < own.size(); ++k) by_global[k] = {own[k], int32_t(k)};
+  std::sort(by_global.begin(), by_global.end());
   l.send.assign(size_t(p.ranks), {});
   l.recv.assign(size_t(p.ranks), {});
   for (int s = 0; s < p.ranks; ++s) {
     if (s == rank) continue;
     for (int32_t g : p.ghosts[size_t(s)])
       if (p.owner[size_t(g)] == rank)
-        l.send[size_t(s)].push_back(int32_t(std::lower_bound(own.begin(), own.end(), g) - own.begin()));
+        l.send[size_t(s)].push_back(
+            std::lower_bound(by_global.begin(), by_global.end(), std::make_pair(g, int32_t(0)))->second);
   }
   for (size_t k = 0; k < ghosts.size(); ++k)
     l.recv[size_t(p.owner[size_t(ghosts[k])])].push_back(l.owned + int32_t(k));

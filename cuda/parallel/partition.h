@@ -1,7 +1,9 @@
 // Domain decomposition of a partitioned run: which rank owns each particle (recursive coordinate
 // bisection of the reference positions, weighted by the bonds a particle is expected to have),
 // and each rank's local particles: its own, then the ghosts its bonds read (the other ranks'
-// particles within a horizon of its own), each part in ascending global index. Every rank
+// particles within a horizon of its own). A rank's own particles come interior first (no other
+// rank holds them as ghosts, so none of their partners is a ghost), then boundary, each part in
+// ascending global index; the ghosts in ascending global index. Every rank
 // computes the whole partition from the same input, so the send and receive lists of the halo
 // agree without a message.
 #pragma once
@@ -16,7 +18,8 @@ namespace pd {
 struct Partition {
   int ranks = 1;
   std::vector<int32_t> owner;                // per global particle
-  std::vector<std::vector<int32_t>> owned;   // per rank: its particles, ascending
+  std::vector<std::vector<int32_t>> owned;   // per rank: its particles, interior then boundary
+  std::vector<int32_t> interior;             // per rank: how many of `owned` are interior
   std::vector<std::vector<int32_t>> ghosts;  // per rank: the bond ghosts it reads, ascending
 };
 
@@ -27,6 +30,7 @@ Partition partition_particles(const ParticleSet& particles, const MaterialTable&
 struct RankLayout {
   int rank = 0;
   int32_t owned = 0;            // local particles [0, owned) are the rank's own
+  int32_t interior = 0;         // of which [0, interior) read no ghost: their forces need no halo
   std::vector<int32_t> global;  // local index -> global index: own, then ghosts
   // Per peer rank, local indices in ascending global index: the own particles that are the peer's
   // ghosts (sent), and the ghosts the peer owns (received), so both sides list a message alike.

@@ -17,6 +17,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cuda/engine/engine_impl.h"
@@ -32,6 +33,9 @@ class PartitionedEngine final : public Engine {
       : comm_(std::move(comm)), n_(int64_t(in.particles.size())) {
     partition_ = partition_particles(in.particles, in.materials, comm_->size());
     layout_ = rank_layout(partition_, comm_->rank());
+    own_by_global_.resize(size_t(layout_.owned));
+    for (int32_t i = 0; i < layout_.owned; ++i) own_by_global_[size_t(i)] = {layout_.global[size_t(i)], i};
+    std::sort(own_by_global_.begin(), own_by_global_.end());
     SimulationInput local_input;
     local_input.particles = local_particles(in.particles, layout_);
     local_input.materials = in.materials;
@@ -49,7 +53,8 @@ class PartitionedEngine final : public Engine {
     device_ = local_->device_name() + " x " + std::to_string(comm_->size()) + " ranks";
     critical_dt_ = comm_->min(local_->critical_time_step());
     memory_ = size_t(comm_->sum(int64_t(local_->memory_bytes())));
-    if (comm_->rank() == 0) report_balance(in);
+    const RankStats mine = local_->local_rank_stats();
+    if (comm_->rank() == 0) report_balance(in, mine);
   }
 
   ~PartitionedEngine() override {
@@ -257,9 +262,11 @@ class PartitionedEngine final : public Engine {
     return nb;
   }
   int32_t local_index(int32_t g) const {
+    const auto own =
+        std::lower_bound(own_by_global_.begin(), own_by_global_.end(), std::make_pair(g, int32_t(0)));
+    if (own != own_by_global_.end() && own->first == g) return own->second;
     const auto own_end = layout_.global.begin() + layout_.owned;
-    auto it = std::lower_bound(layout_.global.begin(), own_end, g);
-    if (it == own_end || *it != g) it = std::lower_bound(own_end, layout_.global.end(), g);
+    const auto it = std::lower_bound(own_end, layout_.global.end(), g);
     if (it == layout_.global.end() || *it != g) throw std::logic_error("partner outside the rank's ghosts");
     return int32_t(it - layout_.global.begin());
   }
@@ -404,18 +411,21 @@ class PartitionedEngine final : public Engine {
   }
 
   // Rank 0: particles, ghosts and expected bonds per rank.
-  void report_balance(const SimulationInput& in) const {
+  void report_balance(const SimulationInput& in, const RankStats& rank0) const {
     const PartitionBalance b = partition_balance(partition_, in.particles, in.materials);
     const auto [lo, hi] = std::minmax_element(b.particles.begin(), b.particles.end());
     const auto [glo, ghi] = std::minmax_element(b.ghosts.begin(), b.ghosts.end());
     std::printf("ranks      %d: particles per rank %lld to %lld, ghosts %lld to %lld, imbalance %.3f\n",
                 comm_->size(), (long long)*lo, (long long)*hi, (long long)*glo, (long long)*ghi, b.imbalance);
+    std::printf("halo       %s, %s\n", rank0.halo_transport,
+                rank0.overlapped ? "interior forces computed while it travels" : "not overlapped");
   }
 
   std::shared_ptr<Comm> comm_;
   int64_t n_ = 0;  // particles of the whole run
   Partition partition_;
   RankLayout layout_;
+  std::vector<std::pair<int32_t, int32_t>> own_by_global_;  // (global, local) of the own particles
   std::unique_ptr<EngineImpl<Exec>> local_;
   std::string device_;
   FamilyStats family_;

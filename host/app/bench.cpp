@@ -149,9 +149,12 @@ int bench_command(const BenchOptions& opt) {
   for (size_t r = 0; r < ranks.size(); ++r) {
     const RankStats& k = ranks[r];
     std::printf(
-        "rank %-5zu %lld particles, %lld ghosts: %.3e bond-updates/s, halo %.1f KiB and %.3f ms per step\n",
-        r, (long long)k.particles, (long long)k.ghosts, double(k.bonds) * double(opt.steps) / k.step_seconds,
-        double(k.halo_bytes) / double(opt.steps) / 1024, 1e3 * k.halo_seconds / double(opt.steps));
+        "rank %-5zu %lld particles (%lld interior), %lld ghosts: %.3e bond-updates/s, halo (%s%s) %.1f KiB "
+        "and %.3f ms per step\n",
+        r, (long long)k.particles, (long long)k.interior, (long long)k.ghosts,
+        double(k.bonds) * double(opt.steps) / k.step_seconds, k.halo_transport,
+        k.overlapped ? ", overlapped" : "", double(k.halo_bytes) / double(opt.steps) / 1024,
+        1e3 * k.halo_seconds / double(opt.steps));
   }
 
   // Results file: one JSON document per run.
@@ -180,7 +183,9 @@ int bench_command(const BenchOptions& opt) {
        << ", \"bond_updates_per_s\": " << double(k.bonds) * double(opt.steps) / k.step_seconds
        << ", \"halo_bytes_per_step\": " << double(k.halo_bytes) / double(opt.steps)
        << ", \"halo_exchanges_per_step\": " << double(k.halo_exchanges) / double(opt.steps)
-       << ", \"halo_seconds_per_step\": " << k.halo_seconds / double(opt.steps) << "}"
+       << ", \"halo_seconds_per_step\": " << k.halo_seconds / double(opt.steps)
+       << ", \"interior\": " << k.interior << ", \"halo_transport\": \"" << k.halo_transport
+       << "\", \"overlapped\": " << (k.overlapped ? "true" : "false") << "}"
        << (r + 1 < ranks.size() ? "," : "") << "\n";
   }
   js << "  ]\n}\n";

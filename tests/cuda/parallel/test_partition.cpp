@@ -34,7 +34,11 @@ TEST(Partition, EveryParticleHasOneOwnerAndRanksAreBalanced) {
     const Partition p = partition_particles(b.ps, b.mt, ranks);
     std::vector<int> seen(b.ps.size(), 0);
     for (int r = 0; r < ranks; ++r) {
-      EXPECT_TRUE(std::is_sorted(p.owned[size_t(r)].begin(), p.owned[size_t(r)].end()));
+      // Interior, then boundary, each ascending.
+      const auto& own = p.owned[size_t(r)];
+      ASSERT_LE(p.interior[size_t(r)], int32_t(own.size()));
+      EXPECT_TRUE(std::is_sorted(own.begin(), own.begin() + p.interior[size_t(r)]));
+      EXPECT_TRUE(std::is_sorted(own.begin() + p.interior[size_t(r)], own.end()));
       for (int32_t i : p.owned[size_t(r)]) {
         ++seen[size_t(i)];
         EXPECT_EQ(p.owner[size_t(i)], r);
@@ -61,9 +65,38 @@ TEST(Partition, GhostsHoldEveryPartnerWithinTheFamilyRadius) {
           EXPECT_TRUE(held[j]) << "rank " << r << " lacks partner " << j << " of " << i;
         }
       }
-    // Own particles first, then ghosts, each ascending.
-    EXPECT_TRUE(std::is_sorted(l.global.begin(), l.global.begin() + l.owned));
+    // Own particles first (interior, then boundary), then ghosts, each part ascending.
+    EXPECT_TRUE(std::is_sorted(l.global.begin(), l.global.begin() + l.interior));
+    EXPECT_TRUE(std::is_sorted(l.global.begin() + l.interior, l.global.begin() + l.owned));
     EXPECT_TRUE(std::is_sorted(l.global.begin() + l.owned, l.global.end()));
+  }
+}
+
+TEST(Partition, InteriorParticlesHaveEveryPartnerOnTheirOwnRank) {
+  const Block b(24, 8, 6);
+  const Partition p = partition_particles(b.ps, b.mt, 3);
+  const double radius = double(b.mt.m[0].family_radius()) * (1 + 1e-6);
+  for (int r = 0; r < 3; ++r) {
+    const RankLayout l = rank_layout(p, r);
+    // Each rank's slab is wider than two family radii here: it has interior and boundary particles.
+    EXPECT_GT(l.interior, 0);
+    EXPECT_LT(l.interior, l.owned);
+    for (int32_t k = 0; k < l.owned; ++k) {
+      const int32_t i = l.global[size_t(k)];
+      bool reads_ghost = false;
+      for (size_t j = 0; j < b.ps.size(); ++j)
+        reads_ghost =
+            reads_ghost || (p.owner[j] != r && double(length(b.ps.rest[j] - b.ps.rest[size_t(i)])) <= radius);
+      if (k < l.interior) {
+        EXPECT_FALSE(reads_ghost) << "interior particle " << i << " of rank " << r
+                                  << " has a partner elsewhere";
+      }
+    }
+    // Every boundary particle is sent to some rank.
+    std::vector<char> sent(size_t(l.owned), 0);
+    for (const auto& list : l.send)
+      for (int32_t k : list) sent[size_t(k)] = 1;
+    for (int32_t k = 0; k < l.owned; ++k) EXPECT_EQ(sent[size_t(k)] != 0, k >= l.interior) << k;
   }
 }
 
