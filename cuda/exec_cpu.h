@@ -30,6 +30,13 @@ class CpuExec {
     record(name, t0);
   }
 
+  // f(i) for i in [first, first + n).
+  template <int kMinBlocks = 0, class F>
+  void parallel_for_from(const char* name, int64_t first, int64_t n, F f) {
+    if (first == 0) return parallel_for<kMinBlocks>(name, n, f);
+    parallel_for<kMinBlocks>(name, n, [&](int64_t k) { f(first + k); });
+  }
+
   // Sum of f(i) over [0, n) for any type with +: per-thread partial sums over static
   // chunks, added in thread order, so the result is deterministic for a thread count.
   template <class T, class F>

@@ -33,6 +33,20 @@ __global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks) parallel_for_bound
   if (i < n) f(i);
 }
 
+// Both over [first, first + n) (parallel_for_from).
+template <class F>
+__global__ void parallel_for_from_kernel(int64_t first, int64_t n, F f) {
+  const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < n) f(first + i);
+}
+
+template <int kMinBlocks, class F>
+__global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks)
+    parallel_for_from_bounded_kernel(int64_t first, int64_t n, F f) {
+  const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < n) f(first + i);
+}
+
 template <class T, class F>
 __global__ void transform_kernel(int64_t n, F f, T* out) {
   const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -67,6 +81,22 @@ class CudaExec {
       parallel_for_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(n, f);
     else
       parallel_for_kernel<<<unsigned(blocks), kBlockSize, 0, stream_>>>(n, f);
+    cuda_check(cudaGetLastError(), name);
+    end_timing(name, start);
+  }
+
+  // f(i) for i in [first, first + n) (a partitioned rank's interior or boundary particles). From
+  // 0 it is parallel_for's very launch, so a run over all particles keeps that kernel's code.
+  template <int kMinBlocks = 0, class F>
+  void parallel_for_from(const char* name, int64_t first, int64_t n, F f) {
+    if (first == 0) return parallel_for<kMinBlocks>(name, n, f);
+    if (n <= 0) return;
+    const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
+    cudaEvent_t start = begin_timing();
+    if constexpr (kMinBlocks > 0)
+      parallel_for_from_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
+    else
+      parallel_for_from_kernel<<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
     cuda_check(cudaGetLastError(), name);
     end_timing(name, start);
   }

@@ -46,9 +46,8 @@ void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable m
   static const std::string name = kernel_variant(
       "pd/init",
       {{"state", kStateBased}, {"aniso", kAnisotropic}, {"lattice", kLattice}, {"plastic", kPlastic}});
-  const int32_t first = r.first;
-  ex.parallel_for(name.c_str(), r.count, [=] PD_HD(int64_t k) {
-    init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(first + int32_t(k), p, b, mt);
+  ex.parallel_for_from(name.c_str(), r.first, r.count, [=] PD_HD(int64_t i) {
+    init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(int32_t(i), p, b, mt);
   });
 }
 
@@ -153,10 +152,9 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
                                                                      {"weak", kWeak},
                                                                      {"lattice", kLattice},
                                                                      {"screened", kScreened}});
-  const int32_t first = r.first;
-  ex.template parallel_for<kMinBlocks>(name.c_str(), r.count, [=] PD_HD(int64_t k) {
-    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(first + int32_t(k), p,
-                                                                                       b, mt, broke);
+  ex.template parallel_for_from<kMinBlocks>(name.c_str(), r.first, r.count, [=] PD_HD(int64_t i) {
+    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(int32_t(i), p, b, mt,
+                                                                                       broke);
   });
 }
 

@@ -7,6 +7,8 @@
 # the renderer's primary rays/s (bench-render as in scripts/render-check.sh).
 #   scripts/gpu-before-after.sh OLD_SOURCE_DIR [ROUNDS]
 # Results go to $OUT/before-after (default out/before-after); exits 1 when the golden lists differ.
+# BEFORE_AFTER_ENGINE_ONLY=1: only the perifrac program is built and the renderer is not timed
+# (a change to the engine alone, on a short device budget).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 old_src=$(cd "$1" && pwd)
@@ -22,7 +24,9 @@ jobs=$(( $(nproc) / 2 ))
 (cmake -S "$old_src" -B build/old -G Ninja -DCMAKE_BUILD_TYPE=Release -DPERIFRAC_CUDA=ON \
    -DCMAKE_CUDA_ARCHITECTURES=90 >/dev/null && cmake --build build/old -j "$jobs" --target perifrac) \
   >"$OUT/build-old.log" 2>&1 &
-(cmake --preset cuda -DPERIFRAC_WERROR=ON >/dev/null && cmake --build --preset cuda -j "$jobs") \
+new_target=()
+[ "${BEFORE_AFTER_ENGINE_ONLY:-0}" = 1 ] && new_target=(--target perifrac)
+(cmake --preset cuda -DPERIFRAC_WERROR=ON >/dev/null && cmake --build --preset cuda -j "$jobs" "${new_target[@]}") \
   >"$OUT/build-new.log" 2>&1 &
 wait %1 || { echo "before-after: the old build failed, see $OUT/build-old.log"; exit 2; }
 wait %2 || { echo "before-after: the new build failed, see $OUT/build-new.log"; tail -20 "$OUT/build-new.log"; exit 2; }
@@ -68,6 +72,7 @@ for w in "${workloads[@]}"; do
     done
   done
 done
+[ "${BEFORE_AFTER_ENGINE_ONLY:-0}" = 1 ] && exit $status
 # The renderer: primary rays/s at 1920 x 1080 (600k tetrahedra opaque and as glass, 600k cubes).
 renders=(
   "tets|--scene slab --count 600000"
