@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # A run over several MPI ranks writes the files of the one-rank run, bit for bit: the golden
 # scenes (scripts/golden.sh: bond-based and state-based, plastic, anisotropic, pre-cracks,
-# anchors, a projectile, contact, tets and Voronoi cells) on 1, 2 and 3 ranks (the halo
-# overlapped with the interior forces, and on 2 ranks also not; on GPUs also staged through host
-# memory where NCCL carries it by default), and a run
+# anchors, a projectile, contact, tets and Voronoi cells) on 1, 2 and 3 ranks (the halo as by
+# default, and on 2 ranks also overlapped with the interior forces and not; on GPUs also staged
+# through host memory where NCCL carries it by default), and a run
 # checkpointed on 3 ranks resumed on 2 against the uninterrupted one-rank run; and the per-rank
 # report of `perifrac bench`.
 #   scripts/mpi-equivalence.sh [BINARY] [cpu|cuda]
@@ -38,8 +38,10 @@ for n in 2 3; do
   sums "ranks$n" "mpirun -np $n"
   same "ranks$n"
 done
-sums ranks2-not-overlapped "mpirun -np 2 -x PERIFRAC_HALO_OVERLAP=0"
-same ranks2-not-overlapped
+for overlap in 0 1; do
+  sums "ranks2-overlap$overlap" "mpirun -np 2 -x PERIFRAC_HALO_OVERLAP=$overlap"
+  same "ranks2-overlap$overlap"
+done
 if [ "$backend" = cuda ]; then
   sums ranks2-host-halo "mpirun -np 2 -x PERIFRAC_HALO=host"
   same ranks2-host-halo

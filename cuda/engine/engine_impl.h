@@ -46,8 +46,8 @@ class EngineImpl final : public Engine {
       interior_ = rank->interior;
       state_.global_id.upload(rank->global);
       const HaloOptions halo = halo_options_from_env();
-      overlap_ = halo.overlap;
       halo_ = Halo<Exec>(mem_, *rank, *comm, halo);
+      overlap_ = halo.overlap < 0 ? !halo_.device_link() : halo.overlap == 1;
       ghosts_ = ContactGhosts<Exec>(*rank, in.particles, *comm);
       world_ = comm;
     }

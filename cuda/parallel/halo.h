@@ -30,12 +30,14 @@ namespace pd {
 
 // How the halo travels, from the environment (for measurements; the defaults are the fast ones):
 // PERIFRAC_HALO = auto (device to device where the build has NCCL and every rank of a host has
-// a GPU of its own, else host memory) | host | nccl; PERIFRAC_HALO_OVERLAP = 1 (the interior
-// forces while the halo travels) | 0 (the halo first).
+// a GPU of its own, else host memory) | host | nccl; PERIFRAC_HALO_OVERLAP = auto (overlapped
+// unless NCCL carries it: over NVLink the exchange takes tens of microseconds, less than
+// splitting the force kernels costs) | 1 (the interior forces while the halo travels) | 0 (the
+// halo first). Measured in bench/results/mpi-scaling-4xH200-2026-11-26.txt.
 struct HaloOptions {
   enum class Transport { kAuto, kHost, kNccl };
   Transport transport = Transport::kAuto;
-  bool overlap = true;
+  int overlap = -1;  // -1 auto, 0 or 1
 };
 
 inline HaloOptions halo_options_from_env() {
@@ -53,9 +55,9 @@ inline HaloOptions halo_options_from_env() {
   }
   if (const char* v = std::getenv("PERIFRAC_HALO_OVERLAP")) {
     const std::string s = v;
-    if (s != "0" && s != "1")
-      throw std::runtime_error("environment PERIFRAC_HALO_OVERLAP='" + s + "': allowed are 0 and 1");
-    o.overlap = s == "1";
+    if (s != "auto" && s != "0" && s != "1")
+      throw std::runtime_error("environment PERIFRAC_HALO_OVERLAP='" + s + "': allowed are auto, 0 and 1");
+    o.overlap = s == "auto" ? -1 : s == "1" ? 1 : 0;
   }
   return o;
 }
@@ -96,6 +98,7 @@ class Halo {
   }
 
   bool active() const { return comm_ != nullptr; }
+  bool device_link() const { return link_ != nullptr; }
   // "nccl", "mpi via host memory" or "mpi".
   const char* transport() const { return link_ ? "nccl" : Exec::kDevice ? "mpi via host memory" : "mpi"; }
   int64_t bytes_sent() const { return bytes_sent_; }
