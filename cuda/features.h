@@ -11,13 +11,25 @@ namespace pd {
 
 // The physics of a run.
 struct KernelFeatures {
-  bool contact = false;      // contact lists and collisions
-  bool state_based = false;  // some material is state-based: dilatation in `init`
-  bool plastic = false;      // some state-based material is plastic
-  bool anisotropic = false;  // some state-based material has an anisotropy matrix G
-  bool weak_bonds = false;   // some bonds carry a strength factor (pre-cracks and weakening)
-  bool lattice = false;      // some bodies have lattice families (host/lattice_families.h)
+  bool contact = false;         // contact lists and collisions
+  bool state_based = false;     // some material is state-based: dilatation in `init`
+  bool plastic = false;         // some state-based material is plastic
+  bool anisotropic = false;     // some state-based material has an anisotropy matrix G
+  bool weak_bonds = false;      // some bonds carry a strength factor (pre-cracks and weakening)
+  bool lattice = false;         // some bodies have lattice families (host/lattice_families.h)
+  bool lattice_listed = false;  // ... whose partners are read from the lists (a partitioned rank)
 };
+
+// How a kernel walks lattice families, fixed at compile time so that a run pays only for the
+// form it uses: none (every family from its list), partners at the stencil entries' offsets (one
+// rank: indices are the lattice's), partners from the family's list with the geometry from the
+// stencil (a partitioned rank, whose indices are not the lattice's), or as the view says (the
+// kernels off the step's hot path).
+enum LatticeMode : int { kNoLattice = 0, kLatticeOffsets = 1, kLatticeListed = 2, kLatticeAsView = 3 };
+
+constexpr int lattice_mode(bool lattice, bool listed) {
+  return lattice ? (listed ? kLatticeListed : kLatticeOffsets) : kNoLattice;
+}
 
 inline KernelFeatures features_of(const MaterialTable& mt, bool contact) {
   KernelFeatures f;

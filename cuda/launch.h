@@ -41,11 +41,13 @@ inline ParticleRange all_particles(const ParticlesView& p) {
 }
 
 // Kernel 1.
-template <bool kStateBased, bool kAnisotropic, bool kLattice, bool kPlastic, class Exec>
+template <bool kStateBased, bool kAnisotropic, int kLattice, bool kPlastic, class Exec>
 void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r) {
-  static const std::string name = kernel_variant(
-      "pd/init",
-      {{"state", kStateBased}, {"aniso", kAnisotropic}, {"lattice", kLattice}, {"plastic", kPlastic}});
+  static const std::string name = kernel_variant("pd/init", {{"state", kStateBased},
+                                                             {"aniso", kAnisotropic},
+                                                             {"lattice", kLattice == kLatticeOffsets},
+                                                             {"lattice-listed", kLattice == kLatticeListed},
+                                                             {"plastic", kPlastic}});
   ex.parallel_for_from(name.c_str(), r.first, r.count, [=] PD_HD(int64_t i) {
     init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(int32_t(i), p, b, mt);
   });
@@ -54,13 +56,15 @@ void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable m
 template <class Exec>
 void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
                  ParticleRange r) {
-  if (!f.state_based) return launch_init_variant<false, false, false, false>(ex, p, b, mt, r);
+  if (!f.state_based) return launch_init_variant<false, false, kNoLattice, false>(ex, p, b, mt, r);
   static_bools(
-      [&](auto anisotropic, auto lattice, auto plastic) {
-        launch_init_variant<true, decltype(anisotropic)::value, decltype(lattice)::value,
-                            decltype(plastic)::value>(ex, p, b, mt, r);
+      [&](auto anisotropic, auto lattice, auto listed, auto plastic) {
+        constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
+        if constexpr (kLattice || !kListed)  // (listed partners only with lattice families)
+          launch_init_variant<true, decltype(anisotropic)::value, lattice_mode(kLattice, kListed),
+                              decltype(plastic)::value>(ex, p, b, mt, r);
       },
-      f.anisotropic, f.lattice, f.plastic);
+      f.anisotropic, f.lattice, f.lattice && f.lattice_listed, f.plastic);
 }
 
 // Kernel 5 (plastic state-based materials): the yield test of the return mapping, after `init`
@@ -124,7 +128,7 @@ void launch_collisions(Exec& ex, ParticlesView p, ContactView c, MaterialTable m
 // Kernel 4, one instantiation per feature set so a scene pays only for what it uses, in two
 // forms (bond_screen.h): kScreened, the pass without the breaking path. Writes the force (the
 // other force kernels add to it) and raises `broke` where a bond broke.
-template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, bool kScreened>
+template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kScreened>
 PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
                                     const MaterialTable& mt, int32_t* broke) {
   if constexpr (kStateBased && kScreened)
@@ -137,7 +141,7 @@ PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const Bon
     spring_forces<kWeak, kLattice>(i, p, b, mt, broke);
 }
 
-template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, bool kScreened,
+template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kScreened,
           class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r,
                                  int32_t* broke) {
@@ -146,12 +150,14 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
   // state-based 4 (at most 64; they spill at 48). The plain bond-based breaking pass has 48
   // either way and runs 4% slower with the bound.
   constexpr int kMinBlocks = kStateBased ? 4 : (kWeak || kScreened ? 5 : 0);
-  static const std::string name = kernel_variant("pd/springforces", {{"state", kStateBased},
-                                                                     {"plastic", kPlastic},
-                                                                     {"aniso", kAnisotropic},
-                                                                     {"weak", kWeak},
-                                                                     {"lattice", kLattice},
-                                                                     {"screened", kScreened}});
+  static const std::string name =
+      kernel_variant("pd/springforces", {{"state", kStateBased},
+                                         {"plastic", kPlastic},
+                                         {"aniso", kAnisotropic},
+                                         {"weak", kWeak},
+                                         {"lattice", kLattice == kLatticeOffsets},
+                                         {"lattice-listed", kLattice == kLatticeListed},
+                                         {"screened", kScreened}});
   ex.template parallel_for_from<kMinBlocks>(name.c_str(), r.first, r.count, [=] PD_HD(int64_t i) {
     springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(int32_t(i), p, b, mt,
                                                                                        broke);
@@ -162,18 +168,22 @@ template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
                          ParticleRange r, bool screened, int32_t* broke) {
   static_bools(
-      [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto screen) {
+      [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto listed,
+          auto screen) {
         constexpr bool kState = decltype(state_based)::value;
         constexpr bool kPlastic = kState && decltype(plastic)::value;
         constexpr bool kAniso = kState && decltype(anisotropic)::value;
-        // Plasticity and anisotropy exist only for state-based materials: no bond-based copies.
-        if constexpr (kState || (!decltype(plastic)::value && !decltype(anisotropic)::value))
+        constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
+        // Plasticity and anisotropy exist only for state-based materials, listed partners only
+        // with lattice families: no copies for the combinations that cannot occur.
+        if constexpr ((kState || (!decltype(plastic)::value && !decltype(anisotropic)::value)) &&
+                      (kLattice || !kListed))
           launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
-                                      decltype(lattice)::value, decltype(screen)::value>(ex, p, b, mt, r,
-                                                                                         broke);
+                                      lattice_mode(kLattice, kListed), decltype(screen)::value>(ex, p, b, mt,
+                                                                                                r, broke);
       },
       f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds, f.lattice,
-      screened);
+      f.lattice && f.lattice_listed, screened);
 }
 
 // Kernel 5.

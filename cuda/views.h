@@ -67,6 +67,9 @@ struct LatticeView {
   // Scenes with weakened bonds only: the bonds whose strength factor is below 1, so that only
   // those read it (same layout).
   ArrayView<const uint32_t> weak;
+  // A partitioned rank (cuda/parallel/): partners are read from the family's list, as a rank's
+  // indices are not the whole run's lattice; the geometry still comes from the stencil.
+  uint8_t listed_partners = 0;
 };
 
 struct BondsView {

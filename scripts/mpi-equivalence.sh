@@ -7,8 +7,7 @@
 # checkpointed on 3 ranks resumed on 2 against the uninterrupted one-rank run; and the per-rank
 # report of `perifrac bench`.
 #   scripts/mpi-equivalence.sh [BINARY] [cpu|cuda]
-# Box-grid bodies run with listed families on several ranks, so every run here passes
-# --explicit-families (docs/parallel.md). Ranks share the machine's cores (--oversubscribe);
+# Ranks share the machine's cores (--oversubscribe);
 # one OpenMP thread each, as the energy sum's order follows the thread count.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +21,7 @@ export OMP_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 rm -rf "$out"
 mkdir -p "$out"
-sums() { GOLDEN_OUT="$out/$1" GOLDEN_LAUNCH="${2:-}" GOLDEN_RUN_ARGS="--explicit-families" scripts/golden.sh "$backend" "$bin" >"$out/$1.txt"; }
+sums() { GOLDEN_OUT="$out/$1" GOLDEN_LAUNCH="${2:-}" scripts/golden.sh "$backend" "$bin" >"$out/$1.txt"; }
 sums ranks1
 status=0
 same() {  # $1: the variant's name
@@ -48,7 +47,7 @@ if [ "$backend" = cuda ]; then
 fi
 
 # Checkpointed on 3 ranks after frame 2, resumed on 2 to frame 4; against one rank's 4 frames.
-scene="scenes/glass_plate_projectile.toml --scale 0.02 --steps-per-frame 40 --explicit-families --backend $backend"
+scene="scenes/glass_plate_projectile.toml --scale 0.02 --steps-per-frame 40 --backend $backend"
 "$bin" run $scene --frames 4 --out "$out/whole" >"$out/whole.log" 2>&1
 mpirun -np 3 "$bin" run $scene --frames 2 --checkpoint-every 1 --out "$out/resumed" >"$out/resumed.log" 2>&1
 mpirun -np 2 "$bin" run --resume "$out/resumed" --frames 4 >>"$out/resumed.log" 2>&1

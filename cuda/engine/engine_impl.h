@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -26,8 +27,10 @@ class EngineImpl final : public Engine {
   // One rank of a partitioned run when `rank` is given (cuda/parallel/partitioned_engine.h): `in`
   // holds the rank's particles in its layout's order, its own first; the kernels of a step run
   // over those, and the ghosts after them are refreshed from their owners through `comm`.
+  // `rank_lattice` gives the rank its part of the whole run's lattice tables from its families
+  // as built (empty tables: none).
   EngineImpl(const SimulationInput& in, std::string device, const RankLayout* rank = nullptr,
-             Comm* comm = nullptr)
+             Comm* comm = nullptr, const std::function<LatticeFamilies(const BondLists&)>& rank_lattice = {})
       : exec_(&stats_),
         mem_(&exec_),
         device_(std::move(device)),
@@ -41,6 +44,7 @@ class EngineImpl final : public Engine {
     state_.upload(mem_, in.particles,
                   FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr});
     owned_ = state_.n;
+    held_ = state_.n;
     if (rank) {
       owned_ = rank->owned;
       interior_ = rank->interior;
@@ -56,6 +60,12 @@ class EngineImpl final : public Engine {
     if (in.lattice_families && !rank)  // (lattice offsets are indices of the whole run)
       features_.lattice = build_lattice_families(mem_, state_, in.particles, materials_, features_.weak_bonds,
                                                  lattice_, family_);
+    if (rank_lattice) {
+      lattice_.listed_partners = true;
+      features_.lattice = upload_lattice_families(mem_, state_, rank_lattice(download_bonds(state_)),
+                                                  features_.weak_bonds, lattice_, family_);
+      features_.lattice_listed = features_.lattice;
+    }
     critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_);
     if (features_.state_based) set_up_state_based();
     if (contact_) contacts_.allocate(mem_, state_.n, materials_);
@@ -185,11 +195,13 @@ class EngineImpl final : public Engine {
   // A restore whose plastic mirror (the partners' history, not all held here) comes with it.
   void restore_with_mirror(const EngineSnapshot& in, const std::vector<real>& plastic_mirror) {
     state_.check_sizes(in);
+    if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
     step_ = in.step;
     time_ = in.time;
     motion_.apply(time_, step_params_);
     state_.upload_saved(in);
     if (features_.plastic) state_.plastic_mirror.upload(plastic_mirror);
+    if (!lattice_.empty()) lattice_.intact.upload(lattice_.tables.intact);
     contacts_.invalidate();
   }
 
@@ -202,6 +214,7 @@ class EngineImpl final : public Engine {
   }
   BondsView bonds() const {
     BondsView b = state_.bonds();
+    b.n = held_;  // (not a partitioned rank's contact ghosts: the lattice masks' stride)
     b.lattice = lattice_.view();
     return b;
   }
@@ -315,6 +328,7 @@ class EngineImpl final : public Engine {
   FamilyStats family_;
   int32_t owned_ = 0;        // particles the step kernels run over (ParticlesView::n)
   int32_t interior_ = 0;     // of which the first read no ghost (a partitioned rank's)
+  int32_t held_ = 0;         // particles with a place in the families (BondsView::n): own and bond ghosts
   bool overlap_ = true;      // a partitioned rank runs the interior part while the halo travels
   double step_seconds_ = 0;  // a partitioned rank's wall time in `advance`
   Halo<Exec> halo_;          // a partitioned rank's ghost refresh (inactive otherwise)

@@ -28,10 +28,12 @@ struct LatticeState {
   DeviceArray<Stencil, Exec> stencils;
   DeviceArray<StencilEntry, Exec> entries;
   DeviceArray<uint32_t, Exec> present, intact, weak;
+  bool listed_partners = false;  // a partitioned rank's (LatticeView::listed_partners)
 
   bool empty() const { return tables.stencils.empty(); }
   LatticeView view() const {
     LatticeView v;
+    v.listed_partners = listed_partners;
     v.words = tables.words;
     v.stencil = view_of(stencil);
     v.stencils = view_of(stencils);
@@ -141,8 +143,17 @@ template <class Exec>
 bool build_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s, const ParticleSet& ps,
                             const MaterialTable& materials, bool weak_bonds, LatticeState<Exec>& lattice,
                             FamilyStats& family) {
+  return upload_lattice_families(mem, s, lattice_families(ps, materials, download_bonds(s)), weak_bonds,
+                                 lattice, family);
+}
+
+// Lattice tables made elsewhere (a partitioned rank's part of the whole run's, whose partners are
+// read from the lists) on the backend. Returns whether some particle has a stencil.
+template <class Exec>
+bool upload_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s, LatticeFamilies tables,
+                             bool weak_bonds, LatticeState<Exec>& lattice, FamilyStats& family) {
   const BondLists lists = download_bonds(s);
-  lattice.tables = lattice_families(ps, materials, lists);
+  lattice.tables = std::move(tables);
   family.lattice_particles = lattice.tables.particles();
   if (lattice.empty()) return false;
   lattice.stencil = mem.make_from(lattice.tables.stencil);
@@ -167,7 +178,7 @@ void refresh_lattice_after_restore(const EngineState<Exec>& s, const std::vector
   s.slice_offset.download(lists.slice_offset);
   s.count.download(lists.count);
   lists.neighbor = neighbor;
-  refresh_lattice_intact(lattice.tables, lists);
+  refresh_lattice_intact(lattice.tables, lists, lattice.listed_partners);
 }
 
 // Smallest stable step over the particles, from the families as built (Engine::critical_time_step).

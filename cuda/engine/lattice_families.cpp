@@ -210,7 +210,7 @@ void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
   }
 }
 
-void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds) {
+void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds, bool listed_partners) {
   const BondsView v = bonds.view();
   for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
     const int32_t s = lf.stencil[size_t(i)];
@@ -223,13 +223,34 @@ void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds) {
     for_each_present_bond(lf, i, [&](int32_t q, size_t word, uint32_t bit, int32_t k) {
       const int32_t nb = k < v.count[i] ? v.neighbor[v.slot(i, k)] : -1;
       if (k >= v.count[i] ||
-          bond_partner(nb) != i + lf.entries[size_t(lf.stencils[size_t(s)].first + q)].offset)
+          (!listed_partners &&
+           bond_partner(nb) != i + lf.entries[size_t(lf.stencils[size_t(s)].first + q)].offset))
         throw differ();
       lf.intact[word] = bond_intact(nb) ? lf.intact[word] | bit : lf.intact[word] & ~bit;
       listed = k + 1;
     });
     if (listed != v.count[i]) throw differ();
   }
+}
+
+LatticeFamilies lattice_part(const LatticeFamilies& whole, const std::vector<int32_t>& ids, int32_t held) {
+  LatticeFamilies part;
+  part.words = whole.words;
+  part.stencils = whole.stencils;
+  part.entries = whole.entries;
+  part.stencil.assign(size_t(held), -1);
+  part.present.assign(size_t(whole.words) * size_t(held), 0);
+  part.intact.assign(part.present.size(), 0);
+  const size_t n = whole.stencil.size();
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const size_t g = size_t(ids[i]);
+    part.stencil[i] = whole.stencil[g];
+    for (int32_t w = 0; w < whole.words; ++w) {
+      part.present[size_t(w) * size_t(held) + i] = whole.present[size_t(w) * n + g];
+      part.intact[size_t(w) * size_t(held) + i] = whole.intact[size_t(w) * n + g];
+    }
+  }
+  return part;
 }
 
 }  // namespace pd

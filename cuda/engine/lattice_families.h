@@ -33,7 +33,12 @@ void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
                              const std::vector<uint8_t>& strength);
 
 // Recomputes the intact bits from `bonds` (a restored snapshot). Throws std::invalid_argument
-// when a lattice particle's listed bonds are not its present stencil bonds in stencil order.
-void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds);
+// when a lattice particle's listed bonds are not its present stencil bonds in stencil order
+// (partners checked by offset unless `listed_partners`: a partitioned rank's indices).
+void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds, bool listed_partners = false);
+
+// The tables of particles `ids` of `whole` (a partitioned rank's own, in its local order), for a
+// rank holding `held` particles: stencils and entries as they are, masks in the rank's layout.
+LatticeFamilies lattice_part(const LatticeFamilies& whole, const std::vector<int32_t>& ids, int32_t held);
 
 }  // namespace pd

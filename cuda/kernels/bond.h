@@ -3,6 +3,7 @@
 
 #include <type_traits>
 
+#include "cuda/features.h"
 #include "cuda/views.h"
 
 namespace pd {
@@ -159,7 +160,7 @@ PD_HD inline int32_t bit_count(uint32_t x) {
 // weakened and plastic bonds), so the loop itself tests one bit per entry; the bonds still
 // intact are counted from the bits after each word. kUnroll: the entry loop unrolled that many
 // times, chosen per kernel as measured (bench/NOTES.md; 2 is what the compiler picks alone).
-template <int kUnroll, class Visit>
+template <int kLattice, int kUnroll, class Visit>
 PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
                                                   const BondsView& b, Visit& visit) {
   const LatticeView& l = b.lattice;
@@ -179,8 +180,14 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
     for (int32_t q = 0; q < 32; ++q) {
       if (!(intact >> q & 1u)) continue;
       const StencilEntry& e = entries[w0 + q];
-      const int32_t j = i + e.offset;
       const int64_t slot = first_slot + int64_t(k0 + bit_count(present & ((1u << q) - 1u))) * kSliceWidth;
+      int32_t j;
+      if constexpr (kLattice == kLatticeListed)
+        j = bond_partner(b.neighbor[slot]);
+      else if constexpr (kLattice == kLatticeAsView)
+        j = l.listed_partners ? bond_partner(b.neighbor[slot]) : i + e.offset;
+      else
+        j = i + e.offset;
       if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
@@ -194,14 +201,15 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
 }
 
 // Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order, and
-// returns the bonds still intact after the visits. kLattice: some bodies have lattice families
-// (else every family is read from its list, and the lattice loop is not compiled in); kUnroll
-// as for_each_intact_lattice_bond.
-template <bool kLattice = true, int kUnroll = 2, class Visit>
+// returns the bonds still intact after the visits. kLattice (LatticeMode, features.h): how
+// lattice families are walked (kNoLattice: every family is read from its list, and the lattice
+// loop is not compiled in); kUnroll as for_each_intact_lattice_bond.
+template <int kLattice = kLatticeAsView, int kUnroll = 2, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                           Visit&& visit) {
-  const int32_t stencil = kLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
-  if (kLattice && stencil >= 0) return for_each_intact_lattice_bond<kUnroll>(i, stencil, p, b, visit);
+  const int32_t stencil = kLattice != kNoLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
+  if (kLattice != kNoLattice && stencil >= 0)
+    return for_each_intact_lattice_bond<kLattice, kUnroll>(i, stencil, p, b, visit);
   return for_each_intact_listed_bond(i, p, b, visit);
 }
 

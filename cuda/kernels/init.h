@@ -14,7 +14,7 @@ PD_HD inline real effective_strain_limit(real tau0, real alpha, real strain_min)
   return tau0 - alpha * (strain_min < real(0) ? strain_min : real(0));
 }
 
-template <bool kStateBased, bool kAnisotropic, bool kLattice = true, bool kPlastic = false>
+template <bool kStateBased, bool kAnisotropic, int kLattice = kLatticeAsView, bool kPlastic = false>
 PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   p.disp[i].w = effective_strain_limit(p.strain_limit0[i], m.compression_alpha, p.strain_min[i]);

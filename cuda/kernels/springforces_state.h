@@ -18,7 +18,7 @@ namespace pd {
 // criterion removed); else the screened pass (bond_screen.h), which returns false where a break
 // is not ruled out, having written nothing but the plastic history. kProject: move both ends'
 // e^p onto the yield surface (a breaking pass after a screened one reads them moved).
-template <bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice, bool kBreaking, bool kProject>
+template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kBreaking, bool kProject>
 PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                    int32_t* broke) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
@@ -77,13 +77,13 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
 }
 
 // The breaking pass, and the screened pass with the breaking pass where it cannot rule a break out.
-template <bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice = true>
+template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeAsView>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                int32_t* broke) {
   state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, true, true>(i, p, b, mt, broke);
 }
 
-template <bool kPlastic, bool kAnisotropic, bool kWeak, bool kLattice = true>
+template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeAsView>
 PD_HD inline void screened_state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                         int32_t* broke) {
   if (!state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, false, true>(i, p, b, mt, broke))

@@ -48,7 +48,9 @@ class PartitionedEngine final : public Engine {
     if (local_input.particles.size() == 0)
       throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
                                std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");
-    local_ = std::make_unique<EngineImpl<Exec>>(local_input, device, &layout_, comm_.get());
+    local_ =
+        std::make_unique<EngineImpl<Exec>>(local_input, device, &layout_, comm_.get(),
+                                           [&](const BondLists& local) { return rank_lattice(in, local); });
     global_families();
     device_ = local_->device_name() + " x " + std::to_string(comm_->size()) + " ranks";
     critical_dt_ = comm_->min(local_->critical_time_step());
@@ -181,10 +183,34 @@ class PartitionedEngine final : public Engine {
     return global_offset_[size_t(g) / kSliceWidth] + int64_t(k) * kSliceWidth + g % kSliceWidth;
   }
 
-  // Every rank learns every particle's family size (the one-rank sliced-ELL layout follows), and
-  // the family statistics of the whole run.
-  void global_families() {
-    local_->read_bonds(local_bonds_);
+  // During the rank engine's set-up, with its families as built (cuts applied): every rank
+  // learns the one-rank layout (global_layout), and box-grid bodies get their lattice tables as
+  // one rank makes them from the whole run's families (on rank 0, sent to all), each rank keeping
+  // its own particles' part. Empty when the run has no lattice families.
+  LatticeFamilies rank_lattice(const SimulationInput& in, const BondLists& local) {
+    global_layout(local);
+    if (!in.lattice_families) return {};
+    BondLists whole_lists;
+    whole_lists.neighbor = gather_slots(partners_to_global(local.neighbor));
+    LatticeFamilies whole;
+    if (comm_->rank() == 0) {
+      whole_lists.slice_offset = global_offset_;
+      whole_lists.count = global_count_;
+      whole = lattice_families(in.particles, in.materials, whole_lists);
+    }
+    comm_->broadcast(&whole.words, sizeof(whole.words), 0);
+    broadcast_vector(whole.stencil);
+    broadcast_vector(whole.stencils);
+    broadcast_vector(whole.entries);
+    broadcast_vector(whole.present);
+    broadcast_vector(whole.intact);
+    if (whole.stencils.empty()) return {};
+    return lattice_part(whole, partition_.owned[size_t(comm_->rank())], int32_t(layout_.global.size()));
+  }
+
+  // Every rank learns every particle's family size: the one-rank sliced-ELL layout follows.
+  void global_layout(const BondLists& local) {
+    local_bonds_ = local;
     std::vector<int32_t> own(local_bonds_.count.begin(), local_bonds_.count.begin() + layout_.owned);
     global_count_ = gather_particles(own);
     global_count_.resize(size_t(n_));
@@ -197,13 +223,17 @@ class PartitionedEngine final : public Engine {
         longest = std::max(longest, global_count_[size_t(i)]);
       global_offset_[size_t(s + 1)] = global_offset_[size_t(s)] + int64_t(longest) * kSliceWidth;
     }
+  }
+
+  // The family statistics of the whole run.
+  void global_families() {
     const FamilyStats& mine = local_->family_stats();
     family_.bonds = comm_->sum(mine.bonds);
     family_.min = *std::min_element(global_count_.begin(), global_count_.end());
     family_.max = *std::max_element(global_count_.begin(), global_count_.end());
     family_.mean = double(family_.bonds) / double(n_);
     family_.slots = global_offset_.back();
-    family_.lattice_particles = 0;
+    family_.lattice_particles = comm_->sum(mine.lattice_particles);
     family_.cuts.removed = comm_->sum(mine.cuts.removed);
     family_.cuts.weakened = comm_->sum(mine.cuts.weakened);
   }

@@ -133,7 +133,9 @@ int bench_command(const BenchOptions& opt) {
   const std::vector<RankStats> ranks = rank_deltas(ranks_before, engine->rank_stats());
 
   const std::string date = utc_now("%Y-%m-%dT%H:%M:%SZ"), rev = git_revision();
-  const auto rows = kernel_rows(engine->stats(), "pd/", fam.bonds, opt.steps);
+  // (Under mpirun the kernel table is rank 0's: its kernels over its own bonds.)
+  const int64_t kernel_bonds = ranks.empty() ? fam.bonds : ranks[0].bonds;
+  const auto rows = kernel_rows(engine->stats(), "pd/", kernel_bonds, opt.steps);
   std::printf("bench      %s on %s [%s], %s, git %s\n", workload.c_str(), engine->device_name().c_str(),
               backend_name(backend), date.c_str(), rev.c_str());
   std::printf("size       %zu particles, %lld bonds (mean %.1f per particle), %.1f MiB, %lld steps\n",

@@ -78,7 +78,7 @@ void add_run(CLI::App& app, int* exit_code) {
   cmd->add_option("--scale", run->scale, "particle-count factor, e.g. 0.05 for a small CPU run");
   cmd->add_flag("--allow-unstable-dt", run->allow_unstable_dt, "run even if dt exceeds the stable time step");
   cmd->add_flag("--explicit-families", run->explicit_families,
-                "listed families for box-grid bodies too (as on several ranks: the same bits on one)");
+                "listed families for box-grid bodies too (what lattice families save, bench/NOTES.md)");
   cmd->add_option("--blend-frames", run->blend_frames,
                   "blend a split fragment's transform over N frames (0: off)")
       ->check(CLI::NonNegativeNumber);
