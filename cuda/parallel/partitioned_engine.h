@@ -12,8 +12,10 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -31,6 +33,7 @@ class PartitionedEngine final : public Engine {
  public:
   PartitionedEngine(const SimulationInput& in, std::shared_ptr<Comm> comm, const std::string& device)
       : comm_(std::move(comm)), n_(int64_t(in.particles.size())) {
+    const auto t0 = std::chrono::steady_clock::now();
     partition_ = partition_particles(in.particles, in.materials, comm_->size());
     layout_ = rank_layout(partition_, comm_->rank());
     own_by_global_.resize(size_t(layout_.owned));
@@ -48,9 +51,12 @@ class PartitionedEngine final : public Engine {
     if (local_input.particles.size() == 0)
       throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
                                std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");
+    const auto t1 = std::chrono::steady_clock::now();
     local_ =
         std::make_unique<EngineImpl<Exec>>(local_input, device, &layout_, comm_.get(),
                                            [&](const BondLists& local) { return rank_lattice(in, local); });
+    setup_seconds_[0] = std::chrono::duration<double>(t1 - t0).count();
+    setup_seconds_[1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     global_families();
     device_ = local_->device_name() + " x " + std::to_string(comm_->size()) + " ranks";
     critical_dt_ = comm_->min(local_->critical_time_step());
@@ -190,6 +196,12 @@ class PartitionedEngine final : public Engine {
   LatticeFamilies rank_lattice(const SimulationInput& in, const BondLists& local) {
     global_layout(local);
     if (!in.lattice_families) return {};
+    const auto t0 = std::chrono::steady_clock::now();
+    struct Lap {  // the tables' time, however this returns
+      std::chrono::steady_clock::time_point t0;
+      double* out;
+      ~Lap() { *out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+    } lap{t0, &setup_seconds_[2]};
     BondLists whole_lists;
     whole_lists.neighbor = gather_slots(partners_to_global(local.neighbor));
     LatticeFamilies whole;
@@ -198,14 +210,46 @@ class PartitionedEngine final : public Engine {
       whole_lists.count = global_count_;
       whole = lattice_families(in.particles, in.materials, whole_lists);
     }
+    // The stencils to every rank; each rank's masks to it alone (the whole run's masks are
+    // words x particles: sent whole, they would cost every rank that much memory).
     comm_->broadcast(&whole.words, sizeof(whole.words), 0);
-    broadcast_vector(whole.stencil);
     broadcast_vector(whole.stencils);
     broadcast_vector(whole.entries);
-    broadcast_vector(whole.present);
-    broadcast_vector(whole.intact);
     if (whole.stencils.empty()) return {};
-    return lattice_part(whole, partition_.owned[size_t(comm_->rank())], int32_t(layout_.global.size()));
+    const int ranks = comm_->size(), me = comm_->rank();
+    std::vector<std::vector<char>> out(static_cast<size_t>(ranks)), got(static_cast<size_t>(ranks));
+    LatticeFamilies part;
+    if (me == 0)
+      for (int r = 0; r < ranks; ++r) {
+        const int32_t held =
+            int32_t(partition_.owned[size_t(r)].size() + partition_.ghosts[size_t(r)].size());
+        LatticeFamilies p = lattice_part(whole, partition_.owned[size_t(r)], held);
+        if (r == 0) {
+          part = std::move(p);
+          continue;
+        }
+        out[size_t(r)] = to_bytes(p.stencil);
+        for (const auto* v : {&p.present, &p.intact}) {
+          const std::vector<char> b = to_bytes(*v);
+          out[size_t(r)].insert(out[size_t(r)].end(), b.begin(), b.end());
+        }
+      }
+    const size_t held = layout_.global.size(), mask = size_t(whole.words) * held;
+    if (me != 0) got[0].resize(held * sizeof(int16_t) + 2 * mask * sizeof(uint32_t));
+    comm_->exchange(out, got);
+    if (me == 0) return part;
+    part.words = whole.words;
+    part.stencils = std::move(whole.stencils);
+    part.entries = std::move(whole.entries);
+    const char* at = got[0].data();
+    part.stencil.resize(held);
+    part.present.resize(mask);
+    part.intact.resize(mask);
+    std::memcpy(part.stencil.data(), at, held * sizeof(int16_t));
+    std::memcpy(part.present.data(), at + held * sizeof(int16_t), mask * sizeof(uint32_t));
+    std::memcpy(part.intact.data(), at + held * sizeof(int16_t) + mask * sizeof(uint32_t),
+                mask * sizeof(uint32_t));
+    return part;
   }
 
   // Every rank learns every particle's family size: the one-rank sliced-ELL layout follows.
@@ -449,6 +493,8 @@ class PartitionedEngine final : public Engine {
                 comm_->size(), (long long)*lo, (long long)*hi, (long long)*glo, (long long)*ghi, b.imbalance);
     std::printf("halo       %s, %s\n", rank0.halo_transport,
                 rank0.overlapped ? "interior forces computed while it travels" : "not overlapped");
+    std::printf("set-up     rank 0: partition %.2f s, its engine %.2f s (of which lattice tables %.2f s)\n",
+                setup_seconds_[0], setup_seconds_[1], setup_seconds_[2]);
   }
 
   std::shared_ptr<Comm> comm_;
@@ -456,6 +502,7 @@ class PartitionedEngine final : public Engine {
   Partition partition_;
   RankLayout layout_;
   std::vector<std::pair<int32_t, int32_t>> own_by_global_;  // (global, local) of the own particles
+  double setup_seconds_[3] = {0, 0, 0};  // partition, rank engine, lattice tables (within it)
   std::unique_ptr<EngineImpl<Exec>> local_;
   std::string device_;
   FamilyStats family_;

@@ -100,6 +100,7 @@ int bench_command(const BenchOptions& opt) {
   const Backend backend = choose_backend(opt.backend, &note);
   std::string workload;
   SimulationInput input;
+  const auto setup_start = std::chrono::steady_clock::now();
   if (!opt.scene.empty()) {
     const Scene scene = load_scene(opt.scene);
     input = setup_scene(scene, setup_options_for(scene, opt.scale, backend)).input;
@@ -118,7 +119,11 @@ int bench_command(const BenchOptions& opt) {
     workload += "_screen_" + opt.screen;
   }
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
+  const auto engine_start = std::chrono::steady_clock::now();
   auto engine = make_engine(backend, input);
+  const double scene_seconds = std::chrono::duration<double>(engine_start - setup_start).count();
+  const double engine_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - engine_start).count();
   const FamilyStats& fam = engine->family_stats();
   engine->advance(opt.warmup);
   engine->stats().reset_times();
@@ -141,6 +146,7 @@ int bench_command(const BenchOptions& opt) {
   std::printf("size       %zu particles, %lld bonds (mean %.1f per particle), %.1f MiB, %lld steps\n",
               input.particles.size(), (long long)fam.bonds, fam.mean,
               double(engine->memory_bytes()) / (1 << 20), (long long)opt.steps);
+  std::printf("set-up     scene %.2f s, engine %.2f s\n", scene_seconds, engine_seconds);
   std::printf("families   %lld of %zu particles find their partners by lattice offset\n",
               (long long)fam.lattice_particles, input.particles.size());
   print_kernel_table(std::cout, rows);
@@ -168,6 +174,7 @@ int bench_command(const BenchOptions& opt) {
      << workload << "\",\n  \"particles\": " << input.particles.size() << ",\n  \"bonds\": " << fam.bonds
      << ",\n  \"lattice_particles\": " << fam.lattice_particles << ",\n  \"steps\": " << opt.steps
      << ",\n  \"screened_steps\": " << screened << ",\n  \"wall_seconds\": " << wall
+     << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds << ", \"engine\": " << engine_seconds << "}"
      << ",\n  \"kernels\": [\n";
   for (size_t k = 0; k < rows.size(); ++k) {
     const auto& r = rows[k];
