@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "cuda/engine/bond_cuts.h"
 #include "cuda/kernels/bond.h"
@@ -59,21 +61,31 @@ bool find_box_grid(const ParticleSet& ps, int32_t first, int32_t end, BoxGrid& g
   return true;
 }
 
-// Builds body `g`'s stencil from its families and sets its particles' bits; false (nothing
-// changed) when the families do not fit a stencil. Bonds are identified by their index offset
-// j - i alone (no division per bond): no bond is longer than the family radius, so along each axis
-// it spans at most `bound` cells, and a grid wider than 2 bound along x and y gives every such
-// cell offset its own index offset.
-bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bonds, const BoxGrid& g,
-                 LatticeFamilies& lf) {
-  const BondsView v = bonds.view();
-  const int32_t end = g.first + g.n[0] * g.n[1] * g.n[2];
+// The families a stencil is made from, as rows of the tables: row r is the whole run's particle
+// gid(r), whose partners' whole-run indices and intact flags partner(r, k) gives in family order
+// (one run: every particle, row = index; a partitioned rank: its own particles of the body, rows
+// in its local order).
+struct BodyRows {
+  std::vector<int32_t> rows, gids;  // the body's particles: their rows and whole-run indices
+  std::function<int32_t(int32_t row)> count;
+  std::function<int32_t(int32_t row, int32_t k)> partner;  // whole-run index, ~index if broken
+};
+
+// Builds body `g`'s stencil from its families and sets its rows' bits; false (nothing changed)
+// when the families do not fit a stencil. Bonds are identified by their index offset j - i alone
+// (no division per bond): no bond is longer than the family radius, so along each axis it spans
+// at most `bound` cells, and a grid wider than 2 bound along x and y gives every such cell offset
+// its own index offset. With `reduce` (a partitioned rank) the fit and the offsets used are
+// combined over the ranks, so every rank builds the stencil one run builds.
+bool add_stencil(const ParticleSet& ps, const Material& m, const BoxGrid& g, const BodyRows& body,
+                 LatticeFamilies& lf, StencilReduce* reduce) {
   std::array<int32_t, 3> bound{};
   for (int a = 0; a < 3; ++a) bound[a] = int32_t(std::floor(double(m.family_radius()) * (1 + 1e-4) / g.h[a]));
   if (g.n[0] <= 2 * bound[0] || g.n[1] <= 2 * bound[1] || bound[0] > 127 || bound[1] > 127 || bound[2] > 127)
     return false;
   const int64_t reach = bound[0] + int64_t(g.n[0]) * (bound[1] + int64_t(g.n[1]) * bound[2]);
   if (reach > (int64_t(1) << 28)) return false;
+  const int32_t end = g.first + g.n[0] * g.n[1] * g.n[2];
   // The cell offset d of each index offset within reach (offset + reach indexes these arrays).
   const size_t span = size_t(2 * reach + 1);
   std::vector<std::array<int8_t, 3>> cells(span);
@@ -87,11 +99,13 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
       }
   // The offsets the families use: partners in the body, ascending, within the bounds.
   bool fits = true;
+  const int32_t rows = int32_t(body.rows.size());
 #pragma omp parallel for schedule(static) reduction(&& : fits)
-  for (int32_t i = g.first; i < end; ++i) {
+  for (int32_t r = 0; r < rows; ++r) {
+    const int32_t row = body.rows[size_t(r)], i = body.gids[size_t(r)];
     int32_t previous = -1;
-    for (int32_t k = 0; k < v.count[i] && fits; ++k) {
-      const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
+    for (int32_t k = 0; k < body.count(row) && fits; ++k) {
+      const int32_t j = bond_partner(body.partner(row, k));
       const int64_t at = reach + (j - i);
       // Another body, not ascending, or beyond the bounds.
       fits = j >= g.first && j < end && j > previous && at >= 0 && at < int64_t(span) && is_cell[size_t(at)];
@@ -101,6 +115,13 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
         used[size_t(at)] = 1;
       }
     }
+  }
+  if (reduce) {
+    if (!reduce->all(fits)) return false;
+    std::vector<int32_t> mine;
+    for (size_t at = 0; at < span; ++at)
+      if (used[at]) mine.push_back(int32_t(at));
+    for (int32_t at : reduce->union_of(mine)) used[size_t(at)] = 1;
   }
   if (!fits) return false;
   const int64_t size = std::count(used.begin(), used.end(), uint8_t(1));
@@ -128,7 +149,7 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
   const int16_t id = int16_t(lf.stencils.size());
   lf.stencils.push_back(st);
 
-  // Per particle: grow the masks to the stencil's words, then set its bits.
+  // Per row: grow the masks to the stencil's words, then set its bits.
   const int32_t words = int32_t(size + 31) / 32;
   if (words > lf.words) {
     const size_t n = lf.stencil.size();
@@ -137,13 +158,14 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
     lf.words = words;
   }
   const size_t n = lf.stencil.size();
-#pragma omp parallel for schedule(static)  // each particle sets only its own words
-  for (int32_t i = g.first; i < end; ++i) {
-    lf.stencil[size_t(i)] = id;
-    for (int32_t k = 0; k < v.count[i]; ++k) {
-      const int32_t nb = v.neighbor[v.slot(i, k)];
+#pragma omp parallel for schedule(static)  // each row sets only its own words
+  for (int32_t r = 0; r < rows; ++r) {
+    const int32_t row = body.rows[size_t(r)], i = body.gids[size_t(r)];
+    lf.stencil[size_t(row)] = id;
+    for (int32_t k = 0; k < body.count(row); ++k) {
+      const int32_t nb = body.partner(row, k);
       const int32_t q = entry_of[size_t(reach + (bond_partner(nb) - i))];
-      const size_t word = size_t(q / 32) * n + size_t(i);
+      const size_t word = size_t(q / 32) * n + size_t(row);
       lf.present[word] |= 1u << (q % 32);
       if (bond_intact(nb)) lf.intact[word] |= 1u << (q % 32);
     }
@@ -151,17 +173,9 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BondLists& bond
   return true;
 }
 
-}  // namespace
-
-int64_t LatticeFamilies::particles() const {
-  return std::count_if(stencil.begin(), stencil.end(), [](int16_t s) { return s >= 0; });
-}
-
-LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds) {
-  LatticeFamilies lf;
+// Each body of `ps` whose particles are contiguous, as [first, end).
+std::vector<std::pair<int32_t, int32_t>> contiguous_bodies(const ParticleSet& ps) {
   const int32_t n = int32_t(ps.size());
-  lf.stencil.assign(size_t(n), -1);
-  // Each body's range; a body seen again after another one is not contiguous.
   std::map<int32_t, std::pair<int32_t, int32_t>> range;  // body -> [first, end)
   std::map<int32_t, bool> contiguous;
   for (int32_t i = 0; i < n; ++i) {
@@ -176,10 +190,61 @@ LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt,
       contiguous[body] = false;
     }
   }
-  for (const auto& [body, r] : range) {
+  std::vector<std::pair<int32_t, int32_t>> out;
+  for (const auto& [body, r] : range)
+    if (contiguous[body]) out.push_back(r);
+  return out;
+}
+
+}  // namespace
+
+int64_t LatticeFamilies::particles() const {
+  return std::count_if(stencil.begin(), stencil.end(), [](int16_t s) { return s >= 0; });
+}
+
+LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds) {
+  LatticeFamilies lf;
+  lf.stencil.assign(ps.size(), -1);
+  const BondsView v = bonds.view();
+  for (const auto& [first, end] : contiguous_bodies(ps)) {
     BoxGrid g;
-    if (contiguous[body] && find_box_grid(ps, r.first, r.second, g))
-      add_stencil(ps, mt.m[ps.material[size_t(g.first)]], bonds, g, lf);
+    if (!find_box_grid(ps, first, end, g)) continue;
+    BodyRows body;
+    for (int32_t i = first; i < end; ++i) body.rows.push_back(i);
+    body.gids = body.rows;
+    body.count = [&](int32_t i) { return v.count[i]; };
+    body.partner = [&](int32_t i, int32_t k) { return v.neighbor[v.slot(i, k)]; };
+    add_stencil(ps, mt.m[ps.material[size_t(g.first)]], g, body, lf, nullptr);
+  }
+  return lf;
+}
+
+LatticeFamilies rank_lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& local,
+                                      const std::vector<int32_t>& global, int32_t owned,
+                                      StencilReduce& reduce) {
+  LatticeFamilies lf;
+  lf.stencil.assign(global.size(), -1);
+  const BondsView v = local.view();
+  // The rank's own particles by whole-run index, to find each body's.
+  std::vector<std::pair<int32_t, int32_t>> own(static_cast<size_t>(owned));
+  for (int32_t i = 0; i < owned; ++i) own[size_t(i)] = {global[size_t(i)], i};
+  std::sort(own.begin(), own.end());
+  for (const auto& [first, end] : contiguous_bodies(ps)) {
+    BoxGrid g;
+    if (!find_box_grid(ps, first, end, g)) continue;
+    BodyRows body;
+    for (auto it = std::lower_bound(own.begin(), own.end(), std::make_pair(first, int32_t(0)));
+         it != own.end() && it->first < end; ++it) {
+      body.rows.push_back(it->second);
+      body.gids.push_back(it->first);
+    }
+    body.count = [&](int32_t row) { return v.count[row]; };
+    body.partner = [&](int32_t row, int32_t k) {
+      const int32_t nb = v.neighbor[v.slot(row, k)];
+      const int32_t j = global[size_t(bond_partner(nb))];
+      return bond_intact(nb) ? j : ~j;
+    };
+    add_stencil(ps, mt.m[ps.material[size_t(g.first)]], g, body, lf, &reduce);
   }
   return lf;
 }
@@ -231,26 +296,6 @@ void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds, bool li
     });
     if (listed != v.count[i]) throw differ();
   }
-}
-
-LatticeFamilies lattice_part(const LatticeFamilies& whole, const std::vector<int32_t>& ids, int32_t held) {
-  LatticeFamilies part;
-  part.words = whole.words;
-  part.stencils = whole.stencils;
-  part.entries = whole.entries;
-  part.stencil.assign(size_t(held), -1);
-  part.present.assign(size_t(whole.words) * size_t(held), 0);
-  part.intact.assign(part.present.size(), 0);
-  const size_t n = whole.stencil.size();
-  for (size_t i = 0; i < ids.size(); ++i) {
-    const size_t g = size_t(ids[i]);
-    part.stencil[i] = whole.stencil[g];
-    for (int32_t w = 0; w < whole.words; ++w) {
-      part.present[size_t(w) * size_t(held) + i] = whole.present[size_t(w) * n + g];
-      part.intact[size_t(w) * size_t(held) + i] = whole.intact[size_t(w) * n + g];
-    }
-  }
-  return part;
 }
 
 }  // namespace pd

@@ -28,6 +28,21 @@ struct LatticeFamilies {
 // wider than the stencil along x and y), get a stencil; the others keep explicit families.
 LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds);
 
+// What a partitioned rank's lattice tables need of the other ranks (cuda/parallel/): whether
+// every rank's families of a body fit a stencil, and the union of the index offsets they use.
+struct StencilReduce {
+  virtual ~StencilReduce() = default;
+  virtual bool all(bool mine) = 0;
+  virtual std::vector<int32_t> union_of(const std::vector<int32_t>& mine) = 0;  // sorted
+};
+
+// A partitioned rank's part of the tables lattice_families makes for the whole run `ps`, from
+// the rank's own families (`local`, partners as local indices, `global` mapping them to the whole
+// run's, its own particles first): rows in the rank's local order. Collective over the ranks.
+LatticeFamilies rank_lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& local,
+                                      const std::vector<int32_t>& global, int32_t owned,
+                                      StencilReduce& reduce);
+
 // Sets the weak bits: the bonds whose per-slot strength (bond_cuts.h) is below 1.
 void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
                              const std::vector<uint8_t>& strength);
@@ -36,9 +51,5 @@ void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
 // when a lattice particle's listed bonds are not its present stencil bonds in stencil order
 // (partners checked by offset unless `listed_partners`: a partitioned rank's indices).
 void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds, bool listed_partners = false);
-
-// The tables of particles `ids` of `whole` (a partitioned rank's own, in its local order), for a
-// rank holding `held` particles: stencils and entries as they are, masks in the rank's layout.
-LatticeFamilies lattice_part(const LatticeFamilies& whole, const std::vector<int32_t>& ids, int32_t held);
 
 }  // namespace pd

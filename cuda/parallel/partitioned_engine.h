@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -191,64 +190,33 @@ class PartitionedEngine final : public Engine {
 
   // During the rank engine's set-up, with its families as built (cuts applied): every rank
   // learns the one-rank layout (global_layout), and box-grid bodies get their lattice tables as
-  // one rank makes them from the whole run's families (on rank 0, sent to all), each rank keeping
-  // its own particles' part. Empty when the run has no lattice families.
+  // one rank makes them, each rank building its own particles' part from its own families (the
+  // fit and the stencils' offsets combined over the ranks). Empty when the run has none.
   LatticeFamilies rank_lattice(const SimulationInput& in, const BondLists& local) {
     global_layout(local);
     if (!in.lattice_families) return {};
     const auto t0 = std::chrono::steady_clock::now();
-    struct Lap {  // the tables' time, however this returns
-      std::chrono::steady_clock::time_point t0;
-      double* out;
-      ~Lap() { *out = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
-    } lap{t0, &setup_seconds_[2]};
-    BondLists whole_lists;
-    whole_lists.neighbor = gather_slots(partners_to_global(local.neighbor));
-    LatticeFamilies whole;
-    if (comm_->rank() == 0) {
-      whole_lists.slice_offset = global_offset_;
-      whole_lists.count = global_count_;
-      whole = lattice_families(in.particles, in.materials, whole_lists);
-    }
-    // The stencils to every rank; each rank's masks to it alone (the whole run's masks are
-    // words x particles: sent whole, they would cost every rank that much memory).
-    comm_->broadcast(&whole.words, sizeof(whole.words), 0);
-    broadcast_vector(whole.stencils);
-    broadcast_vector(whole.entries);
-    if (whole.stencils.empty()) return {};
-    const int ranks = comm_->size(), me = comm_->rank();
-    std::vector<std::vector<char>> out(static_cast<size_t>(ranks)), got(static_cast<size_t>(ranks));
-    LatticeFamilies part;
-    if (me == 0)
-      for (int r = 0; r < ranks; ++r) {
-        const int32_t held =
-            int32_t(partition_.owned[size_t(r)].size() + partition_.ghosts[size_t(r)].size());
-        LatticeFamilies p = lattice_part(whole, partition_.owned[size_t(r)], held);
-        if (r == 0) {
-          part = std::move(p);
-          continue;
+    struct OverRanks final : StencilReduce {
+      PartitionedEngine* engine;
+      explicit OverRanks(PartitionedEngine* e) : engine(e) {}
+      bool all(bool mine) override { return engine->comm_->min(mine ? 1.0 : 0.0) > 0; }
+      std::vector<int32_t> union_of(const std::vector<int32_t>& mine) override {
+        std::vector<std::vector<char>> parts;
+        engine->comm_->gather(to_bytes(mine), parts, 0);
+        std::vector<int32_t> all;
+        for (const auto& part : parts) {
+          const std::vector<int32_t> v = from_bytes<int32_t>(part);
+          all.insert(all.end(), v.begin(), v.end());
         }
-        out[size_t(r)] = to_bytes(p.stencil);
-        for (const auto* v : {&p.present, &p.intact}) {
-          const std::vector<char> b = to_bytes(*v);
-          out[size_t(r)].insert(out[size_t(r)].end(), b.begin(), b.end());
-        }
+        std::sort(all.begin(), all.end());
+        all.erase(std::unique(all.begin(), all.end()), all.end());
+        engine->broadcast_vector(all);
+        return all;
       }
-    const size_t held = layout_.global.size(), mask = size_t(whole.words) * held;
-    if (me != 0) got[0].resize(held * sizeof(int16_t) + 2 * mask * sizeof(uint32_t));
-    comm_->exchange(out, got);
-    if (me == 0) return part;
-    part.words = whole.words;
-    part.stencils = std::move(whole.stencils);
-    part.entries = std::move(whole.entries);
-    const char* at = got[0].data();
-    part.stencil.resize(held);
-    part.present.resize(mask);
-    part.intact.resize(mask);
-    std::memcpy(part.stencil.data(), at, held * sizeof(int16_t));
-    std::memcpy(part.present.data(), at + held * sizeof(int16_t), mask * sizeof(uint32_t));
-    std::memcpy(part.intact.data(), at + held * sizeof(int16_t) + mask * sizeof(uint32_t),
-                mask * sizeof(uint32_t));
+    } reduce(this);
+    LatticeFamilies part =
+        rank_lattice_families(in.particles, in.materials, local, layout_.global, layout_.owned, reduce);
+    setup_seconds_[2] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return part;
   }
 

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "cuda/engine/bond_cuts.h"
 #include "cuda/engine/engine.h"
@@ -109,6 +112,128 @@ TEST(LatticeFamilies, TwoBoxBodiesGetOneStencilEach) {
   EXPECT_EQ(lf.stencil[half], 1);
   EXPECT_EQ(lf.stencils[0].size, lf.stencils[1].size);
   EXPECT_EQ(lf.entries[size_t(lf.stencils[1].first + 1)].offset, 12 * (-1 + 10 * -3));
+}
+
+// Ranks as threads: all() and union_of() wait for every rank's contribution.
+class ThreadReduce {
+ public:
+  explicit ThreadReduce(int ranks) : ranks_(ranks) {}
+  struct Rank final : StencilReduce {
+    ThreadReduce* shared;
+    explicit Rank(ThreadReduce* s) : shared(s) {}
+    bool all(bool mine) override {
+      const std::vector<int32_t> r = shared->combine({mine ? 1 : 0});
+      return std::count(r.begin(), r.end(), 0) == 0;
+    }
+    std::vector<int32_t> union_of(const std::vector<int32_t>& mine) override {
+      std::vector<int32_t> r = shared->combine(mine);
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+      return r;
+    }
+  };
+
+ private:
+  // Every rank's values together, once all ranks have given theirs.
+  std::vector<int32_t> combine(const std::vector<int32_t>& mine) {
+    std::unique_lock<std::mutex> lock(m_);
+    const int64_t round = round_;
+    pool_.insert(pool_.end(), mine.begin(), mine.end());
+    if (++arrived_ == ranks_) {
+      result_ = pool_;
+      pool_.clear();
+      arrived_ = 0;
+      ++round_;
+      cv_.notify_all();
+    } else {
+      cv_.wait(lock, [&] { return round_ != round; });
+    }
+    return result_;
+  }
+  int ranks_, arrived_ = 0;
+  int64_t round_ = 0;
+  std::vector<int32_t> pool_, result_;
+  std::mutex m_;
+  std::condition_variable cv_;
+};
+
+TEST(LatticeFamilies, RanksBuildTheirPartsOfTheWholeRunsTables) {
+  // Two box bodies; rank 0 owns the first 30 particles (a corner of the first body: alone, its
+  // families use no offset below the first layer, so its stencil needs the other ranks'), rank 1
+  // the rest of the first half, rank 2 the others; each in reverse order, then every other
+  // particle after its own, so each of its partners has a local index.
+  auto in = lattice_block(10, 9, 8, 1e-3);
+  auto other = lattice_block(12, 10, 7, 1e-3);
+  for (size_t i = 0; i < other.particles.size(); ++i)
+    in.particles.add(other.particles.rest[i] + Vec3{real(0.05), 0, 0}, {0, 0, 0}, other.particles.volume[i],
+                     other.particles.mass[i], other.particles.strain_limit0[i], 0, 1);
+  const BondLists whole_bonds = bonds_of(in);
+  const LatticeFamilies whole = lattice_families(in.particles, in.materials, whole_bonds);
+  ASSERT_EQ(whole.stencils.size(), 2u);
+  const int32_t n = int32_t(in.particles.size());
+  const BondsView wv = whole_bonds.view();
+  const int ranks = 3;
+  const auto owner = [&](int32_t g) { return g < 30 ? 0 : g < n / 2 ? 1 : 2; };
+  ThreadReduce shared(ranks);
+  std::vector<LatticeFamilies> parts(ranks);
+  std::vector<std::vector<int32_t>> globals(ranks);
+  std::vector<int32_t> owned(ranks, 0);
+  std::vector<BondLists> locals(ranks);
+  for (int r = 0; r < ranks; ++r) {
+    std::vector<int32_t>& global = globals[size_t(r)];
+    for (int32_t g = n - 1; g >= 0; --g)
+      if (owner(g) == r) global.push_back(g);
+    owned[size_t(r)] = int32_t(global.size());
+    for (int32_t g = 0; g < n; ++g)
+      if (owner(g) != r) global.push_back(g);
+    std::vector<int32_t> local_of(static_cast<size_t>(n));
+    for (size_t l = 0; l < global.size(); ++l) local_of[size_t(global[l])] = int32_t(l);
+    // The local families: the own particles' whole-run families, partners as local indices.
+    BondLists& b = locals[size_t(r)];
+    b.count.assign(global.size(), 0);
+    int32_t longest = 0;
+    for (int32_t l = 0; l < owned[size_t(r)]; ++l) longest = std::max(longest, wv.count[global[size_t(l)]]);
+    const int64_t slices = (int64_t(global.size()) + kSliceWidth - 1) / kSliceWidth;
+    for (int64_t q = 0; q <= slices; ++q) b.slice_offset.push_back(q * int64_t(longest) * kSliceWidth);
+    b.neighbor.assign(size_t(b.slice_offset.back()), 0);
+    const BondsView lv = b.view();
+    for (int32_t l = 0; l < owned[size_t(r)]; ++l) {
+      const int32_t g = global[size_t(l)];
+      b.count[size_t(l)] = wv.count[g];
+      for (int32_t k = 0; k < wv.count[g]; ++k) {
+        const int32_t nb = wv.neighbor[wv.slot(g, k)];
+        const int32_t j = local_of[size_t(bond_partner(nb))];
+        b.neighbor[size_t(lv.slot(l, k))] = bond_intact(nb) ? j : ~j;
+      }
+    }
+  }
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+    threads.emplace_back([&, r] {
+      ThreadReduce::Rank reduce(&shared);
+      parts[size_t(r)] = rank_lattice_families(in.particles, in.materials, locals[size_t(r)],
+                                               globals[size_t(r)], owned[size_t(r)], reduce);
+    });
+  for (auto& t : threads) t.join();
+  for (int r = 0; r < ranks; ++r) {
+    const LatticeFamilies& p = parts[size_t(r)];
+    ASSERT_EQ(p.stencils.size(), whole.stencils.size()) << "rank " << r;
+    ASSERT_EQ(p.entries.size(), whole.entries.size()) << "rank " << r;
+    for (size_t e = 0; e < p.entries.size(); ++e) {
+      EXPECT_EQ(p.entries[e].offset, whole.entries[e].offset);
+      EXPECT_EQ(p.entries[e].weight, whole.entries[e].weight);
+    }
+    ASSERT_EQ(p.words, whole.words);
+    const size_t held = p.stencil.size();
+    for (int32_t l = 0; l < owned[size_t(r)]; ++l) {
+      const int32_t g = globals[size_t(r)][size_t(l)];
+      EXPECT_EQ(p.stencil[size_t(l)], whole.stencil[size_t(g)]) << "rank " << r << " particle " << g;
+      for (int32_t w = 0; w < whole.words; ++w) {
+        EXPECT_EQ(p.present[size_t(w) * held + size_t(l)], whole.present[size_t(w) * size_t(n) + size_t(g)]);
+        EXPECT_EQ(p.intact[size_t(w) * held + size_t(l)], whole.intact[size_t(w) * size_t(n) + size_t(g)]);
+      }
+    }
+  }
 }
 
 // Relative L2 difference of two vector fields.
