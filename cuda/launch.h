@@ -238,9 +238,11 @@ void launch_weighted_volume(Exec& ex, ParticlesView p, BondsView b, MaterialTabl
 }
 
 template <class Exec>
-void launch_stability_rate(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, double* rate) {
-  ex.parallel_for("family/stability", p.n,
-                  [=] PD_HD(int64_t i) { rate[i] = stability_rate(int32_t(i), p, b, mt); });
+void launch_stability_rate(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt,
+                           double collider_stiffness, double* rate) {
+  ex.parallel_for("family/stability", p.n, [=] PD_HD(int64_t i) {
+    rate[i] = stability_rate(int32_t(i), p, b, mt, collider_stiffness);
+  });
 }
 
 // Reductions read once per frame.

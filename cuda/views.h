@@ -253,6 +253,32 @@ struct AnchorMotion {
 
 constexpr int kMaxAnchors = 16;
 
+// A rigid collider ([[colliders]] in a scene): an analytic shape placed by a rigid transform,
+// which pushes the particles it touches by penalty contact with Coulomb friction and damping of
+// the normal push (cuda/kernels/colliders.h). Its pose and velocity are those at the end of the
+// step being computed (the motion script sets them, cuda/engine/motion.h).
+enum ColliderShape : uint8_t {
+  kColliderPlane = 0,     // the half-space below the plane through `center` normal to the shape's y
+  kColliderSphere = 1,    // size.x: radius
+  kColliderBox = 2,       // size: half extents along the shape's axes
+  kColliderCapsule = 3,   // size.x: radius, size.y: half length of the segment along the shape's y
+  kColliderCylinder = 4,  // size.x: radius, size.y: half length along the shape's y (flat ends)
+};
+
+constexpr int kMaxColliders = 256;
+
+struct Collider {
+  Vec3 center{0, 0, 0};
+  real rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // shape frame to world, row major
+  Vec3 velocity{0, 0, 0};                          // of the centre
+  Vec3 omega{0, 0, 0};                             // angular velocity
+  Vec3 size{0, 0, 0};
+  real stiffness = 0;  // K [Pa]: a particle of volume V pressed in by d is pushed with K V^(1/3) d
+  real friction_static = 0, friction_dynamic = 0;  // Coulomb coefficients
+  real damping = 0;                                // of the normal push, as a ratio of critical
+  uint8_t shape = kColliderPlane;
+};
+
 // Everything the per-step kernels read that is not per-particle.
 struct StepParams {
   real dt = 0;
@@ -264,7 +290,8 @@ struct StepParams {
   real contact_stiffness = 0;  // K_c [Pa]
   int32_t n_projectiles = 0;
   Projectile projectile[kMaxProjectiles];
-  AnchorMotion anchor[kMaxAnchors];  // indexed by ParticlesView::anchor
+  AnchorMotion anchor[kMaxAnchors];     // indexed by ParticlesView::anchor
+  ArrayView<const Collider> colliders;  // on the backend (the engine's copy); empty: none
 };
 
 // An anchored particle whose group has not been released: its motion is prescribed.

@@ -44,6 +44,11 @@ for extra in chen_bar_twist:0.3 chen_thin_sheet_tear:0.1; do
     --out "$OUT/equiv-$name-gpu"
   step "equiv-$name-compare" "$bin" compare "$OUT/equiv-$name-cpu" "$OUT/equiv-$name-gpu"
 done
+# Colliders: a wall resting on frictional ground, hit by a scripted sphere from the first frame.
+ball=(scenes/wrecking_ball.toml --scale 0.05 --frames 3 --set 'colliders[1].path=[[0, 0, 0.55, -0.36], [0.2, 0, 0.55, 0.44]]')
+step equiv-colliders-cpu "$bin" run "${ball[@]}" --backend cpu --out "$OUT/equiv-colliders-cpu"
+step equiv-colliders-gpu "$bin" run "${ball[@]}" --backend cuda --out "$OUT/equiv-colliders-gpu"
+step equiv-colliders-compare "$bin" compare "$OUT/equiv-colliders-cpu" "$OUT/equiv-colliders-gpu"
 # Determinism (two runs, identical files) and checkpoint/resume (bit for bit) on the GPU.
 same_files() {
   local a=$1 b=$2; shift 2

@@ -5,7 +5,7 @@
 # default, and on 2 ranks also overlapped with the interior forces and not; on GPUs also staged
 # through host memory where NCCL carries it by default), and a run
 # checkpointed on 3 ranks resumed on 2 against the uninterrupted one-rank run; and the per-rank
-# report of `perifrac bench`.
+# report of `perifrac bench`; and a scene with colliders on 2 ranks.
 #   scripts/mpi-equivalence.sh [BINARY] [cpu|cuda]
 # Ranks share the machine's cores (--oversubscribe);
 # one OpenMP thread each, as the energy sum's order follows the thread count.
@@ -58,6 +58,17 @@ for f in frame_00004.pfr energy.csv fragments_00004.pfg fragments.obj; do
   fi
 done
 [ $status -eq 0 ] && echo "mpi-equivalence: checkpoint of 3 ranks resumed on 2: identical to one rank"
+
+# Colliders (ground with friction, a scripted sphere hitting from the first frame) on 2 ranks.
+ball="scenes/wrecking_ball.toml --scale 0.05 --frames 3 --backend $backend"
+ball_path="colliders[1].path=[[0,0,0.55,-0.36],[0.2,0,0.55,0.44]]"
+"$bin" run $ball --set "$ball_path" --out "$out/ball1" >"$out/ball1.log" 2>&1
+mpirun -np 2 "$bin" run $ball --set "$ball_path" --out "$out/ball2" >"$out/ball2.log" 2>&1
+ball_same=1
+for f in frame_00003.pfr energy.csv fragments_00003.pfg; do
+  cmp -s "$out/ball1/$f" "$out/ball2/$f" || { echo "mpi-equivalence: colliders: $f differs on 2 ranks" >&2; ball_same=0; status=1; }
+done
+[ $ball_same -eq 1 ] && echo "mpi-equivalence: colliders on 2 ranks: identical to one rank"
 
 # `perifrac bench` under mpirun reports every rank: particles, ghosts, rate and halo traffic.
 mpirun -np 2 "$bin" bench --lattice 16 --steps 5 --warmup 1 --backend "$backend" --out "$out/bench" >"$out/bench.log" 2>&1

@@ -40,6 +40,7 @@ class EngineImpl final : public Engine {
         contact_(in.contact),
         screen_(in.screen) {
     features_ = features_of(materials_, contact_);
+    colliders_host_ = in.colliders;
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");
     state_.upload(mem_, in.particles,
                   FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr});
@@ -66,12 +67,18 @@ class EngineImpl final : public Engine {
                                                   features_.weak_bonds, lattice_, family_);
       features_.lattice_listed = features_.lattice;
     }
-    critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_);
+    double collider_stiffness = 0;
+    for (const Collider& c : colliders_host_)
+      collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
+    critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_, collider_stiffness);
     if (features_.state_based) set_up_state_based();
     if (contact_) contacts_.allocate(mem_, state_.n, materials_);
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
-                   step_params_.gravity.y != 0 || step_params_.gravity.z != 0;
+                   step_params_.gravity.y != 0 || step_params_.gravity.z != 0 || !colliders_host_.empty();
+    colliders_ = mem_.make_from(colliders_host_);
+    step_params_.colliders = view_of(colliders_);
     motion_.apply(time_, step_params_);
+    pose_colliders(time_);
     compute_forces();
     exec_.flush_stats();
   }
@@ -89,6 +96,7 @@ class EngineImpl final : public Engine {
     for (int64_t s = 0; s < steps; ++s) {
       step_params_.time = real(time_ + dt);
       if (scripted_motion_) motion_.apply(time_ + dt, step_params_);
+      if (moving_colliders_) pose_colliders(time_ + dt);
       launch_position_update(exec_, particles(), step_params_, contact_view());
       if (contact_) exec_.mark_flags(ContactLists<Exec>::kFlagEvent);
       compute_forces();
@@ -156,6 +164,7 @@ class EngineImpl final : public Engine {
     step_ = in.step;
     time_ = in.time;
     motion_.apply(time_, step_params_);
+    pose_colliders(time_);
     state_.upload_saved(in);
     if (!lattice_.empty()) lattice_.intact.upload(lattice_.tables.intact);
     if (features_.plastic) launch_mirror_plastic(exec_, bonds());
@@ -199,6 +208,7 @@ class EngineImpl final : public Engine {
     step_ = in.step;
     time_ = in.time;
     motion_.apply(time_, step_params_);
+    pose_colliders(time_);
     state_.upload_saved(in);
     if (features_.plastic) state_.plastic_mirror.upload(plastic_mirror);
     if (!lattice_.empty()) lattice_.intact.upload(lattice_.tables.intact);
@@ -226,6 +236,13 @@ class EngineImpl final : public Engine {
   void set_up_state_based() {
     launch_weighted_volume(exec_, particles(), bonds(), materials_);
     state_.allocate(mem_, kSlots, state_.neighbor.size(), FieldNeeds{true, features_.plastic, false});
+  }
+
+  // The colliders' poses at time t, on the backend (their view in the step parameters).
+  void pose_colliders(double t) {
+    if (colliders_host_.empty()) return;
+    motion_.pose_colliders(t, colliders_host_);
+    colliders_.upload(colliders_host_);
   }
 
   // Kernels 1-5: the forces at the current positions.
@@ -315,6 +332,9 @@ class EngineImpl final : public Engine {
   StepParams step_params_;
   MotionScript motion_;
   bool scripted_motion_ = !motion_.empty();
+  std::vector<Collider> colliders_host_;
+  bool moving_colliders_ = motion_.colliders_move();
+  DeviceArray<Collider, Exec> colliders_;
   bool contact_ = false;
   BondScreen screen_ = BondScreen::kAuto;
   int64_t force_passes_ = 0, screened_passes_ = 0;

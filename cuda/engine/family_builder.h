@@ -181,12 +181,13 @@ void refresh_lattice_after_restore(const EngineState<Exec>& s, const std::vector
   refresh_lattice_intact(lattice.tables, lists, lattice.listed_partners);
 }
 
-// Smallest stable step over the particles, from the families as built (Engine::critical_time_step).
+// Smallest stable step over the particles, from the families as built and the stiffest
+// collider's push (Engine::critical_time_step).
 template <class Exec>
 double stable_time_step(DeviceMemory<Exec>& mem, const ParticlesView& p, const BondsView& b,
-                        const MaterialTable& materials) {
+                        const MaterialTable& materials, double collider_stiffness) {
   auto rate = mem.template make<double>(size_t(p.n));
-  launch_stability_rate(mem.exec(), p, b, materials, rate.data());
+  launch_stability_rate(mem.exec(), p, b, materials, collider_stiffness, rate.data());
   std::vector<double> host;
   rate.download(host);
   mem.drop(rate);

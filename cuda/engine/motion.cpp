@@ -89,4 +89,31 @@ void MotionScript::apply(double t, StepParams& sp) const {
   }
 }
 
+bool MotionScript::colliders_move() const {
+  return std::any_of(colliders.begin(), colliders.end(), [](const ColliderScript& c) { return c.moves(); });
+}
+
+void MotionScript::pose_colliders(double t, std::vector<Collider>& out) const {
+  for (size_t k = 0; k < colliders.size() && k < out.size(); ++k) {
+    const ColliderScript& c = colliders[k];
+    const PathSample move =
+        c.path.empty() ? PathSample{{c.center[0] + c.velocity[0] * t, c.center[1] + c.velocity[1] * t,
+                                     c.center[2] + c.velocity[2] * t},
+                                    c.velocity}
+                       : sample_path(c.path, t);
+    Collider& o = out[k];
+    o.center = to_vec3(move.position);
+    o.velocity = to_vec3(move.velocity);
+    o.omega = to_vec3(c.omega);
+    // R(t) R0 with R(t) = I + (R - I) (rotation_minus_identity keeps a small turn's digits).
+    const auto turn = rotation_minus_identity(c.omega, t);
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 3; ++col) {
+        double v = c.rotation[size_t(3 * r + col)];
+        for (int j = 0; j < 3; ++j) v += turn[size_t(3 * r + j)] * c.rotation[size_t(3 * j + col)];
+        o.rotation[3 * r + col] = real(v);
+      }
+  }
+}
+
 }  // namespace pd

@@ -35,13 +35,32 @@ struct AnchorScript {
   bool scripted() const { return !path.empty() || omega[0] != 0 || omega[1] != 0 || omega[2] != 0; }
 };
 
+// One collider's motion: fixed (no velocity, path or rotation), or its centre moving at a
+// constant velocity or along a keyframed path, and its shape turning about the centre at a
+// constant angular velocity from its initial orientation.
+struct ColliderScript {
+  std::array<double, 3> center{0, 0, 0};                      // at t = 0 [m]
+  std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // at t = 0, shape frame to world
+  std::array<double, 3> velocity{0, 0, 0};                    // constant, when there is no path [m/s]
+  std::vector<Keyframe> path;                                 // keyframed centre [s, m, m, m]
+  std::array<double, 3> omega{0, 0, 0};                       // angular velocity [rad/s]
+  bool moves() const {
+    return !path.empty() || velocity != std::array<double, 3>{0, 0, 0} ||
+           omega != std::array<double, 3>{0, 0, 0};
+  }
+};
+
 struct MotionScript {
   std::vector<AnchorScript> anchors;               // at most kMaxAnchors, indexed by anchor group
   std::vector<std::vector<Keyframe>> projectiles;  // per projectile; empty: its constant velocity
+  std::vector<ColliderScript> colliders;           // one per collider of SimulationInput::colliders
 
   bool empty() const;
   // Writes the anchors' and keyframed projectiles' state at time t into `sp`.
   void apply(double t, StepParams& sp) const;
+  bool colliders_move() const;
+  // Sets each collider's pose and velocity at time t (its shape and contact law kept).
+  void pose_colliders(double t, std::vector<Collider>& colliders) const;
 };
 
 // R - I for the rotation by the angle |w| t about w (Rodrigues), row major, without the

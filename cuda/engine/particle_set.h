@@ -37,10 +37,11 @@ struct SimulationInput {
   ParticleSet particles;
   MaterialTable materials;
   StepParams step;
-  MotionScript motion;            // anchors and keyframed projectiles, applied to `step` every step
-  std::vector<CutTriangle> cuts;  // pre-cracks and weakened surfaces (bond_cuts.h)
-  bool contact = false;           // launch `collection` and `collisions`
-  bool lattice_families = true;   // box-grid bodies find partners by offset (lattice_families.h)
+  MotionScript motion;              // anchors, keyframed projectiles and colliders' motion, every step
+  std::vector<Collider> colliders;  // rigid colliders (shape and contact law; motion.colliders moves them)
+  std::vector<CutTriangle> cuts;    // pre-cracks and weakened surfaces (bond_cuts.h)
+  bool contact = false;             // launch `collection` and `collisions`
+  bool lattice_families = true;     // box-grid bodies find partners by offset (lattice_families.h)
   BondScreen screen = BondScreen::kAuto;
 };
 

@@ -1,9 +1,11 @@
-// Kernel 5, `bodyforces`: gravity and spherical projectiles (Levine eq. 7). The floor
+// Kernel 5, `bodyforces`: gravity, spherical projectiles (Levine eq. 7) and rigid colliders
+// (colliders.h). The floor
 // (Levine sec. 3) acts on the full-step velocity in the velocity update (integrate.h).
 #pragma once
 
 #include <cmath>
 
+#include "cuda/kernels/colliders.h"
 #include "cuda/views.h"
 
 namespace pd {
@@ -33,13 +35,14 @@ PD_HD inline Vec3 projectile_force(Vec3 x, const Projectile& pr, real time) {
   return (mag / len) * dir;
 }
 
-// The ledger records the work of the projectiles over the step (force times the half-step
-// velocity times dt), for the particles they push (the others' ledgers are not touched).
+// The ledger records the work of the projectiles and colliders over the step (force times the
+// half-step velocity times dt), for the particles they push (the others' ledgers are not touched).
 PD_HD inline void body_forces(int32_t i, ParticlesView p, const StepParams& sp) {
   const Vec3 x = p.position(i);
   const real mass = real(1) / p.inv_mass[i];
   Vec3 fp{0, 0, 0};
   for (int32_t k = 0; k < sp.n_projectiles; ++k) fp += projectile_force(x, sp.projectile[k], sp.time);
+  if (sp.colliders.size > 0) fp += colliders_force(i, p, sp);
   p.force[i] = p.force[i] + mass * sp.gravity + fp;
   if (fp.x != 0 || fp.y != 0 || fp.z != 0) p.ledger[i].work += double(sp.dt) * double(dot(fp, p.vel[i]));
 }

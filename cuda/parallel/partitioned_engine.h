@@ -43,6 +43,7 @@ class PartitionedEngine final : public Engine {
     local_input.materials = in.materials;
     local_input.step = in.step;
     local_input.motion = in.motion;
+    local_input.colliders = in.colliders;
     local_input.cuts = in.cuts;
     local_input.contact = in.contact;
     local_input.lattice_families = false;

@@ -112,6 +112,24 @@ struct SceneProjectile {
   double strength = 0;              // K_S [Pa], >= 0
 };
 
+// A rigid collider: an analytic shape that pushes the particles it touches (penalty contact with
+// Coulomb friction and damping, cuda/kernels/colliders.h), fixed or moving on a script.
+struct SceneCollider {
+  std::string shape;                      // "plane" | "sphere" | "box" | "capsule" | "cylinder"
+  Vec3d center{0, 0, 0};                  // at t = 0 [m]; a point of the plane
+  Vec3d velocity{0, 0, 0};                // constant [m/s]
+  std::vector<SceneKeyframe> path;        // keyframed centre instead of center + velocity
+  Vec3d axis{0, 1, 0};                    // plane normal; capsule, cylinder and box: the shape's y axis
+  Vec3d angular_velocity{0, 0, 0};        // [rad/s] about the centre
+  double radius = 0;                      // sphere, capsule, cylinder [m]
+  double length = 0;                      // capsule (segment) and cylinder [m]
+  Vec3d size{0, 0, 0};                    // box: full extents along its axes [m]
+  std::optional<double> stiffness;        // K [Pa]; default: the largest Young's modulus of the materials
+  double friction = 0;                    // dynamic Coulomb coefficient, >= 0
+  std::optional<double> static_friction;  // >= friction; default: friction
+  double damping = 0.2;                   // of the normal push, as a ratio of critical damping, in [0, 1]
+};
+
 // A pre-crack (strength 0: the bonds crossing it are removed before the run) or a weakened
 // surface (strength in (0, 1) scales the strain limit of the bonds crossing it): an artist's
 // control over where things break (Chen Fig. 17's pre-cracked sheet, the notched glass plate,
@@ -175,6 +193,7 @@ struct Scene {
   std::vector<SceneBody> bodies;             // [[bodies]], at least one
   std::vector<SceneAnchor> anchors;          // [[anchors]]
   std::vector<SceneProjectile> projectiles;  // [[projectiles]], at most 4
+  std::vector<SceneCollider> colliders;      // [[colliders]], at most kMaxColliders
   std::vector<SceneCrack> cracks;            // [[cracks]]
   std::vector<SceneRegion> regions;          // [[regions]]
 

@@ -468,8 +468,8 @@ class TableReader {
 
 // ---- Sections ----------------------------------------------------------------------------------
 
-const Keys kTopKeys = {"description", "simulation",  "world",  "contact", "materials", "bodies",
-                       "anchors",     "projectiles", "cracks", "regions", "output",    "render"};
+const Keys kTopKeys = {"description", "simulation", "world",  "contact", "materials", "bodies", "anchors",
+                       "projectiles", "colliders",  "cracks", "regions", "output",    "render"};
 const Keys kSimulationKeys = {"dt", "steps_per_frame", "frames", "seed"};
 const Keys kWorldKeys = {"gravity", "floor", "floor_height", "restitution"};
 const Keys kContactKeys = {"enabled", "stiffness"};
@@ -514,6 +514,10 @@ const Keys kDimensionKeys = {"size",        "width", "depth", "thickness", "radi
 const Keys kAnchorKeys = {"box_min", "box_max",          "body",  "velocity",
                           "path",    "angular_velocity", "pivot", "release"};
 const Keys kProjectileKeys = {"center", "velocity", "path", "radius", "strength"};
+const Keys kColliderKeys = {"shape",  "center", "velocity", "path",      "axis",     "angular_velocity",
+                            "radius", "length", "size",     "stiffness", "friction", "static_friction",
+                            "damping"};
+const Keys kColliderShapes = {"plane", "sphere", "box", "capsule", "cylinder"};
 const Keys kCrackKeys = {"shape",       "corners", "points", "extrude", "start",     "walks",    "steps",
                          "step_length", "turn",    "mesh",   "scale",   "translate", "strength", "body"};
 const Keys kCrackShapes = {"quad", "path", "random_walk", "mesh"};
@@ -864,6 +868,57 @@ SceneProjectile parse_projectile(const TableReader& r) {
   return p;
 }
 
+SceneCollider parse_collider(const TableReader& r) {
+  SceneCollider c;
+  r.string("shape", c.shape, kColliderShapes, Presence::required);
+  if (r.keyframes("path", c.path)) {
+    for (std::string_view key : {"center", "velocity"})
+      if (r.has(key))
+        r.fail(key, "a keyframed collider takes its centre from path", "path, or center and velocity");
+    c.center = {c.path[0][1], c.path[0][2], c.path[0][3]};
+  } else {
+    r.vec3("center", c.center, Presence::required);
+    r.vec3("velocity", c.velocity);
+  }
+  if (r.vec3("axis", c.axis) && !(c.axis[0] * c.axis[0] + c.axis[1] * c.axis[1] + c.axis[2] * c.axis[2] > 0))
+    r.fail("axis", "the zero vector", "a nonzero direction [x, y, z]");
+  r.vec3("angular_velocity", c.angular_velocity);
+  // The dimensions each shape takes, and only those.
+  const bool round = c.shape == "sphere" || c.shape == "capsule" || c.shape == "cylinder";
+  const bool long_ = c.shape == "capsule" || c.shape == "cylinder";
+  for (std::string_view key : {"radius", "length", "size"}) {
+    const bool takes =
+        (key == "radius" && round) || (key == "length" && long_) || (key == "size" && c.shape == "box");
+    if (r.has(key) && !takes)
+      r.fail(key, "a " + c.shape + " collider has no " + std::string(key),
+             c.shape == "plane"
+                 ? "center and axis (the normal)"
+                 : (c.shape == "box" ? "size [x, y, z]" : (long_ ? "radius and length" : "radius")));
+  }
+  if (round) r.number("radius", c.radius, greater_than(0), Presence::required);
+  if (long_) r.number("length", c.length, greater_than(0), Presence::required);
+  if (c.shape == "box") {
+    r.vec3("size", c.size, Presence::required);
+    for (int a = 0; a < 3; ++a)
+      if (!(c.size[a] > 0))
+        r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(c.size[a]) + " is not > 0",
+               "sizes > 0");
+  }
+  double stiffness = 0;
+  if (r.number("stiffness", stiffness, greater_than(0))) c.stiffness = stiffness;
+  r.number("friction", c.friction, at_least(0));
+  double static_friction = 0;
+  if (r.number("static_friction", static_friction, at_least(0))) {
+    if (static_friction < c.friction)
+      r.fail("static_friction",
+             number_text(static_friction) + " is below friction " + number_text(c.friction),
+             "static_friction >= friction");
+    c.static_friction = static_friction;
+  }
+  r.number("damping", c.damping, in_closed(0, 1));
+  return c;
+}
+
 // A list of points [[x, y, z], ...] with at least `min` entries.
 std::vector<Vec3d> parse_points(const TableReader& r, std::string_view key, size_t min) {
   const std::string allowed = "an array of at least " + std::to_string(min) + " points [x, y, z]";
@@ -1043,6 +1098,12 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     top.fail("projectiles", std::to_string(projectiles.size()) + " projectiles",
              "at most " + std::to_string(kMaxProjectiles));
   for (const TableReader& r : projectiles) scene.projectiles.push_back(parse_projectile(r));
+  // [[colliders]], at most kMaxColliders.
+  const auto colliders = top.table_array("colliders", kColliderKeys);
+  if (colliders.size() > static_cast<size_t>(kMaxColliders))
+    top.fail("colliders", std::to_string(colliders.size()) + " colliders",
+             "at most " + std::to_string(kMaxColliders));
+  for (const TableReader& r : colliders) scene.colliders.push_back(parse_collider(r));
 
   // [[cracks]] and [[regions]]
   for (const TableReader& r : top.table_array("cracks", kCrackKeys))

@@ -287,6 +287,61 @@ TEST(SceneLoader, MotionMistakes) {
                "projectiles[0].center", "takes its centre from path");
 }
 
+TEST(SceneLoader, CollidersParse) {
+  const Scene s = parse_scene(kMinimal + R"(
+[[colliders]]
+shape = "plane"
+center = [0, -0.1, 0]
+friction = 0.4
+[[colliders]]
+shape = "capsule"
+path = [[0, 0, 1, 0], [0.5, 1, 1, 0]]
+axis = [1, 0, 0]
+radius = 0.05
+length = 0.3
+stiffness = 1e9
+static_friction = 0.6
+friction = 0.5
+damping = 0
+angular_velocity = [0, 2, 0]
+[[colliders]]
+shape = "box"
+center = [0, 0, 0]
+size = [0.1, 0.2, 0.3]
+)",
+                              kFile);
+  ASSERT_EQ(s.colliders.size(), 3u);
+  EXPECT_EQ(s.colliders[0].shape, "plane");
+  EXPECT_EQ(s.colliders[0].friction, 0.4);
+  EXPECT_FALSE(s.colliders[0].stiffness.has_value());  // the materials' stiffest by default
+  EXPECT_EQ(s.colliders[0].damping, 0.2);
+  const SceneCollider& c = s.colliders[1];
+  EXPECT_EQ(c.center, (Vec3d{0, 1, 0}));  // the path's first point
+  EXPECT_EQ(c.axis, (Vec3d{1, 0, 0}));
+  EXPECT_EQ(c.length, 0.3);
+  EXPECT_EQ(*c.stiffness, 1e9);
+  EXPECT_EQ(*c.static_friction, 0.6);
+  EXPECT_EQ(c.angular_velocity[1], 2);
+  EXPECT_EQ(s.colliders[2].size, (Vec3d{0.1, 0.2, 0.3}));
+}
+
+TEST(SceneLoader, ColliderMistakes) {
+  const std::string head = kMinimal + "[[colliders]]\n";
+  expect_error(head + "shape = \"cone\"\ncenter = [0, 0, 0]\n", "colliders[0].shape", "\"plane\"");
+  expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\n", "colliders[0].radius", "missing");
+  expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nlength = 2\n",
+               "colliders[0].length", "a sphere collider has no length");
+  expect_error(head + "shape = \"plane\"\ncenter = [0, 0, 0]\naxis = [0, 0, 0]\n", "colliders[0].axis",
+               "the zero vector");
+  expect_error(head + "shape = \"box\"\ncenter = [0, 0, 0]\nsize = [1, 0, 1]\n", "colliders[0].size",
+               "not > 0");
+  expect_error(head + "shape = \"plane\"\ncenter = [0, 0, 0]\nfriction = 0.5\nstatic_friction = 0.4\n",
+               "colliders[0].static_friction", "static_friction >= friction");
+  expect_error(head + "shape = \"plane\"\ncenter = [0, 0, 0]\ndamping = 2\n", "colliders[0].damping",
+               "out of range");
+  expect_error(head + "shape = \"plane\"\ncenter = [0, 0, 0]\nbounce = 1\n", "colliders[0].bounce");
+}
+
 TEST(SceneLoader, CracksAndRegionsParse) {
   const Scene s = parse_scene(kMinimal + R"(
 [[cracks]]
