@@ -267,6 +267,10 @@ enum ColliderShape : uint8_t {
 
 constexpr int kMaxColliders = 256;
 
+// How a collider pushes: the penalty law with damping and friction (colliders.h), or LAMMPS's
+// `fix indent` law, F = K (R - r)^2 on a point within the shape, neither damped nor rubbing.
+enum ColliderLaw : uint8_t { kLawPenalty = 0, kLawLammpsIndent = 1 };
+
 struct Collider {
   Vec3 center{0, 0, 0};
   real rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // shape frame to world, row major
@@ -277,6 +281,7 @@ struct Collider {
   real friction_static = 0, friction_dynamic = 0;  // Coulomb coefficients
   real damping = 0;                                // of the normal push, as a ratio of critical
   uint8_t shape = kColliderPlane;
+  uint8_t law = kLawPenalty;  // kLawLammpsIndent: `stiffness` is LAMMPS's K [N/m^2]
 };
 
 // Everything the per-step kernels read that is not per-particle.

@@ -4,6 +4,8 @@
 // surface normal, less the damping of the normal push (c = 2 zeta sqrt(k m)), never pulling;
 // and Coulomb friction against its velocity relative to the surface: the force that stops the
 // sliding within a step while that stays within mu_s times the push, else mu_d times the push.
+// Or LAMMPS's `fix indent` law (kLawLammpsIndent): a particle whose centre is d inside the shape
+// feels K d^2 along the normal, K in N/m^2 (LAMMPS `units si`), with no damping or friction.
 #pragma once
 
 #include <cmath>
@@ -90,8 +92,12 @@ PD_HD inline SurfacePoint collider_surface(const Collider& c, Vec3 x) {
 // The force of collider c on a particle at x with velocity v, volume `volume` and mass `mass`
 // over a step of dt.
 PD_HD inline Vec3 collider_force(const Collider& c, Vec3 x, Vec3 v, real volume, real mass, real dt) {
-  const real size = std::cbrt(volume);
   const SurfacePoint s = collider_surface(c, x);
+  if (c.law == kLawLammpsIndent) {
+    const real inside = -s.distance;
+    return inside > real(0) ? (c.stiffness * inside * inside) * s.normal : Vec3{0, 0, 0};
+  }
+  const real size = std::cbrt(volume);
   const real depth = real(0.5) * size - s.distance;
   if (!(depth > real(0))) return {0, 0, 0};
   const Vec3 relative = v - (c.velocity + cross(c.omega, x - c.center));

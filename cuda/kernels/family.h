@@ -81,8 +81,8 @@ PD_HD inline int32_t position_in_family(const BondsView& b, int32_t j, int32_t i
 // sum_j beta V_j c / |xi_j| / rho_i, so that dt_c,i = sqrt(2 / rate). State-based materials use
 // the micromodulus of the PMB material with the same P-wave modulus, c = 18 K' / (pi delta^4),
 // K' = (K + 4 mu / 3) / 1.8 (PMB's own P-wave modulus is 1.8 K), as host/material.h's estimate.
-// collider_stiffness: the largest collider stiffness K (colliders.h), whose push K V^(1/3) on a
-// particle of mass m adds K V^(1/3) / m.
+// collider_stiffness: the largest penalty collider stiffness K (colliders.h), whose push
+// K V^(1/3) on a particle of mass m adds K V^(1/3) / m.
 PD_HD inline double stability_rate(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                    double collider_stiffness) {
   const Material& m = mt.m[p.material[i]];

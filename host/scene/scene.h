@@ -128,6 +128,7 @@ struct SceneCollider {
   double friction = 0;                    // dynamic Coulomb coefficient, >= 0
   std::optional<double> static_friction;  // >= friction; default: friction
   double damping = 0.2;                   // of the normal push, as a ratio of critical damping, in [0, 1]
+  std::string law = "penalty";            // "penalty" | "lammps_indent" (K (R - r)^2, K in N/m^2)
 };
 
 // A pre-crack (strength 0: the bonds crossing it are removed before the run) or a weakened

@@ -514,9 +514,10 @@ const Keys kDimensionKeys = {"size",        "width", "depth", "thickness", "radi
 const Keys kAnchorKeys = {"box_min", "box_max",          "body",  "velocity",
                           "path",    "angular_velocity", "pivot", "release"};
 const Keys kProjectileKeys = {"center", "velocity", "path", "radius", "strength"};
-const Keys kColliderKeys = {"shape",  "center", "velocity", "path",      "axis",     "angular_velocity",
-                            "radius", "length", "size",     "stiffness", "friction", "static_friction",
-                            "damping"};
+const Keys kColliderKeys = {"shape",   "center", "velocity", "path",      "axis",     "angular_velocity",
+                            "radius",  "length", "size",     "stiffness", "friction", "static_friction",
+                            "damping", "law"};
+const Keys kColliderLaws = {"penalty", "lammps_indent"};
 const Keys kColliderShapes = {"plane", "sphere", "box", "capsule", "cylinder"};
 const Keys kCrackKeys = {"shape",       "corners", "points", "extrude", "start",     "walks",    "steps",
                          "step_length", "turn",    "mesh",   "scale",   "translate", "strength", "body"};
@@ -904,8 +905,19 @@ SceneCollider parse_collider(const TableReader& r) {
         r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(c.size[a]) + " is not > 0",
                "sizes > 0");
   }
+  r.string("law", c.law, kColliderLaws);
+  if (c.law == "lammps_indent") {  // LAMMPS's fix indent: K (R - r)^2, no default K, no damping or friction
+    for (std::string_view key : {"friction", "static_friction", "damping"})
+      if (r.has(key))
+        r.fail(key, "the lammps_indent law has no " + std::string(key),
+               "shape, motion and stiffness (K [N/m^2])");
+    c.damping = 0;
+    double k = 0;
+    r.number("stiffness", k, greater_than(0), Presence::required);
+    c.stiffness = k;
+  }
   double stiffness = 0;
-  if (r.number("stiffness", stiffness, greater_than(0))) c.stiffness = stiffness;
+  if (c.law == "penalty" && r.number("stiffness", stiffness, greater_than(0))) c.stiffness = stiffness;
   r.number("friction", c.friction, at_least(0));
   double static_friction = 0;
   if (r.number("static_friction", static_friction, at_least(0))) {

@@ -150,6 +150,7 @@ void add_colliders(const Scene& scene, SimulationInput& in) {
     c.friction_dynamic = real(sc.friction);
     c.friction_static = real(sc.static_friction.value_or(sc.friction));
     c.damping = real(sc.damping);
+    c.law = sc.law == "lammps_indent" ? kLawLammpsIndent : kLawPenalty;
     in.colliders.push_back(c);
     ColliderScript script;
     script.center = sc.center;

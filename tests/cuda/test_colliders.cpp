@@ -96,6 +96,23 @@ TEST(Colliders, ContactLawPushesDampsAndRubs) {
   EXPECT_EQ(f.x, 0);
 }
 
+TEST(Colliders, LammpsIndentLawIsKTimesTheDepthSquared) {
+  // LAMMPS fix indent, sphere of radius R: F = K (R - r)^2 on a point at distance r < R, radial.
+  Collider c = shape(kColliderSphere, {real(5e-4), 0, 0});
+  c.law = kLawLammpsIndent;
+  c.stiffness = real(1e17);  // examples/peri's K [N/m^2]
+  const real volume = real(1e-12), mass = real(2e-9), dt = real(1e-8);
+  const Vec3 f = collider_force(c, {0, 0, real(4e-4)}, {0, 0, -1}, volume, mass, dt);
+  EXPECT_NEAR(f.z, 1e17 * 1e-4 * 1e-4, 1e-3 * 1e9);
+  EXPECT_EQ(f.x, 0);
+  // Only points inside count (no particle radius), and there is no damping or friction.
+  EXPECT_EQ(collider_force(c, {0, 0, real(5.1e-4)}, {0, 0, 0}, volume, mass, dt).z, 0);
+  c.friction_dynamic = real(1);
+  const Vec3 g = collider_force(c, {0, 0, real(4e-4)}, {real(1), 0, 0}, volume, mass, dt);
+  EXPECT_EQ(g.x, 0);
+  EXPECT_NEAR(g.z, f.z, 1e-6 * f.z);
+}
+
 // One particle of side h (no bonds) above a plane collider at y = 0, under gravity.
 SimulationInput particle_on_plane(double h, double height, Vec3 velocity, Collider plane) {
   SimulationInput in;

@@ -340,6 +340,14 @@ TEST(SceneLoader, ColliderMistakes) {
   expect_error(head + "shape = \"plane\"\ncenter = [0, 0, 0]\ndamping = 2\n", "colliders[0].damping",
                "out of range");
   expect_error(head + "shape = \"plane\"\ncenter = [0, 0, 0]\nbounce = 1\n", "colliders[0].bounce");
+  expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nlaw = \"lammps_indent\"\n",
+               "colliders[0].stiffness", "missing");
+  expect_error(head +
+                   "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nlaw = \"lammps_indent\"\n"
+                   "stiffness = 1e17\nfriction = 0.1\n",
+               "colliders[0].friction", "no friction");
+  expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nlaw = \"hertz\"\n",
+               "colliders[0].law", "\"lammps_indent\"");
 }
 
 TEST(SceneLoader, CracksAndRegionsParse) {
