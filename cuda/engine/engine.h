@@ -125,6 +125,8 @@ class Engine {
   virtual int64_t screened_passes() const = 0;
   // Per rank of a partitioned run, in rank order; empty for a run on one rank.
   virtual std::vector<RankStats> rank_stats() { return {}; }
+  // The colliders' poses and velocities now (free ones as the particles moved them).
+  virtual std::vector<Collider> colliders() = 0;
 };
 
 std::unique_ptr<Engine> make_cpu_engine(const SimulationInput& in);

@@ -15,6 +15,7 @@
 #include "cuda/engine/engine.h"
 #include "cuda/engine/engine_state.h"
 #include "cuda/engine/family_builder.h"
+#include "cuda/engine/free_bodies.h"
 #include "cuda/launch.h"
 #include "cuda/parallel/contact_ghosts.h"
 #include "cuda/parallel/halo.h"
@@ -80,6 +81,7 @@ class EngineImpl final : public Engine {
     motion_.apply(time_, step_params_);
     pose_colliders(time_);
     compute_forces();
+    if (!free_.empty()) free_.react(exec_, particles(), step_params_);
     exec_.flush_stats();
   }
 
@@ -96,10 +98,18 @@ class EngineImpl final : public Engine {
     for (int64_t s = 0; s < steps; ++s) {
       step_params_.time = real(time_ + dt);
       if (scripted_motion_) motion_.apply(time_ + dt, step_params_);
+      if (!free_.empty()) {  // velocity Verlet, as the particles: half kick, drift ...
+        free_.kick(0.5 * double(dt), step_params_.gravity);
+        free_.drift(double(dt));
+      }
       if (moving_colliders_) pose_colliders(time_ + dt);
       launch_position_update(exec_, particles(), step_params_, contact_view());
       if (contact_) exec_.mark_flags(ContactLists<Exec>::kFlagEvent);
       compute_forces();
+      if (!free_.empty()) {  // ... the particles' reaction at the new state, half kick
+        free_.react(exec_, particles(), step_params_);
+        free_.kick(0.5 * double(dt), step_params_.gravity);
+      }
       launch_velocity_update(exec_, particles(), step_params_);
       time_ += dt;
       ++step_;
@@ -109,6 +119,12 @@ class EngineImpl final : public Engine {
       exec_.synchronize();
       step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
+  }
+
+  std::vector<Collider> colliders() override {
+    std::vector<Collider> now = colliders_host_;
+    free_.pose(now);  // (the free bodies' full-step velocities; the kernels saw the half-step ones)
+    return now;
   }
 
   // This rank's part of a partitioned run (PartitionedEngine::rank_stats).
@@ -153,12 +169,18 @@ class EngineImpl final : public Engine {
   double critical_time_step() const override { return critical_dt_; }
 
   void save(EngineSnapshot& out) override {
+    if (!free_.empty())
+      throw std::runtime_error(
+          "checkpoints of a scene with free colliders are not supported yet (their motion is not "
+          "saved): run it without --checkpoint-every");
     out.step = step_;
     out.time = time_;
     state_.save(out);
   }
 
   void restore(const EngineSnapshot& in) override {
+    if (!free_.empty())
+      throw std::runtime_error("a scene with free colliders cannot resume from a checkpoint yet");
     state_.check_sizes(in);
     if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
     step_ = in.step;
@@ -242,6 +264,7 @@ class EngineImpl final : public Engine {
   void pose_colliders(double t) {
     if (colliders_host_.empty()) return;
     motion_.pose_colliders(t, colliders_host_);
+    free_.pose(colliders_host_);
     colliders_.upload(colliders_host_);
   }
 
@@ -334,6 +357,7 @@ class EngineImpl final : public Engine {
   bool scripted_motion_ = !motion_.empty();
   std::vector<Collider> colliders_host_;
   bool moving_colliders_ = motion_.colliders_move();
+  FreeBodies free_{motion_.colliders};
   DeviceArray<Collider, Exec> colliders_;
   bool contact_ = false;
   BondScreen screen_ = BondScreen::kAuto;

@@ -96,6 +96,7 @@ bool MotionScript::colliders_move() const {
 void MotionScript::pose_colliders(double t, std::vector<Collider>& out) const {
   for (size_t k = 0; k < colliders.size() && k < out.size(); ++k) {
     const ColliderScript& c = colliders[k];
+    if (c.free()) continue;
     const PathSample move =
         c.path.empty() ? PathSample{{c.center[0] + c.velocity[0] * t, c.center[1] + c.velocity[1] * t,
                                      c.center[2] + c.velocity[2] * t},

@@ -44,8 +44,13 @@ struct ColliderScript {
   std::array<double, 3> velocity{0, 0, 0};                    // constant, when there is no path [m/s]
   std::vector<Keyframe> path;                                 // keyframed centre [s, m, m, m]
   std::array<double, 3> omega{0, 0, 0};                       // angular velocity [rad/s]
+  // A free rigid body (mass > 0): `velocity` and `omega` are its initial ones, then the particles'
+  // reaction and gravity move it (FreeBodies, cuda/engine/free_bodies.h); no path.
+  double mass = 0;                         // [kg]
+  std::array<double, 3> inertia{0, 0, 0};  // principal moments about the shape's axes [kg m^2]
+  bool free() const { return mass > 0; }
   bool moves() const {
-    return !path.empty() || velocity != std::array<double, 3>{0, 0, 0} ||
+    return free() || !path.empty() || velocity != std::array<double, 3>{0, 0, 0} ||
            omega != std::array<double, 3>{0, 0, 0};
   }
 };
@@ -59,7 +64,8 @@ struct MotionScript {
   // Writes the anchors' and keyframed projectiles' state at time t into `sp`.
   void apply(double t, StepParams& sp) const;
   bool colliders_move() const;
-  // Sets each collider's pose and velocity at time t (its shape and contact law kept).
+  // Sets each scripted collider's pose and velocity at time t (its shape and contact law kept;
+  // free ones are left to FreeBodies).
   void pose_colliders(double t, std::vector<Collider>& colliders) const;
 };
 

@@ -127,4 +127,25 @@ PD_HD inline Vec3 colliders_force(int32_t i, const ParticlesView& p, const StepP
   return f;
 }
 
+// What the particles do to a free collider: the sum of the reactions to its forces, and their
+// moment about its centre (double sums, added in the backend's reduction order).
+struct Wrench {
+  double fx = 0, fy = 0, fz = 0;  // force [N]
+  double tx = 0, ty = 0, tz = 0;  // torque about the centre [N m]
+};
+
+PD_HD inline Wrench operator+(const Wrench& a, const Wrench& b) {
+  return {a.fx + b.fx, a.fy + b.fy, a.fz + b.fz, a.tx + b.tx, a.ty + b.ty, a.tz + b.tz};
+}
+
+// Particle i's reaction on collider c: minus the force c puts on it (as bodyforces computed it).
+PD_HD inline Wrench collider_reaction(int32_t i, const ParticlesView& p, const Collider& c, real dt) {
+  const Vec3 x = p.position(i);
+  const Vec3 f = collider_force(c, x, p.vel[i], p.volume(i), real(1) / p.inv_mass[i], dt);
+  if (f.x == 0 && f.y == 0 && f.z == 0) return {};
+  const Vec3 r = x - c.center;
+  const Vec3 t = cross(r, f);
+  return {-double(f.x), -double(f.y), -double(f.z), -double(t.x), -double(t.y), -double(t.z)};
+}
+
 }  // namespace pd

@@ -48,6 +48,11 @@ class PartitionedEngine final : public Engine {
     local_input.contact = in.contact;
     local_input.lattice_families = false;
     local_input.screen = in.screen;
+    for (const ColliderScript& c : in.motion.colliders)
+      if (c.free())
+        throw std::runtime_error(
+            "free colliders run on one rank for now (their reaction would be summed over "
+            "the ranks): run without mpirun");
     if (local_input.particles.size() == 0)
       throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
                                std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");
@@ -121,6 +126,7 @@ class PartitionedEngine final : public Engine {
   size_t memory_bytes() const override { return memory_; }
   int64_t force_passes() const override { return local_->force_passes(); }
   int64_t screened_passes() const override { return local_->screened_passes(); }
+  std::vector<Collider> colliders() override { return local_->colliders(); }
   std::vector<RankStats> rank_stats() override {
     command(Op::kRankStats);
     return std::move(ranks_out_);

@@ -129,6 +129,8 @@ struct SceneCollider {
   std::optional<double> static_friction;  // >= friction; default: friction
   double damping = 0.2;                   // of the normal push, as a ratio of critical damping, in [0, 1]
   std::string law = "penalty";            // "penalty" | "lammps_indent" (K (R - r)^2, K in N/m^2)
+  std::optional<double> mass;     // [kg]: a free rigid body (not a plane), moved by the particles and gravity
+  std::optional<double> density;  // [kg/m^3]: the same, its mass from its volume
 };
 
 // A pre-crack (strength 0: the bonds crossing it are removed before the run) or a weakened

@@ -516,7 +516,7 @@ const Keys kAnchorKeys = {"box_min", "box_max",          "body",  "velocity",
 const Keys kProjectileKeys = {"center", "velocity", "path", "radius", "strength"};
 const Keys kColliderKeys = {"shape",   "center", "velocity", "path",      "axis",     "angular_velocity",
                             "radius",  "length", "size",     "stiffness", "friction", "static_friction",
-                            "damping", "law"};
+                            "damping", "law",    "mass",     "density"};
 const Keys kColliderLaws = {"penalty", "lammps_indent"};
 const Keys kColliderShapes = {"plane", "sphere", "box", "capsule", "cylinder"};
 const Keys kCrackKeys = {"shape",       "corners", "points", "extrude", "start",     "walks",    "steps",
@@ -904,6 +904,19 @@ SceneCollider parse_collider(const TableReader& r) {
       if (!(c.size[a] > 0))
         r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(c.size[a]) + " is not > 0",
                "sizes > 0");
+  }
+  // Free: a mass or a density (not both, not for a plane, not on a path).
+  double m = 0;
+  if (r.has("mass") && r.has("density"))
+    r.fail("density", "both mass and density are given", "one of mass [kg] and density [kg/m^3]");
+  if (r.number("mass", m, greater_than(0))) c.mass = m;
+  if (r.number("density", m, greater_than(0))) c.density = m;
+  if (c.mass || c.density) {
+    const std::string_view key = c.mass ? "mass" : "density";
+    if (c.shape == "plane")
+      r.fail(key, "a plane cannot be free (it has no finite volume)", "a sphere, box, capsule or cylinder");
+    if (!c.path.empty())
+      r.fail("path", "a free collider moves as it is pushed", "velocity for its initial velocity");
   }
   r.string("law", c.law, kColliderLaws);
   if (c.law == "lammps_indent") {  // LAMMPS's fix indent: K (R - r)^2, no default K, no damping or friction

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cuda/engine/bond_cuts.h"
+#include "cuda/engine/free_bodies.h"
 #include "cuda/engine/material.h"
 #include "cuda/engine/memory_budget.h"
 #include "cuda/kernels/colliders.h"
@@ -131,6 +132,32 @@ double youngs_modulus(const SceneMaterial& m) {
   return 1.5 * m.bulk_modulus;
 }
 
+// A free collider's mass (given, or its density times its volume) and principal moments of
+// inertia about its axes (its y axis the capsule's and cylinder's).
+void set_mass_and_inertia(const SceneCollider& sc, ColliderScript& s) {
+  const double pi = 3.14159265358979323846, r = sc.radius, l = sc.length;
+  const double hx = 0.5 * sc.size[0], hy = 0.5 * sc.size[1], hz = 0.5 * sc.size[2];
+  double volume = 0;
+  if (sc.shape == "sphere") volume = 4.0 / 3.0 * pi * r * r * r;
+  if (sc.shape == "box") volume = 8 * hx * hy * hz;
+  if (sc.shape == "cylinder") volume = pi * r * r * l;
+  if (sc.shape == "capsule") volume = pi * r * r * l + 4.0 / 3.0 * pi * r * r * r;
+  const double m = sc.mass ? *sc.mass : *sc.density * volume;
+  s.mass = m;
+  if (sc.shape == "sphere") s.inertia = {0.4 * m * r * r, 0.4 * m * r * r, 0.4 * m * r * r};
+  if (sc.shape == "box")
+    s.inertia = {m / 3 * (hy * hy + hz * hz), m / 3 * (hx * hx + hz * hz), m / 3 * (hx * hx + hy * hy)};
+  if (sc.shape == "cylinder") {
+    const double across = m * (3 * r * r + l * l) / 12;
+    s.inertia = {across, 0.5 * m * r * r, across};
+  }
+  if (sc.shape == "capsule") {  // the cylinder and the two hemispheres (at their centroids 3r/8 out)
+    const double mc = m * pi * r * r * l / volume, ms = m - mc;
+    const double across = mc * (l * l / 12 + r * r / 4) + ms * (0.4 * r * r + l * l / 4 + 3 * l * r / 8);
+    s.inertia = {across, 0.5 * mc * r * r + 0.4 * ms * r * r, across};
+  }
+}
+
 // The scene's [[colliders]] as the engine's colliders and their motion.
 void add_colliders(const Scene& scene, SimulationInput& in) {
   double stiffest = 0;
@@ -158,6 +185,7 @@ void add_colliders(const Scene& scene, SimulationInput& in) {
     script.velocity = sc.velocity;
     for (const SceneKeyframe& k : sc.path) script.path.push_back(k);
     script.omega = sc.angular_velocity;
+    if (sc.mass || sc.density) set_mass_and_inertia(sc, script);
     in.motion.colliders.push_back(script);
   }
 }
@@ -168,6 +196,7 @@ void warn_of_particles_inside_colliders(const SimulationInput& in,
                                         const std::vector<std::string>& body_names) {
   std::vector<Collider> posed = in.colliders;
   in.motion.pose_colliders(0, posed);
+  FreeBodies(in.motion.colliders).pose(posed);
   for (size_t k = 0; k < posed.size(); ++k) {
     std::vector<int64_t> inside(body_names.size(), 0);
     for (size_t i = 0; i < in.particles.size(); ++i)

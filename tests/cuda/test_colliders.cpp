@@ -204,5 +204,89 @@ TEST(Colliders, MovingSpherePushesABlockAlong) {
   EXPECT_GT(engine->energy().work, 0);
 }
 
+// A free sphere of mass `mass` at `x0` moving at `v0`, and a 6^3 glass block at rest, no gravity.
+SimulationInput ball_and_block(double mass, double damping, Vec3 x0, Vec3 v0) {
+  SimulationInput in = testing::lattice_block(6, 6, 6, 1e-3);
+  Collider sphere = shape(kColliderSphere, {real(2e-3), 0, 0});
+  sphere.stiffness = real(1e10);
+  sphere.damping = real(damping);
+  in.colliders.push_back(sphere);
+  ColliderScript script;
+  script.center = {x0.x, x0.y, x0.z};
+  script.velocity = {v0.x, v0.y, v0.z};
+  script.mass = mass;
+  const double i = 0.4 * mass * 4e-6;
+  script.inertia = {i, i, i};
+  in.motion.colliders.push_back(script);
+  in.step.dt = real(2e-8);
+  return in;
+}
+
+// Momentum of the particles plus the free colliders' (masses given).
+std::array<double, 3> total_momentum(Engine& engine, const SimulationInput& in,
+                                     const std::vector<double>& masses) {
+  ParticleState s;
+  engine.read_state(s);
+  std::array<double, 3> p = testing::total_momentum(in, s.vel);
+  const std::vector<Collider> c = engine.colliders();
+  for (size_t k = 0; k < masses.size(); ++k) {
+    p[0] += masses[k] * double(c[k].velocity.x);
+    p[1] += masses[k] * double(c[k].velocity.y);
+    p[2] += masses[k] * double(c[k].velocity.z);
+  }
+  return p;
+}
+
+TEST(Colliders, FreeSphereFallsFreely) {
+  SimulationInput in = ball_and_block(1e-3, 0, {0, real(0.1), 0}, {real(0.5), 0, 0});
+  in.step.gravity = {0, real(-kG), 0};
+  in.step.dt = real(1e-5);
+  auto engine = make_cpu_engine(in);
+  engine->advance(1000);  // 10 ms, far from the block
+  const Collider c = engine->colliders()[0];
+  EXPECT_NEAR(c.velocity.x, 0.5, 1e-6);
+  EXPECT_NEAR(c.velocity.y, -kG * 0.01, 1e-5);
+  EXPECT_NEAR(c.center.x, 0.005, 1e-6);
+  EXPECT_NEAR(c.center.y, 0.1 - 0.5 * kG * 1e-4, 1e-6);
+}
+
+TEST(Colliders, FreeSphereAndBlockKeepTheirMomentumAndEnergyInAnElasticHit) {
+  // A 0.1 g sphere at 2 m/s into the side of the block (0.5 g), undamped: momentum of sphere plus
+  // particles is kept to round-off; after the hit the sphere has slowed, the block moves, and the
+  // energy (kinetic of both, the block's strain) is what the sphere brought, within 2%.
+  const double mass = 1e-4, v0 = 2;
+  const SimulationInput in =
+      ball_and_block(mass, 0, {real(-2.6e-3), real(2.5e-3), real(2.5e-3)}, {real(v0), 0, 0});
+  auto engine = make_cpu_engine(in);
+  engine->advance(15000);  // 0.3 ms: the contact lasts a few microseconds
+  const std::array<double, 3> p = total_momentum(*engine, in, {mass});
+  EXPECT_NEAR(p[0], mass * v0, 1e-4 * mass * v0);
+  EXPECT_NEAR(p[1], 0, 1e-4 * mass * v0);
+  EXPECT_NEAR(p[2], 0, 1e-4 * mass * v0);
+  const Collider c = engine->colliders()[0];
+  EXPECT_LT(c.velocity.x, 0.9 * v0);
+  ParticleState s;
+  engine->read_state(s);
+  const Energy e = engine->energy();
+  const double ball =
+      0.5 * mass *
+      double(c.velocity.x * c.velocity.x + c.velocity.y * c.velocity.y + c.velocity.z * c.velocity.z);
+  EXPECT_NEAR(ball + e.kinetic + e.strain, 0.5 * mass * v0 * v0, 0.02 * 0.5 * mass * v0 * v0);
+}
+
+TEST(Colliders, DampedHitLosesEnergyButKeepsMomentum) {
+  const double mass = 1e-4, v0 = 2;
+  const SimulationInput in =
+      ball_and_block(mass, 1, {real(-2.6e-3), real(2.5e-3), real(2.5e-3)}, {real(v0), 0, 0});
+  auto engine = make_cpu_engine(in);
+  engine->advance(15000);
+  const std::array<double, 3> p = total_momentum(*engine, in, {mass});
+  EXPECT_NEAR(p[0], mass * v0, 1e-4 * mass * v0);
+  const Collider c = engine->colliders()[0];
+  const Energy e = engine->energy();
+  const double ball = 0.5 * mass * double(c.velocity.x * c.velocity.x);
+  EXPECT_LT(ball + e.kinetic + e.strain, 0.95 * 0.5 * mass * v0 * v0);
+}
+
 }  // namespace
 }  // namespace pd

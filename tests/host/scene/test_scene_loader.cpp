@@ -323,6 +323,13 @@ size = [0.1, 0.2, 0.3]
   EXPECT_EQ(*c.static_friction, 0.6);
   EXPECT_EQ(c.angular_velocity[1], 2);
   EXPECT_EQ(s.colliders[2].size, (Vec3d{0.1, 0.2, 0.3}));
+  EXPECT_FALSE(s.colliders[2].mass.has_value());
+  const Scene free = parse_scene(kMinimal +
+                                     "[[colliders]]\nshape = \"sphere\"\ncenter = [0, 1, 0]\nradius = 0.1\n"
+                                     "density = 7800\nvelocity = [0, 0, 12]\n",
+                                 kFile);
+  EXPECT_EQ(*free.colliders[0].density, 7800);
+  EXPECT_EQ(free.colliders[0].velocity, (Vec3d{0, 0, 12}));
 }
 
 TEST(SceneLoader, ColliderMistakes) {
@@ -342,6 +349,12 @@ TEST(SceneLoader, ColliderMistakes) {
   expect_error(head + "shape = \"plane\"\ncenter = [0, 0, 0]\nbounce = 1\n", "colliders[0].bounce");
   expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nlaw = \"lammps_indent\"\n",
                "colliders[0].stiffness", "missing");
+  expect_error(head + "shape = \"plane\"\ncenter = [0, 0, 0]\nmass = 10\n", "colliders[0].mass",
+               "a plane cannot be free");
+  expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmass = 10\ndensity = 1000\n",
+               "colliders[0].density", "both mass and density");
+  expect_error(head + "shape = \"sphere\"\npath = [[0, 0, 0, 0], [1, 1, 0, 0]]\nradius = 1\ndensity = 1000\n",
+               "colliders[0].path", "moves as it is pushed");
   expect_error(head +
                    "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nlaw = \"lammps_indent\"\n"
                    "stiffness = 1e17\nfriction = 0.1\n",
