@@ -853,17 +853,23 @@ SceneAnchor parse_anchor(const TableReader& r, const std::vector<SceneBody>& bod
   return a;
 }
 
-SceneProjectile parse_projectile(const TableReader& r) {
-  SceneProjectile p;
-  if (r.keyframes("path", p.path)) {
+// A moving centre: a keyframed `path` (its first point the centre), or `center` and `velocity`.
+void parse_centre_motion(const TableReader& r, const std::string& what, Vec3d& center, Vec3d& velocity,
+                         std::vector<SceneKeyframe>& path) {
+  if (r.keyframes("path", path)) {
     for (std::string_view key : {"center", "velocity"})
       if (r.has(key))
-        r.fail(key, "a keyframed projectile takes its centre from path", "path, or center and velocity");
-    p.center = {p.path[0][1], p.path[0][2], p.path[0][3]};
+        r.fail(key, "a keyframed " + what + " takes its centre from path", "path, or center and velocity");
+    center = {path[0][1], path[0][2], path[0][3]};
   } else {
-    r.vec3("center", p.center, Presence::required);
-    r.vec3("velocity", p.velocity);
+    r.vec3("center", center, Presence::required);
+    r.vec3("velocity", velocity);
   }
+}
+
+SceneProjectile parse_projectile(const TableReader& r) {
+  SceneProjectile p;
+  parse_centre_motion(r, "projectile", p.center, p.velocity, p.path);
   r.number("radius", p.radius, greater_than(0), Presence::required);
   r.number("strength", p.strength, at_least(0), Presence::required);
   return p;
@@ -872,15 +878,7 @@ SceneProjectile parse_projectile(const TableReader& r) {
 SceneCollider parse_collider(const TableReader& r) {
   SceneCollider c;
   r.string("shape", c.shape, kColliderShapes, Presence::required);
-  if (r.keyframes("path", c.path)) {
-    for (std::string_view key : {"center", "velocity"})
-      if (r.has(key))
-        r.fail(key, "a keyframed collider takes its centre from path", "path, or center and velocity");
-    c.center = {c.path[0][1], c.path[0][2], c.path[0][3]};
-  } else {
-    r.vec3("center", c.center, Presence::required);
-    r.vec3("velocity", c.velocity);
-  }
+  parse_centre_motion(r, "collider", c.center, c.velocity, c.path);
   if (r.vec3("axis", c.axis) && !(c.axis[0] * c.axis[0] + c.axis[1] * c.axis[1] + c.axis[2] * c.axis[2] > 0))
     r.fail("axis", "the zero vector", "a nonzero direction [x, y, z]");
   r.vec3("angular_velocity", c.angular_velocity);
