@@ -69,8 +69,8 @@ class EngineImpl final : public Engine {
       features_.lattice_listed = features_.lattice;
     }
     double collider_stiffness = 0;
-    for (const Collider& c : colliders_host_)
-      collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
+    for (const Collider& c : colliders_host_)  // (the indent law's stiffness grows with the depth: not here)
+      if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
     critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_, collider_stiffness);
     if (features_.state_based) set_up_state_based();
     if (contact_) contacts_.allocate(mem_, state_.n, materials_);

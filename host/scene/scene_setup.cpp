@@ -412,8 +412,8 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   add_colliders(scene, in);
   warn_of_particles_inside_colliders(in, result.body_names);
   double collider_stiffness = 0;
-  for (const Collider& c : in.colliders)
-    collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
+  for (const Collider& c : in.colliders)  // (the indent law's stiffness grows with the depth: not here)
+    if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
   if (collider_stiffness > 0)
     for (size_t i = 0; i < ps.size(); ++i) {
       const double material_dt = result.materials[ps.material[i]].critical_dt;

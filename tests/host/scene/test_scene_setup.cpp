@@ -1,0 +1,70 @@
+// Scene set-up (host/scene/scene_setup.h): colliders as the engine takes them, their push in the
+// stable time step, and a free collider's mass and inertia.
+#include "host/scene/scene_setup.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "host/scene/scene.h"
+
+namespace pd {
+namespace {
+
+const std::string kWall = R"(
+[simulation]
+dt = 1e-7
+[materials.brick]
+model = "bond_based"
+density = 1900
+bulk_modulus = 5e9
+strain_limit = 1e-3
+[[bodies]]
+shape = "box"
+center = [0, 0.05, 0]
+size = [0.1, 0.1, 0.1]
+spacing = 0.01
+material = "brick"
+)";
+
+SetupResult set_up(const std::string& extra) {
+  return setup_scene(parse_scene(kWall + extra, "scene.toml"), SetupOptions(1.0));
+}
+
+TEST(SceneSetup, PenaltyCollidersShortenTheStableStepAndTheIndentLawDoesNot) {
+  const double bonds = set_up("").critical_dt;
+  const SetupResult ground = set_up("[[colliders]]\nshape = \"plane\"\ncenter = [0, 0, 0]\n");
+  // Default K: the brick's Young's modulus (1.5 K for bond-based), a push K h / m per particle.
+  const double h = 0.01, m = 1900 * h * h * h, rate = 1.5 * 5e9 * h / m;
+  EXPECT_NEAR(ground.critical_dt, std::sqrt(2.0 / (2.0 / (bonds * bonds) + rate)),
+              1e-6 * bonds);  // (masses in float)
+  EXPECT_LT(ground.critical_dt, bonds);
+  ASSERT_EQ(ground.input.colliders.size(), 1u);
+  EXPECT_EQ(ground.input.colliders[0].stiffness, real(1.5 * 5e9));
+  const SetupResult indent = set_up(
+      "[[colliders]]\nshape = \"sphere\"\ncenter = [0, 0.5, 0]\nradius = 0.1\nlaw = \"lammps_indent\"\n"
+      "stiffness = 1e17\n");
+  EXPECT_EQ(indent.critical_dt, bonds);
+  EXPECT_EQ(indent.input.colliders[0].law, kLawLammpsIndent);
+}
+
+TEST(SceneSetup, FreeCollidersGetTheirShapesMassAndInertia) {
+  const SetupResult s = set_up(
+      "[[colliders]]\nshape = \"sphere\"\ncenter = [0, 0.5, 0]\nradius = 0.1\ndensity = 7800\n"
+      "[[colliders]]\nshape = \"box\"\ncenter = [0, 0.5, 0.3]\nsize = [0.2, 0.4, 0.6]\nmass = 12\n"
+      "[[colliders]]\nshape = \"cylinder\"\ncenter = [0, 0.5, 0.6]\nradius = 0.1\nlength = 0.4\nmass = 3\n");
+  const auto& c = s.input.motion.colliders;
+  ASSERT_EQ(c.size(), 3u);
+  const double ball = 7800 * 4.0 / 3.0 * M_PI * 1e-3;
+  EXPECT_NEAR(c[0].mass, ball, 1e-9 * ball);
+  EXPECT_NEAR(c[0].inertia[0], 0.4 * ball * 0.01, 1e-9 * ball);
+  EXPECT_NEAR(c[1].inertia[0], 12.0 / 12 * (0.16 + 0.36), 1e-12);  // m (b^2 + c^2) / 12
+  EXPECT_NEAR(c[1].inertia[2], 12.0 / 12 * (0.04 + 0.16), 1e-12);
+  EXPECT_NEAR(c[2].inertia[1], 0.5 * 3 * 0.01, 1e-12);  // about its axis: m r^2 / 2
+  EXPECT_NEAR(c[2].inertia[0], 3 * (3 * 0.01 + 0.16) / 12, 1e-12);
+  EXPECT_EQ(s.input.colliders[1].size.y, real(0.2));  // half extents
+}
+
+}  // namespace
+}  // namespace pd
