@@ -73,8 +73,9 @@ void check_time_step(const Scene& scene, const SetupResult& setup, bool allow) {
   if (setup.dt <= setup.critical_dt || allow) return;
   std::ostringstream msg;
   msg << "dt = " << setup.dt << " s exceeds the stable time step " << setup.critical_dt
-      << " s of the stiffest material (allowed: dt <= " << setup.critical_dt
-      << "; pass --allow-unstable-dt to run anyway)";
+      << " s of the stiffest material"
+      << (scene.colliders.empty() ? "" : " with the colliders' push (colliders' stiffness)")
+      << " (allowed: dt <= " << setup.critical_dt << "; pass --allow-unstable-dt to run anyway)";
   throw SceneError(scene.path, "simulation.dt", msg.str());
 }
 
