@@ -80,24 +80,6 @@ class FreeBodies {
     }
   }
 
-  // Linear and angular momentum of the bodies, about the origin (for tests and the energy report).
-  std::array<double, 3> linear_momentum() const {
-    std::array<double, 3> p{0, 0, 0};
-    for (const Body& b : bodies_)
-      for (int a = 0; a < 3; ++a) p[size_t(a)] += b.mass * b.velocity[size_t(a)];
-    return p;
-  }
-  double kinetic_energy() const {
-    double e = 0;
-    for (const Body& b : bodies_) {
-      const std::array<double, 3> w = angular_velocity(b);
-      for (int a = 0; a < 3; ++a)
-        e += 0.5 * b.mass * b.velocity[size_t(a)] * b.velocity[size_t(a)] +
-             0.5 * w[size_t(a)] * b.momentum[size_t(a)];
-    }
-    return e;
-  }
-
  private:
   struct Body {
     int64_t collider = 0;
