@@ -67,6 +67,7 @@ struct EngineSnapshot {
   PD_IF_SAVED(saved, std::vector<std::remove_const_t<Type>> name;)
   PD_STATE_FIELDS(PD_SNAPSHOT_MEMBER)
 #undef PD_SNAPSHOT_MEMBER
+  std::vector<double> free_bodies;  // the free colliders' state (FreeBodies::saved)
 };
 
 // f(name, vector) for every field of a snapshot, in the table's order (checkpoint files).

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -81,7 +82,7 @@ class EngineImpl final : public Engine {
     motion_.apply(time_, step_params_);
     pose_colliders(time_);
     compute_forces();
-    if (!free_.empty()) free_.react(exec_, particles(), step_params_);
+    if (!free_.empty()) react_and_touch();
     exec_.flush_stats();
   }
 
@@ -107,7 +108,7 @@ class EngineImpl final : public Engine {
       if (contact_) exec_.mark_flags(ContactLists<Exec>::kFlagEvent);
       compute_forces();
       if (!free_.empty()) {  // ... the particles' reaction at the new state, half kick
-        free_.react(exec_, particles(), step_params_);
+        react_and_touch();
         free_.kick(0.5 * double(dt), step_params_.gravity);
       }
       launch_velocity_update(exec_, particles(), step_params_);
@@ -169,19 +170,15 @@ class EngineImpl final : public Engine {
   double critical_time_step() const override { return critical_dt_; }
 
   void save(EngineSnapshot& out) override {
-    if (!free_.empty())
-      throw std::runtime_error(
-          "checkpoints of a scene with free colliders are not supported yet (their motion is not "
-          "saved): run it without --checkpoint-every");
     out.step = step_;
     out.time = time_;
     state_.save(out);
+    out.free_bodies = free_.saved();
   }
 
   void restore(const EngineSnapshot& in) override {
-    if (!free_.empty())
-      throw std::runtime_error("a scene with free colliders cannot resume from a checkpoint yet");
     state_.check_sizes(in);
+    free_.restore(in.free_bodies);
     if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
     step_ = in.step;
     time_ = in.time;
@@ -226,6 +223,7 @@ class EngineImpl final : public Engine {
   // A restore whose plastic mirror (the partners' history, not all held here) comes with it.
   void restore_with_mirror(const EngineSnapshot& in, const std::vector<real>& plastic_mirror) {
     state_.check_sizes(in);
+    free_.restore(in.free_bodies);
     if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
     step_ = in.step;
     time_ = in.time;
@@ -258,6 +256,31 @@ class EngineImpl final : public Engine {
   void set_up_state_based() {
     launch_weighted_volume(exec_, particles(), bonds(), materials_);
     state_.allocate(mem_, kSlots, state_.neighbor.size(), FieldNeeds{true, features_.plastic, false});
+  }
+
+  // The free colliders' reaction from the particles (summed over the ranks of a partitioned run,
+  // in rank order on rank 0 and sent to all, so every rank moves the bodies alike) and from the
+  // other colliders.
+  void react_and_touch() {
+    free_.react(exec_, particles(), step_params_);
+    if (world_ && world_->size() > 1) {
+      const std::vector<Wrench> mine = free_.reactions();
+      std::vector<char> bytes(mine.size() * sizeof(Wrench));
+      std::memcpy(bytes.data(), mine.data(), bytes.size());
+      std::vector<std::vector<char>> all;
+      world_->gather(bytes, all, 0);
+      std::vector<Wrench> sum(mine.size());
+      if (world_->rank() == 0)
+        for (const std::vector<char>& rank : all)
+          for (size_t k = 0; k < sum.size(); ++k) {
+            Wrench w;
+            std::memcpy(&w, rank.data() + k * sizeof(Wrench), sizeof(Wrench));
+            sum[k] = sum[k] + w;
+          }
+      world_->broadcast(sum.data(), sum.size() * sizeof(Wrench), 0);
+      free_.set_reactions(sum);
+    }
+    free_.touch(colliders_host_, double(step_params_.dt));
   }
 
   // The colliders' poses at time t, on the backend (their view in the step parameters).

@@ -1,15 +1,19 @@
 // Free rigid colliders: bodies with mass and inertia that the particles push back (their
-// reaction, reduced on the backend after `bodyforces`) and gravity pulls, integrated on the host by
-// the velocity Verlet scheme the particles use: a half kick with the last reaction, a drift of the
-// pose, the forces at the new state, a half kick with the new reaction. Each reaction is the exact
-// sum of the forces the body put on the particles, so the momentum of body and particles together
-// is kept to round-off.
+// reaction, reduced on the backend after `bodyforces`), the other colliders touch (body_contact.h)
+// and gravity pulls. Integrated on the host by the velocity Verlet scheme the particles use: a half
+// kick with the last reaction, a drift of the pose, the forces at the new state, a half kick with
+// the new reaction. Each reaction is the exact sum of the forces the body put on the particles (and
+// a body contact's force on one is minus that on the other), so the momentum of bodies and
+// particles together is kept to round-off.
 #pragma once
 
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "cuda/engine/body_contact.h"
 #include "cuda/engine/motion.h"
 #include "cuda/launch.h"
 
@@ -21,6 +25,7 @@ class FreeBodies {
   explicit FreeBodies(const std::vector<ColliderScript>& scripts) {
     for (size_t k = 0; k < scripts.size(); ++k) {
       const ColliderScript& s = scripts[k];
+      masses_.push_back(s.free() ? s.mass : 0.0);
       if (!s.free()) continue;
       Body b;
       b.collider = int64_t(k);
@@ -53,6 +58,55 @@ class FreeBodies {
     for (Body& b : bodies_) b.reaction = reduce_collider_reaction(exec, p, sp, b.collider);
   }
 
+  // Adds the contacts between colliders (body_contact.h), at their pose in `posed`, to the
+  // reactions.
+  void touch(const std::vector<Collider>& posed, double dt) {
+    const std::vector<Wrench> contact = body_contact_wrenches(posed, masses_, dt);
+    for (Body& b : bodies_) b.reaction = b.reaction + contact[size_t(b.collider)];
+  }
+
+  // Each body's reaction, and setting them (a partitioned run's sum over the ranks).
+  std::vector<Wrench> reactions() const {
+    std::vector<Wrench> out;
+    for (const Body& b : bodies_) out.push_back(b.reaction);
+    return out;
+  }
+  void set_reactions(const std::vector<Wrench>& r) {
+    for (size_t k = 0; k < bodies_.size(); ++k) bodies_[k].reaction = r[k];
+  }
+
+  // The bodies' state (pose, velocities, last reaction) for a checkpoint, and back; a state of
+  // another number of bodies is refused.
+  std::vector<double> saved() const {
+    std::vector<double> out;
+    for (const Body& b : bodies_) {
+      out.insert(out.end(), b.center.begin(), b.center.end());
+      out.insert(out.end(), b.velocity.begin(), b.velocity.end());
+      out.insert(out.end(), b.rotation.begin(), b.rotation.end());
+      out.insert(out.end(), b.momentum.begin(), b.momentum.end());
+      const Wrench& w = b.reaction;
+      out.insert(out.end(), {w.fx, w.fy, w.fz, w.tx, w.ty, w.tz});
+    }
+    return out;
+  }
+  void restore(const std::vector<double>& in) {
+    if (in.size() != kSavedPerBody * bodies_.size())
+      throw std::invalid_argument("the checkpoint holds " + std::to_string(in.size() / kSavedPerBody) +
+                                  " free colliders, the scene " + std::to_string(bodies_.size()));
+    const double* v = in.data();
+    auto take = [&v](auto& array) {
+      for (double& x : array) x = *v++;
+    };
+    for (Body& b : bodies_) {
+      take(b.center);
+      take(b.velocity);
+      take(b.rotation);
+      take(b.momentum);
+      Wrench& w = b.reaction;
+      for (double* x : {&w.fx, &w.fy, &w.fz, &w.tx, &w.ty, &w.tz}) *x = *v++;
+    }
+  }
+
   // Half a step of the reaction and gravity on the momenta.
   void kick(double half_dt, const Vec3& gravity) {
     for (Body& b : bodies_) {
@@ -81,6 +135,7 @@ class FreeBodies {
   }
 
  private:
+  static constexpr size_t kSavedPerBody = 24;
   struct Body {
     int64_t collider = 0;
     double mass = 0;
@@ -114,6 +169,7 @@ class FreeBodies {
   }
 
   std::vector<Body> bodies_;
+  std::vector<double> masses_;  // per collider; 0 where not free
 };
 
 }  // namespace pd

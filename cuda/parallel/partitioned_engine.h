@@ -48,11 +48,6 @@ class PartitionedEngine final : public Engine {
     local_input.contact = in.contact;
     local_input.lattice_families = false;
     local_input.screen = in.screen;
-    for (const ColliderScript& c : in.motion.colliders)
-      if (c.free())
-        throw std::runtime_error(
-            "free colliders run on one rank for now (their reaction would be summed over "
-            "the ranks): run without mpirun");
     if (local_input.particles.size() == 0)
       throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
                                std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");
@@ -367,6 +362,7 @@ class PartitionedEngine final : public Engine {
     snapshot_ = {};
     snapshot_.step = local.step;
     snapshot_.time = local.time;
+    snapshot_.free_bodies = local.free_bodies;  // (alike on every rank)
 #define PD_GATHER_SAVED(name, Type, length, when, saved, ...) \
   PD_IF_SAVED(saved, snapshot_.name = gather_field<length>(local.name);)
     PD_STATE_FIELDS(PD_GATHER_SAVED)
@@ -405,10 +401,12 @@ class PartitionedEngine final : public Engine {
     comm_->broadcast(&all.step, sizeof(all.step), 0);
     comm_->broadcast(&all.time, sizeof(all.time), 0);
     for_each_snapshot_field(all, [&](const char*, auto& v) { broadcast_vector(v); });
+    broadcast_vector(all.free_bodies);
     EngineSnapshot local;
     local_->save(local);  // the local sizes
     local.step = all.step;
     local.time = all.time;
+    local.free_bodies = all.free_bodies;
 #define PD_SCATTER_SAVED(name, Type, length, when, saved, ...) \
   PD_IF_SAVED(saved, scatter_field<length>(all.name, local.name);)
     PD_STATE_FIELDS(PD_SCATTER_SAVED)

@@ -185,6 +185,7 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& c) {
   RecordWriter w;
   w.add_owned("meta", meta_text(c));
   for_each_snapshot_field(c.engine, [&](const char* name, const auto& v) { w.add_array(name, v); });
+  w.add_array("free_bodies", c.engine.free_bodies);
   w.add_owned("energy0", std::string(reinterpret_cast<const char*>(&c.energy0), sizeof c.energy0));
   w.add("energy_log", c.energy_log);
   w.add_owned("series", series_text(c.series));
@@ -200,6 +201,7 @@ RunCheckpoint read_checkpoint(const std::string& path) {
   for_each_snapshot_field(c.engine, [&](const char* name, auto& v) {
     v = r.get_array<typename std::decay_t<decltype(v)>::value_type>(name);
   });
+  if (r.has("free_bodies")) c.engine.free_bodies = r.get_array<double>("free_bodies");
   const std::vector<Energy> energy0 = r.get_array<Energy>("energy0");
   if (energy0.size() != 1) r.fail("record 'energy0' has the wrong size");
   c.energy0 = energy0[0];

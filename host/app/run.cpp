@@ -17,6 +17,7 @@
 #include "cuda/engine/engine.h"
 #include "host/app/backend_choice.h"
 #include "host/app/checkpoint.h"
+#include "host/app/collider_output.h"
 #include "host/app/energy_watch.h"
 #include "host/app/interrupt.h"
 #include "host/app/kernel_report.h"
@@ -168,13 +169,6 @@ struct Simulation {
   std::unique_ptr<Engine> engine;
 };
 
-// Free colliders' motion is not in checkpoints yet: such runs write none.
-bool has_free_colliders(const SimulationInput& in) {
-  for (const ColliderScript& c : in.motion.colliders)
-    if (c.free()) return true;
-  return false;
-}
-
 // Loads the scene with the run's options, makes its particles and reports them; checks the time
 // step and, for a resumed run, that the checkpoint comes from this scene and set-up.
 Simulation set_up_simulation(const RunOptions& opt, const std::optional<RunCheckpoint>& resume) {
@@ -188,13 +182,6 @@ Simulation set_up_simulation(const RunOptions& opt, const std::optional<RunCheck
   sim.setup = setup_scene(scene, setup_options_for(scene, opt.scale, sim.backend));
   print_setup(scene, sim.setup, opt);
   check_time_step(scene, sim.setup, opt.allow_unstable_dt);
-  if (has_free_colliders(sim.setup.input)) {
-    if (opt.checkpoint_every > 0)
-      throw ResumeError(
-          "--checkpoint-every: checkpoints of a scene with free colliders (mass or density) are not "
-          "supported yet");
-    std::printf("checkpoint none: the scene has free colliders, whose motion checkpoints do not hold yet\n");
-  }
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
   if (resume) check_resume(*resume, scene, opt.overrides, sim.setup, sim.backend);
   return sim;
@@ -283,7 +270,8 @@ class RunOutput {
         bonds_(bonds_as_built(*sim.engine)),
         fragments_(sim.setup.input, bonds_, {out_, opt.blend_frames}, sim.setup.adjacency, sim.setup.embedded,
                    voronoi_elements(sim.setup)),
-        energy_log_(out_ + "/energy.csv") {
+        energy_log_(out_ + "/energy.csv"),
+        colliders_(out_, sim.setup.input, sim.scene.write_vtk) {
     if (const FaceLinks& links = fragments_.face_links(); links.indirect() + links.unlinked() > 0)
       std::printf(
           "elements   %zu touching pairs farther apart than the horizon: %zu hold through common "
@@ -310,12 +298,14 @@ class RunOutput {
       write_vtu(out_ + "/" + name, f);
       series_.add(f.time, name);
     }
+    colliders_.write_frame(frame, f.time, engine.colliders());
     if (live_) live_->frame(frame);
   }
 
   // Takes over a checkpoint's fragment smoothing, VTK series and energy log (moved from `c`).
   void restore(RunCheckpoint& c) {
     fragments_.smoother().restore(std::move(c.smoother));
+    colliders_.restore(c.series);
     series_.restore(std::move(c.series));
     energy_log_.restore(std::move(c.energy_log));
   }
@@ -349,6 +339,7 @@ class RunOutput {
   BondLists bonds_;
   FragmentOutput fragments_;
   EnergyLog energy_log_;
+  ColliderOutput colliders_;
   std::string fragment_log_;
 };
 
@@ -489,17 +480,11 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
     output.write_frame(frame);
 
     const auto now = std::chrono::steady_clock::now();
-    if (!has_free_colliders(sim.setup.input) &&
-        checkpoint_due(opt, frame, std::chrono::duration<double>(now - last_checkpoint).count())) {
+    if (checkpoint_due(opt, frame, std::chrono::duration<double>(now - last_checkpoint).count())) {
       write_run_checkpoint(sim, opt, output, start.energy0, frame);
       last_checkpoint = now;
     }
     if (InterruptGuard::signal_received()) {
-      if (has_free_colliders(sim.setup.input)) {
-        std::printf("%sinterrupted after frame %lld (no checkpoint: the scene has free colliders)\n",
-                    tty ? "\n" : "", (long long)frame);
-        return kExitInterrupted;
-      }
       std::printf(
           "%sinterrupted after frame %lld: checkpoint written; continue with: perifrac run --resume %s\n",
           tty ? "\n" : "", (long long)frame, output.dir().c_str());

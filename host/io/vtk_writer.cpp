@@ -15,7 +15,8 @@ namespace pd {
 
 namespace {
 
-constexpr uint8_t kVtkVertex = 1;  // VTK cell type of a single point
+constexpr uint8_t kVtkVertex = 1;    // VTK cell type of a single point
+constexpr uint8_t kVtkTriangle = 5;  // and of a triangle
 
 // One array of the appended data: its XML attributes (without offset) and its raw bytes.
 struct AppendedArray {
@@ -109,8 +110,7 @@ std::vector<Section> piece_sections(const FrameData& f, const DerivedArrays& d) 
 
 // XML up to and including the '_' that starts the appended data. Each array's offset counts
 // from the byte after '_' and skips the UInt64 size header of every array before it.
-std::string vtu_header(const FrameData& f, const std::vector<Section>& sections) {
-  std::string n = std::to_string(f.size());
+std::string vtu_header(double time, size_t points, size_t cells, const std::vector<Section>& sections) {
   std::string x =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -118,11 +118,11 @@ std::string vtu_header(const FrameData& f, const std::vector<Section>& sections)
       "  <UnstructuredGrid>\n"
       "    <FieldData>\n"
       "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">" +
-      format_double(f.time) +
+      format_double(time) +
       "</DataArray>\n"
       "    </FieldData>\n"
       "    <Piece NumberOfPoints=\"" +
-      n + "\" NumberOfCells=\"" + n + "\">\n";
+      std::to_string(points) + "\" NumberOfCells=\"" + std::to_string(cells) + "\">\n";
   uint64_t offset = 0;
   for (const Section& s : sections) {
     x += "      " + s.open_tag + "\n";
@@ -151,6 +151,15 @@ void write_appended(std::ostream& out, const std::vector<Section>& sections) {
   }
 }
 
+void write_sections(const std::string& path, const std::string& header,
+                    const std::vector<Section>& sections) {
+  write_file_atomic(path, [&](std::ostream& out) {
+    out << header;
+    write_appended(out, sections);
+    out << "\n  </AppendedData>\n</VTKFile>\n";
+  });
+}
+
 }  // namespace
 
 void write_vtu(const std::string& path, const FrameData& f) {
@@ -160,12 +169,27 @@ void write_vtu(const std::string& path, const FrameData& f) {
   }
   DerivedArrays derived(f);
   std::vector<Section> sections = piece_sections(f, derived);
-  std::string header = vtu_header(f, sections);
-  write_file_atomic(path, [&](std::ostream& out) {
-    out << header;
-    write_appended(out, sections);
-    out << "\n  </AppendedData>\n</VTKFile>\n";
-  });
+  write_sections(path, vtu_header(f.time, f.size(), f.size(), sections), sections);
+}
+
+void write_vtu_triangles(const std::string& path, double time, const TriangleSurface& s) {
+  const size_t points = s.points.size() / 3, cells = s.triangles.size() / 3;
+  if (s.points.size() % 3 != 0 || s.triangles.size() % 3 != 0 || s.part.size() != cells)
+    throw std::invalid_argument("write_vtu_triangles: arrays of inconsistent lengths");
+  std::vector<int32_t> cell_end(cells);
+  for (size_t c = 0; c < cells; ++c) cell_end[c] = int32_t(3 * (c + 1));
+  const std::vector<uint8_t> cell_type(cells, kVtkTriangle);
+  const std::vector<Section> sections = {
+      {"<CellData Scalars=\"part\">",
+       "</CellData>",
+       {{array_attributes("Int32", "part", 1), bytes_of(s.part)}}},
+      {"<Points>", "</Points>", {{array_attributes("Float32", "Points", 3), bytes_of(s.points)}}},
+      {"<Cells>",
+       "</Cells>",
+       {{array_attributes("Int32", "connectivity", 1), bytes_of(s.triangles)},
+        {array_attributes("Int32", "offsets", 1), bytes_of(cell_end)},
+        {array_attributes("UInt8", "types", 1), bytes_of(cell_type)}}}};
+  write_sections(path, vtu_header(time, points, cells, sections), sections);
 }
 
 PvdSeries::PvdSeries(const std::string& dir, const std::string& name)

@@ -15,6 +15,18 @@ namespace pd {
 // Throws std::invalid_argument for inconsistent sizes, IoError when the file cannot be written.
 void write_vtu(const std::string& path, const FrameData& f);
 
+// A triangle surface of several parts: flat float32 points (x y z ...), int32 corners (three per
+// triangle) and each triangle's part number.
+struct TriangleSurface {
+  std::vector<float> points;
+  std::vector<int32_t> triangles;
+  std::vector<int32_t> part;
+};
+
+// Writes `s` atomically as a .vtu of VTK_TRIANGLE cells with cell data `part` and field data
+// `TimeValue`, as write_vtu does.
+void write_vtu_triangles(const std::string& path, double time, const TriangleSurface& s);
+
 // The series index `<dir>/<name>.pvd`, rewritten atomically after each added frame so that
 // ParaView can open the run as a time series at any moment. Nothing is written before add().
 class PvdSeries {

@@ -10,6 +10,7 @@
 #include "cuda/engine/free_bodies.h"
 #include "cuda/engine/material.h"
 #include "cuda/engine/memory_budget.h"
+#include "cuda/engine/body_contact.h"
 #include "cuda/kernels/colliders.h"
 #include "cuda/parallel/comm.h"
 #include "host/geometry/box_grid.h"
@@ -421,6 +422,11 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
       result.critical_dt =
           std::fmin(result.critical_dt, std::sqrt(2.0 / (2.0 / (material_dt * material_dt) + rate)));
     }
+  // Free colliders touching each other (body_contact.h): the stiffest such contact's step.
+  std::vector<double> masses;
+  for (const ColliderScript& s : in.motion.colliders) masses.push_back(s.free() ? s.mass : 0.0);
+  const double body_rate = body_contact_rate(in.colliders, masses);
+  if (body_rate > 0) result.critical_dt = std::fmin(result.critical_dt, std::sqrt(2.0) / body_rate);
 
   // Step parameters.
   StepParams& sp = in.step;

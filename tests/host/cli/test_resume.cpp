@@ -196,6 +196,63 @@ TEST_F(Resume, RunKilledAfterItsLastCheckpointIsFinished) {
   EXPECT_TRUE(read_all(out + "/fragments.obj") == meshes);
 }
 
+// Free colliders carry their pose, velocities and last reaction across a checkpoint: a ball
+// dropped on a block resting on the ground, and a box sliding into it, resumed half way, end as
+// the uninterrupted run does, their poses (colliders_NNNNN.csv, .vtu) included.
+constexpr const char* kFreeColliderScene = R"([simulation]
+steps_per_frame = 100
+frames = 12
+dt = 2e-5
+[world]
+gravity = [0.0, -9.81, 0.0]
+[materials.stone]
+model = "bond_based"
+density = 2000.0
+bulk_modulus = 1e8
+horizon = 3.0
+strain_limit = 0.01
+[[bodies]]
+material = "stone"
+center = [0.0, 0.025, 0.0]
+size = [0.1, 0.05, 0.1]
+spacing = 0.01
+[[colliders]]
+shape = "plane"
+center = [0.0, 0.0, 0.0]
+friction = 0.5
+damping = 0.5
+[[colliders]]
+shape = "sphere"
+radius = 0.03
+center = [0.0, 0.09, 0.0]
+velocity = [0.0, -1.0, 0.0]
+density = 3000.0
+damping = 0.3
+[[colliders]]
+shape = "box"
+size = [0.04, 0.04, 0.04]
+center = [-0.12, 0.02, 0.0]
+velocity = [1.0, 0.0, 0.0]
+density = 500.0
+friction = 0.4
+)";
+
+TEST_F(Resume, FreeCollidersResumeToTheUninterruptedResult) {
+  const std::string scene = path("free.toml"), reference = path("reference"), out = path("out");
+  std::ofstream(scene) << kFreeColliderScene;
+  ASSERT_EQ(run({"run", scene, "--backend", "cpu", "--out", reference}, log_), 0) << read_all(log_);
+  ASSERT_EQ(
+      run({"run", scene, "--backend", "cpu", "--out", out, "--frames", "6", "--checkpoint-every", "6"}, log_),
+      0)
+      << read_all(log_);
+  ASSERT_EQ(run({"run", "--resume", out, "--frames", "12"}, log_), 0) << read_all(log_);
+  for (const char* f : {"frame_00012.pfr", "energy.csv", "colliders_00012.csv", "colliders_00012.vtu",
+                        "colliders.pvd", "colliders.obj"})
+    EXPECT_TRUE(read_all(reference + "/" + f) == read_all(out + "/" + f)) << f << " differs";
+  // The ball and the box moved (and the csv is not of the first frame).
+  EXPECT_NE(read_all(reference + "/colliders_00012.csv"), read_all(reference + "/colliders_00000.csv"));
+}
+
 // Refusals: exit code 2 with one line saying what is wrong.
 void expect_refusal(const std::vector<std::string>& args, const std::string& log_path,
                     const std::string& what) {

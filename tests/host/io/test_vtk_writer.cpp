@@ -281,6 +281,39 @@ for name in ["velocity", "damage", "body", "id", "component"]:
   EXPECT_EQ(got["component"], std::vector<double>(f.component.begin(), f.component.end()));
 }
 
+TEST_F(VtkWriterTest, TrianglesAreReadAsTrianglesWithTheirParts) {
+  // Two triangles of parts 3 and 4 sharing an edge.
+  pd::TriangleSurface s;
+  s.points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  s.triangles = {0, 1, 2, 1, 3, 2};
+  s.part = {3, 4};
+  pd::write_vtu_triangles(path("tri.vtu"), 0.25, s);
+  const std::string text = pd::testing::read_all(path("tri.vtu"));
+  EXPECT_NE(text.find("NumberOfPoints=\"4\" NumberOfCells=\"2\""), std::string::npos);
+  EXPECT_NE(text.find("Name=\"part\""), std::string::npos);
+  s.part.pop_back();
+  EXPECT_THROW(pd::write_vtu_triangles(path("bad.vtu"), 0, s), std::invalid_argument);
+  if (std::system("python3 -c 'import vtk' >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "python3 cannot import vtk: the triangles are not checked with VTK's own reader";
+  }
+  const char* script_text = R"py(
+import sys, vtk
+r = vtk.vtkXMLUnstructuredGridReader()
+r.SetFileName(sys.argv[1])
+r.Update()
+g = r.GetOutput()
+print("counts", g.GetNumberOfPoints(), g.GetNumberOfCells(), g.GetCellType(0), g.GetCellType(1))
+print("second", *[g.GetCell(1).GetPointId(k) for k in range(3)])
+a = g.GetCellData().GetArray("part")
+print("part", *[a.GetValue(i) for i in range(a.GetNumberOfTuples())])
+)py";
+  pd::write_file_atomic(path("read.py"), std::string_view(script_text));
+  auto got = run_vtk_reader(path("read.py"), path("tri.vtu"));
+  EXPECT_EQ(got["counts"], (std::vector<double>{4, 2, 5, 5}));
+  EXPECT_EQ(got["second"], (std::vector<double>{1, 3, 2}));
+  EXPECT_EQ(got["part"], (std::vector<double>{3, 4}));
+}
+
 TEST_F(PvdSeriesTest, IndexIsRewrittenAfterEachFrame) {
   pd::PvdSeries series(dir_.string(), "run");
   EXPECT_EQ(series.path(), path("run.pvd"));

@@ -1,0 +1,17 @@
+// A collider's surface as a closed triangle mesh, for the ParaView and Blender outputs: in its
+// shape frame (the frame `colliders_NNNNN.csv` poses) or posed in the world.
+#pragma once
+
+#include "cuda/views.h"
+#include "host/geometry/tri_mesh.h"
+
+namespace pd {
+
+// The shape's surface (y the axis of the round shapes, as in colliders.h) with edges of about
+// `edge`; a plane as the square of half side `plane_half` in its x-z plane, facing +y.
+TriMesh collider_mesh(const Collider& c, double edge, double plane_half);
+
+// The mesh moved to the collider's pose: x -> R x + centre.
+TriMesh posed_mesh(const TriMesh& shape, const Collider& c);
+
+}  // namespace pd
