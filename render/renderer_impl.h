@@ -13,6 +13,7 @@
 
 #include "cuda/device_array.h"
 #include "cuda/kernel_stats.h"
+#include "render/collider_hit.h"
 #include "render/glass.h"
 #include "render/renderer.h"
 #include "render/traverse.h"
@@ -40,10 +41,15 @@ struct PixelKernelParams {
   int64_t tiles = 0;
   int64_t tile_step = 1;          // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
   ArrayView<uint32_t> ray_count;  // per pixel: the rays it traced (nearest-hit queries); empty: not kept
+  ArrayView<const Collider> colliders;  // drawn as solids of `collider_albedo` (collider_hit.h)
+  Vec3 collider_albedo{0, 0, 0};
 };
 
-// The nearest primitive or floor crossing of `ray`: hit.prim >= 0 for a primitive; else
-// *floor_t > 0 when the ray reaches the floor.
+// Hit::prim of collider k: kColliderPrim - k (below -1, which is no hit).
+constexpr int32_t kColliderPrim = -2;
+
+// The nearest primitive, collider or floor crossing of `ray`: hit.prim >= 0 for a primitive,
+// <= kColliderPrim for a collider; else *floor_t > 0 when the ray reaches the floor.
 PD_HD inline Hit nearest(const PixelKernelParams& p, const Ray& ray, real* floor_t) {
   Hit hit = traverse_short_stack<kRenderStackSize>(p.tree, p.prims, ray);
   *floor_t = 0;
@@ -55,6 +61,17 @@ PD_HD inline Hit nearest(const PixelKernelParams& p, const Ray& ray, real* floor
       *floor_t = t;
     }
   }
+  if (p.colliders.size > 0) {
+    real t = hit.prim >= 0 ? hit.t : (*floor_t > 0 ? *floor_t : ray.tmax);
+    Vec3 normal;
+    const int32_t k = nearest_collider(p.colliders, ray, &t, &normal);
+    if (k >= 0) {
+      hit.prim = kColliderPrim - k;
+      hit.t = t;
+      hit.normal = normal;
+      *floor_t = 0;
+    }
+  }
   return hit;
 }
 
@@ -63,10 +80,10 @@ PD_HD inline Hit nearest(const PixelKernelParams& p, const Ray& ray, real* floor
 PD_HD inline Vec3 shade_surface(const PixelKernelParams& p, const Ray& ray, const Hit& hit, real floor_t) {
   const ShadingParams& s = p.shading;
   if (floor_t > 0) return shade_floor(s, ray.o + floor_t * ray.d, ray.d, floor_t);
-  if (hit.prim < 0) return background_radiance(s, ray.d);
+  if (hit.prim == -1) return background_radiance(s, ray.d);
   // Shade the side facing the eye (an eye inside a primitive sees the exit face).
   const Vec3 n = dot(hit.normal, ray.d) > 0 ? -hit.normal : hit.normal;
-  return shade_opaque(s, n, -ray.d, p.albedo[hit.prim]);
+  return shade_opaque(s, n, -ray.d, hit.prim >= 0 ? p.albedo[hit.prim] : p.collider_albedo);
 }
 
 PD_HD inline bool is_glass(const PixelKernelParams& p, int32_t prim) {
@@ -178,6 +195,7 @@ class RendererImpl final : public Renderer {
     auto env = upload(s.environment ? s.environment->texel : std::vector<Vec3>());
     auto nodes = upload(scene.tree.nodes);
     auto prim_index = upload(scene.tree.prim_index);
+    auto colliders = upload(scene.colliders);
 
     // Kernel parameters.
     PixelKernelParams p;
@@ -186,6 +204,8 @@ class RendererImpl final : public Renderer {
     p.tree = {view_of(nodes), view_of(prim_index), scene.tree.bounds};
     p.albedo = view_of(albedo);
     if (!scene.material.empty()) p.material = view_of(material);
+    p.colliders = view_of(colliders);
+    p.collider_albedo = scene.collider_albedo;
     p.ior = s.ior;
     p.join_gap = scene.join_gap;
     p.spp = s.spp;

@@ -10,6 +10,7 @@
 #include "host/fragments/tet_file.h"
 #include "host/fragments/trimtope_file.h"
 #include "host/io/atomic_file.h"
+#include "host/io/collider_file.h"
 #include "host/io/frame_file.h"
 #include "host/io/png_file.h"
 #include "render/movie.h"
@@ -134,7 +135,11 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
   frame_primitives(rest_, frame, &prims, &albedo, trimtopes_ ? &*trimtopes_ : nullptr,
                    fragments ? &*fragments : nullptr, tets_ ? &*tets_ : nullptr);
   std::vector<uint8_t> material(options_.material == "glass" ? albedo.size() : 0, kMaterialGlass);
-  const RenderScene scene = make_render_scene(std::move(prims), std::move(albedo), std::move(material));
+  RenderScene scene = make_render_scene(std::move(prims), std::move(albedo), std::move(material));
+  const fs::path colliders_path = fs::path(options_.dir) / colliders_file_name(frame.frame);
+  if (fs::exists(colliders_path))
+    for (const ColliderState& c : read_colliders_file(colliders_path.string()))
+      scene.colliders.push_back(c.collider);
   const RenderResult r = renderer_->render_frame(scene, camera_, settings_);
   FrameRenderReport report;
   report.png = (fs::path(out_) / fs::path(frame_file).filename().replace_extension(".png")).string();
