@@ -196,7 +196,7 @@ void launch_bodyforces(Exec& ex, ParticlesView p, StepParams sp) {
 template <class Exec>
 Wrench reduce_collider_reaction(Exec& ex, ParticlesView p, StepParams sp, int64_t k) {
   return ex.template reduce_sum<Wrench>("pd/collider_reaction", p.n, [=] PD_HD(int64_t i) {
-    return collider_reaction(int32_t(i), p, sp.colliders[k], sp.dt);
+    return collider_reaction(int32_t(i), p, sp.colliders[k], sp.dt, sp.collider_grids.data());
   });
 }
 

@@ -263,6 +263,7 @@ enum ColliderShape : uint8_t {
   kColliderBox = 2,       // size: half extents along the shape's axes
   kColliderCapsule = 3,   // size.x: radius, size.y: half length of the segment along the shape's y
   kColliderCylinder = 4,  // size.x: radius, size.y: half length along the shape's y (flat ends)
+  kColliderMesh = 5,      // a triangle mesh's distance grid (grid_*); size: half its bounding box
 };
 
 constexpr int kMaxColliders = 256;
@@ -282,6 +283,12 @@ struct Collider {
   real damping = 0;                                // of the normal push, as a ratio of critical
   uint8_t shape = kColliderPlane;
   uint8_t law = kLawPenalty;  // kLawLammpsIndent: `stiffness` is LAMMPS's K [N/m^2]
+  // kColliderMesh: the distance at nodes grid_origin + grid_cell (i, j, k) of the shape's frame,
+  // i < grid_dims[0] fastest, from grid_offset in StepParams::collider_grids.
+  Vec3 grid_origin{0, 0, 0};
+  real grid_cell = 0;
+  int32_t grid_dims[3] = {0, 0, 0};
+  int64_t grid_offset = 0;
 };
 
 // Everything the per-step kernels read that is not per-particle.
@@ -295,8 +302,9 @@ struct StepParams {
   real contact_stiffness = 0;  // K_c [Pa]
   int32_t n_projectiles = 0;
   Projectile projectile[kMaxProjectiles];
-  AnchorMotion anchor[kMaxAnchors];     // indexed by ParticlesView::anchor
-  ArrayView<const Collider> colliders;  // on the backend (the engine's copy); empty: none
+  AnchorMotion anchor[kMaxAnchors];       // indexed by ParticlesView::anchor
+  ArrayView<const Collider> colliders;    // on the backend (the engine's copy); empty: none
+  ArrayView<const float> collider_grids;  // the mesh colliders' distance grids, one after another
 };
 
 // An anchored particle whose group has not been released: its motion is prescribed.

@@ -1,7 +1,7 @@
 // Rays against the colliders (cuda/views.h Collider), so the renderer draws the spheres, boxes,
 // capsules and cylinders that push the particles, at their pose of the frame. Analytic, in each
-// shape's frame; a ray that starts inside a collider does not see it. Planes are not drawn (the
-// renderer's floor stands for the ground).
+// shape's frame (a mesh by sphere tracing its distance grid); a ray that starts inside a collider
+// does not see it. Planes are not drawn (the renderer's floor stands for the ground).
 #pragma once
 
 #include <cmath>
@@ -47,8 +47,35 @@ PD_HD inline bool cylinder_interval(Vec3 o, Vec3 d, real r, real h, real* t0, re
   return lo <= hi;
 }
 
+// Sphere tracing through a mesh collider's distance grid: steps of the distance (at least a
+// twentieth of a cell) from where the ray enters the grid, until within 0.3 cells of the surface
+// (an open sheet's unsigned field never reaches 0 between nodes).
+PD_HD inline bool grid_entry(const Collider& c, Vec3 o, Vec3 d, real tmin, real tmax, const float* grids,
+                             real* t) {
+  const Vec3 lo = c.grid_origin;
+  const Vec3 hi =
+      lo + c.grid_cell * Vec3{real(c.grid_dims[0] - 1), real(c.grid_dims[1] - 1), real(c.grid_dims[2] - 1)};
+  real t0, t1;
+  int entry_axis, exit_axis;
+  if (!line_box_interval(make_ray(o, d, tmin, tmax), lo, hi, &t0, &t1, &entry_axis, &exit_axis)) return false;
+  const real speed = length(d);
+  real s = max_of(t0, tmin);
+  t1 = min_of(t1, tmax);
+  for (int step = 0; step < 1024 && s <= t1; ++step) {
+    const real distance = grid_surface(c, o + s * d, grids).distance;
+    if (distance < real(0.3) * c.grid_cell) {
+      if (!(s > tmin)) return false;  // (starts at the surface or inside)
+      *t = s;
+      return true;
+    }
+    s += max_of(distance, real(0.05) * c.grid_cell) / speed;
+  }
+  return false;
+}
+
 // The entry t of o + t d (shape frame) into the shape, when it is in (tmin, tmax].
-PD_HD inline bool shape_entry(const Collider& c, Vec3 o, Vec3 d, real tmin, real tmax, real* t) {
+PD_HD inline bool shape_entry(const Collider& c, Vec3 o, Vec3 d, real tmin, real tmax, const float* grids,
+                              real* t) {
   real best = INFINITY, t0, t1;
   auto take = [&](bool inside) {
     if (inside && t0 <= t1 && t0 > tmin && t0 < best) best = t0;
@@ -71,6 +98,9 @@ PD_HD inline bool shape_entry(const Collider& c, Vec3 o, Vec3 d, real tmin, real
       take(sphere_interval(o - Vec3{0, c.size.y, 0}, d, c.size.x, &t0, &t1));
       take(sphere_interval(o + Vec3{0, c.size.y, 0}, d, c.size.x, &t0, &t1));
       break;
+    case kColliderMesh:
+      if (!grids) return false;
+      return grid_entry(c, o, d, tmin, tmax, grids, t);
     default:  // a plane: not drawn
       return false;
   }
@@ -80,7 +110,7 @@ PD_HD inline bool shape_entry(const Collider& c, Vec3 o, Vec3 d, real tmin, real
 
 // The nearest collider the ray enters before `*t`: its index (and *t, *normal updated), or -1.
 PD_HD inline int32_t nearest_collider(ArrayView<const Collider> colliders, const Ray& ray, real* t,
-                                      Vec3* normal) {
+                                      Vec3* normal, const float* grids = nullptr) {
   int32_t found = -1;
   for (int64_t k = 0; k < colliders.size; ++k) {
     const Collider& c = colliders[k];
@@ -92,9 +122,9 @@ PD_HD inline int32_t nearest_collider(ArrayView<const Collider> colliders, const
                  m[1] * ray.d.x + m[4] * ray.d.y + m[7] * ray.d.z,
                  m[2] * ray.d.x + m[5] * ray.d.y + m[8] * ray.d.z};
     real entry;
-    if (!shape_entry(c, o, d, ray.tmin, *t, &entry) || !(entry < *t)) continue;
+    if (!shape_entry(c, o, d, ray.tmin, *t, grids, &entry) || !(entry < *t)) continue;
     *t = entry;
-    *normal = collider_surface(c, ray.o + entry * ray.d).normal;
+    *normal = collider_surface(c, ray.o + entry * ray.d, grids).normal;
     found = int32_t(k);
   }
   return found;

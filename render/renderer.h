@@ -25,8 +25,9 @@ struct RenderScene {
   real join_gap =
       0;        // elements closer than this touch (union_walk.h): kJoinGapFraction of the median element
   KdTree tree;  // over the primitives that are not hidden
-  int64_t hidden = 0;               // tetrahedra left out of the tree (hidden_tets.h)
-  std::vector<Collider> colliders;  // drawn at their pose, planes excepted (collider_hit.h)
+  int64_t hidden = 0;                 // tetrahedra left out of the tree (hidden_tets.h)
+  std::vector<Collider> colliders;    // drawn at their pose, planes excepted (collider_hit.h)
+  std::vector<float> collider_grids;  // the mesh colliders' distance grids (Collider::grid_offset)
   Vec3 collider_albedo{real(0.35), real(0.36), real(0.38)};  // linear RGB: dark steel
 };
 

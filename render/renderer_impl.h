@@ -41,7 +41,8 @@ struct PixelKernelParams {
   int64_t tiles = 0;
   int64_t tile_step = 1;          // coprime with `tiles`: thread tile k draws image tile k * step mod tiles
   ArrayView<uint32_t> ray_count;  // per pixel: the rays it traced (nearest-hit queries); empty: not kept
-  ArrayView<const Collider> colliders;  // drawn as solids of `collider_albedo` (collider_hit.h)
+  ArrayView<const Collider> colliders;    // drawn as solids of `collider_albedo` (collider_hit.h)
+  ArrayView<const float> collider_grids;  // the mesh colliders' distance grids
   Vec3 collider_albedo{0, 0, 0};
 };
 
@@ -64,7 +65,7 @@ PD_HD inline Hit nearest(const PixelKernelParams& p, const Ray& ray, real* floor
   if (p.colliders.size > 0) {
     real t = hit.prim >= 0 ? hit.t : (*floor_t > 0 ? *floor_t : ray.tmax);
     Vec3 normal;
-    const int32_t k = nearest_collider(p.colliders, ray, &t, &normal);
+    const int32_t k = nearest_collider(p.colliders, ray, &t, &normal, p.collider_grids.data());
     if (k >= 0) {
       hit.prim = kColliderPrim - k;
       hit.t = t;
@@ -196,6 +197,7 @@ class RendererImpl final : public Renderer {
     auto nodes = upload(scene.tree.nodes);
     auto prim_index = upload(scene.tree.prim_index);
     auto colliders = upload(scene.colliders);
+    auto collider_grids = upload(scene.collider_grids);
 
     // Kernel parameters.
     PixelKernelParams p;
@@ -205,6 +207,7 @@ class RendererImpl final : public Renderer {
     p.albedo = view_of(albedo);
     if (!scene.material.empty()) p.material = view_of(material);
     p.colliders = view_of(colliders);
+    p.collider_grids = view_of(collider_grids);
     p.collider_albedo = scene.collider_albedo;
     p.ior = s.ior;
     p.join_gap = scene.join_gap;

@@ -41,16 +41,16 @@ void add_force(Wrench& w, const Collider& c, Vec3 point, Vec3 f) {
 }
 
 // The forces of `surface` on the probes of `prober` (and their reactions), added to both wrenches.
-void probe_pair(const Collider& prober, const Collider& surface, double reduced_mass, double dt,
-                Wrench& on_prober, Wrench& on_surface) {
+void probe_pair(const Collider& prober, const std::vector<Probe>& probes, const Collider& surface,
+                const float* grids, double reduced_mass, double dt, Wrench& on_prober, Wrench& on_surface) {
   struct Touch {
     Vec3 point, normal;
     real depth;
   };
   std::vector<Touch> touches;
-  for (const Probe& probe : shape_probes(prober)) {
+  for (const Probe& probe : probes) {
     const Vec3 q = to_world(prober, probe.point);
-    const SurfacePoint s = collider_surface(surface, q);
+    const SurfacePoint s = collider_surface(surface, q, grids);
     const real depth = probe.radius - s.distance;
     if (depth > real(0)) touches.push_back({q - probe.radius * s.normal, s.normal, depth});
   }
@@ -84,10 +84,14 @@ bool touches_bodies(const Collider& c) {
 
 }  // namespace
 
-std::vector<Probe> shape_probes(const Collider& c) {
+std::vector<Probe> shape_probes(const Collider& c, const MeshShapes& meshes, size_t k) {
   std::vector<Probe> probes;
   const Vec3 h = c.size;
   switch (c.shape) {
+    case kColliderMesh:
+      if (meshes.probes && k < meshes.probes->size())
+        for (const Vec3& p : (*meshes.probes)[k]) probes.push_back({p, 0});
+      break;
     case kColliderSphere:
       probes.push_back({{0, 0, 0}, h.x});
       break;
@@ -116,12 +120,14 @@ std::vector<Probe> shape_probes(const Collider& c) {
 }
 
 double probe_length(const Collider& c) {
-  if (c.shape == kColliderBox) return double(std::min(c.size.x, std::min(c.size.y, c.size.z)));
+  if (c.shape == kColliderBox || c.shape == kColliderMesh)
+    return double(std::min(c.size.x, std::min(c.size.y, c.size.z)));
   return double(c.size.x);  // a radius
 }
 
 std::vector<Wrench> body_contact_wrenches(const std::vector<Collider>& colliders,
-                                          const std::vector<double>& masses, double dt) {
+                                          const std::vector<double>& masses, double dt,
+                                          const MeshShapes& meshes) {
   std::vector<Wrench> out(colliders.size());
   for (size_t a = 0; a < colliders.size(); ++a)
     for (size_t b = a + 1; b < colliders.size(); ++b) {
@@ -132,13 +138,16 @@ std::vector<Wrench> body_contact_wrenches(const std::vector<Collider>& colliders
       if (ra == 3 && rb == 3) continue;
       const double reduced = masses[a] > 0 && masses[b] > 0 ? masses[a] * masses[b] / (masses[a] + masses[b])
                                                             : std::max(masses[a], masses[b]);
-      if (ra <= rb) probe_pair(ca, cb, reduced, dt, out[a], out[b]);
-      if (rb < ra || (ra == 2 && rb == 2)) probe_pair(cb, ca, reduced, dt, out[b], out[a]);
+      if (ra <= rb)
+        probe_pair(ca, shape_probes(ca, meshes, a), cb, meshes.grids, reduced, dt, out[a], out[b]);
+      if (rb < ra || (ra == 2 && rb == 2))
+        probe_pair(cb, shape_probes(cb, meshes, b), ca, meshes.grids, reduced, dt, out[b], out[a]);
     }
   return out;
 }
 
-double body_contact_rate(const std::vector<Collider>& colliders, const std::vector<double>& masses) {
+double body_contact_rate(const std::vector<Collider>& colliders, const std::vector<double>& masses,
+                         const MeshShapes& meshes) {
   double rate = 0;
   for (size_t a = 0; a < colliders.size(); ++a)
     for (size_t b = 0; b < colliders.size(); ++b) {
@@ -146,8 +155,9 @@ double body_contact_rate(const std::vector<Collider>& colliders, const std::vect
         continue;
       const double reduced = masses[b] > 0 ? masses[a] * masses[b] / (masses[a] + masses[b]) : masses[a];
       const double stiffness = double(std::min(colliders[a].stiffness, colliders[b].stiffness));
-      for (const Collider* prober : {&colliders[a], &colliders[b]}) {
-        const double k = stiffness * probe_length(*prober) * double(shape_probes(*prober).size());
+      for (const size_t p : {a, b}) {
+        const Collider& prober = colliders[p];
+        const double k = stiffness * probe_length(prober) * double(shape_probes(prober, meshes, p).size());
         rate = std::max(rate, std::sqrt(k / reduced));
       }
     }

@@ -10,10 +10,10 @@
 // the damping 2 zeta sqrt(k m) of the approach (m the pair's reduced mass, zeta the larger damping
 // ratio), never pulling; and Coulomb friction with the mean coefficients of the two, the static
 // force being the one that stops the sliding within the step, shared by the pair's touching probes.
-// Round shapes probe (a sphere before a capsule); two boxes or cylinders probe each other; a plane
-// never probes, and two planes never touch. Edge-to-edge contact of two boxes between their probe
-// points, and the part of a cylinder's side between its rims, are not seen. Colliders under the
-// LAMMPS indent law push particles only.
+// Round shapes probe (a sphere before a capsule); two boxes, cylinders or meshes (their vertices,
+// thinned to kMeshProbes) probe each other; a plane never probes, and two planes never touch. Edge-to-edge
+// contact of two boxes between their probe points, and the part of a cylinder's side between its rims, are
+// not seen. Colliders under the LAMMPS indent law push particles only.
 #pragma once
 
 #include <vector>
@@ -28,8 +28,16 @@ struct Probe {
   real radius;
 };
 
-// The probe points of a collider's shape (none for a plane).
-std::vector<Probe> shape_probes(const Collider& c);
+// What the analytic shapes do not say: the mesh colliders' distance grids and each mesh's probe
+// points (its vertices, at most kMeshProbes of them, in its frame; empty for other shapes).
+struct MeshShapes {
+  const float* grids = nullptr;
+  const std::vector<std::vector<Vec3>>* probes = nullptr;
+};
+constexpr size_t kMeshProbes = 256;
+
+// The probe points of collider k's shape (none for a plane).
+std::vector<Probe> shape_probes(const Collider& c, const MeshShapes& meshes = {}, size_t k = 0);
 
 // The contact stiffness length L of a probing shape [m].
 double probe_length(const Collider& c);
@@ -38,10 +46,12 @@ double probe_length(const Collider& c);
 // centre), given the colliders at their current pose and velocities, each one's mass (0: not free,
 // immovable by contact) and the step. Pairs of which neither is free are skipped.
 std::vector<Wrench> body_contact_wrenches(const std::vector<Collider>& colliders,
-                                          const std::vector<double>& masses, double dt);
+                                          const std::vector<double>& masses, double dt,
+                                          const MeshShapes& meshes = {});
 
 // The largest rate sqrt(k_total / m) [1/s] of the body contacts a free collider can have (all its
 // or the other's probes touching), for the stable step.
-double body_contact_rate(const std::vector<Collider>& colliders, const std::vector<double>& masses);
+double body_contact_rate(const std::vector<Collider>& colliders, const std::vector<double>& masses,
+                         const MeshShapes& meshes = {});
 
 }  // namespace pd

@@ -79,6 +79,10 @@ class EngineImpl final : public Engine {
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0 || !colliders_host_.empty();
     colliders_ = mem_.make_from(colliders_host_);
     step_params_.colliders = view_of(colliders_);
+    grids_host_ = in.collider_grids;
+    probes_ = in.collider_probes;
+    collider_grids_ = mem_.make_from(grids_host_);
+    step_params_.collider_grids = view_of(collider_grids_);
     motion_.apply(time_, step_params_);
     pose_colliders(time_);
     compute_forces();
@@ -280,7 +284,7 @@ class EngineImpl final : public Engine {
       world_->broadcast(sum.data(), sum.size() * sizeof(Wrench), 0);
       free_.set_reactions(sum);
     }
-    free_.touch(colliders_host_, double(step_params_.dt));
+    free_.touch(colliders_host_, double(step_params_.dt), {grids_host_.data(), &probes_});
   }
 
   // The colliders' poses at time t, on the backend (their view in the step parameters).
@@ -382,6 +386,9 @@ class EngineImpl final : public Engine {
   bool moving_colliders_ = motion_.colliders_move();
   FreeBodies free_{motion_.colliders};
   DeviceArray<Collider, Exec> colliders_;
+  std::vector<float> grids_host_;  // the mesh colliders' distance grids, and on the backend
+  DeviceArray<float, Exec> collider_grids_;
+  std::vector<std::vector<Vec3>> probes_;  // the meshes' probe points (body_contact.h)
   bool contact_ = false;
   BondScreen screen_ = BondScreen::kAuto;
   int64_t force_passes_ = 0, screened_passes_ = 0;

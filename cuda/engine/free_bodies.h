@@ -60,8 +60,8 @@ class FreeBodies {
 
   // Adds the contacts between colliders (body_contact.h), at their pose in `posed`, to the
   // reactions.
-  void touch(const std::vector<Collider>& posed, double dt) {
-    const std::vector<Wrench> contact = body_contact_wrenches(posed, masses_, dt);
+  void touch(const std::vector<Collider>& posed, double dt, const MeshShapes& meshes) {
+    const std::vector<Wrench> contact = body_contact_wrenches(posed, masses_, dt, meshes);
     for (Body& b : bodies_) b.reaction = b.reaction + contact[size_t(b.collider)];
   }
 

@@ -37,11 +37,13 @@ struct SimulationInput {
   ParticleSet particles;
   MaterialTable materials;
   StepParams step;
-  MotionScript motion;              // anchors, keyframed projectiles and colliders' motion, every step
-  std::vector<Collider> colliders;  // rigid colliders (shape and contact law; motion.colliders moves them)
-  std::vector<CutTriangle> cuts;    // pre-cracks and weakened surfaces (bond_cuts.h)
-  bool contact = false;             // launch `collection` and `collisions`
-  bool lattice_families = true;     // box-grid bodies find partners by offset (lattice_families.h)
+  MotionScript motion;                // anchors, keyframed projectiles and colliders' motion, every step
+  std::vector<Collider> colliders;    // rigid colliders (shape and contact law; motion.colliders moves them)
+  std::vector<float> collider_grids;  // the mesh colliders' distance grids (Collider::grid_offset)
+  std::vector<std::vector<Vec3>> collider_probes;  // per collider: a mesh's probe points (body_contact.h)
+  std::vector<CutTriangle> cuts;                   // pre-cracks and weakened surfaces (bond_cuts.h)
+  bool contact = false;                            // launch `collection` and `collisions`
+  bool lattice_families = true;  // box-grid bodies find partners by offset (lattice_families.h)
   BondScreen screen = BondScreen::kAuto;
 };
 

@@ -59,8 +59,44 @@ PD_HD inline SurfacePoint cylinder_surface(Vec3 q, real radius, real half) {
   return {dy, axial};
 }
 
-PD_HD inline SurfacePoint shape_surface(const Collider& c, Vec3 q) {
+// The cell of a grid of n nodes (n >= 2) holding coordinate g in [0, n - 1].
+PD_HD inline int32_t cell_below(real g, int32_t n) {
+  const int32_t i = int32_t(g);
+  return i < n - 2 ? i : n - 2;
+}
+
+// A mesh collider's surface from its distance grid: trilinear interpolation of the 8 nodes around
+// q and the gradient of that interpolation as the normal. Outside the grid the distance grows by
+// how far q is from it.
+PD_HD inline SurfacePoint grid_surface(const Collider& c, Vec3 q, const float* grids) {
+  const int32_t nx = c.grid_dims[0], ny = c.grid_dims[1], nz = c.grid_dims[2];
+  const real inv = real(1) / c.grid_cell;
+  const Vec3 g = inv * (q - c.grid_origin);
+  const Vec3 in{clamp_real(g.x, 0, real(nx - 1)), clamp_real(g.y, 0, real(ny - 1)),
+                clamp_real(g.z, 0, real(nz - 1))};
+  const int32_t i = cell_below(in.x, nx), j = cell_below(in.y, ny), k = cell_below(in.z, nz);
+  const real fx = in.x - real(i), fy = in.y - real(j), fz = in.z - real(k);
+  const int64_t sy = nx, sz = int64_t(nx) * ny;
+  const float* v = grids + c.grid_offset + i + sy * j + sz * k;
+  const real c000 = v[0], c100 = v[1], c010 = v[sy], c110 = v[sy + 1];
+  const real c001 = v[sz], c101 = v[sz + 1], c011 = v[sz + sy], c111 = v[sz + sy + 1];
+  const real c00 = c000 + fx * (c100 - c000), c10 = c010 + fx * (c110 - c010);
+  const real c01 = c001 + fx * (c101 - c001), c11 = c011 + fx * (c111 - c011);
+  const real c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
+  const Vec3 gradient{(1 - fy) * (1 - fz) * (c100 - c000) + fy * (1 - fz) * (c110 - c010) +
+                          (1 - fy) * fz * (c101 - c001) + fy * fz * (c111 - c011),
+                      (1 - fx) * (1 - fz) * (c010 - c000) + fx * (1 - fz) * (c110 - c100) +
+                          (1 - fx) * fz * (c011 - c001) + fx * fz * (c111 - c101),
+                      c1 - c0};
+  const Vec3 beyond = c.grid_cell * (g - in);
+  return {c0 + fz * (c1 - c0) + length(beyond), unit_or(gradient, unit_or(beyond, {0, 1, 0}))};
+}
+
+PD_HD inline SurfacePoint shape_surface(const Collider& c, Vec3 q, const float* grids = nullptr) {
   switch (c.shape) {
+    case kColliderMesh:
+      if (!grids) return {real(1e30), {0, 1, 0}};  // (no grid given: far from everything)
+      return grid_surface(c, q, grids);
     case kColliderSphere:
       return {length(q) - c.size.x, unit_or(q, {0, 1, 0})};
     case kColliderBox:
@@ -77,12 +113,12 @@ PD_HD inline SurfacePoint shape_surface(const Collider& c, Vec3 q) {
 }
 
 // The shape's surface at world point x: distance and world normal.
-PD_HD inline SurfacePoint collider_surface(const Collider& c, Vec3 x) {
+PD_HD inline SurfacePoint collider_surface(const Collider& c, Vec3 x, const float* grids = nullptr) {
   const real* m = c.rotation;
   const Vec3 d = x - c.center;
   const Vec3 q{m[0] * d.x + m[3] * d.y + m[6] * d.z, m[1] * d.x + m[4] * d.y + m[7] * d.z,
                m[2] * d.x + m[5] * d.y + m[8] * d.z};  // R^T (x - centre)
-  const SurfacePoint s = shape_surface(c, q);
+  const SurfacePoint s = shape_surface(c, q, grids);
   const Vec3 n{m[0] * s.normal.x + m[1] * s.normal.y + m[2] * s.normal.z,
                m[3] * s.normal.x + m[4] * s.normal.y + m[5] * s.normal.z,
                m[6] * s.normal.x + m[7] * s.normal.y + m[8] * s.normal.z};
@@ -90,9 +126,10 @@ PD_HD inline SurfacePoint collider_surface(const Collider& c, Vec3 x) {
 }
 
 // The force of collider c on a particle at x with velocity v, volume `volume` and mass `mass`
-// over a step of dt.
-PD_HD inline Vec3 collider_force(const Collider& c, Vec3 x, Vec3 v, real volume, real mass, real dt) {
-  const SurfacePoint s = collider_surface(c, x);
+// over a step of dt (`grids`: the mesh colliders' distance grids).
+PD_HD inline Vec3 collider_force(const Collider& c, Vec3 x, Vec3 v, real volume, real mass, real dt,
+                                 const float* grids = nullptr) {
+  const SurfacePoint s = collider_surface(c, x, grids);
   if (c.law == kLawLammpsIndent) {
     const real inside = -s.distance;
     return inside > real(0) ? (c.stiffness * inside * inside) * s.normal : Vec3{0, 0, 0};
@@ -123,7 +160,7 @@ PD_HD inline Vec3 colliders_force(int32_t i, const ParticlesView& p, const StepP
   const Vec3 x = p.position(i);
   const real mass = real(1) / p.inv_mass[i];
   for (int64_t k = 0; k < count; ++k)
-    f += collider_force(sp.colliders[k], x, p.vel[i], p.volume(i), mass, sp.dt);
+    f += collider_force(sp.colliders[k], x, p.vel[i], p.volume(i), mass, sp.dt, sp.collider_grids.data());
   return f;
 }
 
@@ -139,9 +176,10 @@ PD_HD inline Wrench operator+(const Wrench& a, const Wrench& b) {
 }
 
 // Particle i's reaction on collider c: minus the force c puts on it (as bodyforces computed it).
-PD_HD inline Wrench collider_reaction(int32_t i, const ParticlesView& p, const Collider& c, real dt) {
+PD_HD inline Wrench collider_reaction(int32_t i, const ParticlesView& p, const Collider& c, real dt,
+                                      const float* grids) {
   const Vec3 x = p.position(i);
-  const Vec3 f = collider_force(c, x, p.vel[i], p.volume(i), real(1) / p.inv_mass[i], dt);
+  const Vec3 f = collider_force(c, x, p.vel[i], p.volume(i), real(1) / p.inv_mass[i], dt, grids);
   if (f.x == 0 && f.y == 0 && f.z == 0) return {};
   const Vec3 r = x - c.center;
   const Vec3 t = cross(r, f);

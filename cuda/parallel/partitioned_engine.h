@@ -44,6 +44,8 @@ class PartitionedEngine final : public Engine {
     local_input.step = in.step;
     local_input.motion = in.motion;
     local_input.colliders = in.colliders;
+    local_input.collider_grids = in.collider_grids;
+    local_input.collider_probes = in.collider_probes;
     local_input.cuts = in.cuts;
     local_input.contact = in.contact;
     local_input.lattice_families = false;

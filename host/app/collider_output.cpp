@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "host/geometry/collider_mesh.h"
-#include "host/io/atomic_file.h"
 #include "host/io/collider_file.h"
 #include "host/io/frame.h"
 
@@ -24,46 +22,31 @@ double plane_half_side(const SimulationInput& in) {
   return std::max(1e-3, 2 * double(length(hi - lo)));
 }
 
-// The shapes as objects `collider_K` of one OBJ file.
-std::string shapes_obj(const std::vector<TriMesh>& shapes) {
-  std::string text = "# perifrac colliders, each in its own frame: colliders_NNNNN.csv poses them\n";
-  size_t base = 1;
-  char line[128];
-  for (size_t k = 0; k < shapes.size(); ++k) {
-    text += "o collider_" + std::to_string(k) + "\n";
-    for (const Vec3d& v : shapes[k].vertices) {
-      std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", v[0], v[1], v[2]);
-      text += line;
-    }
-    for (const Triangle& t : shapes[k].triangles) {
-      std::snprintf(line, sizeof line, "f %zu %zu %zu\n", base + size_t(t[0]), base + size_t(t[1]),
-                    base + size_t(t[2]));
-      text += line;
-    }
-    base += shapes[k].vertices.size();
-  }
-  return text;
-}
-
 std::string vtu_name(int64_t frame) {
   return "colliders_" + frame_file_name(frame, "vtu").substr(6);  // "frame_" -> "colliders_"
 }
 
 }  // namespace
 
-ColliderOutput::ColliderOutput(const std::string& dir, const SimulationInput& in, bool write_vtk)
+ColliderOutput::ColliderOutput(const std::string& dir, const SimulationInput& in,
+                               const std::vector<TriMesh>& meshes, bool write_vtk)
     : dir_(dir), write_vtk_(write_vtk), series_(dir, "colliders") {
   if (in.colliders.empty()) return;
   const double plane_half = plane_half_side(in);
   for (size_t k = 0; k < in.colliders.size(); ++k) {
     const Collider& c = in.colliders[k];
+    if (c.shape == kColliderMesh) {
+      shapes_.push_back(meshes.at(k));
+      masses_.push_back(in.motion.colliders[k].free() ? in.motion.colliders[k].mass : 0.0);
+      continue;
+    }
     const double size =
         double(c.shape == kColliderBox ? std::min(c.size.x, std::min(c.size.y, c.size.z)) : c.size.x);
     shapes_.push_back(collider_mesh(c, std::max(size, 1e-6) / 4, plane_half));
     masses_.push_back(
         k < in.motion.colliders.size() && in.motion.colliders[k].free() ? in.motion.colliders[k].mass : 0.0);
   }
-  write_file_atomic(dir_ + "/colliders.obj", shapes_obj(shapes_));
+  write_collider_obj(shapes_, dir_ + "/colliders.obj");
 }
 
 void ColliderOutput::write_frame(int64_t frame, double time, const std::vector<Collider>& colliders) {

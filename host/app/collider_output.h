@@ -15,8 +15,10 @@ namespace pd {
 
 class ColliderOutput {
  public:
-  // Nothing is written for a scene without colliders.
-  ColliderOutput(const std::string& dir, const SimulationInput& in, bool write_vtk);
+  // Nothing is written for a scene without colliders. `meshes`: each mesh collider's surface in
+  // its frame (SetupResult::collider_meshes).
+  ColliderOutput(const std::string& dir, const SimulationInput& in, const std::vector<TriMesh>& meshes,
+                 bool write_vtk);
 
   void write_frame(int64_t frame, double time, const std::vector<Collider>& colliders);
   // A resumed run: the particles' VTK series entries, whose frames this series shares.

@@ -9,6 +9,9 @@
 #include "host/app/run.h"
 #include "host/fragments/tet_file.h"
 #include "host/fragments/trimtope_file.h"
+#include "host/geometry/collider_mesh.h"
+#include "host/geometry/distance_grid.h"
+#include "host/geometry/mesh_check.h"
 #include "host/io/atomic_file.h"
 #include "host/io/collider_file.h"
 #include "host/io/frame_file.h"
@@ -137,9 +140,12 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
   std::vector<uint8_t> material(options_.material == "glass" ? albedo.size() : 0, kMaterialGlass);
   RenderScene scene = make_render_scene(std::move(prims), std::move(albedo), std::move(material));
   const fs::path colliders_path = fs::path(options_.dir) / colliders_file_name(frame.frame);
-  if (fs::exists(colliders_path))
+  if (fs::exists(colliders_path)) {
     for (const ColliderState& c : read_colliders_file(colliders_path.string()))
       scene.colliders.push_back(c.collider);
+    add_mesh_grids(scene.colliders);
+    scene.collider_grids = collider_grids_;
+  }
   const RenderResult r = renderer_->render_frame(scene, camera_, settings_);
   FrameRenderReport report;
   report.png = (fs::path(out_) / fs::path(frame_file).filename().replace_extension(".png")).string();
@@ -149,6 +155,40 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
   report.render_seconds = r.seconds;
   report.rays = r.rays;
   return report;
+}
+
+void RunRenderer::add_mesh_grids(std::vector<Collider>& colliders) {
+  if (mesh_grid_.size() < colliders.size()) mesh_grid_.resize(colliders.size());
+  for (size_t k = 0; k < colliders.size(); ++k) {
+    if (colliders[k].shape != kColliderMesh) continue;
+    if (mesh_grid_[k].shape != kColliderMesh) {  // first seen: its grid from colliders.obj
+      if (collider_shapes_.empty()) collider_shapes_ = read_collider_obj(options_.dir + "/colliders.obj");
+      if (k >= collider_shapes_.size() || collider_shapes_[k].triangles.empty())
+        throw MeshError(options_.dir + "/colliders.obj", "no surface for mesh collider " + std::to_string(k));
+      TriMesh mesh = collider_shapes_[k];
+      bool closed = true;
+      try {
+        check_solid(mesh, options_.dir + "/colliders.obj", {});
+      } catch (const MeshError&) {
+        closed = false;  // an open sheet: drawn from its unsigned distance
+      }
+      const Vec3d extent = bounds(mesh).size();
+      const double cell = std::max({extent[0], extent[1], extent[2]}) / 128;
+      const DistanceGrid g = distance_grid(mesh, closed, cell, 2 * cell);
+      Collider& c = mesh_grid_[k];
+      c.shape = kColliderMesh;
+      c.grid_origin = {real(g.origin[0]), real(g.origin[1]), real(g.origin[2])};
+      c.grid_cell = real(g.cell);
+      for (int a = 0; a < 3; ++a) c.grid_dims[a] = g.dims[size_t(a)];
+      c.grid_offset = int64_t(collider_grids_.size());
+      collider_grids_.insert(collider_grids_.end(), g.distance.begin(), g.distance.end());
+    }
+    const Collider& g = mesh_grid_[k];
+    colliders[k].grid_origin = g.grid_origin;
+    colliders[k].grid_cell = g.grid_cell;
+    for (int a = 0; a < 3; ++a) colliders[k].grid_dims[a] = g.grid_dims[a];
+    colliders[k].grid_offset = g.grid_offset;
+  }
 }
 
 int render_frames(const RenderOptions& o) {

@@ -75,6 +75,12 @@ class RunRenderer {
   RenderSettings settings_;
   std::unique_ptr<Renderer> renderer_;
   std::string backend_name_;
+  // The mesh colliders' distance grids for drawing, built from colliders.obj when a frame first
+  // has one (grid fields of collider k in mesh_grid_[k], shape mesh_grid_[k].shape == kColliderMesh).
+  void add_mesh_grids(std::vector<Collider>& colliders);
+  std::vector<TriMesh> collider_shapes_;
+  std::vector<Collider> mesh_grid_;
+  std::vector<float> collider_grids_;
 };
 
 // Renders DIR/render/frame_NNNNN.png for every frame file, printing one line per frame with

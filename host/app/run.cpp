@@ -271,7 +271,7 @@ class RunOutput {
         fragments_(sim.setup.input, bonds_, {out_, opt.blend_frames}, sim.setup.adjacency, sim.setup.embedded,
                    voronoi_elements(sim.setup)),
         energy_log_(out_ + "/energy.csv"),
-        colliders_(out_, sim.setup.input, sim.scene.write_vtk) {
+        colliders_(out_, sim.setup.input, sim.setup.collider_meshes, sim.scene.write_vtk) {
     if (const FaceLinks& links = fragments_.face_links(); links.indirect() + links.unlinked() > 0)
       std::printf(
           "elements   %zu touching pairs farther apart than the horizon: %zu hold through common "

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 #include <vector>
 
 #include "host/geometry/shapes.h"
+#include "host/io/atomic_file.h"
+#include "host/io/byte_file.h"
 
 namespace pd {
 namespace {
@@ -75,6 +79,66 @@ TriMesh posed_mesh(const TriMesh& shape, const Collider& c) {
          r[6] * q[0] + r[7] * q[1] + r[8] * q[2] + c.center.z};
   }
   return m;
+}
+
+void write_collider_obj(const std::vector<TriMesh>& shapes, const std::string& path) {
+  std::string text = "# perifrac colliders, each in its own frame: colliders_NNNNN.csv poses them\n";
+  size_t base = 1;
+  char line[128];
+  for (size_t k = 0; k < shapes.size(); ++k) {
+    text += "o collider_" + std::to_string(k) + "\n";
+    for (const Vec3d& v : shapes[k].vertices) {
+      std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", v[0], v[1], v[2]);
+      text += line;
+    }
+    for (const Triangle& t : shapes[k].triangles) {
+      std::snprintf(line, sizeof line, "f %zu %zu %zu\n", base + size_t(t[0]), base + size_t(t[1]),
+                    base + size_t(t[2]));
+      text += line;
+    }
+    base += shapes[k].vertices.size();
+  }
+  write_file_atomic(path, text);
+}
+
+std::vector<TriMesh> read_collider_obj(const std::string& path) {
+  std::istringstream in(read_file_bytes(path));
+  std::vector<TriMesh> shapes;
+  size_t base = 1;  // the file's index of the current object's first vertex
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    std::istringstream words(line);
+    std::string tag;
+    words >> tag;
+    if (tag.empty() || tag[0] == '#') continue;
+    auto fail = [&](const std::string& what) {
+      throw MeshError(path, "line " + std::to_string(number) + ": " + what);
+    };
+    if (tag == "o") {
+      if (!shapes.empty()) base += shapes.back().vertices.size();
+      shapes.emplace_back();
+    } else if (shapes.empty()) {
+      fail("'" + tag + "' before the first object");
+    } else if (tag == "v") {
+      Vec3d v;
+      if (!(words >> v[0] >> v[1] >> v[2])) fail("a vertex needs x y z");
+      shapes.back().vertices.push_back(v);
+    } else if (tag == "f") {
+      Triangle t;
+      for (int32_t& corner : t) {
+        long long index = 0;
+        if (!(words >> index)) fail("a face needs three vertex numbers");
+        const long long local = index - (long long)base;
+        if (local < 0 || local >= (long long)shapes.back().vertices.size())
+          fail("a face's vertex is not of its object");
+        corner = int32_t(local);
+      }
+      shapes.back().triangles.push_back(t);
+    } else {
+      fail("unknown line '" + tag + "'");
+    }
+  }
+  return shapes;
 }
 
 }  // namespace pd

@@ -16,7 +16,7 @@ constexpr const char* kHeader =
     "frame,time,collider,shape,law,size_x,size_y,size_z,center_x,center_y,center_z,qw,qx,qy,qz,"
     "velocity_x,velocity_y,velocity_z,omega_x,omega_y,omega_z,mass";
 constexpr int kColumns = 22;
-constexpr const char* kShapeNames[] = {"plane", "sphere", "box", "capsule", "cylinder"};
+constexpr const char* kShapeNames[] = {"plane", "sphere", "box", "capsule", "cylinder", "mesh"};
 constexpr const char* kLawNames[] = {"penalty", "lammps_indent"};
 
 template <size_t N>
@@ -76,7 +76,7 @@ void write_colliders_file(const std::string& path, int64_t frame, double time,
         row, sizeof row,
         "%lld,%.9g,%zu,%s,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
         "%.9g,%.9g\n",
-        static_cast<long long>(frame), time, k, kShapeNames[c.shape <= 4 ? c.shape : 0],
+        static_cast<long long>(frame), time, k, kShapeNames[c.shape <= kColliderMesh ? c.shape : 0],
         kLawNames[c.law <= 1 ? c.law : 0], double(c.size.x), double(c.size.y), double(c.size.z),
         double(c.center.x), double(c.center.y), double(c.center.z), q[0], q[1], q[2], q[3],
         double(c.velocity.x), double(c.velocity.y), double(c.velocity.z), double(c.omega.x),

@@ -115,7 +115,7 @@ struct SceneProjectile {
 // A rigid collider: an analytic shape that pushes the particles it touches (penalty contact with
 // Coulomb friction and damping, cuda/kernels/colliders.h), fixed or moving on a script.
 struct SceneCollider {
-  std::string shape;                      // "plane" | "sphere" | "box" | "capsule" | "cylinder"
+  std::string shape;                      // "plane" | "sphere" | "box" | "capsule" | "cylinder" | "mesh"
   Vec3d center{0, 0, 0};                  // at t = 0 [m]; a point of the plane
   Vec3d velocity{0, 0, 0};                // constant [m/s]
   std::vector<SceneKeyframe> path;        // keyframed centre instead of center + velocity
@@ -131,6 +131,10 @@ struct SceneCollider {
   std::string law = "penalty";            // "penalty" | "lammps_indent" (K (R - r)^2, K in N/m^2)
   std::optional<double> mass;     // [kg]: a free rigid body (not a plane), moved by the particles and gravity
   std::optional<double> density;  // [kg/m^3]: the same, its mass from its volume
+  std::string mesh;               // mesh: an OBJ/PLY/STL file as written in the scene
+  std::string mesh_path;          // mesh: resolved against the scene file's folder
+  double scale = 1;               // mesh: uniform scale of the file's coordinates
+  std::optional<double> cell;     // mesh: the distance grid's spacing [m]; default from the particles
 };
 
 // A pre-crack (strength 0: the bonds crossing it are removed before the run) or a weakened

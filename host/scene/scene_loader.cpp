@@ -516,9 +516,10 @@ const Keys kAnchorKeys = {"box_min", "box_max",          "body",  "velocity",
 const Keys kProjectileKeys = {"center", "velocity", "path", "radius", "strength"};
 const Keys kColliderKeys = {"shape",   "center", "velocity", "path",      "axis",     "angular_velocity",
                             "radius",  "length", "size",     "stiffness", "friction", "static_friction",
-                            "damping", "law",    "mass",     "density"};
+                            "damping", "law",    "mass",     "density",   "mesh",     "scale",
+                            "cell"};
 const Keys kColliderLaws = {"penalty", "lammps_indent"};
-const Keys kColliderShapes = {"plane", "sphere", "box", "capsule", "cylinder"};
+const Keys kColliderShapes = {"plane", "sphere", "box", "capsule", "cylinder", "mesh"};
 const Keys kCrackKeys = {"shape",       "corners", "points", "extrude", "start",     "walks",    "steps",
                          "step_length", "turn",    "mesh",   "scale",   "translate", "strength", "body"};
 const Keys kCrackShapes = {"quad", "path", "random_walk", "mesh"};
@@ -890,9 +891,22 @@ SceneCollider parse_collider(const TableReader& r) {
         (key == "radius" && round) || (key == "length" && long_) || (key == "size" && c.shape == "box");
     if (r.has(key) && !takes)
       r.fail(key, "a " + c.shape + " collider has no " + std::string(key),
-             c.shape == "plane"
-                 ? "center and axis (the normal)"
-                 : (c.shape == "box" ? "size [x, y, z]" : (long_ ? "radius and length" : "radius")));
+             c.shape == "plane"  ? "center and axis (the normal)"
+             : c.shape == "mesh" ? "mesh, scale and cell"
+             : c.shape == "box"  ? "size [x, y, z]"
+                                 : (long_ ? "radius and length" : "radius"));
+  }
+  // A mesh: its file, scale and grid spacing, and only for a mesh.
+  for (std::string_view key : {"mesh", "scale", "cell"})
+    if (r.has(key) && c.shape != "mesh")
+      r.fail(key, "a " + c.shape + " collider has no " + std::string(key), "mesh, scale and cell for shape = \"mesh\"");
+  if (c.shape == "mesh") {
+    r.string("mesh", c.mesh, {}, Presence::required);
+    if (c.mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
+    c.mesh_path = resolve_path(r.file(), c.mesh);
+    r.number("scale", c.scale, greater_than(0));
+    double cell = 0;
+    if (r.number("cell", cell, greater_than(0))) c.cell = cell;
   }
   if (round) r.number("radius", c.radius, greater_than(0), Presence::required);
   if (long_) r.number("length", c.length, greater_than(0), Presence::required);
@@ -912,7 +926,7 @@ SceneCollider parse_collider(const TableReader& r) {
   if (c.mass || c.density) {
     const std::string_view key = c.mass ? "mass" : "density";
     if (c.shape == "plane")
-      r.fail(key, "a plane cannot be free (it has no finite volume)", "a sphere, box, capsule or cylinder");
+      r.fail(key, "a plane cannot be free (it has no finite volume)", "a sphere, box, capsule, cylinder or mesh");
     if (!c.path.empty())
       r.fail("path", "a free collider moves as it is pushed", "velocity for its initial velocity");
   }

@@ -7,11 +7,8 @@
 #include <string>
 
 #include "cuda/engine/bond_cuts.h"
-#include "cuda/engine/free_bodies.h"
 #include "cuda/engine/material.h"
 #include "cuda/engine/memory_budget.h"
-#include "cuda/engine/body_contact.h"
-#include "cuda/kernels/colliders.h"
 #include "cuda/parallel/comm.h"
 #include "host/geometry/box_grid.h"
 #include "host/geometry/grid_particles.h"
@@ -21,6 +18,7 @@
 #include "host/geometry/shapes.h"
 #include "host/geometry/tet_particles.h"
 #include "host/geometry/voronoi_particles.h"
+#include "host/scene/collider_setup.h"
 #include "host/scene/scene_cracks.h"
 
 namespace pd {
@@ -106,111 +104,6 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
                       : lps_critical_stretch(*sm.fracture_energy, sm.bulk_modulus, sm.shear_modulus, delta);
   summary.critical_dt = lps_critical_time_step(sm.density, sm.bulk_modulus, sm.shear_modulus, delta);
   return m;
-}
-
-// The rotation (row major, shape frame to world) that turns the shape's y axis onto `axis`.
-std::array<double, 9> rotation_onto(const Vec3d& axis) {
-  const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-  const double a[3] = {axis[0] / len, axis[1] / len, axis[2] / len};
-  if (a[1] < -1 + 1e-12) return {1, 0, 0, 0, -1, 0, 0, 0, -1};  // half a turn about x
-  // Rodrigues about y x a, by the angle between them: R = I + K + K^2 / (1 + cos).
-  const double v[3] = {a[2], 0, -a[0]}, c = a[1];
-  const double k[9] = {0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0};
-  std::array<double, 9> r{1, 0, 0, 0, 1, 0, 0, 0, 1};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double k2 = 0;
-      for (int q = 0; q < 3; ++q) k2 += k[3 * i + q] * k[3 * q + j];
-      r[size_t(3 * i + j)] += k[3 * i + j] + k2 / (1 + c);
-    }
-  return r;
-}
-
-// Young's modulus of a material (bond-based: Poisson's ratio 1/4).
-double youngs_modulus(const SceneMaterial& m) {
-  if (m.shear_modulus > 0)
-    return 9 * m.bulk_modulus * m.shear_modulus / (3 * m.bulk_modulus + m.shear_modulus);
-  return 1.5 * m.bulk_modulus;
-}
-
-// A free collider's mass (given, or its density times its volume) and principal moments of
-// inertia about its axes (its y axis the capsule's and cylinder's).
-void set_mass_and_inertia(const SceneCollider& sc, ColliderScript& s) {
-  const double pi = 3.14159265358979323846, r = sc.radius, l = sc.length;
-  const double hx = 0.5 * sc.size[0], hy = 0.5 * sc.size[1], hz = 0.5 * sc.size[2];
-  double volume = 0;
-  if (sc.shape == "sphere") volume = 4.0 / 3.0 * pi * r * r * r;
-  if (sc.shape == "box") volume = 8 * hx * hy * hz;
-  if (sc.shape == "cylinder") volume = pi * r * r * l;
-  if (sc.shape == "capsule") volume = pi * r * r * l + 4.0 / 3.0 * pi * r * r * r;
-  const double m = sc.mass ? *sc.mass : *sc.density * volume;
-  s.mass = m;
-  if (sc.shape == "sphere") s.inertia = {0.4 * m * r * r, 0.4 * m * r * r, 0.4 * m * r * r};
-  if (sc.shape == "box")
-    s.inertia = {m / 3 * (hy * hy + hz * hz), m / 3 * (hx * hx + hz * hz), m / 3 * (hx * hx + hy * hy)};
-  if (sc.shape == "cylinder") {
-    const double across = m * (3 * r * r + l * l) / 12;
-    s.inertia = {across, 0.5 * m * r * r, across};
-  }
-  if (sc.shape == "capsule") {  // the cylinder and the two hemispheres (at their centroids 3r/8 out)
-    const double mc = m * pi * r * r * l / volume, ms = m - mc;
-    const double across = mc * (l * l / 12 + r * r / 4) + ms * (0.4 * r * r + l * l / 4 + 3 * l * r / 8);
-    s.inertia = {across, 0.5 * mc * r * r + 0.4 * ms * r * r, across};
-  }
-}
-
-// The scene's [[colliders]] as the engine's colliders and their motion.
-void add_colliders(const Scene& scene, SimulationInput& in) {
-  double stiffest = 0;
-  for (const SceneMaterial& m : scene.materials) stiffest = std::max(stiffest, youngs_modulus(m));
-  for (const SceneCollider& sc : scene.colliders) {
-    Collider c;
-    c.shape = sc.shape == "sphere"     ? kColliderSphere
-              : sc.shape == "box"      ? kColliderBox
-              : sc.shape == "capsule"  ? kColliderCapsule
-              : sc.shape == "cylinder" ? kColliderCylinder
-                                       : kColliderPlane;
-    if (sc.shape == "box")
-      c.size = to_vec3({0.5 * sc.size[0], 0.5 * sc.size[1], 0.5 * sc.size[2]});
-    else
-      c.size = to_vec3({sc.radius, 0.5 * sc.length, 0});
-    c.stiffness = real(sc.stiffness.value_or(stiffest));
-    c.friction_dynamic = real(sc.friction);
-    c.friction_static = real(sc.static_friction.value_or(sc.friction));
-    c.damping = real(sc.damping);
-    c.law = sc.law == "lammps_indent" ? kLawLammpsIndent : kLawPenalty;
-    in.colliders.push_back(c);
-    ColliderScript script;
-    script.center = sc.center;
-    script.rotation = rotation_onto(sc.axis);
-    script.velocity = sc.velocity;
-    for (const SceneKeyframe& k : sc.path) script.path.push_back(k);
-    script.omega = sc.angular_velocity;
-    if (sc.mass || sc.density) set_mass_and_inertia(sc, script);
-    in.motion.colliders.push_back(script);
-  }
-}
-
-// One line on stderr per collider that starts with particles' centres inside it: they would be
-// thrown out at once (a scene smell, not an error: a press may start closed on purpose).
-void warn_of_particles_inside_colliders(const SimulationInput& in,
-                                        const std::vector<std::string>& body_names) {
-  std::vector<Collider> posed = in.colliders;
-  in.motion.pose_colliders(0, posed);
-  FreeBodies(in.motion.colliders).pose(posed);
-  for (size_t k = 0; k < posed.size(); ++k) {
-    std::vector<int64_t> inside(body_names.size(), 0);
-    for (size_t i = 0; i < in.particles.size(); ++i)
-      if (collider_surface(posed[k], in.particles.rest[i]).distance < 0)
-        ++inside[size_t(in.particles.body[i])];
-    for (size_t b = 0; b < inside.size(); ++b)
-      if (inside[b] > 0)
-        std::fprintf(
-            stderr,
-            "warning: colliders[%zu]: %lld particles of body '%s' start inside it and will be thrown "
-            "out at once (move it clear of the body, or mean it)\n",
-            k, (long long)inside[b], body_names[b].c_str());
-  }
 }
 
 // Particles of one body at `spacing`: the box grid of box and plate bodies (the layout of
@@ -409,24 +302,12 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   remove_cut_pairs(in.cuts, ps, adjacency_pairs);
   result.adjacency = adjacency_from_pairs(ps.size(), std::move(adjacency_pairs));
 
-  // Colliders; their push enters every particle's stable step (a particle may touch one).
-  add_colliders(scene, in);
+  // Colliders (host/scene/collider_setup.h); their push enters every particle's stable step.
+  result.collider_meshes = add_colliders(scene, in);
   warn_of_particles_inside_colliders(in, result.body_names);
-  double collider_stiffness = 0;
-  for (const Collider& c : in.colliders)  // (the indent law's stiffness grows with the depth: not here)
-    if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
-  if (collider_stiffness > 0)
-    for (size_t i = 0; i < ps.size(); ++i) {
-      const double material_dt = result.materials[ps.material[i]].critical_dt;
-      const double rate = collider_stiffness * std::cbrt(double(ps.volume[i])) / double(ps.mass[i]);
-      result.critical_dt =
-          std::fmin(result.critical_dt, std::sqrt(2.0 / (2.0 / (material_dt * material_dt) + rate)));
-    }
-  // Free colliders touching each other (body_contact.h): the stiffest such contact's step.
-  std::vector<double> masses;
-  for (const ColliderScript& s : in.motion.colliders) masses.push_back(s.free() ? s.mass : 0.0);
-  const double body_rate = body_contact_rate(in.colliders, masses);
-  if (body_rate > 0) result.critical_dt = std::fmin(result.critical_dt, std::sqrt(2.0) / body_rate);
+  std::vector<double> material_dt;
+  for (const MaterialSummary& m : result.materials) material_dt.push_back(m.critical_dt);
+  result.critical_dt = std::fmin(result.critical_dt, colliders_critical_dt(in, material_dt));
 
   // Step parameters.
   StepParams& sp = in.step;

@@ -54,6 +54,7 @@ struct SetupResult {
   bool all_cubes = true;       // every body is made of grid cubes
   EmbeddedTets embedded;  // the tet meshes of the tet and shell bodies (Chen sec. 5.2), tets as particles
   std::vector<VoronoiBody> voronoi;  // the Voronoi bodies
+  std::vector<TriMesh> collider_meshes;  // per collider: a mesh collider's surface in its frame, else empty
 };
 
 // Throws SceneError for problems that only show once sizes are known (too many particles,
