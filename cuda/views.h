@@ -281,8 +281,9 @@ struct Collider {
   real stiffness = 0;  // K [Pa]: a particle of volume V pressed in by d is pushed with K V^(1/3) d
   real friction_static = 0, friction_dynamic = 0;  // Coulomb coefficients
   real damping = 0;                                // of the normal push, as a ratio of critical
+  real bound = 0;  // the shape's bounding radius about the centre (0: unbounded, a plane)
   uint8_t shape = kColliderPlane;
-  uint8_t law = kLawPenalty;  // kLawLammpsIndent: `stiffness` is LAMMPS's K [N/m^2]
+  uint8_t law = kLawPenalty;  // kLawLammpsIndent: `stiffness` is LAMMPS's K [N/m^5], on K d^2 V
   // kColliderMesh: the distance at nodes grid_origin + grid_cell (i, j, k) of the shape's frame,
   // i < grid_dims[0] fastest, from grid_offset in StepParams::collider_grids.
   Vec3 grid_origin{0, 0, 0};

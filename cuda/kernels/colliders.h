@@ -5,7 +5,9 @@
 // and Coulomb friction against its velocity relative to the surface: the force that stops the
 // sliding within a step while that stays within mu_s times the push, else mu_d times the push.
 // Or LAMMPS's `fix indent` law (kLawLammpsIndent): a particle whose centre is d inside the shape
-// feels K d^2 along the normal, K in N/m^2 (LAMMPS `units si`), with no damping or friction.
+// feels K d^2 V along the normal, with no damping or friction. LAMMPS's peridynamic atoms carry
+// force densities and a mass density (atom_style peri), so `fix indent`'s K d^2 is per unit volume
+// there: K [N/m^5] under `units si`, the same number as in the LAMMPS input.
 #pragma once
 
 #include <cmath>
@@ -125,16 +127,20 @@ PD_HD inline SurfacePoint collider_surface(const Collider& c, Vec3 x, const floa
   return {s.distance, n};
 }
 
-// The force of collider c on a particle at x with velocity v, volume `volume` and mass `mass`
-// over a step of dt (`grids`: the mesh colliders' distance grids).
-PD_HD inline Vec3 collider_force(const Collider& c, Vec3 x, Vec3 v, real volume, real mass, real dt,
-                                 const float* grids = nullptr) {
+// The force of collider c on a particle of size h = V^(1/3) at x with velocity v and mass `mass`
+// over a step of dt (`grids`: the mesh colliders' distance grids). A particle farther from the
+// centre than the shape's bounding radius and its own reach h/2 is not touched (no distance taken).
+PD_HD inline Vec3 collider_push(const Collider& c, Vec3 x, Vec3 v, real size, real mass, real dt,
+                                const float* grids) {
+  if (c.bound > 0) {
+    const real reach = real(1.0001) * c.bound + real(0.5) * size;
+    if (length_squared(x - c.center) > reach * reach) return {0, 0, 0};
+  }
   const SurfacePoint s = collider_surface(c, x, grids);
   if (c.law == kLawLammpsIndent) {
     const real inside = -s.distance;
-    return inside > real(0) ? (c.stiffness * inside * inside) * s.normal : Vec3{0, 0, 0};
+    return inside > real(0) ? (c.stiffness * inside * inside * size * size * size) * s.normal : Vec3{0, 0, 0};
   }
-  const real size = std::cbrt(volume);
   const real depth = real(0.5) * size - s.distance;
   if (!(depth > real(0))) return {0, 0, 0};
   const Vec3 relative = v - (c.velocity + cross(c.omega, x - c.center));
@@ -152,15 +158,21 @@ PD_HD inline Vec3 collider_force(const Collider& c, Vec3 x, Vec3 v, real volume,
   return f;
 }
 
+// The same for a particle of volume `volume`.
+PD_HD inline Vec3 collider_force(const Collider& c, Vec3 x, Vec3 v, real volume, real mass, real dt,
+                                 const float* grids = nullptr) {
+  return collider_push(c, x, v, std::cbrt(volume), mass, dt, grids);
+}
+
 // Every collider's force on particle i.
 PD_HD inline Vec3 colliders_force(int32_t i, const ParticlesView& p, const StepParams& sp) {
   Vec3 f{0, 0, 0};
   const int64_t count = sp.colliders.size;
   if (count == 0) return f;
-  const Vec3 x = p.position(i);
-  const real mass = real(1) / p.inv_mass[i];
+  const Vec3 x = p.position(i), v = p.vel[i];
+  const real mass = real(1) / p.inv_mass[i], size = std::cbrt(p.volume(i));
   for (int64_t k = 0; k < count; ++k)
-    f += collider_force(sp.colliders[k], x, p.vel[i], p.volume(i), mass, sp.dt, sp.collider_grids.data());
+    f += collider_push(sp.colliders[k], x, v, size, mass, sp.dt, sp.collider_grids.data());
   return f;
 }
 

@@ -81,6 +81,42 @@ ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t ma
   return g;
 }
 
+ParticleGeometry lattice_particles(const Box3d& box, const Vec3d& origin, double spacing,
+                                   const std::function<bool(const Vec3d&)>& inside, int64_t max_particles,
+                                   const std::string& name) {
+  // The lattice indices that reach the box, a millionth of a spacing of slack for round-off.
+  int64_t first[3], n[3];
+  for (int a = 0; a < 3; ++a) {
+    first[a] = int64_t(std::ceil((box.lo[a] - origin[a]) / spacing - 1e-6));
+    n[a] = std::max<int64_t>(0, int64_t(std::floor((box.hi[a] - origin[a]) / spacing + 1e-6)) - first[a] + 1);
+  }
+  ParticleGeometry g;
+  StageClock clock(&g.stages);
+  g.kind = ElementKind::cube;
+  g.cube_side = spacing;
+  std::vector<int32_t> id(size_t(n[0] * n[1] * n[2]), -1);
+  for (int64_t k = 0; k < n[2]; ++k)
+    for (int64_t j = 0; j < n[1]; ++j)
+      for (int64_t i = 0; i < n[0]; ++i) {
+        const Vec3d p{origin[0] + double(first[0] + i) * spacing, origin[1] + double(first[1] + j) * spacing,
+                      origin[2] + double(first[2] + k) * spacing};
+        if (!inside(p)) continue;
+        if (int64_t(g.position.size()) >= max_particles)
+          check_particle_budget(double(max_particles + 1) * spacing * spacing * spacing,
+                                spacing * spacing * spacing, max_particles, name,
+                                "spacing " + std::to_string(spacing) + " m");
+        id[size_t((k * n[1] + j) * n[0] + i)] = int32_t(g.position.size());
+        g.position.push_back(p);
+      }
+  g.volume.assign(g.size(), spacing * spacing * spacing);
+  clock.lap("lattice points inside");
+  grid_adjacency(g, id, n);
+  clock.lap("adjacency");
+  compute_lambda(g);
+  clock.lap("nearest distances");
+  return g;
+}
+
 ParticleGeometry box_grid_particles(const Vec3d& center, const Vec3d& size, double spacing) {
   const auto counts = box_grid_counts(size, spacing);
   const int64_t n[3] = {counts[0], counts[1], counts[2]};

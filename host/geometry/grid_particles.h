@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "host/geometry/particle_geometry.h"
@@ -15,6 +16,14 @@ namespace pd {
 // `name` when about volume / spacing^3 > max_particles.
 ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t max_particles,
                                 const std::string& name);
+
+// Cubes of side `spacing` centred on the lattice points origin + spacing (i, j, k) within `box`
+// for which `inside` holds (LAMMPS's `lattice sc` + `create_atoms` in a region), with grid-face
+// adjacency. MeshError naming `name` when the box holds more than max_particles lattice points
+// that are inside.
+ParticleGeometry lattice_particles(const Box3d& box, const Vec3d& origin, double spacing,
+                                   const std::function<bool(const Vec3d&)>& inside, int64_t max_particles,
+                                   const std::string& name);
 
 // The whole box of box_grid.h (round(size / spacing) cubes per axis), as a ParticleGeometry.
 ParticleGeometry box_grid_particles(const Vec3d& center, const Vec3d& size, double spacing);

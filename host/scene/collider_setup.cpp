@@ -164,6 +164,28 @@ void add_mesh_collider(const SceneCollider& sc, const std::string& key, const Sc
   meshes.back() = std::move(m.mesh);
 }
 
+// The radius about the centre that holds the whole shape (0 for an unbounded plane).
+double bounding_radius(const Collider& c, const TriMesh& mesh) {
+  const double x = double(c.size.x), y = double(c.size.y), z = double(c.size.z);
+  switch (c.shape) {
+    case kColliderSphere:
+      return x;
+    case kColliderBox:
+      return std::sqrt(x * x + y * y + z * z);
+    case kColliderCapsule:
+      return x + y;
+    case kColliderCylinder:
+      return std::sqrt(x * x + y * y);
+    case kColliderMesh: {
+      double r = 0;
+      for (const Vec3d& v : mesh.vertices) r = std::max(r, norm(v));
+      return r;
+    }
+    default:
+      return 0;
+  }
+}
+
 }  // namespace
 
 // The rotation (row major, shape frame to world) that turns the shape's y axis onto `axis`.
@@ -226,6 +248,7 @@ std::vector<TriMesh> add_colliders(const Scene& scene, SimulationInput& in) {
       add_mesh_collider(sc, "colliders[" + std::to_string(k) + "]", scene, in, c, script, meshes);
     else if (sc.mass || sc.density)
       set_mass_and_inertia(sc, script);
+    c.bound = real(bounding_radius(c, meshes.back()));
     in.colliders.push_back(c);
     in.motion.colliders.push_back(script);
   }

@@ -85,6 +85,9 @@ struct SceneBody {
   double spacing = 0;       // lambda [m], > 0: grid cube side, Voronoi minimum distance, horizon unit
   std::string material;     // name of a [materials.NAME] table
   Vec3d velocity{0, 0, 0};  // initial velocity [m/s]
+  // grid particles: centres on the lattice origin + spacing (i, j, k) inside the shape, its surface
+  // included (LAMMPS's `lattice sc` + `create_atoms` in a region); default: centred in the shape
+  std::optional<Vec3d> lattice_origin;
 };
 
 // A keyframe of a path: {time [s], x, y, z [m]}.

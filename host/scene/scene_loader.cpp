@@ -493,12 +493,30 @@ const Keys kStateBasedOnlyKeys = {"shear_modulus", "youngs_modulus", "poisson_ra
                                   "damage_alpha",  "plastic",        "anisotropy"};
 const Keys kPlasticKeys = {"yield_stress", "psi0", "limit"};
 const Keys kAnisotropyKeys = {"direction", "ratio", "matrix"};
-const Keys kBodyKeys = {"name",           "shape",           "particles",       "center",
-                        "size",           "width",           "depth",           "thickness",
-                        "radius",         "height",          "tube_radius",     "wall",
-                        "mesh",           "scale",           "repair",          "tet_quality",
-                        "tet_max_volume", "shell_thickness", "shell_layers",    "spacing",
-                        "material",       "velocity",        "tet_keep_surface"};
+const Keys kBodyKeys = {"name",
+                        "shape",
+                        "particles",
+                        "center",
+                        "size",
+                        "width",
+                        "depth",
+                        "thickness",
+                        "radius",
+                        "height",
+                        "tube_radius",
+                        "wall",
+                        "mesh",
+                        "scale",
+                        "repair",
+                        "tet_quality",
+                        "tet_max_volume",
+                        "shell_thickness",
+                        "shell_layers",
+                        "spacing",
+                        "material",
+                        "velocity",
+                        "tet_keep_surface",
+                        "lattice_origin"};
 const Keys kShapes = {"box", "plate", "sphere", "cylinder", "torus", "vase", "mesh"};
 const Keys kParticleKinds = {"grid", "tets", "shell", "voronoi"};
 // The dimension keys of each shape (in kShapes order).
@@ -793,6 +811,14 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
   r.vec3("center", b.center);
   r.vec3("velocity", b.velocity);
   r.number("spacing", b.spacing, greater_than(0), Presence::required);
+  Vec3d origin{0, 0, 0};
+  if (r.vec3("lattice_origin", origin)) {
+    if (b.particles != "grid")
+      r.fail("lattice_origin",
+             "a lattice origin places grid particles, and this body's are " + quoted(b.particles),
+             "lattice_origin with particles = \"grid\"");
+    b.lattice_origin = origin;
+  }
 
   // The material must name a [materials.NAME] table.
   r.string("material", b.material, {}, Presence::required);
@@ -804,7 +830,7 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
   // A box or plate of grid particles: round(size / spacing) per axis (host/geometry/box_grid.cpp).
   // Every axis needs at least one particle, and the body's particle count must fit an int32
   // index. Other bodies are counted when their particles are made (scene_setup.cpp).
-  if ((b.shape != "box" && b.shape != "plate") || b.particles != "grid") return b;
+  if ((b.shape != "box" && b.shape != "plate") || b.particles != "grid" || b.lattice_origin) return b;
   const std::string size_key = b.shape == "box" ? "size" : "width, depth, thickness";
   double count = 1;
   for (int a = 0; a < 3; ++a) {
@@ -899,7 +925,8 @@ SceneCollider parse_collider(const TableReader& r) {
   // A mesh: its file, scale and grid spacing, and only for a mesh.
   for (std::string_view key : {"mesh", "scale", "cell"})
     if (r.has(key) && c.shape != "mesh")
-      r.fail(key, "a " + c.shape + " collider has no " + std::string(key), "mesh, scale and cell for shape = \"mesh\"");
+      r.fail(key, "a " + c.shape + " collider has no " + std::string(key),
+             "mesh, scale and cell for shape = \"mesh\"");
   if (c.shape == "mesh") {
     r.string("mesh", c.mesh, {}, Presence::required);
     if (c.mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
@@ -926,7 +953,8 @@ SceneCollider parse_collider(const TableReader& r) {
   if (c.mass || c.density) {
     const std::string_view key = c.mass ? "mass" : "density";
     if (c.shape == "plane")
-      r.fail(key, "a plane cannot be free (it has no finite volume)", "a sphere, box, capsule, cylinder or mesh");
+      r.fail(key, "a plane cannot be free (it has no finite volume)",
+             "a sphere, box, capsule, cylinder or mesh");
     if (!c.path.empty())
       r.fail("path", "a free collider moves as it is pushed", "velocity for its initial velocity");
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "cuda/parallel/comm.h"
 #include "host/geometry/box_grid.h"
 #include "host/geometry/grid_particles.h"
+#include "host/geometry/inside_test.h"
 #include "host/geometry/mesh_check.h"
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/random.h"
@@ -108,8 +110,41 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
 
 // Particles of one body at `spacing`: the box grid of box and plate bodies (the layout of
 // box_grid.h), else grid, tet, fattened-shell or Voronoi particles of the body's solid.
+// Grid particles on the body's lattice (`lattice_origin`): the lattice points inside its shape,
+// the surface included (a millionth of a spacing of slack), analytic for a box, plate, sphere or
+// cylinder, else by the solid's inside test.
+ParticleGeometry body_lattice_particles(const SceneBody& body, double spacing, int64_t max_particles,
+                                        const std::string& key) {
+  const Vec3d c = body.center, h = 0.5 * body.size;
+  const double slack = 1e-6 * spacing, r = body.radius + slack;
+  const std::string name = body.shape == "mesh" ? body.mesh_path : key;
+  auto lattice = [&](const Box3d& box, const std::function<bool(const Vec3d&)>& inside) {
+    return lattice_particles(box, *body.lattice_origin, spacing, inside, max_particles, name);
+  };
+  if (body.shape == "box" || body.shape == "plate")
+    return lattice({c - h, c + h}, [&](const Vec3d& p) {
+      for (int a = 0; a < 3; ++a)
+        if (std::abs(p[size_t(a)] - c[size_t(a)]) > h[size_t(a)] + slack) return false;
+      return true;
+    });
+  if (body.shape == "sphere")
+    return lattice({c - Vec3d{r, r, r}, c + Vec3d{r, r, r}},
+                   [&](const Vec3d& p) { return distance2(p, c) <= r * r; });
+  if (body.shape == "cylinder") {
+    const double half = 0.5 * body.height + slack;
+    return lattice({c - Vec3d{r, half, r}, c + Vec3d{r, half, r}}, [&](const Vec3d& p) {
+      const double x = p[0] - c[0], z = p[2] - c[2];
+      return x * x + z * z <= r * r && std::abs(p[1] - c[1]) <= half;
+    });
+  }
+  const TriMesh solid = body_solid(body, body_solid_edge(body, spacing), key);
+  const InsideTest inside(solid);
+  return lattice(bounds(solid), [&](const Vec3d& p) { return inside.inside(p); });
+}
+
 ParticleGeometry body_particles(const SceneBody& body, double spacing, double spacing_factor, uint64_t seed,
                                 int64_t max_particles, const std::string& key) {
+  if (body.lattice_origin) return body_lattice_particles(body, spacing, max_particles, key);
   if ((body.shape == "box" || body.shape == "plate") && body.particles == "grid")
     return box_grid_particles(body.center, body.size, spacing);
   const TriMesh solid = body_solid(body, body_solid_edge(body, spacing), key);

@@ -109,14 +109,15 @@ TEST(Colliders, ContactLawPushesDampsAndRubs) {
   EXPECT_EQ(f.x, 0);
 }
 
-TEST(Colliders, LammpsIndentLawIsKTimesTheDepthSquared) {
-  // LAMMPS fix indent, sphere of radius R: F = K (R - r)^2 on a point at distance r < R, radial.
+TEST(Colliders, LammpsIndentLawIsKTimesTheDepthSquaredPerVolume) {
+  // LAMMPS fix indent, sphere of radius R: K (R - r)^2 on a point at distance r < R, radial; on a
+  // peridynamic atom (atom_style peri) a force density, so K (R - r)^2 V on the particle.
   Collider c = shape(kColliderSphere, {real(5e-4), 0, 0});
   c.law = kLawLammpsIndent;
-  c.stiffness = real(1e17);  // examples/peri's K [N/m^2]
+  c.stiffness = real(1e17);  // examples/peri's K
   const real volume = real(1e-12), mass = real(2e-9), dt = real(1e-8);
   const Vec3 f = collider_force(c, {0, 0, real(4e-4)}, {0, 0, -1}, volume, mass, dt);
-  EXPECT_NEAR(f.z, 1e17 * 1e-4 * 1e-4, 1e-3 * 1e9);
+  EXPECT_NEAR(f.z, 1e17 * 1e-4 * 1e-4 * 1e-12, 1e-3 * 1e-3);
   EXPECT_EQ(f.x, 0);
   // Only points inside count (no particle radius), and there is no damping or friction.
   EXPECT_EQ(collider_force(c, {0, 0, real(5.1e-4)}, {0, 0, 0}, volume, mass, dt).z, 0);

@@ -68,3 +68,63 @@ TEST(SceneSetup, FreeCollidersGetTheirShapesMassAndInertia) {
 
 }  // namespace
 }  // namespace pd
+
+namespace pd {
+namespace {
+
+// `lattice_origin`: LAMMPS's `lattice sc 0.0005` + `create_atoms` in `region cylinder y 0 0 0.005
+// -0.005 0` (examples/peri) makes 3,487 atoms, the lattice points of the cylinder, its surface
+// included; a body on that lattice has the same points.
+TEST(SceneSetup, LatticeOriginBuildsLammpsParticleSet) {
+  const std::string scene = R"(
+[simulation]
+dt = 1e-7
+[materials.m]
+model = "bond_based"
+density = 2200
+bulk_modulus = 1.49e10
+strain_limit = 5e-4
+[[bodies]]
+shape = "cylinder"
+radius = 0.005
+height = 0.005
+center = [0, -0.0025, 0]
+spacing = 0.0005
+lattice_origin = [0, 0, 0]
+material = "m"
+)";
+  const SetupResult s = setup_scene(parse_scene(scene, "scene.toml"), SetupOptions(1.0));
+  const ParticleSet& ps = s.input.particles;
+  ASSERT_EQ(ps.size(), 3487u);
+  for (const Vec3& p : ps.rest) {
+    for (real c : {p.x, p.y, p.z}) EXPECT_NEAR(double(c) / 0.0005, std::round(double(c) / 0.0005), 1e-6);
+    EXPECT_LE(double(p.x) * p.x + double(p.z) * p.z, 0.005 * 0.005 * (1 + 1e-6));
+    EXPECT_GE(p.y, real(-0.005 - 1e-9));
+    EXPECT_LE(p.y, real(1e-9));
+  }
+  EXPECT_NEAR(double(ps.volume[0]), 1.25e-10, 1e-16);
+  // A box on a shifted lattice: the points of [-0.001, 0.001] x ... at 0.0005 + k 0.001.
+  const SetupResult b = setup_scene(
+      parse_scene("[simulation]\ndt = 1e-7\n[materials.m]\nmodel = \"bond_based\"\ndensity = 2200\n"
+                  "bulk_modulus = 1e9\nstrain_limit = 1e-3\n[[bodies]]\nsize = [0.002, 0.002, 0.002]\n"
+                  "spacing = 0.001\nlattice_origin = [0.0005, 0.0005, 0.0005]\nmaterial = \"m\"\n",
+                  "scene.toml"),
+      SetupOptions(1.0));
+  EXPECT_EQ(b.input.particles.size(), 8u);
+}
+
+TEST(SceneSetup, LatticeOriginIsForGridParticlesOnly) {
+  try {
+    parse_scene(
+        "[simulation]\ndt = 1e-7\n[materials.m]\nmodel = \"bond_based\"\ndensity = 2200\n"
+        "bulk_modulus = 1e9\nstrain_limit = 1e-3\n[[bodies]]\nsize = [0.01, 0.01, 0.01]\n"
+        "spacing = 0.001\nparticles = \"voronoi\"\nlattice_origin = [0, 0, 0]\nmaterial = \"m\"\n",
+        "scene.toml");
+    ADD_FAILURE() << "lattice_origin accepted for Voronoi particles";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies[0].lattice_origin"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace pd
