@@ -186,6 +186,19 @@ double bounding_radius(const Collider& c, const TriMesh& mesh) {
   }
 }
 
+// The fastest a point of a collider's surface moves: its centre's speed (the fastest segment of a
+// path; a free body's initial speed) plus its turn times its bounding radius.
+double top_speed(const Collider& c, const ColliderScript& s) {
+  double centre = norm(s.velocity);
+  for (size_t k = 1; k < s.path.size(); ++k) {
+    const Keyframe &a = s.path[k - 1], &b = s.path[k];
+    const double d = std::sqrt((b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]) +
+                               (b[3] - a[3]) * (b[3] - a[3]));
+    if (b[0] > a[0]) centre = std::max(centre, d / (b[0] - a[0]));
+  }
+  return centre + norm(s.omega) * double(c.bound);
+}
+
 }  // namespace
 
 // The rotation (row major, shape frame to world) that turns the shape's y axis onto `axis`.
@@ -267,6 +280,14 @@ double colliders_critical_dt(const SimulationInput& in, const std::vector<double
       const double rate = stiffness * std::cbrt(double(ps.volume[i])) / double(ps.mass[i]);
       dt = std::fmin(dt, std::sqrt(2.0 / (2.0 / (m_dt * m_dt) + rate)));
     }
+  // A moving collider must not sweep through more than a quarter of the smallest particle in a
+  // step, or a particle it meets is pressed deep at once and the push adds energy.
+  double smallest = HUGE_VAL, fastest = 0;
+  for (real v : ps.volume) smallest = std::min(smallest, std::cbrt(double(v)));
+  for (size_t k = 0; k < in.colliders.size(); ++k)
+    if (in.colliders[k].law == kLawPenalty)
+      fastest = std::max(fastest, top_speed(in.colliders[k], in.motion.colliders[k]));
+  if (fastest > 0 && smallest < HUGE_VAL) dt = std::fmin(dt, 0.25 * smallest / fastest);
   // Free colliders touching each other (body_contact.h): the stiffest such contact's step.
   std::vector<double> masses;
   for (const ColliderScript& s : in.motion.colliders) masses.push_back(s.free() ? s.mass : 0.0);
