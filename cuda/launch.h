@@ -192,14 +192,6 @@ void launch_bodyforces(Exec& ex, ParticlesView p, StepParams sp) {
   ex.parallel_for("pd/bodyforces", p.n, [=] PD_HD(int64_t i) { body_forces(int32_t(i), p, sp); });
 }
 
-// The particles' reaction on collider k (a free body), after `bodyforces` at the same state.
-template <class Exec>
-Wrench reduce_collider_reaction(Exec& ex, ParticlesView p, StepParams sp, int64_t k) {
-  return ex.template reduce_sum<Wrench>("pd/collider_reaction", p.n, [=] PD_HD(int64_t i) {
-    return collider_reaction(int32_t(i), p, sp.colliders[k], sp.dt, sp.collider_grids.data());
-  });
-}
-
 // Kernels 6 and 7.
 // With contact lists (c.moved set), the update also reports a particle that left its skin.
 template <class Exec>

@@ -292,6 +292,18 @@ struct Collider {
   int64_t grid_offset = 0;
 };
 
+// The colliders binned on a coarse grid of dims^3 cubic cells from `lo` (cuda/engine/collider_grid.h):
+// a particle reads the colliders whose reach overlaps its cell, and the unbounded ones (planes).
+// lists: per cell the start of its colliders (cells + 1 entries), then the colliders of every cell,
+// then the unbounded ones from `unbounded`. Empty: no colliders.
+struct ColliderGridView {
+  Vec3 lo{0, 0, 0};
+  real inv_cell = 0;
+  int32_t dims = 0;
+  int32_t unbounded = 0;  // in `lists`, to its end
+  ArrayView<const int32_t> lists;
+};
+
 // Everything the per-step kernels read that is not per-particle.
 struct StepParams {
   real dt = 0;
@@ -306,6 +318,10 @@ struct StepParams {
   AnchorMotion anchor[kMaxAnchors];       // indexed by ParticlesView::anchor
   ArrayView<const Collider> colliders;    // on the backend (the engine's copy); empty: none
   ArrayView<const float> collider_grids;  // the mesh colliders' distance grids, one after another
+  // Per collider: its centre and bounding radius (w < 0: unbounded), which a particle's loop reads
+  // before the whole collider, so a far collider costs one distance (16 bytes, not the struct).
+  ArrayView<const Vec4> collider_spheres;
+  ColliderGridView collider_grid;
 };
 
 // An anchored particle whose group has not been released: its motion is prescribed.

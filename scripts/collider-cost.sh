@@ -27,7 +27,7 @@ spheres() {
     for j in $(seq 0 7); do
       [ $k -ge "$n" ] && return
       printf '[[colliders]]\nshape = "sphere"\nradius = 0.015\ncenter = [%s, %s, 0.027]\n%s\n' \
-        "$(echo "-0.14 + 0.04 * $i" | bc -l)" "$(echo "-0.14 + 0.04 * $j" | bc -l)" "$extra"
+        "$(awk -v i="$i" 'BEGIN {print -0.14 + 0.04 * i}')" "$(awk -v j="$j" 'BEGIN {print -0.14 + 0.04 * j}')" "$extra"
       k=$((k + 1))
     done
   done
@@ -52,7 +52,7 @@ material = "m"
 TOML
 "$bin" shapes "$out/sphere-body.toml" --edge 0.0015 --out "$out/mesh" >"$out/shapes.log"
 triangles=$(grep -c '^f ' "$out/mesh/ball.obj")
-printf '[[colliders]]\nshape = "mesh"\nmesh = "%s"\ncenter = [0.0, 0.0, 0.112]\n' "$PWD/$out/mesh/ball.obj" |
+printf '[[colliders]]\nshape = "mesh"\nmesh = "%s"\ncenter = [0.0, 0.0, 0.112]\n' "$(cd "$out/mesh" && pwd)/ball.obj" |
   variant mesh100k
 
 printf '%-10s %12s %12s %10s  %s\n' variant "step [ms]" "wall [ms]" "excess" "bodyforces [ms]"
@@ -60,9 +60,9 @@ for name in plain fixed64 mesh100k free8 free64; do
   "$bin" bench --scene "$out/$name.toml" --scale "$scale" --backend "$backend" --steps 500 --warmup 50 \
     --out "$out/bench" >"$out/$name.log" 2>&1 || { echo "$name: bench failed (see $out/$name.log)" >&2; exit 1; }
   step=$(awk '/^step \(all kernels\)/ {print $5}' "$out/$name.log")
-  wall=$(awk '/^wall/ {printf "%.4f", $2 / $4 * 1000}' "$out/$name.log")
+  wall=$(awk '/^wall/ {printf "%.4f", $2 / $5 * 1000}' "$out/$name.log")
   body=$(awk '/^pd\/bodyforces/ {print $3}' "$out/$name.log")
   [ "$name" = plain ] && plain_wall=$wall
-  printf '%-10s %12s %12s %9.1f%%  %s\n' "$name" "$step" "$wall" "$(echo "100 * ($wall / $plain_wall - 1)" | bc -l)" "$body"
+  printf '%-10s %12s %12s %9.1f%%  %s\n' "$name" "$step" "$wall" "$(awk -v a="$wall" -v b="$plain_wall" 'BEGIN {print 100 * (a / b - 1)}')" "$body"
 done
 echo "mesh: $triangles triangles; $(grep -h '^device\|^bench' "$out/plain.log" | head -1)"

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "cuda/engine/collider_grid.h"
+#include "cuda/engine/collider_reactions.h"
 #include "cuda/engine/contact_lists.h"
 #include "cuda/engine/engine.h"
 #include "cuda/engine/engine_state.h"
@@ -79,6 +81,10 @@ class EngineImpl final : public Engine {
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0 || !colliders_host_.empty();
     colliders_ = mem_.make_from(colliders_host_);
     step_params_.colliders = view_of(colliders_);
+    collider_spheres_ = mem_.template make<Vec4>(colliders_host_.size());
+    step_params_.collider_spheres = view_of(collider_spheres_);
+    for (real v : in.particles.volume)
+      largest_particle_ = std::max(largest_particle_, real(std::cbrt(double(v))));
     grids_host_ = in.collider_grids;
     probes_ = in.collider_probes;
     collider_grids_ = mem_.make_from(grids_host_);
@@ -86,7 +92,10 @@ class EngineImpl final : public Engine {
     motion_.apply(time_, step_params_);
     pose_colliders(time_);
     compute_forces();
-    if (!free_.empty()) react_and_touch();
+    if (!free_.empty()) {
+      reactions_ = ColliderReactions<Exec>(mem_, owned_, free_.colliders(), colliders_host_.size());
+      react_and_touch();
+    }
     exec_.flush_stats();
   }
 
@@ -266,7 +275,7 @@ class EngineImpl final : public Engine {
   // in rank order on rank 0 and sent to all, so every rank moves the bodies alike) and from the
   // other colliders.
   void react_and_touch() {
-    free_.react(exec_, particles(), step_params_);
+    free_.set_reactions(reactions_.reduce(exec_, particles(), step_params_));
     if (world_ && world_->size() > 1) {
       const std::vector<Wrench> mine = free_.reactions();
       std::vector<char> bytes(mine.size() * sizeof(Wrench));
@@ -293,6 +302,20 @@ class EngineImpl final : public Engine {
     motion_.pose_colliders(t, colliders_host_);
     free_.pose(colliders_host_);
     colliders_.upload(colliders_host_);
+    spheres_host_.resize(colliders_host_.size());
+    for (size_t k = 0; k < colliders_host_.size(); ++k) {
+      const Collider& c = colliders_host_[k];
+      spheres_host_[k] = with_w(c.center, c.bound > 0 ? c.bound : real(-1));
+    }
+    collider_spheres_.upload(spheres_host_);
+    // The grid, into its device array (grown to twice what it needs when it no longer fits).
+    const ColliderGridView g = ColliderGrid::build(colliders_host_, largest_particle_, grid_lists_host_);
+    if (grid_lists_host_.size() > collider_grid_lists_.size())
+      collider_grid_lists_ = mem_.template make<int32_t>(2 * grid_lists_host_.size());
+    exec_.upload(collider_grid_lists_.data(), grid_lists_host_.data(),
+                 grid_lists_host_.size() * sizeof(int32_t));
+    step_params_.collider_grid = g;
+    step_params_.collider_grid.lists = {collider_grid_lists_.data(), int64_t(grid_lists_host_.size())};
   }
 
   // Kernels 1-5: the forces at the current positions.
@@ -385,7 +408,13 @@ class EngineImpl final : public Engine {
   std::vector<Collider> colliders_host_;
   bool moving_colliders_ = motion_.colliders_move();
   FreeBodies free_{motion_.colliders};
+  ColliderReactions<Exec> reactions_;  // the particles' reaction on the free bodies
   DeviceArray<Collider, Exec> colliders_;
+  std::vector<Vec4> spheres_host_;  // the colliders' bounding spheres, and on the backend
+  DeviceArray<Vec4, Exec> collider_spheres_;
+  real largest_particle_ = 0;             // V^(1/3) of the largest particle
+  std::vector<int32_t> grid_lists_host_;  // the colliders' grid (collider_grid.h), and on the backend
+  DeviceArray<int32_t, Exec> collider_grid_lists_;
   std::vector<float> grids_host_;  // the mesh colliders' distance grids, and on the backend
   DeviceArray<float, Exec> collider_grids_;
   std::vector<std::vector<Vec3>> probes_;  // the meshes' probe points (body_contact.h)

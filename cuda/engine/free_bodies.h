@@ -15,7 +15,7 @@
 
 #include "cuda/engine/body_contact.h"
 #include "cuda/engine/motion.h"
-#include "cuda/launch.h"
+#include "cuda/kernels/colliders.h"
 
 namespace pd {
 
@@ -52,10 +52,11 @@ class FreeBodies {
     }
   }
 
-  // The particles' reaction on every body at the current state (after `bodyforces`).
-  template <class Exec>
-  void react(Exec& exec, const ParticlesView& p, const StepParams& sp) {
-    for (Body& b : bodies_) b.reaction = reduce_collider_reaction(exec, p, sp, b.collider);
+  // The bodies' collider indices, in the order of reactions() and set_reactions().
+  std::vector<int32_t> colliders() const {
+    std::vector<int32_t> out;
+    for (const Body& b : bodies_) out.push_back(int32_t(b.collider));
+    return out;
   }
 
   // Adds the contacts between colliders (body_contact.h), at their pose in `posed`, to the

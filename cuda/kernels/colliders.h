@@ -130,12 +130,18 @@ PD_HD inline SurfacePoint collider_surface(const Collider& c, Vec3 x, const floa
 // The force of collider c on a particle of size h = V^(1/3) at x with velocity v and mass `mass`
 // over a step of dt (`grids`: the mesh colliders' distance grids). A particle farther from the
 // centre than the shape's bounding radius and its own reach h/2 is not touched (no distance taken).
+// Whether a particle of size h at x is beyond the reach of a collider of that centre and bounding
+// radius (0 or less: unbounded).
+PD_HD inline bool out_of_reach(Vec3 x, real size, Vec3 center, real bound) {
+  if (!(bound > 0)) return false;
+  const real reach = real(1.0001) * bound + real(0.5) * size;
+  return length_squared(x - center) > reach * reach;
+}
+
+// (`checked`: the caller has found the particle within reach.)
 PD_HD inline Vec3 collider_push(const Collider& c, Vec3 x, Vec3 v, real size, real mass, real dt,
-                                const float* grids) {
-  if (c.bound > 0) {
-    const real reach = real(1.0001) * c.bound + real(0.5) * size;
-    if (length_squared(x - c.center) > reach * reach) return {0, 0, 0};
-  }
+                                const float* grids, bool checked = false) {
+  if (!checked && out_of_reach(x, size, c.center, c.bound)) return {0, 0, 0};
   const SurfacePoint s = collider_surface(c, x, grids);
   if (c.law == kLawLammpsIndent) {
     const real inside = -s.distance;
@@ -171,8 +177,20 @@ PD_HD inline Vec3 colliders_force(int32_t i, const ParticlesView& p, const StepP
   if (count == 0) return f;
   const Vec3 x = p.position(i), v = p.vel[i];
   const real mass = real(1) / p.inv_mass[i], size = std::cbrt(p.volume(i));
-  for (int64_t k = 0; k < count; ++k)
-    f += collider_push(sp.colliders[k], x, v, size, mass, sp.dt, sp.collider_grids.data());
+  const ColliderGridView& g = sp.collider_grid;
+  const ArrayView<const int32_t> lists = g.lists;
+  for (int64_t j = g.unbounded; j < lists.size; ++j)  // planes
+    f += collider_push(sp.colliders[lists[j]], x, v, size, mass, sp.dt, sp.collider_grids.data(), true);
+  const Vec3 q = g.inv_cell * (x - g.lo);
+  const real top = real(g.dims);
+  if (!(q.x >= 0 && q.y >= 0 && q.z >= 0 && q.x < top && q.y < top && q.z < top)) return f;
+  const int32_t cell = (int32_t(q.z) * g.dims + int32_t(q.y)) * g.dims + int32_t(q.x);
+  for (int32_t j = lists[cell]; j < lists[cell + 1]; ++j) {
+    const int32_t k = lists[j];
+    const Vec4 sphere = sp.collider_spheres[k];
+    if (out_of_reach(x, size, xyz(sphere), sphere.w)) continue;
+    f += collider_push(sp.colliders[k], x, v, size, mass, sp.dt, sp.collider_grids.data(), true);
+  }
   return f;
 }
 
