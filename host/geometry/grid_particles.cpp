@@ -27,6 +27,16 @@ void grid_adjacency(ParticleGeometry& g, const std::vector<int32_t>& id, const i
   g.adjacency = adjacency_from_pairs(g.size(), std::move(pairs));
 }
 
+// The cubes' volumes, their grid-face adjacency (id: each grid cell's particle or -1) and spacing.
+void finish_cubes(ParticleGeometry& g, double spacing, const std::vector<int32_t>& id, const int64_t n[3],
+                  StageClock& clock) {
+  g.volume.assign(g.size(), spacing * spacing * spacing);
+  grid_adjacency(g, id, n);
+  clock.lap("adjacency");
+  compute_lambda(g);
+  clock.lap("nearest distances");
+}
+
 }  // namespace
 
 void check_particle_budget(double volume, double particle_volume, int64_t max_particles,
@@ -72,12 +82,8 @@ ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t ma
         g.position.push_back({x, y, z});
       }
     }
-  g.volume.assign(g.size(), spacing * spacing * spacing);
   clock.lap("grid cells inside (ray per row)");
-  grid_adjacency(g, id, n);
-  clock.lap("adjacency");
-  compute_lambda(g);
-  clock.lap("nearest distances");
+  finish_cubes(g, spacing, id, n, clock);
   return g;
 }
 
@@ -108,12 +114,8 @@ ParticleGeometry lattice_particles(const Box3d& box, const Vec3d& origin, double
         id[size_t((k * n[1] + j) * n[0] + i)] = int32_t(g.position.size());
         g.position.push_back(p);
       }
-  g.volume.assign(g.size(), spacing * spacing * spacing);
   clock.lap("lattice points inside");
-  grid_adjacency(g, id, n);
-  clock.lap("adjacency");
-  compute_lambda(g);
-  clock.lap("nearest distances");
+  finish_cubes(g, spacing, id, n, clock);
   return g;
 }
 

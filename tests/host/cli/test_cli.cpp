@@ -117,6 +117,19 @@ TEST_F(Cli, UnstableTimeStepIsRefused) {
   EXPECT_NE(u.output.find("--allow-unstable-dt"), std::string::npos);
 }
 
+// A collider too stiff for the scene's dt: refused, the message naming the colliders' push.
+TEST_F(Cli, TooStiffColliderIsRefused) {
+  const std::string path = (dir_ / "scene.toml").string();
+  std::ofstream(path) << "[simulation]\ndt = 1e-7\nframes = 1\nsteps_per_frame = 5\n"
+                      << "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+                      << "[[bodies]]\nmaterial = \"glass\"\n"
+                      << kGoodBody
+                      << "[[colliders]]\nshape = \"plane\"\ncenter = [0, -0.1, 0]\nstiffness = 1e15\n";
+  const Result u = run_perifrac("run " + path + " --out " + out());
+  expect_scene_error(u, "simulation.dt");
+  EXPECT_NE(u.output.find("colliders"), std::string::npos) << u.output;
+}
+
 // dt = "auto" runs at half the stable time step and says so.
 TEST_F(Cli, AutomaticTimeStep) {
   const std::string path = (dir_ / "scene.toml").string();

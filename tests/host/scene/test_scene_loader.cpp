@@ -361,6 +361,16 @@ TEST(SceneLoader, ColliderMistakes) {
                "colliders[0].friction", "no friction");
   expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nlaw = \"hertz\"\n",
                "colliders[0].law", "\"lammps_indent\"");
+  expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmass = 0\n", "colliders[0].mass");
+  expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\ndensity = -5\n",
+               "colliders[0].density");
+  expect_error(head + "shape = \"mesh\"\ncenter = [0, 0, 0]\n", "colliders[0].mesh", "missing");
+  expect_error(head + "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmesh = \"a.obj\"\n",
+               "colliders[0].mesh", "a sphere collider has no mesh");
+  expect_error(head + "shape = \"mesh\"\nmesh = \"a.obj\"\ncenter = [0, 0, 0]\nradius = 1\n",
+               "colliders[0].radius", "mesh, scale and cell");
+  expect_error(head + "shape = \"mesh\"\nmesh = \"a.obj\"\ncenter = [0, 0, 0]\ncell = 0\n",
+               "colliders[0].cell");
 }
 
 TEST(SceneLoader, CracksAndRegionsParse) {
