@@ -29,7 +29,8 @@ std::vector<TriMesh> add_colliders(const Scene& scene, SimulationInput& in);
 double colliders_critical_dt(const SimulationInput& in, const std::vector<double>& material_dt);
 
 // One line on stderr per collider that starts with particles' centres inside it.
-void warn_of_particles_inside_colliders(const SimulationInput& in, const std::vector<std::string>& body_names);
+void warn_of_particles_inside_colliders(const SimulationInput& in,
+                                        const std::vector<std::string>& body_names);
 
 // Volume, centroid and inertia tensor (about the centroid, per unit density, row major) of a
 // closed, outward mesh, from the signed tetrahedra of its triangles with the origin.

@@ -53,7 +53,7 @@ struct SetupResult {
   ElementAdjacency adjacency;  // which particles' elements share a face, over all bodies
   bool all_cubes = true;       // every body is made of grid cubes
   EmbeddedTets embedded;  // the tet meshes of the tet and shell bodies (Chen sec. 5.2), tets as particles
-  std::vector<VoronoiBody> voronoi;  // the Voronoi bodies
+  std::vector<VoronoiBody> voronoi;      // the Voronoi bodies
   std::vector<TriMesh> collider_meshes;  // per collider: a mesh collider's surface in its frame, else empty
 };
 
