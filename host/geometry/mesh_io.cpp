@@ -5,24 +5,20 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 
 #include "host/geometry/mesh_io.h"
+#include "host/io/input_file.h"
 
 namespace pd {
 
 namespace detail {
 
 std::string read_file_bytes(const std::string& path) {
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  auto cannot_read = [&] {
-    return MeshError(path, "cannot read mesh file: " + std::string(std::strerror(errno)));
-  };
-  if (!file) throw cannot_read();
-  std::string bytes;
-  char buf[1 << 16];
-  size_t got = 0;
-  while ((got = std::fread(buf, 1, sizeof buf, file.get())) > 0) bytes.append(buf, got);
-  if (std::ferror(file.get())) throw cannot_read();
+  std::string why;
+  std::optional<std::string> read = read_input_file(path, why);
+  if (!read) throw MeshError(path, "cannot read mesh file: " + why);
+  std::string bytes = std::move(*read);
   if (bytes.empty()) throw MeshError(path, "the file is empty (allowed: a mesh with at least one triangle)");
   return bytes;
 }

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -27,6 +28,7 @@
 
 #include "cuda/views.h"
 #include "host/geometry/shapes.h"
+#include "host/io/input_file.h"
 #include "host/scene/scene.h"
 
 namespace pd {
@@ -1275,18 +1277,10 @@ Scene parse_scene(const std::string& text, const std::string& path,
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  // Read the whole file; fopen/fread set errno for the message (ENOENT, EACCES, EISDIR, ...).
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  auto cannot_read = [&] {
-    return SceneError(path, "", "cannot read scene file: " + std::string(std::strerror(errno)));
-  };
-  if (!file) throw cannot_read();
-  std::string text;
-  char buf[65536];
-  size_t got = 0;
-  while ((got = std::fread(buf, 1, sizeof buf, file.get())) > 0) text.append(buf, got);
-  if (std::ferror(file.get())) throw cannot_read();
-  return parse_scene(text, path, overrides);
+  std::string why;  // (a regular file within the input limit, host/io/input_file.h)
+  const std::optional<std::string> text = read_input_file(path, why);
+  if (!text) throw SceneError(path, "", "cannot read scene file: " + why);
+  return parse_scene(*text, path, overrides);
 }
 
 }  // namespace pd
