@@ -347,7 +347,21 @@ int main(int argc, char** argv) {
   for (const auto add : {add_run, add_bench, add_bench_render, add_bench_geometry, add_shapes,
                          add_bench_fragments, add_profile, add_validate, add_render, add_compare, add_info})
     add(app, &exit_code);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {  // a command-line mistake: one line, exit code 2
+    std::fprintf(stderr,
+                 "error: %s (perifrac --help lists the commands, perifrac COMMAND --help the options)\n",
+                 e.what());
+    leave_world();
+    return kExitUsage;
+  }
   leave_world();
   return exit_code;
 }

@@ -150,7 +150,17 @@ TEST_F(Cli, MissingSceneFile) {
 }
 
 TEST_F(Cli, BadOptionValues) {
-  EXPECT_NE(run_perifrac("run " + scene(kGoodBody) + " --backend gpu").exit_code, 0);
+  // Command-line mistakes: one line starting "error:" that names the option, exit code 2.
+  for (const std::string& args : {"run " + scene(kGoodBody) + " --backend gpu", std::string("run"),
+                                  "run " + scene(kGoodBody) + " --frames x", std::string("frobnicate"),
+                                  "run " + scene(kGoodBody) + " --no-such-option"}) {
+    const Result bad = run_perifrac(args);
+    EXPECT_EQ(bad.exit_code, 2) << args << "\n" << bad.output;
+    EXPECT_EQ(bad.output.rfind("error: ", 0), 0u) << args << "\n" << bad.output;
+    EXPECT_EQ(bad.output.find('\n'), bad.output.size() - 1) << "not one line: " << bad.output;
+  }
+  EXPECT_NE(run_perifrac("run " + scene(kGoodBody) + " --backend gpu").output.find("--backend"),
+            std::string::npos);
   const Result r = run_perifrac("run " + scene(kGoodBody) + " --scale -1 --out " + out());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--scale"), std::string::npos) << r.output;
