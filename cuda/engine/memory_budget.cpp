@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "cuda/state_fields.h"
@@ -13,13 +14,16 @@ namespace pd {
 
 namespace {
 
-// A cap in MiB from the environment, or `fallback`.
+// A cap in MiB from the environment, or `fallback`; a value that is not a finite number of MiB
+// from 0 is an error naming the variable (std::invalid_argument).
 size_t capped(const char* variable, size_t bytes) {
   const char* v = std::getenv(variable);
   if (!v || !*v) return bytes;
   char* end = nullptr;
   const double mb = std::strtod(v, &end);
-  if (*end != '\0' || !(mb >= 0)) return bytes;
+  if (*end != '\0' || !(mb >= 0) || !(mb < 1e12))
+    throw std::invalid_argument(std::string(variable) + ": '" + v +
+                                "' is not allowed (allowed: a number of MiB from 0, below 1e12)");
   return std::min(bytes, size_t(mb * 1024 * 1024));
 }
 

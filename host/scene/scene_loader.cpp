@@ -1203,6 +1203,8 @@ void apply_override(toml::table& root, const std::string& setting, const std::st
   key.erase(0, key.find_first_not_of(" \t"));
   auto fail = [&](const std::string& what) { scene_error(file, "--set " + key, what, allowed); };
   if (eq == std::string::npos || eq == 0) fail("expected KEY=VALUE");
+  if (setting.find_first_of("\n\r") != std::string::npos)
+    fail("it holds a line break (one KEY=VALUE per --set)");
   toml::table value_doc;
   try {
     value_doc = toml::parse("value = " + setting.substr(eq + 1));
@@ -1236,6 +1238,7 @@ void apply_override(toml::table& root, const std::string& setting, const std::st
       const std::string digits = key.substr(i + 1, close - i - 1);
       if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
         fail("[" + digits + "] is not an index");
+      if (digits.size() > 9) fail("[" + digits + "] is past the end of any list");
       toml::array* a = here->as_array();
       const size_t index = std::stoul(digits);
       if (!a || index >= a->size()) fail("'" + name + "' has no element " + digits);

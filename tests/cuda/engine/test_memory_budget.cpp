@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
+
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -36,6 +39,18 @@ TEST(MemoryBudget, HostMemoryIsReadAndCanBeCapped) {
   const ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", "10");
   EXPECT_EQ(host_available_bytes(), size_t(10) << 20);
   EXPECT_EQ(backend_available_bytes(Backend::kCpu), size_t(10) << 20);
+}
+
+TEST(MemoryBudget, BadCapIsAnErrorNamingTheVariable) {
+  for (const char* bad : {"lots", "-1", "12MB", "nan"}) {
+    const ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", bad);
+    try {
+      host_available_bytes();
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("PERIFRAC_HOST_MEMORY_MB"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(MemoryBudget, BudgetFollowsTheFreeMemory) {

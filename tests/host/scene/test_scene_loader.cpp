@@ -458,6 +458,9 @@ TEST(SceneLoader, OverrideMistakes) {
   EXPECT_NE(error_with("simulation.frames=seven").find("the value is not TOML"), std::string::npos);
   EXPECT_NE(error_with("bodies[3].spacing=1").find("has no element 3"), std::string::npos);
   EXPECT_NE(error_with("bodies[x].spacing=1").find("[x] is not an index"), std::string::npos);
+  EXPECT_NE(error_with("bodies[99999999999999999999].spacing=1").find("past the end of any list"),
+            std::string::npos);
+  EXPECT_NE(error_with("simulation.frames=3\nsimulation.seed=4").find("line break"), std::string::npos);
   EXPECT_NE(error_with("materials.glass.density.x=1").find("not a table"), std::string::npos);
   // A valid override that makes the scene invalid is reported like a mistake in the file.
   EXPECT_NE(error_with("materials.glass.density=-1").find("materials.glass.density: -1 is out of range"),
