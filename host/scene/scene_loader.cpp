@@ -1119,7 +1119,7 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     sim.string("dt", dt_word, {"auto"});
     scene.dt_auto = true;
   } else {
-    Bounds dt = greater_than(0);
+    Bounds dt = at_least(1e-15);  // (below a femtosecond the clock of a long run stops advancing)
     dt.note = "or \"auto\" for half the stable time step";
     sim.number("dt", scene.dt, dt);
   }

@@ -444,6 +444,11 @@ TEST(SceneLoader, OverridesApplyBeforeValidation) {
   EXPECT_EQ(s.bodies[0].velocity[2], 3);
 }
 
+TEST(SceneLoader, TimeStepTooSmallForTheClock) {
+  // 5e-324 (a denormal) would leave the simulated time at 0 however many steps run.
+  expect_error("[simulation]\ndt = 5e-324\n" + kMinimal, "simulation.dt", "1e-15");
+}
+
 TEST(SceneLoader, OverrideMistakes) {
   auto error_with = [&](const std::string& setting) {
     try {
