@@ -109,6 +109,13 @@ FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<in
   return f;
 }
 
+// A number as a user wrote it (%g).
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
 // Reads the checkpoint of `opt.resume` and takes over what the run was started with: the scene
 // (unless given again), backend (unless given), scale, steps per frame, blending, and the frame
 // count unless --frames extends it.
@@ -131,6 +138,9 @@ RunCheckpoint open_resume(RunOptions& opt) {
                       "' differ: a resumed run continues in its own folder");
   opt.out = opt.resume;
   if (opt.backend == "auto") opt.backend = c.backend;  // bit for bit needs the same backend
+  if (opt.scale_given && opt.scale != c.scale)
+    throw ResumeError("--scale " + format_number(opt.scale) + " differs from the " + format_number(c.scale) +
+                      " of the checkpointed run: a resumed run keeps its particles (leave --scale out)");
   opt.scale = c.scale;
   opt.blend_frames = c.blend_frames;
   opt.allow_unstable_dt = opt.allow_unstable_dt || c.allow_unstable_dt;

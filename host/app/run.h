@@ -14,6 +14,7 @@ struct RunOptions {
   int64_t steps_per_frame = -1;  // -1: the scene's
   std::string out;               // empty: out/<scene name>
   double scale = 1.0;
+  bool scale_given = false;  // --scale was on the command line (a resumed run refuses another)
   bool allow_unstable_dt = false;
   // Every particle finds its partners from its listed family, box-grid bodies too (no lattice
   // families): the families a run over several ranks uses, so one rank gives its bits.

@@ -75,7 +75,8 @@ void add_run(CLI::App& app, int* exit_code) {
   cmd->add_option("--steps-per-frame", run->steps_per_frame, "steps per frame (default: the scene's)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", run->out, "output folder (default: out/<scene name>)");
-  cmd->add_option("--scale", run->scale, "particle-count factor, e.g. 0.05 for a small CPU run");
+  CLI::Option* scale =
+      cmd->add_option("--scale", run->scale, "particle-count factor, e.g. 0.05 for a small CPU run");
   cmd->add_flag("--allow-unstable-dt", run->allow_unstable_dt, "run even if dt exceeds the stable time step");
   cmd->add_flag("--explicit-families", run->explicit_families,
                 "listed families for box-grid bodies too (what lattice families save, bench/NOTES.md)");
@@ -88,7 +89,8 @@ void add_run(CLI::App& app, int* exit_code) {
                   "write a checkpoint every M minutes of wall time (0: off; default 10)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--resume", run->resume, "continue the run in this output folder from its checkpoint");
-  on_parsed(cmd, exit_code, [run] {
+  on_parsed(cmd, exit_code, [run, scale] {
+    run->scale_given = scale->count() > 0;
     if (run->scene.empty() && run->resume.empty()) {
       std::fprintf(stderr, "error: run: give a scene file, or --resume DIR to continue a run\n");
       return int(kExitUsage);

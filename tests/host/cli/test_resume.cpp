@@ -268,6 +268,15 @@ TEST_F(Resume, RefusesAFolderWithoutCheckpoint) {
   expect_refusal({"run", "--resume", path("empty")}, log_, "holds no checkpoint.pck");
 }
 
+TEST_F(Resume, RefusesAnotherScale) {
+  const std::string out = path("out");
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "2", "--checkpoint-every", "2"},
+                log_),
+            0)
+      << read_all(log_);
+  expect_refusal({"run", "--resume", out, "--scale", "0.5"}, log_, "--scale 0.5 differs from the 1");
+}
+
 TEST_F(Resume, RefusesAnotherScene) {
   const std::string out = path("out");
   ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "1", "--checkpoint-every", "1"},
