@@ -36,6 +36,8 @@ std::string meta_text(const RunCheckpoint& c) {
     << "blend_frames " << c.blend_frames << "\n"
     << "allow_unstable_dt " << int(c.allow_unstable_dt) << "\n"
     << "explicit_families " << int(c.explicit_families) << "\n"
+    << "checkpoint_every " << c.checkpoint_every << "\n"
+    << "checkpoint_minutes " << exact(c.checkpoint_minutes) << "\n"
     << "backend " << c.backend << "\n"
     << "frame " << c.frame << "\n"
     << "step " << c.engine.step << "\n"
@@ -87,6 +89,9 @@ void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) 
   c.blend_frames = int(integer("blend_frames"));
   c.allow_unstable_dt = integer("allow_unstable_dt") != 0;
   c.explicit_families = kv.count("explicit_families") && integer("explicit_families") != 0;  // (added later)
+  if (kv.count("checkpoint_every"))
+    c.checkpoint_every = int64_t(integer("checkpoint_every"));  // (added later)
+  if (kv.count("checkpoint_minutes")) c.checkpoint_minutes = number("checkpoint_minutes");
   c.backend = get("backend");
   c.frame = int64_t(integer("frame"));
   c.engine.step = int64_t(integer("step"));

@@ -36,6 +36,8 @@ struct RunCheckpoint {
   int blend_frames = 0;
   bool allow_unstable_dt = false;
   bool explicit_families = false;
+  int64_t checkpoint_every = 0;  // --checkpoint-every and --checkpoint-minutes, kept by a resume
+  double checkpoint_minutes = 10;
   std::string backend;  // where it ran
   // Where it stands.
   int64_t frame = 0;  // the last frame written

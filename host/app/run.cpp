@@ -142,6 +142,8 @@ RunCheckpoint open_resume(RunOptions& opt) {
     throw ResumeError("--scale " + format_number(opt.scale) + " differs from the " + format_number(c.scale) +
                       " of the checkpointed run: a resumed run keeps its particles (leave --scale out)");
   opt.scale = c.scale;
+  if (!opt.checkpoint_every_given) opt.checkpoint_every = c.checkpoint_every;
+  if (!opt.checkpoint_minutes_given) opt.checkpoint_minutes = c.checkpoint_minutes;
   opt.blend_frames = c.blend_frames;
   opt.allow_unstable_dt = opt.allow_unstable_dt || c.allow_unstable_dt;
   if (opt.explicit_families != c.explicit_families && opt.explicit_families)
@@ -402,6 +404,8 @@ void write_run_checkpoint(const Simulation& sim, const RunOptions& opt, RunOutpu
   c.blend_frames = opt.blend_frames;
   c.allow_unstable_dt = opt.allow_unstable_dt;
   c.explicit_families = opt.explicit_families;
+  c.checkpoint_every = opt.checkpoint_every;
+  c.checkpoint_minutes = opt.checkpoint_minutes;
   c.backend = backend_name(sim.backend);
   c.frame = frame;
   sim.engine->save(c.engine);

@@ -15,6 +15,7 @@ struct RunOptions {
   std::string out;               // empty: out/<scene name>
   double scale = 1.0;
   bool scale_given = false;  // --scale was on the command line (a resumed run refuses another)
+  bool checkpoint_every_given = false, checkpoint_minutes_given = false;  // (else a resume keeps the run's)
   bool allow_unstable_dt = false;
   // Every particle finds its partners from its listed family, box-grid bodies too (no lattice
   // families): the families a run over several ranks uses, so one rank gives its bits.

@@ -83,14 +83,18 @@ void add_run(CLI::App& app, int* exit_code) {
   cmd->add_option("--blend-frames", run->blend_frames,
                   "blend a split fragment's transform over N frames (0: off)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--checkpoint-every", run->checkpoint_every, "write a checkpoint every N frames (0: off)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--checkpoint-minutes", run->checkpoint_minutes,
-                  "write a checkpoint every M minutes of wall time (0: off; default 10)")
-      ->check(CLI::NonNegativeNumber);
+  CLI::Option* every = cmd->add_option("--checkpoint-every", run->checkpoint_every,
+                                       "write a checkpoint every N frames (0: off)")
+                           ->check(CLI::NonNegativeNumber);
+  CLI::Option* minutes =
+      cmd->add_option("--checkpoint-minutes", run->checkpoint_minutes,
+                      "write a checkpoint every M minutes of wall time (0: off; default 10)")
+          ->check(CLI::NonNegativeNumber);
   cmd->add_option("--resume", run->resume, "continue the run in this output folder from its checkpoint");
-  on_parsed(cmd, exit_code, [run, scale] {
+  on_parsed(cmd, exit_code, [run, scale, every, minutes] {
     run->scale_given = scale->count() > 0;
+    run->checkpoint_every_given = every->count() > 0;
+    run->checkpoint_minutes_given = minutes->count() > 0;
     if (run->scene.empty() && run->resume.empty()) {
       std::fprintf(stderr, "error: run: give a scene file, or --resume DIR to continue a run\n");
       return int(kExitUsage);

@@ -268,6 +268,20 @@ TEST_F(Resume, RefusesAFolderWithoutCheckpoint) {
   expect_refusal({"run", "--resume", path("empty")}, log_, "holds no checkpoint.pck");
 }
 
+// A resume keeps checkpointing as the run was told to: killed after its resume, it would lose
+// nothing past the last checkpoint.
+TEST_F(Resume, KeepsTheCheckpointSettings) {
+  const std::string out = path("out");
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "4", "--checkpoint-every", "2"},
+                log_),
+            0)
+      << read_all(log_);
+  ASSERT_EQ(run({"run", "--resume", out, "--frames", "8"}, log_), 0) << read_all(log_);
+  // The checkpoint is now frame 8's: resuming to 8 finds the run complete.
+  ASSERT_EQ(run({"run", "--resume", out, "--frames", "8"}, log_), 0) << read_all(log_);
+  EXPECT_NE(read_all(log_).find("the run is complete at frame 8"), std::string::npos) << read_all(log_);
+}
+
 TEST_F(Resume, RefusesAnotherScale) {
   const std::string out = path("out");
   ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "2", "--checkpoint-every", "2"},
