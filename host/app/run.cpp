@@ -394,7 +394,8 @@ int finish_complete_run(RunOutput& output, const RunCheckpoint& c) {
 void write_run_checkpoint(const Simulation& sim, const RunOptions& opt, RunOutput& output,
                           const Energy& energy0, int64_t frame) {
   RunCheckpoint c;
-  c.scene_path = sim.scene.path;
+  c.scene_path =
+      std::filesystem::absolute(sim.scene.path).lexically_normal().string();  // (resumable from anywhere)
   c.overrides = opt.overrides;
   c.scene_hash = scene_fingerprint(sim.scene.path, opt.overrides);
   c.setup_hash = setup_fingerprint(sim.setup.input);

@@ -58,10 +58,11 @@ velocity = [0.0, 0.0, -200.0]
 )";
 
 // Starts the binary with `args` (one thread, output to `log`); returns the child's pid.
-pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
+pid_t spawn(const std::vector<std::string>& args, const std::string& log, const std::string& cwd = "") {
   const pid_t pid = fork();
   if (pid == 0) {
     setenv("OMP_NUM_THREADS", "1", 1);
+    if (!cwd.empty() && chdir(cwd.c_str()) != 0) _exit(126);
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     dup2(fd, 1);
     dup2(fd, 2);
@@ -81,8 +82,8 @@ int wait_for(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-int run(const std::vector<std::string>& args, const std::string& log) {
-  return wait_for(spawn(args, log));
+int run(const std::vector<std::string>& args, const std::string& log, const std::string& cwd = "") {
+  return wait_for(spawn(args, log, cwd));
 }
 
 class Resume : public testing::TempDirTest {
@@ -280,6 +281,20 @@ TEST_F(Resume, KeepsTheCheckpointSettings) {
   // The checkpoint is now frame 8's: resuming to 8 finds the run complete.
   ASSERT_EQ(run({"run", "--resume", out, "--frames", "8"}, log_), 0) << read_all(log_);
   EXPECT_NE(read_all(log_).find("the run is complete at frame 8"), std::string::npos) << read_all(log_);
+}
+
+// A run started with a scene path relative to its working directory resumes from any other.
+TEST_F(Resume, ResumesFromAnotherDirectory) {
+  std::filesystem::create_directories(path("sub"));
+  std::ofstream(path("sub/scene.toml")) << kScene;
+  const std::string out = path("out");
+  ASSERT_EQ(
+      run({"run", "scene.toml", "--backend", "cpu", "--out", out, "--frames", "2", "--checkpoint-every", "2"},
+          log_, path("sub")),
+      0)
+      << read_all(log_);
+  EXPECT_EQ(run({"run", "--resume", out, "--frames", "3"}, log_, "/"), 0) << read_all(log_);
+  EXPECT_TRUE(std::filesystem::exists(out + "/frame_00003.pfr"));
 }
 
 TEST_F(Resume, RefusesAnotherScale) {
