@@ -22,6 +22,7 @@
 #include "host/geometry/voronoi_particles.h"
 #include "host/scene/collider_setup.h"
 #include "host/scene/scene_cracks.h"
+#include "host/scene/scene_smells.h"
 
 namespace pd {
 
@@ -340,6 +341,8 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   // Colliders (host/scene/collider_setup.h); their push enters every particle's stable step.
   result.collider_meshes = add_colliders(scene, in);
   warn_of_particles_inside_colliders(in, result.body_names);
+  for (const std::string& warning : scene_smells(scene, in, result.body_names))
+    std::fprintf(stderr, "%s\n", warning.c_str());
   std::vector<double> material_dt;
   for (const MaterialSummary& m : result.materials) material_dt.push_back(m.critical_dt);
   result.critical_dt = std::fmin(result.critical_dt, colliders_critical_dt(in, material_dt));
