@@ -7,14 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "host/geometry/collider_mesh.h"
 #include "host/io/collider_file.h"
+#include "tests/support/external_tools.h"
 #include "tests/support/temp_dir.h"
 
 namespace pd {
@@ -81,35 +80,11 @@ TEST_F(ColliderOutputTest, SceneWithoutCollidersWritesNothing) {
   EXPECT_EQ(entry_count(), 0u);
 }
 
-// The program's path if it is on PATH, else empty.
-std::string find_program(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  std::string dir;
-  while (std::getline(dirs, dir, ':'))
-    if (!dir.empty() && fs::exists(fs::path(dir) / name)) return (fs::path(dir) / name).string();
-  return "";
-}
-
-// The script after <!-- blender-colliders-script --> in docs/output-formats.md.
-std::string doc_script() {
-  std::ifstream in(std::string(PERIFRAC_SOURCE_DIR) + "/docs/output-formats.md");
-  std::string line, script;
-  bool marked = false, inside = false;
-  while (std::getline(in, line)) {
-    if (inside && line == "```") break;
-    if (inside) script += line + "\n";
-    if (marked && line == "```python") inside = true;
-    if (line == "<!-- blender-colliders-script -->") marked = true;
-  }
-  return script;
-}
-
 TEST_F(ColliderOutputTest, BlenderRunsTheDocScript) {
-  const std::string script = doc_script();
+  const std::string script = testing::doc_script("docs/output-formats.md", "blender-colliders-script");
   ASSERT_FALSE(script.empty())
       << "no script after <!-- blender-colliders-script --> in docs/output-formats.md";
-  const std::string blender = find_program("blender");
+  const std::string blender = testing::find_program("blender");
   if (blender.empty()) GTEST_SKIP() << "blender is not on PATH (Debian: apt-get install blender)";
   const SimulationInput in = two_colliders();
   ColliderOutput out(dir_.string(), in, {TriMesh{}, TriMesh{}}, true);
@@ -119,14 +94,9 @@ TEST_F(ColliderOutputTest, BlenderRunsTheDocScript) {
                                     "for k, o in sorted(colliders.items()):\n"
                                     "    m = o.matrix_world\n"
                                     "    print('CHECK', k, *['%.9g' % m[r][3] for r in range(3)])\n";
-  const std::string command = "timeout 300 " + blender + " --background --factory-startup --python " +
-                              path("load.py") + " -- " + dir_.string() + " 2>&1";
-  std::string log;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buf[4096];
-    while (size_t got = std::fread(buf, 1, sizeof buf, pipe)) log.append(buf, got);
-    pclose(pipe);
-  }
+  const std::string log =
+      testing::run_command("timeout 300 " + blender + " --background --factory-startup --python " +
+                           path("load.py") + " -- " + dir_.string());
   // Frame 2: the box's centre (1, 1, 2) and the sphere's (0, -0.2, 0), turned y-up to z-up.
   std::istringstream lines(log);
   std::string tag;

@@ -5,9 +5,6 @@
 // (Debian: apt-get install blender python3-paraview).
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -18,6 +15,7 @@
 #include "host/fragments/fragments_file.h"
 #include "host/io/vtk_writer.h"
 #include "tests/host/fragments/fragment_fixtures.h"
+#include "tests/support/external_tools.h"
 #include "tests/support/fixtures.h"
 
 namespace pd {
@@ -25,28 +23,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The program's path if it is on PATH, else empty.
-std::string find_program(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    const fs::path candidate = fs::path(dir) / name;
-    if (!dir.empty() && fs::exists(candidate)) return candidate.string();
-  }
-  return "";
-}
+using testing::doc_script;
+using testing::find_program;
 
 // Runs `command`, returning its standard output and error.
 std::string run(const std::string& command) {
-  std::string out;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buf;
-  size_t got;
-  while ((got = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), got);
-  pclose(pipe);
-  return out;
+  return testing::run_command(command);
 }
 
 constexpr int kNx = 8, kNy = 4, kNz = 3;
@@ -98,20 +80,6 @@ class FragmentTools : public testing::TempDirTest {
   CrackSurface last_crack_mesh() const { return read_crack_mesh(path("crack_mesh_00002.ply")); }
 };
 
-// The script marked <!-- `marker` --> in docs/fragments.md.
-std::string doc_script(const std::string& marker) {
-  std::ifstream in(std::string(PERIFRAC_SOURCE_DIR) + "/docs/fragments.md");
-  std::string line, script;
-  bool marked = false, inside = false;
-  while (std::getline(in, line)) {
-    if (inside && line == "```") break;
-    if (inside) script += line + "\n";
-    if (marked && line == "```python") inside = true;
-    if (line == "<!-- " + marker + " -->") marked = true;
-  }
-  return script;
-}
-
 // The words after `tag` on each line of `log` that starts with it.
 std::vector<std::vector<std::string>> tagged(const std::string& log, const std::string& tag) {
   std::vector<std::vector<std::string>> out;
@@ -130,7 +98,7 @@ std::vector<std::vector<std::string>> tagged(const std::string& log, const std::
 TEST_F(FragmentTools, BlenderRunsTheDocScript) {
   const std::string blender = find_program("blender");
   if (blender.empty()) GTEST_SKIP() << "blender is not on PATH (Debian: apt-get install blender)";
-  const std::string script = doc_script("blender-fragments-script");
+  const std::string script = doc_script("docs/fragments.md", "blender-fragments-script");
   ASSERT_FALSE(script.empty()) << "no script after <!-- blender-fragments-script --> in docs/fragments.md";
   // The doc script, then the world matrix of every piece at every frame.
   std::ofstream(path("load.py"))
@@ -171,7 +139,7 @@ TEST_F(FragmentTools, BlenderRunsTheDocScript) {
 TEST_F(FragmentTools, BlenderImportsTheCrackMeshes) {
   const std::string blender = find_program("blender");
   if (blender.empty()) GTEST_SKIP() << "blender is not on PATH (Debian: apt-get install blender)";
-  const std::string script = doc_script("blender-cracks-script");
+  const std::string script = doc_script("docs/fragments.md", "blender-cracks-script");
   ASSERT_FALSE(script.empty()) << "no script after <!-- blender-cracks-script --> in docs/fragments.md";
   // The doc script, then each frame's object: its size, the faces of the crack material and the
   // frames it is visible at; then the PLY of the last frame through Blender's PLY importer.
