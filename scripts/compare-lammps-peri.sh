@@ -18,7 +18,7 @@ sed -e 's|^thermo .*|thermo 100\nthermo_style custom step ke pe etotal|' \
   -e 's|^#dump            1 all custom 100 dump.peri id type x y z c_1|dump 1 all custom 1000 dump.peri id x y z c_1\ndump_modify 1 sort id|' \
   "$example" >"$out/in.peri.pmb"
 (cd "$out" && lmp -in in.peri.pmb -log lammps.log >/dev/null)
-OMP_NUM_THREADS=${OMP_NUM_THREADS:-2} "$bin" run scenes/validation/lammps_peri_pmb.toml --out "$out/perifrac" >"$out/perifrac.log" 2>&1
+OMP_NUM_THREADS=${OMP_NUM_THREADS:-2} "$bin" run --overwrite scenes/validation/lammps_peri_pmb.toml --out "$out/perifrac" >"$out/perifrac.log" 2>&1
 python3 - "$out" <<'PY'
 import csv, struct, sys
 out = sys.argv[1]

@@ -10,9 +10,9 @@ bin="build/$preset/perifrac"
 scene=scenes/glass_plate_projectile.toml
 out=out/demo
 if [ "$preset" = cuda ]; then
-  "$bin" run "$scene" --backend cuda --out "$out"
+  "$bin" run --overwrite "$scene" --backend cuda --out "$out"
 else
-  "$bin" run "$scene" --backend cpu --scale 0.05 --frames 16 --out "$out"
+  "$bin" run --overwrite "$scene" --backend cpu --scale 0.05 --frames 16 --out "$out"
 fi
 "$bin" render "$out"
 echo "demo: frames in $out (particles: *.vtu for ParaView, *.pfr), images in $out/render/"

@@ -148,7 +148,7 @@ for entry in "${ENTRIES[@]}"; do
   selected "$name" || continue
   scale=$gpu_scale
   [[ $BACKEND == cpu ]] && scale=$cpu_scale
-  args=(run "scenes/$scene.toml" --backend "$BACKEND" --scale "$scale" --frames "$frames" --out "$OUT/$name"
+  args=(run --overwrite "scenes/$scene.toml" --backend "$BACKEND" --scale "$scale" --frames "$frames" --out "$OUT/$name"
         --set output.vtk=false)
   if [[ $sets != - ]]; then
     IFS=';' read -ra list <<<"$sets"

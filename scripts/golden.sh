@@ -28,7 +28,7 @@ cases=(
 )
 for c in "${cases[@]}"; do
   read -r name scene scale frames spf <<<"$c"
-  ${GOLDEN_LAUNCH:-} "$bin" run "$scene" ${GOLDEN_RUN_ARGS:-} --backend "$backend" --scale "$scale" --frames "$frames" --steps-per-frame "$spf" \
+  ${GOLDEN_LAUNCH:-} "$bin" run --overwrite "$scene" ${GOLDEN_RUN_ARGS:-} --backend "$backend" --scale "$scale" --frames "$frames" --steps-per-frame "$spf" \
     --out "$out/$name" >"$out/$name.log" 2>&1 || { echo "golden: $name failed, see $out/$name.log" >&2; exit 1; }
   "$bin" render "$out/$name" --backend "$backend" --width 96 --height 64 --spp 1 >>"$out/$name.log" 2>&1 ||
     { echo "golden: rendering $name failed, see $out/$name.log" >&2; exit 1; }

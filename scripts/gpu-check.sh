@@ -28,34 +28,34 @@ step build bash -c "cmake --preset cuda -DPERIFRAC_WERROR=ON >/dev/null && cmake
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader >"$OUT/device.txt" 2>&1
 step gpu-tests build/cuda/tests/perifrac_gpu_tests
 step cpu-tests build/cuda/tests/perifrac_tests
-step equiv-cpu "$bin" run "$scene" --backend cpu --scale 0.05 --frames 3 --out "$OUT/equiv-cpu"
-step equiv-gpu "$bin" run "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu"
+step equiv-cpu "$bin" run --overwrite "$scene" --backend cpu --scale 0.05 --frames 3 --out "$OUT/equiv-cpu"
+step equiv-gpu "$bin" run --overwrite "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu"
 step equiv-compare "$bin" compare "$OUT/equiv-cpu" "$OUT/equiv-gpu"
 walls=scenes/chen_four_walls.toml
-step equiv-walls-cpu "$bin" run "$walls" --backend cpu --scale 0.02 --frames 4 --out "$OUT/equiv-walls-cpu"
-step equiv-walls-gpu "$bin" run "$walls" --backend cuda --scale 0.02 --frames 4 --out "$OUT/equiv-walls-gpu"
+step equiv-walls-cpu "$bin" run --overwrite "$walls" --backend cpu --scale 0.02 --frames 4 --out "$OUT/equiv-walls-cpu"
+step equiv-walls-gpu "$bin" run --overwrite "$walls" --backend cuda --scale 0.02 --frames 4 --out "$OUT/equiv-walls-gpu"
 step equiv-walls-compare "$bin" compare "$OUT/equiv-walls-cpu" "$OUT/equiv-walls-gpu"
 # Scripted anchors (a turning grip) and pre-cracks with moving grips, state-based.
 for extra in chen_bar_twist:0.3 chen_thin_sheet_tear:0.1; do
   name=${extra%%:*} scale=${extra#*:}
-  step "equiv-$name-cpu" "$bin" run "scenes/$name.toml" --backend cpu --scale "$scale" --frames 3 \
+  step "equiv-$name-cpu" "$bin" run --overwrite "scenes/$name.toml" --backend cpu --scale "$scale" --frames 3 \
     --out "$OUT/equiv-$name-cpu"
-  step "equiv-$name-gpu" "$bin" run "scenes/$name.toml" --backend cuda --scale "$scale" --frames 3 \
+  step "equiv-$name-gpu" "$bin" run --overwrite "scenes/$name.toml" --backend cuda --scale "$scale" --frames 3 \
     --out "$OUT/equiv-$name-gpu"
   step "equiv-$name-compare" "$bin" compare "$OUT/equiv-$name-cpu" "$OUT/equiv-$name-gpu"
 done
 # Colliders: a wall resting on frictional ground, hit by a scripted sphere from the first frame.
 ball=(scenes/wrecking_ball.toml --scale 0.05 --frames 3 --set 'colliders[1].path=[[0, 0, 0.55, -0.36], [0.2, 0, 0.55, 0.44]]')
-step equiv-colliders-cpu "$bin" run "${ball[@]}" --backend cpu --out "$OUT/equiv-colliders-cpu"
-step equiv-colliders-gpu "$bin" run "${ball[@]}" --backend cuda --out "$OUT/equiv-colliders-gpu"
+step equiv-colliders-cpu "$bin" run --overwrite "${ball[@]}" --backend cpu --out "$OUT/equiv-colliders-cpu"
+step equiv-colliders-gpu "$bin" run --overwrite "${ball[@]}" --backend cuda --out "$OUT/equiv-colliders-gpu"
 step equiv-colliders-compare "$bin" compare "$OUT/equiv-colliders-cpu" "$OUT/equiv-colliders-gpu"
 # A free collider: the iron ball, pushed back by the wall it hits from the first frame. One frame
 # (1 ms of contact): after it this coarse wall shatters into grit, where the order of the sums in the
 # ball's reaction grows into different cracks (measured 2026-11-26 on an H200: displacement 3.3e-6
 # after frame 1, 6e-3 after frame 2).
 cannon=(scenes/cannonball_wall.toml --scale 0.1 --set 'colliders[1].center=[0, 0.55, -0.26]')
-step equiv-free-cpu "$bin" run "${cannon[@]}" --frames 1 --backend cpu --out "$OUT/equiv-free-cpu"
-step equiv-free-gpu "$bin" run "${cannon[@]}" --frames 1 --backend cuda --out "$OUT/equiv-free-gpu"
+step equiv-free-cpu "$bin" run --overwrite "${cannon[@]}" --frames 1 --backend cpu --out "$OUT/equiv-free-cpu"
+step equiv-free-gpu "$bin" run --overwrite "${cannon[@]}" --frames 1 --backend cuda --out "$OUT/equiv-free-gpu"
 step equiv-free-compare "$bin" compare "$OUT/equiv-free-cpu" "$OUT/equiv-free-gpu"
 # Determinism (two runs, identical files) and checkpoint/resume (bit for bit) on the GPU.
 same_files() {
@@ -63,9 +63,9 @@ same_files() {
   for f in "$@"; do cmp "$a/$f" "$b/$f" || return 1; done
   echo "identical: $*"
 }
-step determinism-run "$bin" run "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu-again"
+step determinism-run "$bin" run --overwrite "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu-again"
 step determinism-compare same_files "$OUT/equiv-gpu" "$OUT/equiv-gpu-again" frame_00003.pfr energy.csv fragments_00003.pfg
-step resume-first "$bin" run "$walls" --backend cuda --scale 0.02 --frames 2 --checkpoint-every 2 --out "$OUT/resume"
+step resume-first "$bin" run --overwrite "$walls" --backend cuda --scale 0.02 --frames 2 --checkpoint-every 2 --out "$OUT/resume"
 step resume-rest "$bin" run --resume "$OUT/resume" --frames 4
 step resume-compare same_files "$OUT/equiv-walls-gpu" "$OUT/resume" frame_00004.pfr energy.csv fragments_00004.pfg
 # Runs over several MPI ranks (sharing the GPUs there are) against one rank, bit for bit.
@@ -75,12 +75,12 @@ fi
 # compute-sanitizer on a small scene of each material model, and on the renderer.
 for tool in memcheck racecheck; do
   step "sanitizer-$tool" compute-sanitizer --tool "$tool" --error-exitcode 9 \
-    "$bin" run "$scene" --backend cuda --scale 0.01 --frames 2 --steps-per-frame 10 --out "$OUT/sanitizer"
+    "$bin" run --overwrite "$scene" --backend cuda --scale 0.01 --frames 2 --steps-per-frame 10 --out "$OUT/sanitizer"
   step "sanitizer-$tool-plastic" compute-sanitizer --tool "$tool" --error-exitcode 9 \
-    "$bin" run scenes/chen_four_walls.toml --backend cuda --scale 0.005 --frames 1 --steps-per-frame 10 \
+    "$bin" run --overwrite scenes/chen_four_walls.toml --backend cuda --scale 0.005 --frames 1 --steps-per-frame 10 \
     --out "$OUT/sanitizer-plastic"
   step "sanitizer-$tool-colliders" compute-sanitizer --tool "$tool" --error-exitcode 9 \
-    "$bin" run "${cannon[@]}" --backend cuda --frames 1 --steps-per-frame 10 --out "$OUT/sanitizer-colliders"
+    "$bin" run --overwrite "${cannon[@]}" --backend cuda --frames 1 --steps-per-frame 10 --out "$OUT/sanitizer-colliders"
   step "sanitizer-$tool-render" compute-sanitizer --tool "$tool" --error-exitcode 9 \
     "$bin" render "$OUT/sanitizer" --backend cuda --width 64 --height 48 --spp 1
 done
@@ -96,7 +96,7 @@ for model in bond_based state_based anisotropic plastic; do
   step "bench-lattice-$model-explicit" "$bin" bench --lattice 100 --model "$model" --backend cuda --steps 300 \
     --warmup 30 --explicit-families --out "$OUT/bench"
 done
-step glass-full "$bin" run "$scene" --backend cuda --out "$OUT/glass-full"
+step glass-full "$bin" run --overwrite "$scene" --backend cuda --out "$OUT/glass-full"
 
 {
   echo "gpu-check on $(cat "$OUT/device.txt"), $(date -u +%Y-%m-%dT%H:%M:%SZ), git ${PERIFRAC_GIT_REV:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)}"

@@ -48,8 +48,8 @@ fi
 
 # Checkpointed on 3 ranks after frame 2, resumed on 2 to frame 4; against one rank's 4 frames.
 scene="scenes/glass_plate_projectile.toml --scale 0.02 --steps-per-frame 40 --backend $backend"
-"$bin" run $scene --frames 4 --out "$out/whole" >"$out/whole.log" 2>&1
-mpirun -np 3 "$bin" run $scene --frames 2 --checkpoint-every 1 --out "$out/resumed" >"$out/resumed.log" 2>&1
+"$bin" run --overwrite $scene --frames 4 --out "$out/whole" >"$out/whole.log" 2>&1
+mpirun -np 3 "$bin" run --overwrite $scene --frames 2 --checkpoint-every 1 --out "$out/resumed" >"$out/resumed.log" 2>&1
 mpirun -np 2 "$bin" run --resume "$out/resumed" --frames 4 >>"$out/resumed.log" 2>&1
 for f in frame_00004.pfr energy.csv fragments_00004.pfg fragments.obj; do
   if ! cmp -s "$out/whole/$f" "$out/resumed/$f"; then
@@ -62,8 +62,8 @@ done
 # Colliders (ground with friction, a scripted sphere hitting from the first frame) on 2 ranks.
 ball="scenes/wrecking_ball.toml --scale 0.05 --frames 3 --backend $backend"
 ball_path="colliders[1].path=[[0,0,0.55,-0.36],[0.2,0,0.55,0.44]]"
-"$bin" run $ball --set "$ball_path" --out "$out/ball1" >"$out/ball1.log" 2>&1
-mpirun -np 2 "$bin" run $ball --set "$ball_path" --out "$out/ball2" >"$out/ball2.log" 2>&1
+"$bin" run --overwrite $ball --set "$ball_path" --out "$out/ball1" >"$out/ball1.log" 2>&1
+mpirun -np 2 "$bin" run --overwrite $ball --set "$ball_path" --out "$out/ball2" >"$out/ball2.log" 2>&1
 ball_same=1
 for f in frame_00003.pfr energy.csv fragments_00003.pfg; do
   cmp -s "$out/ball1/$f" "$out/ball2/$f" || { echo "mpi-equivalence: colliders: $f differs on 2 ranks" >&2; ball_same=0; status=1; }
@@ -75,8 +75,8 @@ done
 # run is held to `perifrac compare`'s tolerances, not to the bits.
 cannon="scenes/cannonball_wall.toml --scale 0.1 --backend $backend"
 cannon_start="colliders[1].center=[0,0.55,-0.26]"
-"$bin" run $cannon --set "$cannon_start" --frames 2 --out "$out/free1" >"$out/free1.log" 2>&1
-mpirun -np 2 "$bin" run $cannon --set "$cannon_start" --frames 1 --checkpoint-every 1 --out "$out/free2" \
+"$bin" run --overwrite $cannon --set "$cannon_start" --frames 2 --out "$out/free1" >"$out/free1.log" 2>&1
+mpirun -np 2 "$bin" run --overwrite $cannon --set "$cannon_start" --frames 1 --checkpoint-every 1 --out "$out/free2" \
   >"$out/free2.log" 2>&1
 mpirun -np 2 "$bin" run --resume "$out/free2" --frames 2 >>"$out/free2.log" 2>&1
 if "$bin" compare "$out/free1" "$out/free2" >"$out/free-compare.log" 2>&1; then

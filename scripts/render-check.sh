@@ -29,8 +29,8 @@ step render-tests build/cuda/tests/perifrac_tests --gtest_filter='CudaRenderer.*
 # A run with a [render] block on the GPU, then the memory checker on renders of its frames.
 scene="$OUT/glass_render.toml"
 { cat scenes/glass_plate_projectile.toml; printf '\n[render]\nwidth = 320\nheight = 180\nspp = 2\nevery = 2\n'; } >"$scene"
-step live-render "$bin" run "$scene" --backend cuda --scale 0.02 --frames 4 --steps-per-frame 50 --out "$OUT/live"
-step torus-run "$bin" run scenes/torus_voronoi_drop.toml --backend cuda --scale 0.05 --frames 2 --steps-per-frame 20 \
+step live-render "$bin" run --overwrite "$scene" --backend cuda --scale 0.02 --frames 4 --steps-per-frame 50 --out "$OUT/live"
+step torus-run "$bin" run --overwrite scenes/torus_voronoi_drop.toml --backend cuda --scale 0.05 --frames 2 --steps-per-frame 20 \
   --out "$OUT/torus"
 for dir in live torus; do
   step "memcheck-render-$dir" compute-sanitizer --tool memcheck --error-exitcode 9 \

@@ -34,7 +34,7 @@ echo "scene,dt_over_dtc,projectile_strength,particles,exit_code,outcome,wall_s,d
 
 # The smallest dt_c over a scene's materials, from the start-up report of a zero-frame run.
 critical_dt() {
-  "$BIN" run "$1" --frames 0 --out "$WORK/probe" --backend "$BACKEND" 2>/dev/null |
+  "$BIN" run --overwrite "$1" --frames 0 --out "$WORK/probe" --backend "$BACKEND" 2>/dev/null |
     sed -n 's/.*dt_c \([0-9.e+-]*\) s.*/\1/p' | sort -g | head -1
 }
 
@@ -48,7 +48,7 @@ run_case() {
   sed "s/^dt = .*/dt = $dt/" "$scene" >"$file"
   [[ $ks != - ]] && sed -i "s/^strength = .*/strength = $ks/" "$file"
   t0=$(date +%s.%N)
-  timeout "$TIMEOUT" "$BIN" run "$file" --out "$WORK/out-$name" --backend "$BACKEND" --allow-unstable-dt \
+  timeout "$TIMEOUT" "$BIN" run --overwrite "$file" --out "$WORK/out-$name" --backend "$BACKEND" --allow-unstable-dt \
     >"$log" 2>&1
   code=$?
   wall=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "host/io/atomic_file.h"
 #include "host/io/frame.h"
 #include "render/movie.h"
 
@@ -48,7 +49,10 @@ void LiveRender::finish() {
   std::printf("render     %lld frames -> %s (kd-trees %.2f s, rendering %.2f s, %.2f Mrays/s)\n",
               (long long)frames_, renderer_->image_dir().c_str(), build_seconds_, render_seconds_,
               render_seconds_ > 0 ? 1e-6 * double(rays_) / render_seconds_ : 0.0);
-  if (frames_ > 0) std::printf("movie      %s\n", make_movie(renderer_->image_dir()).message.c_str());
+  if (frames_ > 0) {
+    announce_output(renderer_->image_dir() + "/" + kMovieFileName);
+    std::printf("movie      %s\n", make_movie(renderer_->image_dir()).message.c_str());
+  }
 }
 
 }  // namespace pd

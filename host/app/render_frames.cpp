@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "host/app/backend_choice.h"
 #include "host/app/run.h"
+#include "host/app/run_folder.h"
 #include "host/fragments/tet_file.h"
 #include "host/fragments/trimtope_file.h"
 #include "host/geometry/collider_mesh.h"
@@ -191,6 +194,16 @@ void RunRenderer::add_mesh_grids(std::vector<Collider>& colliders) {
   }
 }
 
+namespace {
+
+// The frame number of a frame file's name, frame_NNNNN.pfr.
+int64_t frame_number(const std::string& frame_file) {
+  const std::string stem = fs::path(frame_file).stem().string();
+  return std::strtoll(stem.c_str() + stem.find('_') + 1, nullptr, 10);
+}
+
+}  // namespace
+
 int render_frames(const RenderOptions& o) {
   check_render_options(o);
   const std::vector<std::string> frames = select_frame_files(o.dir, o.frames);
@@ -203,9 +216,14 @@ int render_frames(const RenderOptions& o) {
   std::printf("device     %s\n", renderer.device().c_str());
   std::printf("images     %d x %d, %d spp, %s, %zu frames -> %s\n", o.width, o.height, o.spp,
               renderer.scene_summary().c_str(), frames.size(), renderer.image_dir().c_str());
+  // Images written into a run's folder join its journal (host/app/run_folder.h): --overwrite and
+  // resume remove them with the frames they show.
+  std::optional<OutputJournal> journal;
+  if (fs::exists(fs::path(o.dir) / kManifestFileName)) journal.emplace(o.dir);
   double ray_seconds = 0;
   int64_t rays = 0;
   for (size_t k = 0; k < frames.size(); ++k) {
+    if (journal) journal->set_frame(frame_number(frames[k]));
     const FrameRenderReport r = renderer.render(frames[k]);
     ray_seconds += r.render_seconds;
     rays += r.rays;
@@ -218,8 +236,10 @@ int render_frames(const RenderOptions& o) {
   }
   std::printf("rendered   %zu frames, %.2f Mrays/s overall\n", frames.size(),
               1e-6 * double(rays) / ray_seconds);
-  if (o.movie && o.frames.empty())
+  if (o.movie && o.frames.empty()) {
+    announce_output(renderer.image_dir() + "/" + kMovieFileName);
     std::printf("movie      %s\n", make_movie(renderer.image_dir()).message.c_str());
+  }
   return kExitOk;
 }
 

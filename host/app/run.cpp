@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +23,7 @@
 #include "host/app/interrupt.h"
 #include "host/app/kernel_report.h"
 #include "host/app/live_render.h"
+#include "host/app/run_folder.h"
 #include "host/fragments/fragment_output.h"
 #include "host/fragments/tet_file.h"
 #include "host/fragments/trimtope_file.h"
@@ -36,7 +38,7 @@ namespace pd {
 namespace {
 
 std::string format_duration(double seconds) {
-  if (!std::isfinite(seconds) || seconds < 0) return "--:--";
+  if (!std::isfinite(seconds) || seconds < 0 || seconds > 3.6e8) return "--:--";  // (beyond 100,000 hours)
   const long s = std::lround(seconds);
   char buf[32];
   std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
@@ -229,16 +231,45 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
   }
 }
 
-// Makes the output folder (default out/<scene name>), clears a killed run's partial files and
-// writes the rest state once. Returns the folder.
-std::string prepare_output_folder(const Simulation& sim, const RunOptions& opt) {
+// The run's output folder: --out, else out/<scene name>.
+std::string output_folder(const RunOptions& opt) {
+  return opt.out.empty() ? "out/" + std::filesystem::path(opt.scene).stem().string() : opt.out;
+}
+
+FolderUse folder_use(const RunOptions& opt) {
+  return !opt.resume.empty() ? FolderUse::kResume : opt.overwrite ? FolderUse::kOverwrite : FolderUse::kNew;
+}
+
+// Takes the output folder (default out/<scene name>) for this run: locked, checked for another
+// run's files (replaced with --overwrite) or, for a resume, for the manifest the checkpoint must
+// match; then the manifest is written and the folder's journal started.
+std::unique_ptr<RunFolder> claim_output_folder(const Simulation& sim, const RunOptions& opt,
+                                               const std::optional<RunCheckpoint>& resume) {
+  const std::string out = output_folder(opt);
+  auto folder = std::make_unique<RunFolder>(out, folder_use(opt));
+  if (resume) {
+    const RunManifest& m = folder->found();
+    if (m.scene_hash != resume->scene_hash || m.scale != resume->scale || m.overrides != resume->overrides)
+      throw ResumeError("cannot resume: the checkpoint in '" + out + "' was not written by the run its " +
+                        kManifestFileName + " records (that run is of '" + m.scene_path + "' at scale " +
+                        format_number(m.scale) + ", the checkpoint of '" + resume->scene_path + "' at scale " +
+                        format_number(resume->scale) + "): it was copied from another run's folder");
+    folder->start(m);
+    return folder;
+  }
+  RunManifest m;
+  m.scene_path = std::filesystem::absolute(sim.scene.path).lexically_normal().string();
+  m.scene_hash = scene_fingerprint(sim.scene.path, opt.overrides);
+  m.scale = opt.scale;
+  m.overrides = opt.overrides;
+  folder->start(m);
+  return folder;
+}
+
+// Writes the rest state once into the run's folder.
+void write_rest_outputs(const Simulation& sim, const std::string& out) {
   const Scene& scene = sim.scene;
   const SetupResult& setup = sim.setup;
-  const std::string out =
-      opt.out.empty() ? "out/" + std::filesystem::path(scene.path).stem().string() : opt.out;
-  ensure_directory(out);
-  if (const size_t stale = remove_stale_temporaries(out))
-    std::printf("output     removed %zu partial file(s) of an interrupted run\n", stale);
   if (scene.write_binary) write_rest_file(out + "/" + kRestFileName, rest_data(setup.input.particles));
   if (scene.write_binary && !setup.voronoi.empty()) {
     // The Voronoi bodies' trimtopes in rest space, for `perifrac render`.
@@ -250,7 +281,6 @@ std::string prepare_output_folder(const Simulation& sim, const RunOptions& opt) 
   // The tet bodies' tetrahedra in rest space, for `perifrac render`.
   if (scene.write_binary && !setup.embedded.empty())
     write_tets_file(out + "/" + kTetsFileName, setup.embedded);
-  return out;
 }
 
 // The engine's bonds as built, before the first step.
@@ -273,9 +303,10 @@ class RunOutput {
  public:
   // Sets up the fragment outputs from the engine's bonds as built and reports touching elements
   // farther apart than the horizon.
-  RunOutput(Simulation& sim, const RunOptions& opt, std::string out)
+  RunOutput(Simulation& sim, const RunOptions& opt, RunFolder& folder)
       : sim_(sim),
-        out_(std::move(out)),
+        folder_(folder),
+        out_(folder.dir()),
         live_(sim.scene.render ? std::make_unique<LiveRender>(sim.scene, out_, backend_name(sim.backend))
                                : nullptr),
         series_(out_, "particles"),
@@ -292,6 +323,7 @@ class RunOutput {
   }
 
   const std::string& dir() const { return out_; }
+  RunFolder& folder() { return folder_; }
   EnergyLog& energy_log() { return energy_log_; }
   // The fragment statistics of the last frame written, for the progress line.
   const std::string& fragment_log() const { return fragment_log_; }
@@ -300,6 +332,7 @@ class RunOutput {
   // Writes frame `frame` of the engine's current state: its fragment outputs, frame files and
   // rendering.
   void write_frame(int64_t frame) {
+    folder_.begin_frame(frame);
     Engine& engine = *sim_.engine;
     FrameData f = frame_data(engine, sim_.setup.input.particles, bonds_.count, frame);
     if (frame > 0) engine.read_bonds(bonds_);
@@ -312,6 +345,7 @@ class RunOutput {
     }
     colliders_.write_frame(frame, f.time, engine.colliders());
     if (live_) live_->frame(frame);
+    folder_.frame_done(frame);
   }
 
   // Takes over a checkpoint's fragment smoothing, VTK series and energy log (moved from `c`).
@@ -345,6 +379,7 @@ class RunOutput {
 
  private:
   Simulation& sim_;
+  RunFolder& folder_;
   std::string out_;
   std::unique_ptr<LiveRender> live_;
   PvdSeries series_;
@@ -377,6 +412,8 @@ RunStart restore_run(Simulation& sim, RunOutput& output, RunCheckpoint& c) {
   RunStart start;
   start.energy0 = c.energy0;
   start.first_frame = c.frame + 1;
+  if (const size_t dropped = output.folder().drop_frames_after(c.frame))
+    std::printf("output     removed %zu file(s) written after the checkpoint\n", dropped);
   std::printf("resume     from frame %lld (step %lld) of %s\n", (long long)c.frame, (long long)c.engine.step,
               output.dir().c_str());
   return start;
@@ -477,6 +514,27 @@ void print_progress(const Simulation& sim, int64_t frame, int64_t first_frame, d
   std::fflush(stdout);
 }
 
+// Advances the engine to `target_step` in chunks of about a fifth of a second, so that SIGINT or
+// SIGTERM stops a run within a second even when a frame takes hours. (Chunks change no bit: the
+// engine's steps do not depend on how they are grouped.) False when a signal came first.
+class StepPacer {
+ public:
+  bool advance_to(Engine& engine, int64_t target_step) {
+    while (engine.step() < target_step) {
+      if (InterruptGuard::signal_received()) return false;
+      const int64_t steps = std::min(chunk_, target_step - engine.step());
+      const auto t0 = std::chrono::steady_clock::now();
+      engine.advance(steps);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      chunk_ = std::clamp(int64_t(0.2 * double(steps) / std::max(seconds, 1e-9)), int64_t(1), kMaxStepsPerFrame);
+    }
+    return true;
+  }
+
+ private:
+  int64_t chunk_ = 1;
+};
+
 // The frame loop: simulates and writes the frames from start.first_frame on, with checkpoints and a
 // progress line. Returns kExitOk, or kExitBlowUp / kExitInterrupted when it stopped early.
 int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const RunStart& start) {
@@ -485,8 +543,17 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
   auto last_checkpoint = std::chrono::steady_clock::now();
   const bool tty = isatty(fileno(stdout));
   const auto t0 = std::chrono::steady_clock::now();
+  StepPacer pacer;
   for (int64_t frame = start.first_frame; frame <= scene.frames; ++frame) {
-    engine.advance(scene.steps_per_frame);
+    // (A checkpoint written mid-frame resumes inside the frame: frame f ends at step f * steps.)
+    if (!pacer.advance_to(engine, frame * scene.steps_per_frame)) {
+      write_run_checkpoint(sim, opt, output, start.energy0, frame - 1);
+      std::printf(
+          "%sinterrupted in frame %lld at step %lld: checkpoint written; continue with: perifrac run --resume "
+          "%s\n",
+          tty ? "\n" : "", (long long)frame, (long long)engine.step(), output.dir().c_str());
+      return kExitInterrupted;
+    }
     if (stopped_by_non_finite(sim, frame, output.dir())) return kExitBlowUp;
     const Energy energy = engine.energy();
     const double excess = energy_excess(start.energy0, energy);
@@ -530,9 +597,14 @@ int run_command(const RunOptions& options) {
   RunOptions opt = options;
   std::optional<RunCheckpoint> resume;
   if (!opt.resume.empty()) resume = open_resume(opt);
+  // A folder this run may not use is refused before the set-up's work (and again under its lock).
+  check_run_folder(output_folder(opt), folder_use(opt));
   Simulation sim = set_up_simulation(opt, resume);
   start_engine(sim, opt);
-  RunOutput output(sim, opt, prepare_output_folder(sim, opt));
+  // Only rank 0 of a run over MPI ranks gets here (the others serve its engine).
+  const std::unique_ptr<RunFolder> folder = claim_output_folder(sim, opt, resume);
+  write_rest_outputs(sim, folder->dir());
+  RunOutput output(sim, opt, *folder);
 
   // A fresh run writes frame 0; a resumed one restores the state after its checkpointed frame.
   const RunStart start = resume ? restore_run(sim, output, *resume) : start_fresh_run(sim, output);

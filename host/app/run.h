@@ -26,6 +26,9 @@ struct RunOptions {
   int64_t checkpoint_every = 0;
   double checkpoint_minutes = 10;
   std::string resume;
+  // A folder holding another run is refused unless `overwrite`, which removes that run's files
+  // (host/app/run_folder.h).
+  bool overwrite = false;
   std::vector<std::string> overrides;  // --set KEY=VALUE, applied to the scene file
 };
 

@@ -21,6 +21,7 @@
 #include "host/app/profile.h"
 #include "host/app/render_frames.h"
 #include "host/app/run.h"
+#include "host/app/run_folder.h"
 #include "host/app/validate_command.h"
 #include "host/io/atomic_file.h"
 #include "host/scene/scene.h"
@@ -40,6 +41,9 @@ int report_errors(const std::function<int()>& action) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitUsage;
   } catch (const ResumeError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitUsage;
+  } catch (const RunFolderError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitUsage;
   } catch (const IoError& e) {
@@ -70,10 +74,10 @@ void add_run(CLI::App& app, int* exit_code) {
   cmd->add_option("--set", run->overrides,
                   "KEY=VALUE: change a scene key for this run (repeatable), e.g. "
                   "--set materials.glass.bulk_modulus=2.94e8 --set projectiles[0].strength=1e8");
-  cmd->add_option("--frames", run->frames, "number of frames (default: the scene's)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--frames", run->frames, "number of frames (default: the scene's; 0: the set-up only)")
+      ->check(CLI::Range(int64_t(0), kMaxFrames));
   cmd->add_option("--steps-per-frame", run->steps_per_frame, "steps per frame (default: the scene's)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(int64_t(1), kMaxStepsPerFrame));
   cmd->add_option("--out", run->out, "output folder (default: out/<scene name>)");
   CLI::Option* scale =
       cmd->add_option("--scale", run->scale, "particle-count factor, e.g. 0.05 for a small CPU run");
@@ -90,7 +94,11 @@ void add_run(CLI::App& app, int* exit_code) {
       cmd->add_option("--checkpoint-minutes", run->checkpoint_minutes,
                       "write a checkpoint every M minutes of wall time (0: off; default 10)")
           ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--resume", run->resume, "continue the run in this output folder from its checkpoint");
+  CLI::Option* resume =
+      cmd->add_option("--resume", run->resume, "continue the run in this output folder from its checkpoint");
+  cmd->add_flag("--overwrite", run->overwrite,
+                "replace the run the output folder holds (removes only that run's files)")
+      ->excludes(resume);
   on_parsed(cmd, exit_code, [run, scale, every, minutes] {
     run->scale_given = scale->count() > 0;
     run->checkpoint_every_given = every->count() > 0;

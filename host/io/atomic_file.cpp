@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <streambuf>
 #include <system_error>
 #include <vector>
@@ -146,7 +147,20 @@ class TempFile {
   bool committed_ = false;
 };
 
+std::mutex g_observer_mutex;
+OutputObserver g_observer;
+
 }  // namespace
+
+void set_output_observer(OutputObserver observer) {
+  const std::lock_guard<std::mutex> lock(g_observer_mutex);
+  g_observer = std::move(observer);
+}
+
+void announce_output(const std::string& path) {
+  const std::lock_guard<std::mutex> lock(g_observer_mutex);
+  if (g_observer) g_observer(path);
+}
 
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
   TempFile tmp(path);
@@ -160,6 +174,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   if (!out) throw io_error("write", path, "output stream failed");
 
   tmp.sync_and_close();
+  announce_output(path);
   tmp.commit();
 }
 

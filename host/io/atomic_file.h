@@ -30,6 +30,15 @@ IoError io_error_errno(std::string_view verb, const std::string& path, int err);
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 void write_file_atomic(const std::string& path, std::string_view bytes);
 
+// The output journal: a callback told of every file about to appear under its final name (before
+// the rename), so that a run's folder knows each file its run wrote (host/app/run_folder.h). One
+// at a time per process; an empty function removes it. Thread-safe.
+using OutputObserver = std::function<void(const std::string& path)>;
+void set_output_observer(OutputObserver observer);
+// Tells the observer that `path` is about to appear: write_file_atomic does; a writer that renames
+// into place itself (the movie, made by ffmpeg) is announced by its caller beforehand.
+void announce_output(const std::string& path);
+
 // The raw bytes of a vector's elements (host byte order), e.g. to write them out.
 template <class T>
 std::string_view bytes_of(const std::vector<T>& v) {

@@ -29,6 +29,11 @@ class SceneError : public std::runtime_error {
 };
 
 // Deviatoric plasticity of a state-based material (Chen et al. eqs. 10-15).
+// Bounds of a run's length (scene keys and command-line options alike): a billion frames of a
+// billion steps keeps the step counter far from overflowing.
+inline constexpr int64_t kMaxFrames = 1000000000;
+inline constexpr int64_t kMaxStepsPerFrame = 1000000000;
+
 struct ScenePlastic {
   double psi0 =
       0;  // yield constant psi_0, given directly or from yield_stress: 25 sigma_Y^2 / (8 pi delta^5)
@@ -185,8 +190,8 @@ struct Scene {
   // [simulation]
   double dt = 0x1p-23;            // time step [s], > 0
   bool dt_auto = false;           // dt = "auto": half the stable time step of the stiffest material
-  int64_t steps_per_frame = 500;  // >= 1
-  int64_t frames = 30;            // >= 1
+  int64_t steps_per_frame = 500;  // 1 to kMaxStepsPerFrame
+  int64_t frames = 30;            // 0 (the set-up and frame 0 only) to kMaxFrames
   uint64_t seed = 1;
 
   // [world]

@@ -316,13 +316,16 @@ class TableReader {
     return n != nullptr;
   }
 
-  bool integer(std::string_view key, int64_t& out, int64_t min) const {
-    const std::string allowed = "an integer >= " + std::to_string(min);
+  bool integer(std::string_view key, int64_t& out, int64_t min,
+               int64_t max = std::numeric_limits<int64_t>::max()) const {
+    const std::string allowed = max == std::numeric_limits<int64_t>::max()
+                                    ? "an integer >= " + std::to_string(min)
+                                    : "an integer from " + std::to_string(min) + " to " + std::to_string(max);
     const toml::node* n = find(key, Presence::optional, allowed);
     if (!n) return false;
     const auto* i = n->as_integer();
     if (!i) fail(key, "expected an integer, got " + type_name(*n), allowed);
-    if (i->get() < min) fail(key, std::to_string(i->get()) + " is out of range", allowed);
+    if (i->get() < min || i->get() > max) fail(key, std::to_string(i->get()) + " is out of range", allowed);
     out = i->get();
     return true;
   }
@@ -1123,8 +1126,8 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     dt.note = "or \"auto\" for half the stable time step";
     sim.number("dt", scene.dt, dt);
   }
-  sim.integer("steps_per_frame", scene.steps_per_frame, 1);
-  sim.integer("frames", scene.frames, 1);
+  sim.integer("steps_per_frame", scene.steps_per_frame, 1, kMaxStepsPerFrame);
+  sim.integer("frames", scene.frames, 0, kMaxFrames);
   int64_t seed = 0;
   if (sim.integer("seed", seed, 0)) scene.seed = static_cast<uint64_t>(seed);
 

@@ -94,8 +94,12 @@ class Resume : public testing::TempDirTest {
     std::ofstream(scene_) << kScene;
     log_ = path("log.txt");
   }
-  std::vector<std::string> fresh(const std::string& out, const std::string& every = "1") const {
-    return {"run", scene_, "--backend", "cpu", "--out", out, "--checkpoint-every", every};
+  // (A run killed before its first checkpoint is started again over its folder: --overwrite.)
+  std::vector<std::string> fresh(const std::string& out, const std::string& every = "1",
+                                 bool overwrite = false) const {
+    std::vector<std::string> args{"run", scene_, "--backend", "cpu", "--out", out, "--checkpoint-every", every};
+    if (overwrite) args.push_back("--overwrite");
+    return args;
   }
   // The outputs that must match between an interrupted and an uninterrupted run.
   void expect_same_outputs(const std::string& a, const std::string& b) const {
@@ -134,7 +138,7 @@ TEST_F(Resume, KilledRunsResumeToTheUninterruptedResult) {
     const bool have_checkpoint = std::filesystem::exists(killed + "/checkpoint.pck");
     std::vector<std::string> args =
         have_checkpoint ? std::vector<std::string>{"run", "--resume", killed, "--checkpoint-every", "1"}
-                        : fresh(killed);
+                        : fresh(killed, "1", true);
     resumes += have_checkpoint;
     const int target = furthest_frame() + frames_ahead(rng);
     const pid_t pid = spawn(args, log_);
@@ -339,6 +343,104 @@ TEST_F(Resume, RefusesACorruptedCheckpoint) {
   bytes[bytes.size() - 100] ^= 1;
   std::ofstream(out + "/checkpoint.pck", std::ios::binary) << bytes;
   expect_refusal({"run", "--resume", out}, log_, "checksum mismatch");
+}
+
+// ---- The run's folder (host/app/run_folder.h) through the binary ----------------------------
+
+// A second run into a used folder is refused, naming --overwrite; with it, nothing of the first
+// (longer) run is left.
+TEST_F(Resume, AUsedFolderIsRefusedAndOverwriteLeavesNoStaleFrame) {
+  const std::string out = path("out");
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "4"}, log_), 0) << read_all(log_);
+  expect_refusal({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "2"}, log_, "--overwrite");
+  EXPECT_TRUE(std::filesystem::exists(out + "/frame_00004.pfr"));
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "2", "--overwrite"}, log_), 0)
+      << read_all(log_);
+  EXPECT_TRUE(std::filesystem::exists(out + "/frame_00002.pfr"));
+  for (const char* stale : {"frame_00003.pfr", "frame_00004.pfr", "frame_00004.vtu", "fragments_00004.pfg"})
+    EXPECT_FALSE(std::filesystem::exists(out + "/" + stale)) << stale;
+  EXPECT_EQ(read_all(out + "/particles.pvd").find("frame_00003"), std::string::npos);
+}
+
+// While a run holds its folder, another run into it stops at once.
+TEST_F(Resume, TwoRunsCannotShareAFolder) {
+  const std::string out = path("out");
+  const pid_t first = spawn({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "400"}, log_);
+  for (int i = 0; i < 1000 && !std::filesystem::exists(out + "/frame_00001.pfr"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const std::string second_log = path("second.txt");
+  expect_refusal({"run", scene_, "--backend", "cpu", "--out", out, "--overwrite"}, second_log,
+                 "in use by a running perifrac");
+  kill(first, SIGKILL);
+  wait_for(first);
+}
+
+// A checkpoint copied from another run's folder is refused before anything is written.
+TEST_F(Resume, ACheckpointFromAnotherRunsFolderIsRefused) {
+  const std::string a = path("a"), b = path("b");
+  std::ofstream(path("other.toml")) << kScene << "# another scene\n";
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", a, "--frames", "2", "--checkpoint-every", "2"}, log_),
+            0);
+  ASSERT_EQ(
+      run({"run", path("other.toml"), "--backend", "cpu", "--out", b, "--frames", "2", "--checkpoint-every", "2"},
+          log_),
+      0);
+  const std::string rest_before = read_all(b + "/rest.pfr"), pvd_before = read_all(b + "/particles.pvd");
+  std::filesystem::copy_file(a + "/checkpoint.pck", b + "/checkpoint.pck",
+                             std::filesystem::copy_options::overwrite_existing);
+  expect_refusal({"run", "--resume", b, "--frames", "3"}, log_, "copied from another run's folder");
+  EXPECT_EQ(read_all(b + "/rest.pfr"), rest_before);
+  EXPECT_EQ(read_all(b + "/particles.pvd"), pvd_before);
+}
+
+// Frames a killed run wrote after its last checkpoint are removed when it resumes.
+TEST_F(Resume, ResumeRemovesFramesWrittenAfterTheCheckpoint) {
+  const std::string out = path("out");
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "6", "--checkpoint-every", "3"}, log_),
+            0);
+  // The checkpoint is frame 6's; put back frame 3's as if the run had been killed after frame 5.
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", path("at3"), "--frames", "3", "--checkpoint-every", "3"},
+                log_),
+            0);
+  std::filesystem::copy_file(path("at3") + "/checkpoint.pck", out + "/checkpoint.pck",
+                             std::filesystem::copy_options::overwrite_existing);
+  ASSERT_EQ(run({"run", "--resume", out, "--frames", "4"}, log_), 0) << read_all(log_);
+  EXPECT_NE(read_all(log_).find("written after the checkpoint"), std::string::npos) << read_all(log_);
+  EXPECT_TRUE(std::filesystem::exists(out + "/frame_00004.pfr"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/frame_00005.pfr"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/frame_00006.pfr"));
+}
+
+// SIGTERM in the middle of a long frame stops the run within a second with a checkpoint inside
+// the frame; the resumed run ends with the uninterrupted run's bits.
+TEST_F(Resume, SigtermStopsWithinASecondInsideALongFrame) {
+  const std::string reference = path("reference"), out = path("out");
+  const std::vector<std::string> long_frame{"--backend", "cpu", "--frames", "1", "--steps-per-frame", "3000"};
+  auto args = [&](const std::string& folder) {
+    std::vector<std::string> a{"run", scene_, "--out", folder};
+    a.insert(a.end(), long_frame.begin(), long_frame.end());
+    return a;
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run(args(reference), log_), 0) << read_all(log_);
+  const double frame_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (frame_seconds < 1.5) GTEST_SKIP() << "the frame took " << frame_seconds << " s: too short to interrupt inside";
+
+  const pid_t pid = spawn(args(out), log_);
+  for (int i = 0; i < 1000 && !std::filesystem::exists(out + "/frame_00000.pfr"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill(pid, SIGTERM);
+  const auto t_signal = std::chrono::steady_clock::now();
+  const int code = wait_for(pid);
+  const double stop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_signal).count();
+  ASSERT_EQ(code, 130) << read_all(log_);
+  EXPECT_LT(stop_seconds, 1.0);
+  EXPECT_NE(read_all(log_).find("interrupted in frame 1 at step"), std::string::npos) << read_all(log_);
+  EXPECT_FALSE(std::filesystem::exists(out + "/frame_00001.pfr"));
+  ASSERT_EQ(run({"run", "--resume", out}, log_), 0) << read_all(log_);
+  EXPECT_TRUE(read_all(reference + "/frame_00001.pfr") == read_all(out + "/frame_00001.pfr"));
+  EXPECT_TRUE(read_all(reference + "/energy.csv") == read_all(out + "/energy.csv"));
 }
 
 }  // namespace
