@@ -5,7 +5,8 @@
 # strengths K_S up to 1e20 and dense collisions, and sorts each run into
 #   stable     exit 0, every energy.csv value finite and the final energy balance within 10%;
 #   drift      exit 0 and finite, but the energy balance off by more than 10% (the watchdog stops
-#              a run only past 100%): listed and counted, a warning, not a failure;
+#              a run past 100%, or past 10% when dt exceeds the stable step): listed and
+#              counted, a warning, not a failure;
 #   watchdog   exit 3 with the blow-up message naming the step;
 #   FAILURE    anything else: a crash, a hang (timeout), a NaN/inf in the output, exit 3 without
 #              the message, or another exit code. There must be none.

@@ -28,12 +28,12 @@ class SceneError : public std::runtime_error {
   std::string file_, key_;
 };
 
-// Deviatoric plasticity of a state-based material (Chen et al. eqs. 10-15).
 // Bounds of a run's length (scene keys and command-line options alike): a billion frames of a
 // billion steps keeps the step counter far from overflowing.
 inline constexpr int64_t kMaxFrames = 1000000000;
 inline constexpr int64_t kMaxStepsPerFrame = 1000000000;
 
+// Deviatoric plasticity of a state-based material (Chen et al. eqs. 10-15).
 struct ScenePlastic {
   double psi0 =
       0;  // yield constant psi_0, given directly or from yield_stress: 25 sigma_Y^2 / (8 pi delta^5)

@@ -22,6 +22,7 @@
 #include "host/geometry/voronoi_particles.h"
 #include "host/scene/collider_setup.h"
 #include "host/scene/scene_cracks.h"
+#include "host/scene/range_checks.h"
 #include "host/scene/scene_smells.h"
 
 namespace pd {
@@ -30,12 +31,6 @@ namespace {
 
 Vec3 to_vec3(const Vec3d& v) {
   return {real(v[0]), real(v[1]), real(v[2])};
-}
-
-const SceneMaterial& find_material(const Scene& scene, const std::string& name) {
-  for (const auto& m : scene.materials)
-    if (m.name == name) return m;
-  throw std::logic_error("material '" + name + "' was not checked by the scene loader");
 }
 
 bool inside(const SceneAnchor& a, Vec3 x) {
@@ -198,6 +193,12 @@ double median_nearest_distance(const ParticleGeometry& g) {
 
 }  // namespace
 
+const SceneMaterial& find_material(const Scene& scene, const std::string& name) {
+  for (const auto& m : scene.materials)
+    if (m.name == name) return m;
+  throw std::logic_error("material '" + name + "' was not checked by the scene loader");
+}
+
 TriMesh body_solid(const SceneBody& body, double edge, const std::string& key) {
   TriMesh mesh;
   if (body.shape == "box") mesh = box_mesh(body.size);
@@ -343,6 +344,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   warn_of_particles_inside_colliders(in, result.body_names);
   for (const std::string& warning : scene_smells(scene, in, result.body_names))
     std::fprintf(stderr, "%s\n", warning.c_str());
+  check_physical_ranges(scene, result);
   std::vector<double> material_dt;
   for (const MaterialSummary& m : result.materials) material_dt.push_back(m.critical_dt);
   result.critical_dt = std::fmin(result.critical_dt, colliders_critical_dt(in, material_dt));

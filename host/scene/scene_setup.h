@@ -57,6 +57,9 @@ struct SetupResult {
   std::vector<TriMesh> collider_meshes;  // per collider: a mesh collider's surface in its frame, else empty
 };
 
+// The [materials.NAME] table of `name` (checked by the scene loader to exist).
+const SceneMaterial& find_material(const Scene& scene, const std::string& name);
+
 // Throws SceneError for problems that only show once sizes are known (too many particles,
 // too many material/spacing combinations, a scale out of range).
 SetupResult setup_scene(const Scene& scene, const SetupOptions& options);

@@ -7,6 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "tests/support/output_scan.h"
 
 namespace {
 
@@ -180,6 +184,67 @@ TEST_F(Cli, BlowUpIsDetectedWithTheStep) {
   EXPECT_NE(r.output.find("numerical blow-up"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("step 20"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out() + "/frame_00000.pfr"));
+  EXPECT_EQ(r.output.find("nan"), std::string::npos) << r.output;
+  EXPECT_EQ(pd::testing::non_finite_outputs(out()), std::vector<std::string>{});
+}
+
+// Finite but extreme numbers are refused before anything is written, naming the key to change
+// (not the time step they make unstable), in finite numbers.
+TEST_F(Cli, ExtremeNumbersAreRefusedBeforeAnyOutput) {
+  const std::string path = scene(kGoodBody);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"materials.glass.density=1e308", "materials.glass.density"},
+      {"materials.glass.density=1e-308", "materials.glass.density"},
+      {"bodies[0].velocity=[0,0,1e300]", "bodies[0].velocity"},
+      {"bodies[0].velocity=[1e30,0,0]", "bodies[0].velocity"},
+      {"materials.glass.bulk_modulus=1e300", "materials.glass"}};
+  for (const auto& [set, key] : cases) {
+    std::filesystem::remove_all(out());
+    const Result r = run_perifrac("run " + path + " --set '" + set + "' --backend cpu --out " + out());
+    EXPECT_EQ(r.exit_code, 2) << set << "\n" << r.output;
+    EXPECT_NE(r.output.find("error: " + path + ": " + key + ":"), std::string::npos) << set << "\n" << r.output;
+    EXPECT_FALSE(pd::testing::has_non_finite_token(r.output)) << set << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out())) << set << ": the refused run made its folder";
+  }
+}
+
+// A run past the stable time step (--allow-unstable-dt) stops once its energy grows 10%, with
+// finite numbers in the message and in every file written.
+TEST_F(Cli, UnstableRunsStopOnAGrowingEnergy) {
+  const std::string drop = std::string(PERIFRAC_SOURCE_DIR) + "/scenes/validation/stress_drop.toml";
+  const Result stable = run_perifrac("run " + drop + " --frames 0 --backend cpu --out " + out());
+  ASSERT_EQ(stable.exit_code, 0) << stable.output;
+  const size_t at = stable.output.find("dt_c ");
+  ASSERT_NE(at, std::string::npos) << stable.output;
+  const double critical = std::stod(stable.output.substr(at + 5));
+  const Result r = run_perifrac("run " + drop + " --set simulation.dt=" + std::to_string(2 * critical) +
+                                " --allow-unstable-dt --backend cpu --overwrite --out " + out());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("past the stable time step a run stops at 0.1"), std::string::npos) << r.output;
+  EXPECT_FALSE(pd::testing::has_non_finite_token(r.output)) << r.output;
+  EXPECT_EQ(pd::testing::non_finite_outputs(out()), std::vector<std::string>{});
+}
+
+// --frames: 0 runs the set-up and writes frame 0, as frames = 0 in a scene does; past the bound
+// (10^9) it is refused in one line, not clamped.
+TEST_F(Cli, FrameCountsAreBounded) {
+  const Result zero = run_perifrac("run " + scene(kGoodBody) + " --frames 0 --backend cpu --out " + out());
+  EXPECT_EQ(zero.exit_code, 0) << zero.output;
+  EXPECT_TRUE(std::filesystem::exists(out() + "/frame_00000.pfr"));
+  EXPECT_FALSE(std::filesystem::exists(out() + "/frame_00001.pfr"));
+  const std::string path = (dir_ / "zero.toml").string();
+  std::ofstream(path) << "[simulation]\nframes = 0\n"
+                      << "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+                      << "[[bodies]]\nmaterial = \"glass\"\n"
+                      << kGoodBody;
+  const Result scene_zero = run_perifrac("run " + path + " --backend cpu --out " + (dir_ / "z").string());
+  EXPECT_EQ(scene_zero.exit_code, 0) << scene_zero.output;
+  for (const char* frames : {"99999999999999999999", "1000000001", "-1"}) {
+    const Result big = run_perifrac("run " + scene(kGoodBody) + " --frames " + frames + " --out " + out());
+    EXPECT_EQ(big.exit_code, 2) << big.output;
+    EXPECT_EQ(big.output.rfind("error: --frames", 0), 0u) << big.output;
+    EXPECT_EQ(big.output.find('\n'), big.output.size() - 1) << "not one line: " << big.output;
+  }
 }
 
 // Too many particles for the machine's memory: refused before set-up makes them, exit code 2.
