@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Fuzzes the scene parser and the OBJ/PLY/STL readers with libFuzzer (docs/fuzzing.md).
+# Fuzzes the scene parser, the OBJ/PLY/STL readers, the checkpoint reader and the command-line parser
+# with libFuzzer (docs/fuzzing.md).
 #   scripts/fuzz.sh [SECONDS_PER_TARGET]        default 60; FUZZ_TARGETS="scene ply" picks targets
 # Installs clang and its libFuzzer runtime when missing (apt-get), builds tests/fuzz in build/fuzz,
 # runs each target for SECONDS on a fresh copy of its seed corpus (tests/fuzz/corpus is never
@@ -9,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 seconds=${1:-60}
-targets=${FUZZ_TARGETS:-scene obj ply stl}
+targets=${FUZZ_TARGETS:-scene obj ply stl checkpoint command_line}
 jobs=${FUZZ_JOBS:-$(nproc)}
 if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ]; then
   echo "usage: scripts/fuzz.sh [SECONDS_PER_TARGET]  (a whole number >= 1, default 60)" >&2

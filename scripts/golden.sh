@@ -33,6 +33,7 @@ for c in "${cases[@]}"; do
   "$bin" render "$out/$name" --backend "$backend" --width 96 --height 64 --spp 1 >>"$out/$name.log" 2>&1 ||
     { echo "golden: rendering $name failed, see $out/$name.log" >&2; exit 1; }
 done
-# Run records (wall times, dates, the command line) and logs are not results.
-(cd "$out" && find . -type f ! -name '*.log' ! -name 'run.json' ! -name '*.json' ! -name 'kernels*' \
+# Run records (wall times, dates, the command line; the folder's lock, manifest and journal) and logs
+# are not results.
+(cd "$out" && find . -type f ! -name '*.log' ! -name 'run.*' ! -name '*.json' ! -name 'kernels*' \
   ! -name 'checkpoint*' | LC_ALL=C sort | xargs sha256sum)

@@ -129,12 +129,23 @@ struct EngineState {
   }
   // Throws std::invalid_argument, changing nothing, when a snapshot vector's size is not the
   // array's (another scene or scale); otherwise uploads every saved field.
+  // Each saved bond slot must hold the partner this engine's families hold there, broken or not
+  // (~partner): a snapshot of other bonds, or a crafted one, could make the kernels read outside the
+  // particles.
   void check_sizes(const EngineSnapshot& in) {
     for_each_saved(in, [](const char* what, auto& array, const auto& host) {
       if (host.size() != array.size())
         throw std::invalid_argument(std::string("snapshot ") + what + " has " + std::to_string(host.size()) +
                                     " entries, the engine " + std::to_string(array.size()));
     });
+    std::vector<int32_t> built;
+    neighbor.download(built);
+    const auto partner = [](int32_t slot) { return slot < 0 ? ~slot : slot; };
+    for (size_t k = 0; k < built.size(); ++k)
+      if (partner(in.neighbor[k]) != partner(built[k]))
+        throw std::invalid_argument("snapshot neighbor slot " + std::to_string(k) + " holds partner " +
+                                    std::to_string(partner(in.neighbor[k])) + ", the engine's families " +
+                                    std::to_string(partner(built[k])));
   }
   void upload_saved(const EngineSnapshot& in) {
     for_each_saved(in, [](const char*, auto& array, const auto& host) { array.upload(host); });

@@ -1,12 +1,16 @@
 #include "host/app/checkpoint.h"
 
+#include <cctype>
 #include <cerrno>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include "host/io/checksum.h"
+#include "host/scene/scene.h"
 #include "host/io/record_file.h"
 
 namespace pd {
@@ -60,42 +64,52 @@ void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) 
     if (it == kv.end()) r.fail(std::string("meta key '") + key + "' is missing");
     return it->second;
   };
-  auto number = [&](const char* key) {
+  // A finite number at least `min`.
+  auto number = [&](const char* key, double min) {
     const std::string& v = get(key);
     char* end = nullptr;
     const double x = std::strtod(v.c_str(), &end);
-    if (v.empty() || *end != '\0') r.fail(std::string("meta key '") + key + "' is not a number");
+    if (v.empty() || *end != '\0' || !std::isfinite(x) || x < min)
+      r.fail(std::string("meta key '") + key + "' is not a finite number >= " + std::to_string(min));
     return x;
   };
-  auto integer = [&](const char* key) {
+  // A whole number in [min, max] (digits only: no sign, no overflow).
+  auto integer = [&](const char* key, uint64_t min, uint64_t max) {
     const std::string& v = get(key);
     char* end = nullptr;
+    errno = 0;
     const unsigned long long x = std::strtoull(v.c_str(), &end, 10);
-    if (v.empty() || *end != '\0') r.fail(std::string("meta key '") + key + "' is not an integer");
-    return x;
+    if (v.empty() || !std::isdigit(static_cast<unsigned char>(v[0])) || *end != '\0' || errno == ERANGE ||
+        x < min || x > max)
+      r.fail(std::string("meta key '") + key + "' is not an integer from " + std::to_string(min) + " to " +
+             std::to_string(max));
+    return uint64_t(x);
   };
-  if (integer("real_bytes") != sizeof(real))
-    r.fail("written by a " + std::string(integer("real_bytes") == 8 ? "double" : "float") +
-           "-precision build; this build is " + (sizeof(real) == 8 ? "double" : "float"));
+  const uint64_t any = std::numeric_limits<uint64_t>::max();
+  if (const uint64_t bytes = integer("real_bytes", 4, 8); bytes != sizeof(real))
+    r.fail("written by a " + std::string(bytes == 8 ? "double" : "float") + "-precision build; this build is " +
+           (sizeof(real) == 8 ? "double" : "float"));
   c.scene_path = get("scene_path");
-  c.overrides.resize(size_t(integer("overrides")));
+  c.overrides.resize(size_t(integer("overrides", 0, kv.size())));
   for (size_t k = 0; k < c.overrides.size(); ++k)
     c.overrides[k] = get(("override_" + std::to_string(k)).c_str());
-  c.scene_hash = integer("scene_hash");
-  c.setup_hash = integer("setup_hash");
-  c.scale = number("scale");
-  c.steps_per_frame = int64_t(integer("steps_per_frame"));
-  c.frames = int64_t(integer("frames"));
-  c.blend_frames = int(integer("blend_frames"));
-  c.allow_unstable_dt = integer("allow_unstable_dt") != 0;
-  c.explicit_families = kv.count("explicit_families") && integer("explicit_families") != 0;  // (added later)
+  c.scene_hash = integer("scene_hash", 0, any);
+  c.setup_hash = integer("setup_hash", 0, any);
+  c.scale = number("scale", 0);
+  c.steps_per_frame = int64_t(integer("steps_per_frame", 1, kMaxStepsPerFrame));
+  c.frames = int64_t(integer("frames", 0, kMaxFrames));
+  c.blend_frames = int(integer("blend_frames", 0, std::numeric_limits<int>::max()));
+  c.allow_unstable_dt = integer("allow_unstable_dt", 0, 1) != 0;
+  c.explicit_families = kv.count("explicit_families") && integer("explicit_families", 0, 1) != 0;  // (added later)
   if (kv.count("checkpoint_every"))
-    c.checkpoint_every = int64_t(integer("checkpoint_every"));  // (added later)
-  if (kv.count("checkpoint_minutes")) c.checkpoint_minutes = number("checkpoint_minutes");
+    c.checkpoint_every = int64_t(integer("checkpoint_every", 0, kMaxFrames));  // (added later)
+  if (kv.count("checkpoint_minutes")) c.checkpoint_minutes = number("checkpoint_minutes", 0);
   c.backend = get("backend");
-  c.frame = int64_t(integer("frame"));
-  c.engine.step = int64_t(integer("step"));
-  c.engine.time = number("time");
+  c.frame = int64_t(integer("frame", 0, uint64_t(c.frames)));
+  // A checkpoint after `frame` (at its end, or inside the next frame when a signal stopped it).
+  c.engine.step = int64_t(integer("step", uint64_t(c.frame * c.steps_per_frame),
+                                  uint64_t((c.frame + 1) * c.steps_per_frame)));
+  c.engine.time = number("time", 0);
 }
 
 // The PVD index as "time file" lines (time exact).
@@ -111,7 +125,9 @@ std::vector<PvdSeries::Entry> parse_series(const RecordReader& r, std::string_vi
   for (std::string line; std::getline(in, line);) {
     const size_t space = line.find(' ');
     if (space == std::string::npos) r.fail("malformed series line '" + line + "'");
-    out.push_back({std::strtod(line.substr(0, space).c_str(), nullptr), line.substr(space + 1)});
+    const double time = std::strtod(line.substr(0, space).c_str(), nullptr);
+    if (!std::isfinite(time)) r.fail("series line '" + line + "' has no finite time");
+    out.push_back({time, line.substr(space + 1)});
   }
   return out;
 }
@@ -135,6 +151,10 @@ std::vector<FragmentSmoother::Correction> unpack_corrections(const RecordReader&
   std::vector<FragmentSmoother::Correction> cs(v.size() / 9);
   for (size_t k = 0; k < cs.size(); ++k) {
     const double* d = &v[9 * k];
+    for (int j = 0; j < 9; ++j)
+      if (!std::isfinite(d[j])) r.fail("record 'corrections' holds a number that is not finite");
+    if (d[0] < 0 || d[0] > std::numeric_limits<int32_t>::max() || d[8] < -1 || d[8] > std::numeric_limits<int>::max())  // (age -1: none)
+      r.fail("record 'corrections' holds a particle count or age out of range");
     cs[k].particles = int32_t(d[0]);
     cs[k].rotation = Eigen::Quaterniond(d[1], d[2], d[3], d[4]);
     cs[k].offset = Eigen::Vector3d(d[5], d[6], d[7]);

@@ -38,10 +38,12 @@ size_t input_limit_bytes() {
   return size_t(mb) * kMegabyte;
 }
 
-std::optional<std::string> read_input_file(const std::string& path, std::string& why) {
-  const size_t limit = input_limit_bytes();
-  const std::string limit_text =
-      "the input limit of " + std::to_string(limit / kMegabyte) + " MB (PERIFRAC_MAX_INPUT_MB)";
+namespace {
+
+// A regular file read whole, at most `limit` bytes (none: its size when opened); `limit_text`
+// names the limit in the messages.
+std::optional<std::string> read_regular_file(const std::string& path, std::string& why,
+                                             std::optional<size_t> limit_bytes, const std::string& limit_text) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) {  // (follows symlinks: their target must be a file)
     why = std::strerror(errno);
@@ -51,6 +53,7 @@ std::optional<std::string> read_input_file(const std::string& path, std::string&
     why = std::string("not a regular file (") + kind_of(st.st_mode) + "; allowed: a regular file)";
     return std::nullopt;
   }
+  const size_t limit = limit_bytes ? *limit_bytes : size_t(st.st_size);
   if (size_t(st.st_size) > limit) {
     why = "the file is " + std::to_string(size_t(st.st_size) / kMegabyte) + " MB, larger than " + limit_text;
     return std::nullopt;
@@ -75,6 +78,18 @@ std::optional<std::string> read_input_file(const std::string& path, std::string&
     return std::nullopt;
   }
   return bytes;
+}
+
+}  // namespace
+
+std::optional<std::string> read_input_file(const std::string& path, std::string& why) {
+  const size_t limit = input_limit_bytes();
+  return read_regular_file(path, why, limit,
+                           "the input limit of " + std::to_string(limit / kMegabyte) + " MB (PERIFRAC_MAX_INPUT_MB)");
+}
+
+std::optional<std::string> read_output_file(const std::string& path, std::string& why) {
+  return read_regular_file(path, why, std::nullopt, "its size when opened");
 }
 
 }  // namespace pd

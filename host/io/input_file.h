@@ -18,4 +18,8 @@ size_t input_limit_bytes();
 // device)", the system's reason, "larger than the input limit ...").
 std::optional<std::string> read_input_file(const std::string& path, std::string& why);
 
+// A file a run wrote and reads back (a checkpoint, which may exceed the input limit): a regular
+// file only, read up to the size it had when opened (a file that grows meanwhile is refused).
+std::optional<std::string> read_output_file(const std::string& path, std::string& why);
+
 }  // namespace pd

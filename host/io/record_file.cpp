@@ -2,10 +2,9 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "host/io/checksum.h"
+#include "host/io/input_file.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "record files are little endian");
 
@@ -57,12 +56,10 @@ void RecordWriter::write(const std::string& path, const char (&magic)[8], uint32
 }
 
 RecordReader::RecordReader(const std::string& path, const char (&magic)[8], uint32_t version) : path_(path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw io_error_errno("read", path, errno);
-  std::ostringstream all;
-  all << in.rdbuf();
-  if (in.bad()) throw io_error_errno("read", path, errno);
-  data_ = std::move(all).str();
+  std::string why;
+  std::optional<std::string> bytes = read_output_file(path, why);
+  if (!bytes) throw io_error("read", path, why);
+  data_ = std::move(*bytes);
 
   // Header, then the checksum over everything but its own 8 bytes.
   const size_t head = 8 + sizeof(uint32_t);
@@ -101,7 +98,11 @@ std::string_view RecordReader::get(const std::string& name) const {
 }
 
 void RecordReader::fail(const std::string& reason) const {
-  throw io_error("read", path_, reason);
+  // (The reason may quote bytes of the file: control characters become '?', so it stays one line.)
+  std::string printable = reason;
+  for (char& c : printable)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  throw io_error("read", path_, printable);
 }
 
 }  // namespace pd

@@ -43,6 +43,8 @@ TEST_F(StateFieldsFile, EverySavedFieldSurvivesTheCheckpointFile) {
   c.scene_path = "scene.toml";
   c.backend = "cpu";
   fill_distinct(c.engine, 5);
+  c.steps_per_frame = 10;  // (a checkpoint after frame 0: step 0 to 10)
+  c.engine.step = 3;
   int fields = 0;
   for_each_snapshot_field(c.engine, [&](const char*, const auto&) { ++fields; });
   EXPECT_GE(fields, 9);  // disp, vel, force, strain_min, intact, ledger, state, neighbor, plastic

@@ -51,7 +51,9 @@ inline bool finite3(const Vec3d& v) {
 // Every value of a loaded scene within the ranges that docs/scene-reference.md promises.
 inline void require_valid_scene(const Scene& s) {
   require(s.dt_auto || (std::isfinite(s.dt) && s.dt > 0), "dt");
-  require(s.steps_per_frame >= 1 && s.frames >= 1, "steps_per_frame, frames");
+  require(s.steps_per_frame >= 1 && s.steps_per_frame <= kMaxStepsPerFrame && s.frames >= 0 &&
+              s.frames <= kMaxFrames,
+          "steps_per_frame, frames");
   require(finite3(s.gravity) && std::isfinite(s.floor_height), "world");
   require(s.restitution >= 0 && s.restitution <= 1, "restitution");
   require(std::isfinite(s.contact_stiffness) && s.contact_stiffness >= 0, "contact stiffness");

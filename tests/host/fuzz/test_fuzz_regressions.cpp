@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tests/fuzz/fuzz_entries.h"
+#include "tests/fuzz/fuzz_run_entries.h"
 
 namespace pd {
 namespace {
@@ -41,6 +42,8 @@ std::vector<fs::path> files_in(const fs::path& dir) {
 // The entry of each fuzz target, by the target's folder name.
 Entry entry_of(const std::string& target) {
   if (target == "scene") return fuzz::scene_entry;
+  if (target == "checkpoint") return fuzz::checkpoint_entry;
+  if (target == "command_line") return fuzz::command_line_entry;
   const fuzz::MeshFormat format = target == "obj"   ? fuzz::MeshFormat::obj
                                   : target == "ply" ? fuzz::MeshFormat::ply
                                                     : fuzz::MeshFormat::stl;
@@ -69,10 +72,16 @@ TEST(FuzzRegressions, Ply) {
 TEST(FuzzRegressions, Stl) {
   expect_regressions_pass("stl");
 }
+TEST(FuzzRegressions, Checkpoint) {
+  expect_regressions_pass("checkpoint");
+}
+TEST(FuzzRegressions, CommandLine) {
+  expect_regressions_pass("command_line");
+}
 
 // The seeds are valid inputs, so that fuzzing starts from files that reach the checks after parsing.
 TEST(FuzzCorpus, EverySeedIsValid) {
-  for (const std::string target : {"scene", "obj", "ply", "stl"}) {
+  for (const std::string target : {"scene", "obj", "ply", "stl", "checkpoint", "command_line"}) {
     const Entry entry = entry_of(target);
     const std::vector<fs::path> seeds = files_in(kFuzzDir / "corpus" / target);
     EXPECT_GE(seeds.size(), 4u) << target;

@@ -1,0 +1,13 @@
+// libFuzzer target: the input bytes as a perifrac command line, arguments separated by NUL bytes
+// (add_commands and CLI11's parser; nothing runs). A broken contract escapes as an exception, which
+// libFuzzer reports as a crash.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "tests/fuzz/fuzz_run_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  pd::fuzz::command_line_entry(std::string(reinterpret_cast<const char*>(data), size));
+  return 0;
+}
