@@ -1,6 +1,6 @@
 // Scene smells: a scene that loads and runs but most likely not as meant. One warning line each,
 // printed at start-up (the run goes on): an anchor whose box holds no particle, two bodies of one
-// name, particles that start below the floor.
+// name, particles that start below the floor, bodies that overlap.
 #pragma once
 
 #include <string>

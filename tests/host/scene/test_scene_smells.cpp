@@ -1,5 +1,6 @@
-// Scene smells (host/scene/scene_smells.h): an anchor holding no particle, two bodies of one name
-// and a body below the floor each give one warning line naming it; a clean scene gives none.
+// Scene smells (host/scene/scene_smells.h): an anchor holding no particle, two bodies of one name,
+// a body below the floor and overlapping bodies each give one warning line naming it; a clean scene
+// (bodies that merely touch included) gives none.
 #include "host/scene/scene_smells.h"
 
 #include <gtest/gtest.h>
@@ -58,6 +59,29 @@ box_max = [0.1, 0.1, 0.1]
   EXPECT_NE(w[1].find("bodies[0] and bodies[1] are both named 'block'"), std::string::npos) << w[1];
   EXPECT_NE(w[2].find("body 'block': 64 particles start below the floor (y = 0)"), std::string::npos) << w[2];
   for (const std::string& line : w) EXPECT_EQ(line.find('\n'), std::string::npos);
+}
+
+// Bodies that touch face to face are clean; one pushed half into the other is named with the
+// particles that overlap.
+TEST(SceneSmells, OverlappingBodiesAreNamed) {
+  const std::string second = R"(
+[[bodies]]
+name = "lid"
+center = [0, CENTER_Y, 0]
+size = [0.04, 0.04, 0.04]
+spacing = 0.01
+material = "m"
+)";
+  auto with_lid_at = [&](const std::string& y) {
+    std::string text = second;
+    text.replace(text.find("CENTER_Y"), 8, y);
+    return smells(text);
+  };
+  EXPECT_TRUE(with_lid_at("0.09").empty());  // touching: the block spans y 0.03 to 0.07
+  const std::vector<std::string> w = with_lid_at("0.07");  // two layers of each body coincide
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("warning: bodies 'block' and 'lid' overlap: 64 of their particles"), std::string::npos)
+      << w[0];
 }
 
 }  // namespace
