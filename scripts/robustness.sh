@@ -1,0 +1,191 @@
+#!/usr/bin/env bash
+# The robustness table (docs/robustness.md): hostile inputs and situations, by class, each run
+# through the perifrac binary and held to what it must do: the exit code, one "error:" line naming
+# the key or option (or the warning, or the files left), and no NaN or inf in any file written.
+#   scripts/robustness.sh BIN                 prints the table; exit 1 when a case fails
+#   scripts/robustness.sh BIN --check FILE    also exit 1 when FILE's table differs (CI: the doc
+#                                             stays what the binary does)
+#   scripts/robustness.sh BIN --write FILE    writes the table into FILE
+# Each case takes well under a second on one core, but for the SIGTERM one.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+[[ $# -ge 1 ]] || { sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+BIN=$(realpath "$1"); shift
+MODE="" FILE=""
+if [[ $# -eq 2 && ( $1 == --check || $1 == --write ) ]]; then MODE=$1 FILE=$2; fi
+[[ -x $BIN ]] || { echo "error: no perifrac binary at '$BIN'" >&2; exit 2; }
+export OMP_NUM_THREADS=1
+W=$(mktemp -d)
+trap 'rm -rf "$W"' EXIT
+cd "$W" || exit 2
+
+# ---- Scenes -----------------------------------------------------------------------------------
+scene() {  # NAME [EXTRA TOML]: a small glass block (about 100 particles, 2 frames of 20 steps)
+  {
+    printf '[simulation]\nsteps_per_frame = 20\nframes = 2\n'
+    printf '[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n'
+    printf '[[bodies]]\nname = "block"\nmaterial = "glass"\nsize = [0.02, 0.01, 0.01]\nspacing = 0.002\n'
+    printf 'velocity = [1.0, 0.0, 0.0]\n'
+    printf '%b' "${2:-}"
+  } >"$1"
+}
+scene s.toml
+scene t.toml '# another scene\n'
+scene long.toml '[[bodies]]\nname = "far"\nmaterial = "glass"\ncenter = [1, 0, 0]\nsize = [0.04, 0.02, 0.02]\nspacing = 0.002\n'
+scene drop.toml '[world]\nfloor = true\nfloor_height = -0.003\n'
+
+# ---- Cases ------------------------------------------------------------------------------------
+rows=()
+failures=0
+# case CLASS "CASE" EXIT "PATTERN" COMMAND...: runs COMMAND (output in out.txt), then checks the
+# exit code, the pattern (grep -E) in the output, an exit 2's one "error:" line, and the files.
+case_() {
+  local class=$1 what=$2 want=$3 pattern=$4 code why=""
+  shift 4
+  "$@" >out.txt 2>&1
+  code=$?
+  [[ $code == "$want" ]] || why="exit $code, expected $want"
+  [[ -z $why && -n $pattern ]] && ! grep -qE -- "$pattern" out.txt && why="no '$pattern' in the output"
+  if [[ -z $why && $want == 2 ]]; then
+    [[ $(grep -c '^error: ' out.txt) == 1 ]] || why="not one 'error:' line"
+  fi
+  if [[ -z $why ]] && grep -qiwE 'nan|-?inf' out.txt; then why="nan or inf in the message"; fi
+  if [[ -z $why ]] && ! finite_files; then why="a file holds nan or inf"; fi
+  if [[ -z $why && -n ${POST:-} ]] && ! eval "$POST"; then why="check failed: $POST"; fi
+  local expected="exit $want${pattern:+, \`${pattern//|/\\|}\`}"
+  if [[ -z $why ]]; then
+    rows+=("| $class | $what | $expected | pass |")
+  else
+    rows+=("| $class | $what | $expected | **FAIL**: $why |")
+    failures=$((failures + 1))
+    sed 's/^/    /' out.txt | head -5 >&2
+  fi
+  POST=""
+}
+# No NaN or inf token in the text files written under the working folder.
+finite_files() {
+  ! find . -type f \( -name '*.csv' -o -name '*.obj' -o -name '*.vtu' -o -name '*.pvd' \) -print0 |
+    xargs -0 -r grep -liwE 'nan|-?inf' | grep -q .
+}
+fresh() { rm -rf "$@"; }
+P=(run --backend cpu)
+
+# Run folders
+fresh o
+"$BIN" "${P[@]}" s.toml --frames 4 --out o >/dev/null 2>&1
+case_ "run folder" "a second run into a used folder" 2 "--overwrite" "$BIN" "${P[@]}" s.toml --out o
+POST='[[ ! -e o/frame_00003.pfr && ! -e o/frame_00004.pfr ]]'
+case_ "run folder" "--overwrite of a longer run: no stale frame" 0 "removed the [0-9]+ files" "$BIN" "${P[@]}" s.toml --frames 2 --overwrite --out o
+fresh busy
+"$BIN" "${P[@]}" long.toml --frames 100000 --out busy >/dev/null 2>&1 &
+busy=$!
+for _ in $(seq 100); do [[ -e busy/frame_00000.pfr ]] && break; sleep 0.05; done
+case_ "run folder" "two runs in one folder at once" 2 "in use by a running perifrac" "$BIN" "${P[@]}" s.toml --overwrite --out busy
+kill -9 $busy 2>/dev/null; wait $busy 2>/dev/null
+fresh a b
+"$BIN" "${P[@]}" s.toml --checkpoint-every 2 --out a >/dev/null 2>&1
+"$BIN" "${P[@]}" t.toml --checkpoint-every 2 --out b >/dev/null 2>&1
+cp a/checkpoint.pck b/checkpoint.pck
+case_ "run folder" "a checkpoint copied from another run's folder" 2 "copied from another run's folder" "$BIN" run --resume b --frames 3
+fresh old && mkdir old && : >old/frame_00000.pfr
+case_ "run folder" "outputs of a run without a manifest" 2 "kept no run.manifest" "$BIN" "${P[@]}" s.toml --overwrite --out old
+
+# Bounded inputs
+fresh o
+case_ "bounded input" "scene file /dev/zero" 2 "not a regular file" "$BIN" "${P[@]}" /dev/zero --out o
+ln -sf /dev/urandom random.toml
+case_ "bounded input" "scene file a symlink to /dev/urandom" 2 "not a regular file" "$BIN" "${P[@]}" random.toml --out o
+ln -sf /dev/zero zero.obj
+scene mesh.toml '[[bodies]]\nshape = "mesh"\nmesh = "zero.obj"\nmaterial = "glass"\nspacing = 0.002\n'
+case_ "bounded input" "mesh file a symlink to /dev/zero" 2 "not a regular file" "$BIN" "${P[@]}" mesh.toml --out o
+head -c 2000000 /dev/zero | tr '\0' '#' >big.toml
+case_ "bounded input" "scene over PERIFRAC_MAX_INPUT_MB" 2 "larger than the input limit" env PERIFRAC_MAX_INPUT_MB=1 "$BIN" "${P[@]}" big.toml --out o
+case_ "bounded input" "PERIFRAC_MAX_INPUT_MB=lots" 2 "PERIFRAC_MAX_INPUT_MB" env PERIFRAC_MAX_INPUT_MB=lots "$BIN" "${P[@]}" s.toml --out o
+case_ "bounded input" "PERIFRAC_HOST_MEMORY_MB=-5" 2 "PERIFRAC_HOST_MEMORY_MB" env PERIFRAC_HOST_MEMORY_MB=-5 "$BIN" "${P[@]}" s.toml --out o
+
+# Finite output
+for set in "materials.glass.density=1e308|materials.glass.density" "materials.glass.density=1e-308|materials.glass.density" \
+  "bodies[0].velocity=[0,0,1e300]|bodies\[0\].velocity" "bodies[0].velocity=[1e30,0,0]|bodies\[0\].velocity" \
+  "materials.glass.bulk_modulus=1e300|materials.glass:"; do
+  fresh o
+  POST='[[ ! -e o ]]'
+  case_ "finite output" "--set ${set%%|*}: refused before any file" 2 "${set#*|}" "$BIN" "${P[@]}" s.toml --set "${set%%|*}" --out o
+done
+fresh o
+scene blow.toml '[world]\ngravity = [0.0, -1e38, 0.0]\n'
+sed -i 's/^steps_per_frame = 20/dt = 1.0\nsteps_per_frame = 20/' blow.toml
+case_ "finite output" "overflow to infinity: blow-up caught, files finite" 3 "numerical blow-up: .* by step 20" "$BIN" "${P[@]}" blow.toml --allow-unstable-dt --out o
+fresh o
+dtc=$("$BIN" "${P[@]}" "$OLDPWD/scenes/validation/stress_drop.toml" --frames 0 --out probe 2>/dev/null | sed -n 's/.*dt_c \([0-9.e+-]*\) s.*/\1/p' | sort -g | head -1)
+case_ "finite output" "--allow-unstable-dt at 2 dt_c: stops on energy growth" 3 "stops at 0.1" "$BIN" "${P[@]}" "$OLDPWD/scenes/validation/stress_drop.toml" --set "simulation.dt=$(awk -v a="$dtc" 'BEGIN { printf "%.6e", 2 * a }')" --allow-unstable-dt --out o
+
+# Resume
+fresh r
+"$BIN" "${P[@]}" s.toml --checkpoint-every 1 --out r >/dev/null 2>&1
+case_ "resume" "--scale given to a resume" 2 "--scale 0.5 differs" "$BIN" run --resume r --scale 0.5
+case_ "resume" "--overwrite with --resume" 2 "excludes" "$BIN" run --resume r --overwrite
+case_ "resume" "from another working directory" 0 "resume     from frame 2" env -C / "$BIN" run --resume "$PWD/r" --frames 3
+cp r/checkpoint.pck saved.pck
+head -c 1000 saved.pck >r/checkpoint.pck
+case_ "resume" "a truncated checkpoint" 2 "checksum mismatch|truncated" "$BIN" run --resume r --frames 4
+fresh k
+"$BIN" "${P[@]}" s.toml --frames 1 --steps-per-frame 200000 --out k >out-k.txt 2>&1 &
+run=$!
+for _ in $(seq 200); do [[ -e k/frame_00000.pfr ]] && break; sleep 0.05; done
+sleep 0.3
+kill -TERM $run
+t0=$(date +%s.%N)
+wait $run
+code=$?
+stop=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
+POST="awk -v s=$stop 'BEGIN { exit !(s < 1) }'"
+case_ "resume" "SIGTERM inside a 200,000-step frame: stops within 1 s" 130 "interrupted in frame 1" sh -c "cat out-k.txt; exit $code"
+
+# The command line
+fresh o
+case_ "command line" "--frames 99999999999999999999" 2 "--frames" "$BIN" "${P[@]}" s.toml --frames 99999999999999999999 --out o
+POST='[[ -e o/frame_00000.pfr && ! -e o/frame_00001.pfr ]]'
+case_ "command line" "--frames 0: the set-up and frame 0" 0 "" "$BIN" "${P[@]}" s.toml --frames 0 --out o
+scene zero.toml
+sed -i 's/^frames = 2/frames = 0/' zero.toml
+case_ "command line" "frames = 0 in the scene: the same" 0 "" "$BIN" "${P[@]}" zero.toml --out z
+case_ "command line" "--set with a line break" 2 "--set" "$BIN" "${P[@]}" s.toml --set $'simulation.frames=3\nmaterials.glass.density=1' --out o3
+case_ "command line" "--set with an index past 2^64" 2 "bodies\[" "$BIN" "${P[@]}" s.toml --set 'bodies[99999999999999999999].spacing=1' --out o3
+case_ "command line" "an unknown option" 2 "--no-such-option" "$BIN" "${P[@]}" s.toml --no-such-option
+case_ "command line" "--backend gpu" 2 "--backend" "$BIN" run s.toml --backend gpu
+case_ "command line" "an argument with a line break" 2 "^error: .*\?" "$BIN" "${P[@]}" s.toml $'--out\nx' extra
+sed 's/^steps_per_frame = 20/dt = 5e-324\nsteps_per_frame = 20/' s.toml >tiny-dt.toml
+case_ "command line" "dt = 5e-324" 2 "simulation.dt" "$BIN" "${P[@]}" tiny-dt.toml --out o2
+
+# Scene smells
+scene anchor.toml '[[anchors]]\nbox_min = [1, 1, 1]\nbox_max = [2, 2, 2]\n'
+case_ "scene smell" "an anchor box holding no particle" 0 "warning: anchors\[0\]: its box holds no particle" "$BIN" "${P[@]}" anchor.toml --frames 0 --out s1
+scene twins.toml '[[bodies]]\nname = "block"\nmaterial = "glass"\ncenter = [0.1, 0, 0]\nsize = [0.01, 0.01, 0.01]\nspacing = 0.002\n'
+case_ "scene smell" "two bodies of one name" 0 "both named 'block'" "$BIN" "${P[@]}" twins.toml --frames 0 --out s2
+case_ "scene smell" "a body below the floor" 0 "start below the floor" "$BIN" "${P[@]}" drop.toml --frames 0 --out s3
+scene overlap.toml '[[bodies]]\nname = "lid"\nmaterial = "glass"\ncenter = [0.004, 0, 0]\nsize = [0.02, 0.01, 0.01]\nspacing = 0.002\n'
+case_ "scene smell" "overlapping bodies" 0 "bodies 'block' and 'lid' overlap" "$BIN" "${P[@]}" overlap.toml --frames 0 --out s4
+
+# ---- Table ------------------------------------------------------------------------------------
+table() {
+  echo "| class | case | expected | result |"
+  echo "| --- | --- | --- | --- |"
+  printf '%s\n' "${rows[@]}"
+  echo
+  echo "${#rows[@]} cases, $failures failed."
+}
+table >table.md
+cd "$OLDPWD" || exit 2
+cat "$W/table.md"
+status=0
+[[ $failures -eq 0 ]] || status=1
+if [[ $MODE == --write ]]; then
+  { sed '/^<!-- table -->$/q' "$FILE"; cat "$W/table.md"; } >"$FILE.tmp" && mv "$FILE.tmp" "$FILE"
+elif [[ $MODE == --check ]]; then
+  if ! diff <(sed '1,/^<!-- table -->$/d' "$FILE") "$W/table.md" >/dev/null; then
+    echo "robustness: $FILE does not hold this table: run scripts/robustness.sh BIN --write $FILE" >&2
+    status=1
+  fi
+fi
+exit $status
