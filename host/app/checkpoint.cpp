@@ -3,15 +3,15 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
 #include "host/io/checksum.h"
-#include "host/scene/scene.h"
 #include "host/io/record_file.h"
+#include "host/scene/scene.h"
 
 namespace pd {
 
@@ -87,8 +87,8 @@ void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) 
   };
   const uint64_t any = std::numeric_limits<uint64_t>::max();
   if (const uint64_t bytes = integer("real_bytes", 4, 8); bytes != sizeof(real))
-    r.fail("written by a " + std::string(bytes == 8 ? "double" : "float") + "-precision build; this build is " +
-           (sizeof(real) == 8 ? "double" : "float"));
+    r.fail("written by a " + std::string(bytes == 8 ? "double" : "float") +
+           "-precision build; this build is " + (sizeof(real) == 8 ? "double" : "float"));
   c.scene_path = get("scene_path");
   c.overrides.resize(size_t(integer("overrides", 0, kv.size())));
   for (size_t k = 0; k < c.overrides.size(); ++k)
@@ -100,15 +100,16 @@ void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) 
   c.frames = int64_t(integer("frames", 0, kMaxFrames));
   c.blend_frames = int(integer("blend_frames", 0, std::numeric_limits<int>::max()));
   c.allow_unstable_dt = integer("allow_unstable_dt", 0, 1) != 0;
-  c.explicit_families = kv.count("explicit_families") && integer("explicit_families", 0, 1) != 0;  // (added later)
+  c.explicit_families =
+      kv.count("explicit_families") && integer("explicit_families", 0, 1) != 0;  // (added later)
   if (kv.count("checkpoint_every"))
     c.checkpoint_every = int64_t(integer("checkpoint_every", 0, kMaxFrames));  // (added later)
   if (kv.count("checkpoint_minutes")) c.checkpoint_minutes = number("checkpoint_minutes", 0);
   c.backend = get("backend");
   c.frame = int64_t(integer("frame", 0, uint64_t(c.frames)));
   // A checkpoint after `frame` (at its end, or inside the next frame when a signal stopped it).
-  c.engine.step = int64_t(integer("step", uint64_t(c.frame * c.steps_per_frame),
-                                  uint64_t((c.frame + 1) * c.steps_per_frame)));
+  c.engine.step = int64_t(
+      integer("step", uint64_t(c.frame * c.steps_per_frame), uint64_t((c.frame + 1) * c.steps_per_frame)));
   c.engine.time = number("time", 0);
 }
 
@@ -153,7 +154,8 @@ std::vector<FragmentSmoother::Correction> unpack_corrections(const RecordReader&
     const double* d = &v[9 * k];
     for (int j = 0; j < 9; ++j)
       if (!std::isfinite(d[j])) r.fail("record 'corrections' holds a number that is not finite");
-    if (d[0] < 0 || d[0] > std::numeric_limits<int32_t>::max() || d[8] < -1 || d[8] > std::numeric_limits<int>::max())  // (age -1: none)
+    if (d[0] < 0 || d[0] > std::numeric_limits<int32_t>::max() || d[8] < -1 ||
+        d[8] > std::numeric_limits<int>::max())  // (age -1: none)
       r.fail("record 'corrections' holds a particle count or age out of range");
     cs[k].particles = int32_t(d[0]);
     cs[k].rotation = Eigen::Quaterniond(d[1], d[2], d[3], d[4]);

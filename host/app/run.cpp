@@ -257,8 +257,9 @@ std::unique_ptr<RunFolder> claim_output_folder(const Simulation& sim, const RunO
     if (m.scene_hash != resume->scene_hash || m.scale != resume->scale || m.overrides != resume->overrides)
       throw ResumeError("cannot resume: the checkpoint in '" + out + "' was not written by the run its " +
                         kManifestFileName + " records (that run is of '" + m.scene_path + "' at scale " +
-                        format_number(m.scale) + ", the checkpoint of '" + resume->scene_path + "' at scale " +
-                        format_number(resume->scale) + "): it was copied from another run's folder");
+                        format_number(m.scale) + ", the checkpoint of '" + resume->scene_path +
+                        "' at scale " + format_number(resume->scale) +
+                        "): it was copied from another run's folder");
     folder->start(m);
     return folder;
   }
@@ -410,12 +411,13 @@ RunStart start_fresh_run(Simulation& sim, RunOutput& output) {
   const int64_t bad = sim.engine->first_non_finite();
   if (bad >= 0 || !std::isfinite(e.balance()))
     throw SceneError(sim.scene.path, bad >= 0 ? "bodies" : "materials",
-                     bad >= 0 ? "particle " + std::to_string(bad) + " of body '" +
-                                    sim.setup.body_names[size_t(sim.setup.input.particles.body[size_t(bad)])] +
-                                    "' starts with a state that is not finite: its numbers are out of range"
-                              : "the energy at the start is not finite (kinetic " + format_number(e.kinetic) +
-                                    " J, strain " + format_number(e.strain) + " J, gravity " +
-                                    format_number(e.gravity) + " J): the scene's numbers are out of range");
+                     bad >= 0
+                         ? "particle " + std::to_string(bad) + " of body '" +
+                               sim.setup.body_names[size_t(sim.setup.input.particles.body[size_t(bad)])] +
+                               "' starts with a state that is not finite: its numbers are out of range"
+                         : "the energy at the start is not finite (kinetic " + format_number(e.kinetic) +
+                               " J, strain " + format_number(e.strain) + " J, gravity " +
+                               format_number(e.gravity) + " J): the scene's numbers are out of range");
   output.write_frame(0);
   output.energy_log().add(0, 0, 0.0, start.energy0);
   return start;
@@ -558,7 +560,8 @@ class StepPacer {
       const auto t0 = std::chrono::steady_clock::now();
       engine.advance(steps);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      chunk_ = std::clamp(int64_t(0.2 * double(steps) / std::max(seconds, 1e-9)), int64_t(1), kMaxStepsPerFrame);
+      chunk_ =
+          std::clamp(int64_t(0.2 * double(steps) / std::max(seconds, 1e-9)), int64_t(1), kMaxStepsPerFrame);
     }
     return true;
   }
@@ -582,7 +585,8 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
     if (!pacer.advance_to(engine, frame * scene.steps_per_frame)) {
       write_run_checkpoint(sim, opt, output, start.energy0, frame - 1);
       std::printf(
-          "%sinterrupted in frame %lld at step %lld: checkpoint written; continue with: perifrac run --resume "
+          "%sinterrupted in frame %lld at step %lld: checkpoint written; continue with: perifrac run "
+          "--resume "
           "%s\n",
           tty ? "\n" : "", (long long)frame, (long long)engine.step(), output.dir().c_str());
       return kExitInterrupted;

@@ -170,8 +170,9 @@ std::optional<RunManifest> check_run_folder(const std::string& dir, FolderUse us
   std::optional<RunManifest> found = read_manifest(dir);
   if (use == FolderUse::kResume) {
     if (!found)
-      throw RunFolderError("cannot resume in '" + dir + "': it holds no " + kManifestFileName +
-                           " (a run of this perifrac writes one first); start the run again without --resume");
+      throw RunFolderError(
+          "cannot resume in '" + dir + "': it holds no " + kManifestFileName +
+          " (a run of this perifrac writes one first); start the run again without --resume");
     return found;
   }
   if (!found) {
@@ -184,9 +185,10 @@ std::optional<RunManifest> check_run_folder(const std::string& dir, FolderUse us
   if (use == FolderUse::kNew && found->frames_written >= 0) {
     std::error_code ec;
     const bool resumable = std::filesystem::exists(dir + "/checkpoint.pck", ec);
-    throw RunFolderError("output folder '" + dir + "' holds the run of '" + found->scene_path + "' (frames 0 to " +
-                         std::to_string(found->frames_written) + "): pass --overwrite to replace it, " +
-                         (resumable ? "--resume " + dir + " to continue it, " : "") + "or give another --out");
+    throw RunFolderError(
+        "output folder '" + dir + "' holds the run of '" + found->scene_path + "' (frames 0 to " +
+        std::to_string(found->frames_written) + "): pass --overwrite to replace it, " +
+        (resumable ? "--resume " + dir + " to continue it, " : "") + "or give another --out");
   }
   return found;
 }
@@ -210,7 +212,8 @@ void OutputJournal::set_frame(int64_t frame) {
 // One line per file, in one write(2) on an O_APPEND descriptor, so that a line is whole or absent.
 // Files outside the folder and the folder's own bookkeeping files are not journaled.
 void OutputJournal::record(const std::string& path) {
-  const fs::path relative = fs::path(path).lexically_normal().lexically_relative(fs::path(dir_).lexically_normal());
+  const fs::path relative =
+      fs::path(path).lexically_normal().lexically_relative(fs::path(dir_).lexically_normal());
   if (relative.empty() || *relative.begin() == ".." || relative == kManifestFileName) return;
   const std::string line = std::to_string(frame_) + " " + relative.string() + "\n";
   if (::write(fd_, line.data(), line.size()) != ssize_t(line.size()))
@@ -248,7 +251,8 @@ RunFolder::RunFolder(std::string dir, FolderUse use) : dir_(std::move(dir)) {
     fs::remove(fs::path(dir_) / kJournalFileName, ec);
     fs::remove(fs::path(dir_) / kManifestFileName, ec);
     if (!ended_before_first_frame)
-      std::printf("output     --overwrite: removed the %zu files of the previous run in %s\n", removed, dir_.c_str());
+      std::printf("output     --overwrite: removed the %zu files of the previous run in %s\n", removed,
+                  dir_.c_str());
     found_.reset();
   } catch (...) {
     ::close(lock_fd_);

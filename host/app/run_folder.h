@@ -27,7 +27,7 @@ class RunFolderError : public std::runtime_error {
 };
 
 struct RunManifest {
-  std::string scene_path;  // absolute
+  std::string scene_path;   // absolute
   uint64_t scene_hash = 0;  // scene_fingerprint of the file and the overrides
   double scale = 1;
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order

@@ -62,7 +62,8 @@ CommandActions command_actions() {
   a.info = [] {
     std::string why;
     const bool gpu = cuda_device_available(&why);
-    std::printf("perifrac %s\ncpu   available\ncuda  %s\n", PERIFRAC_VERSION, gpu ? "available" : why.c_str());
+    std::printf("perifrac %s\ncpu   available\ncuda  %s\n", PERIFRAC_VERSION,
+                gpu ? "available" : why.c_str());
     return int(kExitOk);
   };
   return a;

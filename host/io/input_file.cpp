@@ -43,7 +43,8 @@ namespace {
 // A regular file read whole, at most `limit` bytes (none: its size when opened); `limit_text`
 // names the limit in the messages.
 std::optional<std::string> read_regular_file(const std::string& path, std::string& why,
-                                             std::optional<size_t> limit_bytes, const std::string& limit_text) {
+                                             std::optional<size_t> limit_bytes,
+                                             const std::string& limit_text) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) {  // (follows symlinks: their target must be a file)
     why = std::strerror(errno);
@@ -84,8 +85,9 @@ std::optional<std::string> read_regular_file(const std::string& path, std::strin
 
 std::optional<std::string> read_input_file(const std::string& path, std::string& why) {
   const size_t limit = input_limit_bytes();
-  return read_regular_file(path, why, limit,
-                           "the input limit of " + std::to_string(limit / kMegabyte) + " MB (PERIFRAC_MAX_INPUT_MB)");
+  return read_regular_file(
+      path, why, limit,
+      "the input limit of " + std::to_string(limit / kMegabyte) + " MB (PERIFRAC_MAX_INPUT_MB)");
 }
 
 std::optional<std::string> read_output_file(const std::string& path, std::string& why) {

@@ -49,18 +49,18 @@ void check_body_particles(const Scene& scene, const SetupResult& setup) {
     const double density = find_material(scene, body.material).density;
     if (!(mass >= kRealMin && mass <= kRealMax))
       throw SceneError(scene.path, "materials." + material + ".density",
-                       "a density of " + format(density) + " kg/m^3 gives the particles of body '" + body.name +
-                           "' a mass of " + format(density * volume) + " kg, which a " + kPrecision +
-                           " build cannot hold (allowed: masses from " + format(kRealMin) + " to " +
-                           format(kRealMax) + " kg)");
+                       "a density of " + format(density) + " kg/m^3 gives the particles of body '" +
+                           body.name + "' a mass of " + format(density * volume) + " kg, which a " +
+                           kPrecision + " build cannot hold (allowed: masses from " + format(kRealMin) +
+                           " to " + format(kRealMax) + " kg)");
     const Vec3& v = ps.velocity[i];
     const double speed2 = double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z;
     if (!(0.5 * mass * speed2 <= kRealMax))
       throw SceneError(scene.path, "bodies[" + std::to_string(b) + "].velocity",
                        "a particle of body '" + body.name + "' (mass " + format(mass) + " kg) moving at " +
                            format(std::sqrt(speed2)) + " m/s has a kinetic energy of " +
-                           format(0.5 * mass * speed2) + " J, beyond a " + kPrecision + " number (allowed: below " +
-                           format(kRealMax) + " J per particle)");
+                           format(0.5 * mass * speed2) + " J, beyond a " + kPrecision +
+                           " number (allowed: below " + format(kRealMax) + " J per particle)");
   }
 }
 

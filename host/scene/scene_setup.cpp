@@ -21,8 +21,8 @@
 #include "host/geometry/tet_particles.h"
 #include "host/geometry/voronoi_particles.h"
 #include "host/scene/collider_setup.h"
-#include "host/scene/scene_cracks.h"
 #include "host/scene/range_checks.h"
+#include "host/scene/scene_cracks.h"
 #include "host/scene/scene_smells.h"
 
 namespace pd {

@@ -37,9 +37,8 @@ inline std::string with_checksum(std::string bytes) {
 // Reads `bytes` (checksum fixed) as a checkpoint file. Returns "" for a checkpoint whose values are
 // in the ranges a resume relies on, else the clean error: "cannot read '<path>': <reason>", one line.
 inline std::string checkpoint_entry(const std::string& bytes) {
-  const std::string path =
-      (std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp")) + "/perifrac_fuzz_" +
-      std::to_string(::getpid()) + ".pck";
+  const std::string path = (std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp")) +
+                           "/perifrac_fuzz_" + std::to_string(::getpid()) + ".pck";
   {
     std::FILE* f = std::fopen(path.c_str(), "wb");
     require(f != nullptr, "cannot write the fuzz input file " + path);
@@ -52,8 +51,9 @@ inline std::string checkpoint_entry(const std::string& bytes) {
     std::remove(path.c_str());
     require(c.steps_per_frame >= 1 && c.steps_per_frame <= kMaxStepsPerFrame, "steps_per_frame");
     require(c.frames >= 0 && c.frames <= kMaxFrames && c.frame >= 0 && c.frame <= c.frames, "frames");
-    require(c.engine.step >= c.frame * c.steps_per_frame && c.engine.step <= (c.frame + 1) * c.steps_per_frame,
-            "step");
+    require(
+        c.engine.step >= c.frame * c.steps_per_frame && c.engine.step <= (c.frame + 1) * c.steps_per_frame,
+        "step");
     require(std::isfinite(c.scale) && c.scale >= 0 && std::isfinite(c.engine.time), "scale, time");
     require(std::isfinite(c.checkpoint_minutes) && c.checkpoint_minutes >= 0, "checkpoint_minutes");
     for (const auto& e : c.series) require(std::isfinite(e.time), "series time");
@@ -64,7 +64,8 @@ inline std::string checkpoint_entry(const std::string& bytes) {
     const std::string message = e.what(), head = "cannot read '" + path + "': ";
     require(message.compare(0, head.size(), head) == 0, "the error does not name the file: " + message);
     for (char ch : message)
-      require(static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f, "the error is not one printable line: " + message);
+      require(static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f,
+              "the error is not one printable line: " + message);
     return message;
   }
 }
@@ -132,7 +133,8 @@ inline std::string command_line_entry(const std::string& bytes) {
     const std::string line = command_line_error(e);
     require(line.rfind("error: ", 0) == 0, "the error does not start with 'error: ': " + line);
     for (char ch : line)
-      require(static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f, "the error is not one printable line: " + line);
+      require(static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f,
+              "the error is not one printable line: " + line);
     return line;
   }
   require(static_cast<bool>(chosen), "a command line parsed without choosing a subcommand");

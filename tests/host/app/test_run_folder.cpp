@@ -172,8 +172,8 @@ TEST_F(RunFolderTest, ResumeRemovesTheFilesWrittenAfterTheCheckpoint) {
 TEST_F(RunFolderTest, JournalPathsOutsideTheFolderAreIgnored) {
   write_run(1);
   std::ofstream(path("precious.txt")) << "keep";
-  std::ofstream(out_ + "/run.files", std::ios::app) << "0 ../precious.txt\n0 " << path("precious.txt")
-                                                    << "\ngarbage line\n";
+  std::ofstream(out_ + "/run.files", std::ios::app)
+      << "0 ../precious.txt\n0 " << path("precious.txt") << "\ngarbage line\n";
   RunFolder folder(out_, FolderUse::kOverwrite);
   EXPECT_TRUE(fs::exists(path("precious.txt")));
   EXPECT_FALSE(has("frame_00000.pfr"));

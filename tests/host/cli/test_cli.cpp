@@ -202,7 +202,8 @@ TEST_F(Cli, ExtremeNumbersAreRefusedBeforeAnyOutput) {
     std::filesystem::remove_all(out());
     const Result r = run_perifrac("run " + path + " --set '" + set + "' --backend cpu --out " + out());
     EXPECT_EQ(r.exit_code, 2) << set << "\n" << r.output;
-    EXPECT_NE(r.output.find("error: " + path + ": " + key + ":"), std::string::npos) << set << "\n" << r.output;
+    EXPECT_NE(r.output.find("error: " + path + ": " + key + ":"), std::string::npos) << set << "\n"
+                                                                                     << r.output;
     EXPECT_FALSE(pd::testing::has_non_finite_token(r.output)) << set << "\n" << r.output;
     EXPECT_FALSE(std::filesystem::exists(out())) << set << ": the refused run made its folder";
   }

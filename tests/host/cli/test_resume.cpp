@@ -97,7 +97,8 @@ class Resume : public testing::TempDirTest {
   // (A run killed before its first checkpoint is started again over its folder: --overwrite.)
   std::vector<std::string> fresh(const std::string& out, const std::string& every = "1",
                                  bool overwrite = false) const {
-    std::vector<std::string> args{"run", scene_, "--backend", "cpu", "--out", out, "--checkpoint-every", every};
+    std::vector<std::string> args{"run",   scene_, "--backend",          "cpu",
+                                  "--out", out,    "--checkpoint-every", every};
     if (overwrite) args.push_back("--overwrite");
     return args;
   }
@@ -149,8 +150,8 @@ TEST_F(Resume, KilledRunsResumeToTheUninterruptedResult) {
     kill(pid, SIGKILL);
     // Still running: wait; else its status (from this call, or from the loop's when it ended there).
     code = waitpid(pid, &status, WNOHANG) == 0 ? wait_for(pid)
-           : WIFEXITED(status)                  ? WEXITSTATUS(status)
-                                                : 128 + WTERMSIG(status);
+           : WIFEXITED(status)                 ? WEXITSTATUS(status)
+                                               : 128 + WTERMSIG(status);
     kills += code == 128 + SIGKILL;
     ASSERT_TRUE(code == 0 || code == 128 + SIGKILL) << "exit " << code << "\n" << read_all(log_);
   }
@@ -353,7 +354,8 @@ TEST_F(Resume, RefusesACorruptedCheckpoint) {
 // (longer) run is left.
 TEST_F(Resume, AUsedFolderIsRefusedAndOverwriteLeavesNoStaleFrame) {
   const std::string out = path("out");
-  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "4"}, log_), 0) << read_all(log_);
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "4"}, log_), 0)
+      << read_all(log_);
   expect_refusal({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "2"}, log_, "--overwrite");
   EXPECT_TRUE(std::filesystem::exists(out + "/frame_00004.pfr"));
   ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "2", "--overwrite"}, log_), 0)
@@ -381,12 +383,13 @@ TEST_F(Resume, TwoRunsCannotShareAFolder) {
 TEST_F(Resume, ACheckpointFromAnotherRunsFolderIsRefused) {
   const std::string a = path("a"), b = path("b");
   std::ofstream(path("other.toml")) << kScene << "# another scene\n";
-  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", a, "--frames", "2", "--checkpoint-every", "2"}, log_),
-            0);
   ASSERT_EQ(
-      run({"run", path("other.toml"), "--backend", "cpu", "--out", b, "--frames", "2", "--checkpoint-every", "2"},
-          log_),
+      run({"run", scene_, "--backend", "cpu", "--out", a, "--frames", "2", "--checkpoint-every", "2"}, log_),
       0);
+  ASSERT_EQ(run({"run", path("other.toml"), "--backend", "cpu", "--out", b, "--frames", "2",
+                 "--checkpoint-every", "2"},
+                log_),
+            0);
   const std::string rest_before = read_all(b + "/rest.pfr"), pvd_before = read_all(b + "/particles.pvd");
   std::filesystem::copy_file(a + "/checkpoint.pck", b + "/checkpoint.pck",
                              std::filesystem::copy_options::overwrite_existing);
@@ -398,10 +401,12 @@ TEST_F(Resume, ACheckpointFromAnotherRunsFolderIsRefused) {
 // Frames a killed run wrote after its last checkpoint are removed when it resumes.
 TEST_F(Resume, ResumeRemovesFramesWrittenAfterTheCheckpoint) {
   const std::string out = path("out");
-  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "6", "--checkpoint-every", "3"}, log_),
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "6", "--checkpoint-every", "3"},
+                log_),
             0);
   // The checkpoint is frame 6's; put back frame 3's as if the run had been killed after frame 5.
-  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", path("at3"), "--frames", "3", "--checkpoint-every", "3"},
+  ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", path("at3"), "--frames", "3",
+                 "--checkpoint-every", "3"},
                 log_),
             0);
   std::filesystem::copy_file(path("at3") + "/checkpoint.pck", out + "/checkpoint.pck",
@@ -426,7 +431,8 @@ TEST_F(Resume, SigtermStopsWithinASecondInsideALongFrame) {
   const auto t0 = std::chrono::steady_clock::now();
   ASSERT_EQ(run(args(reference), log_), 0) << read_all(log_);
   const double frame_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (frame_seconds < 1.5) GTEST_SKIP() << "the frame took " << frame_seconds << " s: too short to interrupt inside";
+  if (frame_seconds < 1.5)
+    GTEST_SKIP() << "the frame took " << frame_seconds << " s: too short to interrupt inside";
 
   const pid_t pid = spawn(args(out), log_);
   for (int i = 0; i < 1000 && !std::filesystem::exists(out + "/frame_00000.pfr"); ++i)
@@ -435,7 +441,8 @@ TEST_F(Resume, SigtermStopsWithinASecondInsideALongFrame) {
   kill(pid, SIGTERM);
   const auto t_signal = std::chrono::steady_clock::now();
   const int code = wait_for(pid);
-  const double stop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_signal).count();
+  const double stop_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_signal).count();
   ASSERT_EQ(code, 130) << read_all(log_);
   EXPECT_LT(stop_seconds, 1.0);
   EXPECT_NE(read_all(log_).find("interrupted in frame 1 at step"), std::string::npos) << read_all(log_);

@@ -510,7 +510,8 @@ TEST(SceneLoader, OutOfRangeValues) {
   expect_error("[simulation]\ndt = 0\n" + kMinimal, "simulation.dt", "out of range");
   expect_error("[simulation]\nframes = -1\n" + kMinimal, "simulation.frames", "out of range");
   expect_error("[simulation]\nframes = 1000000001\n" + kMinimal, "simulation.frames", "0 to 1000000000");
-  expect_error("[simulation]\nsteps_per_frame = 0\n" + kMinimal, "simulation.steps_per_frame", "1 to 1000000000");
+  expect_error("[simulation]\nsteps_per_frame = 0\n" + kMinimal, "simulation.steps_per_frame",
+               "1 to 1000000000");
   expect_error("[simulation]\nseed = -1\n" + kMinimal, "simulation.seed", "out of range");
   expect_error("[world]\nrestitution = 1.5\n" + kMinimal, "world.restitution", "out of range");
   expect_error(kMinimal + "[[anchors]]\nbox_min = [0, 0, 0]\nbox_max = [1, -1, 1]\n", "anchors[0].box_max",

@@ -77,7 +77,7 @@ material = "m"
     text.replace(text.find("CENTER_Y"), 8, y);
     return smells(text);
   };
-  EXPECT_TRUE(with_lid_at("0.09").empty());  // touching: the block spans y 0.03 to 0.07
+  EXPECT_TRUE(with_lid_at("0.09").empty());                // touching: the block spans y 0.03 to 0.07
   const std::vector<std::string> w = with_lid_at("0.07");  // two layers of each body coincide
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("warning: bodies 'block' and 'lid' overlap: 64 of their particles"), std::string::npos)
