@@ -31,6 +31,7 @@ std::string meta_text(const RunCheckpoint& c) {
   std::ostringstream m;
   m << "real_bytes " << sizeof(real) << "\n"
     << "scene_path " << c.scene_path << "\n"
+    << "scene_relative " << c.scene_relative << "\n"
     << "overrides " << c.overrides.size() << "\n"
     << "scene_hash " << c.scene_hash << "\n"
     << "setup_hash " << c.setup_hash << "\n"
@@ -90,6 +91,7 @@ void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) 
     r.fail("written by a " + std::string(bytes == 8 ? "double" : "float") +
            "-precision build; this build is " + (sizeof(real) == 8 ? "double" : "float"));
   c.scene_path = get("scene_path");
+  if (kv.count("scene_relative")) c.scene_relative = get("scene_relative");  // (added later)
   c.overrides.resize(size_t(integer("overrides", 0, kv.size())));
   for (size_t k = 0; k < c.overrides.size(); ++k)
     c.overrides[k] = get(("override_" + std::to_string(k)).c_str());

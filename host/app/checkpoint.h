@@ -27,7 +27,8 @@ inline constexpr uint32_t kCheckpointVersion = 2;
 
 struct RunCheckpoint {
   // How the run was started; a resume repeats it.
-  std::string scene_path;
+  std::string scene_path;      // absolute
+  std::string scene_relative;  // relative to the checkpoint's folder: found there when the two moved together
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order
   uint64_t scene_hash = 0;             // scene_fingerprint of the file and the overrides
   uint64_t setup_hash = 0;  // setup_fingerprint: particles, materials, strain limits (seed, meshes)

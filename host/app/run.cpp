@@ -123,6 +123,23 @@ std::string format_number(double v) {
   return text;
 }
 
+// The scene of checkpoint `c` in folder `dir`: at its absolute path, else where it lies relative to
+// the folder (the scene and the run moved together); the scene's hash checks it either way.
+std::string checkpoint_scene(const RunCheckpoint& c, const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(c.scene_path, ec)) return c.scene_path;
+  const std::string beside = c.scene_relative.empty() ? "" : (fs::path(dir) / c.scene_relative).string();
+  if (!beside.empty() && fs::exists(beside, ec)) {
+    std::printf("resume     the scene is not at '%s' any more: using '%s' (found relative to the run)\n",
+                c.scene_path.c_str(), beside.c_str());
+    return beside;
+  }
+  throw ResumeError("cannot resume: the checkpoint's scene '" + c.scene_path + "' is gone" +
+                    (beside.empty() ? "" : " (nor at '" + beside + "', relative to the run)") +
+                    "; give it: perifrac run SCENE --resume " + dir);
+}
+
 // Reads the checkpoint of `opt.resume` and takes over what the run was started with: the scene
 // (unless given again), backend (unless given), scale, steps per frame, blending, and the frame
 // count unless --frames extends it.
@@ -138,7 +155,7 @@ RunCheckpoint open_resume(RunOptions& opt) {
   } catch (const IoError& e) {
     throw ResumeError(std::string(e.what()) + "; start the run again without --resume");
   }
-  if (opt.scene.empty()) opt.scene = c.scene_path;
+  if (opt.scene.empty()) opt.scene = checkpoint_scene(c, opt.resume);
   if (opt.overrides.empty()) opt.overrides = c.overrides;
   if (!opt.out.empty() && opt.out != opt.resume)
     throw ResumeError("--out '" + opt.out + "' and --resume '" + opt.resume +
@@ -449,8 +466,12 @@ int finish_complete_run(RunOutput& output, const RunCheckpoint& c) {
 void write_run_checkpoint(const Simulation& sim, const RunOptions& opt, RunOutput& output,
                           const Energy& energy0, int64_t frame) {
   RunCheckpoint c;
-  c.scene_path =
-      std::filesystem::absolute(sim.scene.path).lexically_normal().string();  // (resumable from anywhere)
+  // The scene, by absolute path (resumable from anywhere) and relative to the run's folder (found
+  // when both moved together).
+  namespace fs = std::filesystem;
+  c.scene_path = fs::absolute(sim.scene.path).lexically_normal().string();
+  c.scene_relative =
+      fs::path(c.scene_path).lexically_relative(fs::absolute(output.dir()).lexically_normal()).string();
   c.overrides = opt.overrides;
   c.scene_hash = scene_fingerprint(sim.scene.path, opt.overrides);
   c.setup_hash = setup_fingerprint(sim.setup.input);

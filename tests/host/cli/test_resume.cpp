@@ -304,6 +304,24 @@ TEST_F(Resume, ResumesFromAnotherDirectory) {
   EXPECT_TRUE(std::filesystem::exists(out + "/frame_00003.pfr"));
 }
 
+// A run moved with its scene (the scene's absolute path gone) finds it relative to the run.
+TEST_F(Resume, FindsItsSceneAfterBothMoved) {
+  std::filesystem::create_directories(path("project/scenes"));
+  std::ofstream(path("project/scenes/scene.toml")) << kScene;
+  ASSERT_EQ(run({"run", path("project/scenes/scene.toml"), "--backend", "cpu", "--out", path("project/out/a"),
+                 "--frames", "2", "--checkpoint-every", "2"},
+                log_),
+            0)
+      << read_all(log_);
+  std::filesystem::rename(path("project"), path("moved"));
+  EXPECT_EQ(run({"run", "--resume", path("moved/out/a"), "--frames", "3"}, log_), 0) << read_all(log_);
+  EXPECT_NE(read_all(log_).find("found relative to the run"), std::string::npos) << read_all(log_);
+  EXPECT_TRUE(std::filesystem::exists(path("moved/out/a/frame_00003.pfr")));
+  // Gone from both places: one line saying so.
+  std::filesystem::remove(path("moved/scenes/scene.toml"));
+  expect_refusal({"run", "--resume", path("moved/out/a"), "--frames", "4"}, log_, "is gone");
+}
+
 TEST_F(Resume, RefusesAnotherScale) {
   const std::string out = path("out");
   ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "2", "--checkpoint-every", "2"},
