@@ -101,6 +101,7 @@ scene mesh.toml '[[bodies]]\nshape = "mesh"\nmesh = "zero.obj"\nmaterial = "glas
 case_ "bounded input" "mesh file a symlink to /dev/zero" 2 "not a regular file" "$BIN" "${P[@]}" mesh.toml --out o
 head -c 2000000 /dev/zero | tr '\0' '#' >big.toml
 case_ "bounded input" "scene over PERIFRAC_MAX_INPUT_MB" 2 "larger than the input limit" env PERIFRAC_MAX_INPUT_MB=1 "$BIN" "${P[@]}" big.toml --out o
+case_ "bounded input" "render --environment /dev/zero" 2 "--environment '/dev/zero': not a regular file" "$BIN" render o --environment /dev/zero
 case_ "bounded input" "PERIFRAC_MAX_INPUT_MB=lots" 2 "PERIFRAC_MAX_INPUT_MB" env PERIFRAC_MAX_INPUT_MB=lots "$BIN" "${P[@]}" s.toml --out o
 case_ "bounded input" "PERIFRAC_HOST_MEMORY_MB=-5" 2 "PERIFRAC_HOST_MEMORY_MB" env PERIFRAC_HOST_MEMORY_MB=-5 "$BIN" "${P[@]}" s.toml --out o
 

@@ -18,6 +18,7 @@
 #include "host/io/atomic_file.h"
 #include "host/io/collider_file.h"
 #include "host/io/frame_file.h"
+#include "host/io/input_file.h"
 #include "host/io/png_file.h"
 #include "render/movie.h"
 
@@ -73,6 +74,9 @@ void check_render_options(const RenderOptions& o) {
     bad("material '" + o.material + "' (allowed: opaque, glass)");
   if (!(o.ior >= 1) || !(o.ior <= 4)) bad("ior must be in [1, 4]");
   if (o.environment.empty()) bad("environment is empty (allowed: sky, or the path of a Radiance .hdr file)");
+  std::string why;
+  if (o.environment != "sky" && !is_bounded_input(o.environment, why))
+    bad("--environment '" + o.environment + "': " + why + " (allowed: sky, or a Radiance .hdr file)");
 }
 
 RunRenderer::RunRenderer(const RenderOptions& o, const std::string& last_frame) : options_(o) {

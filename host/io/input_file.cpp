@@ -90,6 +90,26 @@ std::optional<std::string> read_input_file(const std::string& path, std::string&
       "the input limit of " + std::to_string(limit / kMegabyte) + " MB (PERIFRAC_MAX_INPUT_MB)");
 }
 
+bool is_bounded_input(const std::string& path, std::string& why) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) {
+    why = std::strerror(errno);
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    why = std::string("not a regular file (") + kind_of(st.st_mode) + "; allowed: a regular file)";
+    return false;
+  }
+  const size_t limit = input_limit_bytes();
+  if (size_t(st.st_size) > limit) {
+    why = "the file is " + std::to_string(size_t(st.st_size) / kMegabyte) +
+          " MB, larger than the input limit of " + std::to_string(limit / kMegabyte) +
+          " MB (PERIFRAC_MAX_INPUT_MB)";
+    return false;
+  }
+  return true;
+}
+
 std::optional<std::string> read_output_file(const std::string& path, std::string& why) {
   return read_regular_file(path, why, std::nullopt, "its size when opened");
 }

@@ -18,6 +18,10 @@ size_t input_limit_bytes();
 // device)", the system's reason, "larger than the input limit ...").
 std::optional<std::string> read_input_file(const std::string& path, std::string& why);
 
+// Whether `path` is a regular file within the input limit, by its metadata only (for inputs that a
+// library reads itself, such as the renderer's environment map); else `why` says what is wrong.
+bool is_bounded_input(const std::string& path, std::string& why);
+
 // A file a run wrote and reads back (a checkpoint, which may exceed the input limit): a regular
 // file only, read up to the size it had when opened (a file that grows meanwhile is refused).
 std::optional<std::string> read_output_file(const std::string& path, std::string& why);

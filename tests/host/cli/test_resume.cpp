@@ -440,7 +440,7 @@ TEST_F(Resume, ResumeRemovesFramesWrittenAfterTheCheckpoint) {
 // the frame; the resumed run ends with the uninterrupted run's bits.
 TEST_F(Resume, SigtermStopsWithinASecondInsideALongFrame) {
   const std::string reference = path("reference"), out = path("out");
-  const std::vector<std::string> long_frame{"--backend", "cpu", "--frames", "1", "--steps-per-frame", "3000"};
+  const std::vector<std::string> long_frame{"--backend", "cpu", "--frames", "1", "--steps-per-frame", "1500"};
   auto args = [&](const std::string& folder) {
     std::vector<std::string> a{"run", scene_, "--out", folder};
     a.insert(a.end(), long_frame.begin(), long_frame.end());

@@ -66,5 +66,25 @@ TEST_F(InputFileTest, BadLimitIsAnError) {
   EXPECT_EQ(input_limit_bytes(), size_t(1024) << 20);
 }
 
+// The same rules by metadata alone, for files a library opens itself; a checkpoint-style read
+// takes a file of any size but stops at the size it had.
+TEST_F(InputFileTest, MetadataCheckAndOwnFilesFollowTheSameRules) {
+  std::string why;
+  std::ofstream(path("sky.hdr")) << "#?RADIANCE\n";
+  EXPECT_TRUE(is_bounded_input(path("sky.hdr"), why)) << why;
+  EXPECT_FALSE(is_bounded_input("/dev/zero", why));
+  EXPECT_NE(why.find("not a regular file"), std::string::npos) << why;
+  {
+    const InputLimit limit("1");
+    std::ofstream(path("big.hdr")) << std::string(size_t(1) << 21, 'x');
+    EXPECT_FALSE(is_bounded_input(path("big.hdr"), why));
+    EXPECT_NE(why.find("larger than the input limit"), std::string::npos) << why;
+    const std::optional<std::string> own = read_output_file(path("big.hdr"), why);
+    ASSERT_TRUE(own) << why;
+    EXPECT_EQ(own->size(), size_t(1) << 21);
+  }
+  EXPECT_FALSE(read_output_file("/dev/urandom", why));
+}
+
 }  // namespace
 }  // namespace pd
