@@ -217,6 +217,7 @@ void write_checkpoint(const std::string& path, const RunCheckpoint& c) {
   w.add_array("free_bodies", c.engine.free_bodies);
   w.add_owned("energy0", std::string(reinterpret_cast<const char*>(&c.energy0), sizeof c.energy0));
   w.add("energy_log", c.energy_log);
+  w.add("fragment_log", c.fragment_log);
   w.add_owned("series", series_text(c.series));
   w.add_array("smooth_index", c.smoother.previous_index);
   w.add_owned("corrections", std::string(bytes_of(pack_corrections(c.smoother.previous))));
@@ -235,6 +236,7 @@ RunCheckpoint read_checkpoint(const std::string& path) {
   if (energy0.size() != 1) r.fail("record 'energy0' has the wrong size");
   c.energy0 = energy0[0];
   c.energy_log = std::string(r.get("energy_log"));
+  if (r.has("fragment_log")) c.fragment_log = std::string(r.get("fragment_log"));  // (added later)
   c.series = parse_series(r, r.get("series"));
   c.smoother.previous_index = r.get_array<int32_t>("smooth_index");
   c.smoother.previous = unpack_corrections(r, r.get_array<double>("corrections"));

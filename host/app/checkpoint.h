@@ -43,8 +43,9 @@ struct RunCheckpoint {
   // Where it stands.
   int64_t frame = 0;  // the last frame written
   EngineSnapshot engine;
-  Energy energy0;          // the energy at frame 0, the watchdog's reference
-  std::string energy_log;  // energy.csv up to `frame`
+  Energy energy0;            // the energy at frame 0, the watchdog's reference
+  std::string energy_log;    // energy.csv up to `frame`
+  std::string fragment_log;  // fragments.csv up to `frame` (empty from older checkpoints)
   std::vector<PvdSeries::Entry> series;
   FragmentSmoother::History smoother;
 };

@@ -24,6 +24,7 @@
 #include "host/app/kernel_report.h"
 #include "host/app/live_render.h"
 #include "host/app/run_folder.h"
+#include "host/fragments/fragment_log.h"
 #include "host/fragments/fragment_output.h"
 #include "host/fragments/tet_file.h"
 #include "host/fragments/trimtope_file.h"
@@ -337,6 +338,7 @@ class RunOutput {
         fragments_(sim.setup.input, bonds_, {out_, opt.blend_frames}, sim.setup.adjacency, sim.setup.embedded,
                    voronoi_elements(sim.setup)),
         energy_log_(out_ + "/energy.csv"),
+        fragment_csv_(out_ + "/" + kFragmentLogFileName),
         colliders_(out_, sim.setup.input, sim.setup.collider_meshes, sim.scene.write_vtk) {
     if (const FaceLinks& links = fragments_.face_links(); links.indirect() + links.unlinked() > 0)
       std::printf(
@@ -359,7 +361,9 @@ class RunOutput {
     Engine& engine = *sim_.engine;
     FrameData f = frame_data(engine, sim_.setup.input.particles, bonds_.count, frame);
     if (frame > 0) engine.read_bonds(bonds_);
-    fragment_log_ = format_component_stats(fragments_.process(f, bonds_));
+    const ComponentStats stats = fragments_.process(f, bonds_);
+    fragment_log_ = format_component_stats(stats);
+    fragment_csv_.add(frame, f.step, f.time, stats);
     if (sim_.scene.write_binary) write_frame_file(out_ + "/" + frame_file_name(frame, "pfr"), f);
     if (sim_.scene.write_vtk) {
       const std::string name = frame_file_name(frame, "vtu");
@@ -377,11 +381,13 @@ class RunOutput {
     colliders_.restore(c.series);
     series_.restore(std::move(c.series));
     energy_log_.restore(std::move(c.energy_log));
+    if (!c.fragment_log.empty()) fragment_csv_.restore(std::move(c.fragment_log));
   }
 
   // Puts the energy log, the VTK series and the fragment smoothing into checkpoint `c`.
   void save(RunCheckpoint& c) {
     c.energy_log = energy_log_.text();
+    c.fragment_log = fragment_csv_.text();
     c.series = series_.entries();
     c.smoother = fragments_.smoother().history();
   }
@@ -409,6 +415,7 @@ class RunOutput {
   BondLists bonds_;
   FragmentOutput fragments_;
   EnergyLog energy_log_;
+  FragmentLog fragment_csv_;
   ColliderOutput colliders_;
   std::string fragment_log_;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 
@@ -115,16 +116,23 @@ void ComponentFinder::find(const BondLists& bonds, Components& out) {
   group_members(out, count);
 }
 
-ComponentStats component_stats(const Components& c) {
+ComponentStats component_stats(const Components& c, const std::vector<real>& mass) {
   ComponentStats s;
   s.count = c.count();
   for (size_t k = 0; k < c.count(); ++k) {
     const int32_t size = c.size(k);
     s.largest = std::max(s.largest, size);
+    s.singles += size == 1;
     size_t bin = 0;
     while ((int64_t(2) << bin) <= size) ++bin;
     if (s.histogram.size() <= bin) s.histogram.resize(bin + 1, 0);
     ++s.histogram[bin];
+    if (mass.empty()) continue;
+    double m = 0;
+    for (int32_t j = c.start[k]; j < c.start[k + 1]; ++j) m += double(mass[size_t(c.members[size_t(j)])]);
+    s.mass += m;
+    if (size == 1) s.single_mass += m;
+    s.largest_mass = std::max(s.largest_mass, m);
   }
   return s;
 }
@@ -139,7 +147,13 @@ std::string format_component_stats(const ComponentStats& s) {
            std::to_string(s.histogram[b]);
     first = false;
   }
-  return out + ")";
+  out += ")";
+  if (s.mass > 0) {
+    char share[48];
+    std::snprintf(share, sizeof share, " singles %.1f%% of the mass", 100 * s.single_mass / s.mass);
+    out += share;
+  }
+  return out;
 }
 
 }  // namespace pd

@@ -58,17 +58,21 @@ class ComponentFinder {
   std::vector<int32_t> parent_;                // scratch: union-find forest
 };
 
-// Component count and sizes for the frame log: histogram[b] counts the components of
-// 2^b .. 2^(b+1)-1 particles.
+// Component count, sizes and masses for the frame log and fragments.csv: histogram[b] counts the
+// components of 2^b .. 2^(b+1)-1 particles; singles are the components of one particle (dust).
 struct ComponentStats {
   size_t count = 0;
-  int32_t largest = 0;
+  int32_t largest = 0;  // particles in the largest component
   std::vector<int64_t> histogram;
+  int64_t singles = 0;
+  double mass = 0, single_mass = 0, largest_mass = 0;  // [kg]: all, in singles, of the heaviest
 };
 
-ComponentStats component_stats(const Components& c);
+// The statistics of `c`, with each particle's `mass` (empty: masses not counted, all 0).
+ComponentStats component_stats(const Components& c, const std::vector<real>& mass = {});
 
-// One log field, e.g. "fragments 37 (1:21 2-3:9 4-7:4 65536-131071:1)".
+// One log field, e.g. "fragments 37 (1:21 2-3:9 4-7:4 65536-131071:1)", with the mass in singles
+// when masses were counted, e.g. "... singles 0.8% of the mass".
 std::string format_component_stats(const ComponentStats& s);
 
 }  // namespace pd

@@ -104,8 +104,8 @@ class Resume : public testing::TempDirTest {
   }
   // The outputs that must match between an interrupted and an uninterrupted run.
   void expect_same_outputs(const std::string& a, const std::string& b) const {
-    for (const char* f : {"frame_00016.pfr", "frame_00009.pfr", "energy.csv", "particles.pvd",
-                          "fragments_00016.pfg", "points_00016.ply", "fragments.obj"})
+    for (const char* f : {"frame_00016.pfr", "frame_00009.pfr", "energy.csv", "fragments.csv",
+                          "particles.pvd", "fragments_00016.pfg", "points_00016.ply", "fragments.obj"})
       EXPECT_TRUE(read_all(a + "/" + f) == read_all(b + "/" + f)) << f << " differs";
   }
   std::string scene_, log_;

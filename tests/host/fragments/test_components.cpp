@@ -259,6 +259,15 @@ TEST(Components, StatsAndLogLine) {
   EXPECT_EQ(s.largest, 8);
   EXPECT_EQ(s.histogram, (std::vector<int64_t>{2, 2, 1, 1}));
   EXPECT_EQ(format_component_stats(s), "fragments 6 (1:2 2-3:2 4-7:1 8-15:1)");
+  EXPECT_EQ(s.singles, 2);
+  // With masses (particle k weighs k + 1 kg): the singles are particles 0 and 1, 3 kg of 210.
+  std::vector<real> mass(id.size());
+  for (size_t k = 0; k < mass.size(); ++k) mass[k] = real(k + 1);
+  const ComponentStats m = component_stats(components_from_ids(id), mass);
+  EXPECT_DOUBLE_EQ(m.mass, 210);
+  EXPECT_DOUBLE_EQ(m.single_mass, 3);
+  EXPECT_DOUBLE_EQ(m.largest_mass, 13 + 14 + 15 + 16 + 17 + 18 + 19 + 20);  // the last 8 particles
+  EXPECT_EQ(format_component_stats(m), "fragments 6 (1:2 2-3:2 4-7:1 8-15:1) singles 1.4% of the mass");
 }
 
 }  // namespace
