@@ -494,8 +494,8 @@ const Keys kMaterialKeys = {"model",
                             "damage_alpha",
                             "plastic",
                             "anisotropy"};
-const Keys kStateBasedOnlyKeys = {"shear_modulus", "youngs_modulus", "poisson_ratio", "fracture",
-                                  "damage_alpha",  "plastic",        "anisotropy"};
+const Keys kStateBasedOnlyKeys = {"shear_modulus", "youngs_modulus", "poisson_ratio",
+                                  "fracture",      "plastic",        "anisotropy"};
 const Keys kPlasticKeys = {"yield_stress", "psi0", "limit"};
 const Keys kAnisotropyKeys = {"direction", "ratio", "matrix"};
 const Keys kBodyKeys = {"name",

@@ -72,6 +72,7 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   m.compression_alpha = real(sm.compression_alpha);
   m.partial_volumes = sm.partial_volumes.value_or(state) ? 1 : 0;
   m.contact_spacing = real(contact_spacing);
+  m.damage_alpha = real(sm.damage_alpha);
   summary.spacing = spacing;
   summary.horizon = delta;
   if (!state) {
@@ -85,7 +86,6 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   }
   m.bulk_modulus = real(sm.bulk_modulus);
   m.shear_modulus = real(sm.shear_modulus);
-  m.damage_alpha = real(sm.damage_alpha);
   m.chen_fracture = sm.fracture == "chen" ? 1 : 0;
   if (sm.plastic) {
     m.plastic = 1;
