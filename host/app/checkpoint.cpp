@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "host/io/checksum.h"
+#include "host/io/exact_number.h"
 #include "host/io/record_file.h"
 #include "host/scene/scene.h"
 
@@ -18,13 +19,6 @@ namespace pd {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'F', 'C', 'K', 'P', 'T', '\0', '\0'};
-
-// Doubles as hex floats so they read back exactly.
-std::string exact(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%a", v);
-  return buf;
-}
 
 // The scalar fields as "key value" lines.
 std::string meta_text(const RunCheckpoint& c) {
@@ -35,18 +29,18 @@ std::string meta_text(const RunCheckpoint& c) {
     << "overrides " << c.overrides.size() << "\n"
     << "scene_hash " << c.scene_hash << "\n"
     << "setup_hash " << c.setup_hash << "\n"
-    << "scale " << exact(c.scale) << "\n"
+    << "scale " << exact_number(c.scale) << "\n"
     << "steps_per_frame " << c.steps_per_frame << "\n"
     << "frames " << c.frames << "\n"
     << "blend_frames " << c.blend_frames << "\n"
     << "allow_unstable_dt " << int(c.allow_unstable_dt) << "\n"
     << "explicit_families " << int(c.explicit_families) << "\n"
     << "checkpoint_every " << c.checkpoint_every << "\n"
-    << "checkpoint_minutes " << exact(c.checkpoint_minutes) << "\n"
+    << "checkpoint_minutes " << exact_number(c.checkpoint_minutes) << "\n"
     << "backend " << c.backend << "\n"
     << "frame " << c.frame << "\n"
     << "step " << c.engine.step << "\n"
-    << "time " << exact(c.engine.time) << "\n";
+    << "time " << exact_number(c.engine.time) << "\n";
   for (size_t k = 0; k < c.overrides.size(); ++k) m << "override_" << k << " " << c.overrides[k] << "\n";
   return m.str();
 }
@@ -118,7 +112,7 @@ void parse_meta(const RecordReader& r, std::string_view text, RunCheckpoint& c) 
 // The PVD index as "time file" lines (time exact).
 std::string series_text(const std::vector<PvdSeries::Entry>& series) {
   std::string s;
-  for (const auto& e : series) s += exact(e.time) + " " + e.file + "\n";
+  for (const auto& e : series) s += exact_number(e.time) + " " + e.file + "\n";
   return s;
 }
 

@@ -3,21 +3,17 @@
 #include <cmath>
 #include <cstdio>
 
-#include "host/io/atomic_file.h"
-
 namespace pd {
 
-EnergyLog::EnergyLog(std::string path) : path_(std::move(path)) {
-  text_ = "frame,step,time,kinetic,strain,contact,gravity,work,released,balance\n";
-}
+EnergyLog::EnergyLog(std::string path)
+    : log_(std::move(path), "frame,step,time,kinetic,strain,contact,gravity,work,released,balance\n") {}
 
 void EnergyLog::add(int64_t frame, int64_t step, double time, const Energy& e) {
   char line[320];
   std::snprintf(line, sizeof line, "%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", (long long)frame,
                 (long long)step, time, e.kinetic, e.strain, e.contact, e.gravity, e.work, e.released,
                 e.balance());
-  text_ += line;
-  write_file_atomic(path_, text_);
+  log_.add(line);
 }
 
 double energy_excess(const Energy& e0, const Energy& e) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cuda/engine/engine.h"
+#include "host/io/csv_log.h"
 
 namespace pd {
 
@@ -13,12 +14,12 @@ class EnergyLog {
  public:
   explicit EnergyLog(std::string path);
   void add(int64_t frame, int64_t step, double time, const Energy& e);
-  const std::string& text() const { return text_; }
+  const std::string& text() const { return log_.text(); }
   // Continues a resumed run's log from its checkpointed text (rewritten at the next add).
-  void restore(std::string text) { text_ = std::move(text); }
+  void restore(std::string text) { log_.restore(std::move(text)); }
 
  private:
-  std::string path_, text_;
+  CsvLog log_;
 };
 
 // The energy watchdog: the balance (mechanical energy + released - work) may drift by the

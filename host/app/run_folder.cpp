@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "host/io/atomic_file.h"
+#include "host/io/exact_number.h"
 #include "host/io/input_file.h"
 
 namespace pd {
@@ -22,19 +23,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Doubles as hex floats so they read back exactly.
-std::string exact(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%a", v);
-  return buf;
-}
-
 std::string manifest_text(const RunManifest& m) {
   std::ostringstream t;
   t << "perifrac " << PERIFRAC_VERSION << "\n"
     << "scene_path " << m.scene_path << "\n"
     << "scene_hash " << m.scene_hash << "\n"
-    << "scale " << exact(m.scale) << "\n"
+    << "scale " << exact_number(m.scale) << "\n"
     << "overrides " << m.overrides.size() << "\n";
   for (size_t k = 0; k < m.overrides.size(); ++k) t << "override_" << k << " " << m.overrides[k] << "\n";
   t << "frames_written " << m.frames_written << "\n";

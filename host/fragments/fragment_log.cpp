@@ -2,8 +2,6 @@
 
 #include <cstdio>
 
-#include "host/io/atomic_file.h"
-
 namespace pd {
 
 namespace {
@@ -22,7 +20,7 @@ std::string header() {
 
 }  // namespace
 
-FragmentLog::FragmentLog(std::string path) : path_(std::move(path)), text_(header()) {}
+FragmentLog::FragmentLog(std::string path) : log_(std::move(path), header()) {}
 
 void FragmentLog::add(int64_t frame, int64_t step, double time, const ComponentStats& s) {
   char line[192];
@@ -30,15 +28,14 @@ void FragmentLog::add(int64_t frame, int64_t step, double time, const ComponentS
   std::snprintf(line, sizeof line, "%lld,%lld,%.9g,%zu,%lld,%.6g,%.6g,%d", (long long)frame, (long long)step,
                 time, s.count, (long long)s.singles, s.single_mass / total, s.largest_mass / total,
                 s.largest);
-  text_ += line;
+  std::string row = line;
   for (int b = 0; b < kFragmentLogBins; ++b) {
     int64_t n = 0;
     for (size_t k = size_t(b); k < s.histogram.size() && (k == size_t(b) || b + 1 == kFragmentLogBins); ++k)
       n += s.histogram[k];  // (the last bin takes every larger one)
-    text_ += "," + std::to_string(n);
+    row += "," + std::to_string(n);
   }
-  text_ += "\n";
-  write_file_atomic(path_, text_);
+  log_.add(row + "\n");
 }
 
 }  // namespace pd

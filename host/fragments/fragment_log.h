@@ -13,6 +13,7 @@
 #include <string>
 
 #include "host/fragments/components.h"
+#include "host/io/csv_log.h"
 
 namespace pd {
 
@@ -23,12 +24,12 @@ class FragmentLog {
  public:
   explicit FragmentLog(std::string path);
   void add(int64_t frame, int64_t step, double time, const ComponentStats& s);
-  const std::string& text() const { return text_; }
+  const std::string& text() const { return log_.text(); }
   // Continues a resumed run's log from its checkpointed text (rewritten at the next add).
-  void restore(std::string text) { text_ = std::move(text); }
+  void restore(std::string text) { log_.restore(std::move(text)); }
 
  private:
-  std::string path_, text_;
+  CsvLog log_;
 };
 
 }  // namespace pd
