@@ -426,6 +426,11 @@ struct RunStart {
   Energy energy0;
 };
 
+// An energy term for a message: "<value> J", or "not finite" (no message prints inf or NaN).
+std::string finite_or_not(double joules) {
+  return std::isfinite(joules) ? format_number(joules) + " J" : "not finite";
+}
+
 // A fresh run: checks the state it starts from (nothing non-finite is ever written), writes frame 0
 // and logs the energy it starts with. Throws SceneError when the scene's numbers overflow.
 RunStart start_fresh_run(Simulation& sim, RunOutput& output) {
@@ -439,9 +444,9 @@ RunStart start_fresh_run(Simulation& sim, RunOutput& output) {
                          ? "particle " + std::to_string(bad) + " of body '" +
                                sim.setup.body_names[size_t(sim.setup.input.particles.body[size_t(bad)])] +
                                "' starts with a state that is not finite: its numbers are out of range"
-                         : "the energy at the start is not finite (kinetic " + format_number(e.kinetic) +
-                               " J, strain " + format_number(e.strain) + " J, gravity " +
-                               format_number(e.gravity) + " J): the scene's numbers are out of range");
+                         : "the energy at the start is not finite (kinetic " + finite_or_not(e.kinetic) +
+                               ", strain " + finite_or_not(e.strain) + ", gravity " +
+                               finite_or_not(e.gravity) + "): the scene's numbers are out of range");
   output.write_frame(0);
   output.energy_log().add(0, 0, 0.0, start.energy0);
   return start;
