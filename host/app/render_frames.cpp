@@ -74,8 +74,10 @@ void check_render_options(const RenderOptions& o) {
     bad("material '" + o.material + "' (allowed: opaque, glass)");
   if (!(o.ior >= 1) || !(o.ior <= 4)) bad("ior must be in [1, 4]");
   if (o.environment.empty()) bad("environment is empty (allowed: sky, or the path of a Radiance .hdr file)");
+  // A file that is there must be a bounded one (a missing one is the loader's to report).
   std::string why;
-  if (o.environment != "sky" && !is_bounded_input(o.environment, why))
+  std::error_code ec;
+  if (o.environment != "sky" && fs::exists(o.environment, ec) && !is_bounded_input(o.environment, why))
     bad("--environment '" + o.environment + "': " + why + " (allowed: sky, or a Radiance .hdr file)");
 }
 
