@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Shards, not grit (issue 31): the gallery's breaking scenes at their full size, each with a sweep of
+# the material's damage_alpha (the strain limit times 1 + alpha * damage), and what the breakage
+# leaves at the last frame: the share of the mass in single particles (dust), the heaviest piece's
+# share, the pieces in all and those of at least 8 particles, and the broken bonds. A still of the
+# last frame per run (damage colours: the crack pattern) goes to $OUT/shards-sweep/stills.
+# A benchmark of the look, not a test; on a GPU (or a patient CPU).
+#   scripts/shards-sweep.sh [BINARY] [SCENES]     SCENES: glass_plate vase elastic_drop (default all)
+#   SCALE=0.1 FRAMES=3 scripts/shards-sweep.sh build/cpu/perifrac elastic_drop   (a quick look)
+# Prints a table; writes $OUT/shards-sweep/table.txt.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+bin=${1:-build/cuda/perifrac}
+only=${2:-"glass_plate vase elastic_drop"}
+size=(--scale "${SCALE:-1}")
+[[ -n ${FRAMES:-} ]] && size+=(--frames "$FRAMES")
+OUT=${OUT:-out}/shards-sweep
+mkdir -p "$OUT/stills"
+[[ -x $bin ]] || { echo "shards-sweep: no perifrac binary at '$bin'" >&2; exit 2; }
+
+# name | scene | material | alphas (the first is the scene's own)
+SWEEPS=(
+  "glass_plate|glass_plate_projectile|glass|0 2 5 10"
+  "vase|vase_drop|clay|0 3 6"
+  "elastic_drop|chen_elastic_drop|jelly|0.5 2 5"
+)
+rows=()
+for sweep in "${SWEEPS[@]}"; do
+  IFS='|' read -r name scene material alphas <<<"$sweep"
+  [[ " $only " == *" $name "* ]] || continue
+  for alpha in $alphas; do
+    dir="$OUT/$name-a$alpha"
+    t0=$SECONDS
+    if ! "$bin" run --overwrite "scenes/$scene.toml" --set "materials.$material.damage_alpha=$alpha" \
+      "${size[@]}" --out "$dir" >"$dir.log" 2>&1; then
+      rows+=("$(printf '%-13s %6s  run failed: %s' "$name" "$alpha" "$(tail -n 1 "$dir.log")")")
+      continue
+    fi
+    secs=$((SECONDS - t0))
+    # fragments.csv: frame,step,time,fragments,singles,single_mass_share,largest_mass_share,
+    # largest_particles, then pieces per size bin 1, 2-3, 4-7, 8-15, ...
+    last=$(tail -n 1 "$dir/fragments.csv")
+    broken=$(grep -o 'broken [0-9.]*%' "$dir.log" | tail -n 1)
+    rows+=("$(awk -F, -v n="$name" -v a="$alpha" -v s="$secs" -v b="${broken#broken }" '{
+      big = 0; for (i = 12; i <= NF; ++i) big += $i
+      printf "%-13s %6s %6d %9.1f%% %9.1f%% %8d %8d %8s %6ds", n, a, $1, 100 * $6, 100 * $7, $4, big, b, s }' <<<"$last")")
+    frame=$(cut -d, -f1 <<<"$last")
+    "$bin" render "$dir" --frames "$frame" --width 960 --height 540 --spp 4 --out "$dir/still" >"$dir.render.log" 2>&1 &&
+      cp "$dir/still/frame_$(printf %05d "$frame").png" "$OUT/stills/$name-a$alpha.png"
+  done
+done
+{
+  echo "shards-sweep: $("$bin" --version 2>/dev/null | head -n 1), $(date -u +%Y-%m-%d), scale ${SCALE:-1}"
+  nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -n 1
+  printf '%-13s %6s %6s %10s %10s %8s %8s %8s %7s\n' scene alpha frame singles largest pieces "pieces>=8" broken run
+  printf '%s\n' "${rows[@]}"
+} | tee "$OUT/table.txt"
