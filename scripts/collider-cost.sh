@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # What colliders cost per step on the glass plate at 1M particles (--scale 8; run on a GPU):
-# the scene as it is, with 64 fixed spheres over the plate (2 mm above it, so particles near each
-# one take its distance), with one 100k-triangle sphere mesh over it (its distance grid), and with
-# 8 and 64 free spheres falling onto it (a reaction reduced per body per step). Prints the step
+# the scene as it is, with 64 fixed spheres pressed into the plate (their lowest point at the top
+# layer's particles: each pushes the particles under it), with one 100k-triangle sphere mesh
+# pressed into it likewise (its distance grid), and with 8 and 64 free spheres landing on it at
+# 1 m/s from that height (a reaction reduced per body per step). Prints the step
 # time of each and its excess over the plain scene, and keeps the bench logs and JSON in $OUT.
 #   scripts/collider-cost.sh [BINARY] [BACKEND] [SCALE]
 set -euo pipefail
@@ -20,13 +21,14 @@ variant() {
   cp "$base" "$out/$name.toml"
   cat >>"$out/$name.toml"
 }
-# 8 x 8 spheres of r = 15 mm, 2 mm above the plate's top (z = 10 mm); free ones fall at 1 m/s.
+# 8 x 8 spheres of r = 15 mm, their lowest point at z = 8.5 mm, just below the top layer's particle
+# centres (8.75 mm at scale 1, 9.4 mm at scale 8; the top face is at 10 mm); free ones move down at 1 m/s.
 spheres() {
   local extra=$1 n=$2 k=0
   for i in $(seq 0 7); do
     for j in $(seq 0 7); do
       [ $k -ge "$n" ] && return
-      printf '[[colliders]]\nshape = "sphere"\nradius = 0.015\ncenter = [%s, %s, 0.027]\n%s\n' \
+      printf '[[colliders]]\nshape = "sphere"\nradius = 0.015\ncenter = [%s, %s, 0.0235]\n%s\n' \
         "$(awk -v i="$i" 'BEGIN {print -0.14 + 0.04 * i}')" "$(awk -v j="$j" 'BEGIN {print -0.14 + 0.04 * j}')" "$extra"
       k=$((k + 1))
     done
@@ -36,7 +38,7 @@ variant plain </dev/null
 spheres "" 64 | variant fixed64
 spheres $'density = 7800.0\nvelocity = [0.0, 0.0, -1.0]' 8 | variant free8
 spheres $'density = 7800.0\nvelocity = [0.0, 0.0, -1.0]' 64 | variant free64
-# A sphere of r = 0.1 m meshed at 1.5 mm (about 100k triangles), 2 mm above the plate.
+# A sphere of r = 0.1 m meshed at 1.5 mm (about 100k triangles), pressed in like the spheres.
 cat >"$out/sphere-body.toml" <<TOML
 [materials.m]
 model = "bond_based"
@@ -52,7 +54,7 @@ material = "m"
 TOML
 "$bin" shapes "$out/sphere-body.toml" --edge 0.0015 --out "$out/mesh" >"$out/shapes.log"
 triangles=$(grep -c '^f ' "$out/mesh/ball.obj")
-printf '[[colliders]]\nshape = "mesh"\nmesh = "%s"\ncenter = [0.0, 0.0, 0.112]\n' "$(cd "$out/mesh" && pwd)/ball.obj" |
+printf '[[colliders]]\nshape = "mesh"\nmesh = "%s"\ncenter = [0.0, 0.0, 0.1085]\n' "$(cd "$out/mesh" && pwd)/ball.obj" |
   variant mesh100k
 
 printf '%-10s %12s %12s %10s  %s\n' variant "step [ms]" "wall [ms]" "excess" "bodyforces [ms]"

@@ -51,19 +51,9 @@ void add_placed_tet(PrimitiveSet* prims, const EmbeddedTets& tets, size_t k, con
 
 }  // namespace
 
-Vec3 particle_color(int32_t body, float damage) {
-  static const Vec3 palette[] = {{real(0.62), real(0.70), real(0.78)}, {real(0.78), real(0.42), real(0.24)},
-                                 {real(0.30), real(0.50), real(0.72)}, {real(0.50), real(0.66), real(0.36)},
-                                 {real(0.80), real(0.68), real(0.30)}, {real(0.56), real(0.42), real(0.68)}};
-  constexpr int kColors = sizeof palette / sizeof palette[0];
-  const Vec3 base = palette[((body % kColors) + kColors) % kColors];
-  const Vec3 damaged{real(0.85), real(0.12), real(0.08)};
-  return lerp(base, damaged, real(0.7) * clamp01(real(damage)));
-}
-
 void frame_primitives(const RestData& rest, const FrameData& frame, PrimitiveSet* prims,
                       std::vector<Vec3>* albedo, const RestTrimtopes* trimtopes,
-                      const FragmentsFrame* fragments, const EmbeddedTets* tets) {
+                      const FragmentsFrame* fragments, const EmbeddedTets* tets, const RunLooks& looks) {
   const size_t n = rest.size();
   if (frame.size() != n || frame.damage.size() != n || frame.body.size() != n)
     throw std::invalid_argument("frame " + std::to_string(frame.frame) + " has " +
@@ -89,7 +79,7 @@ void frame_primitives(const RestData& rest, const FrameData& frame, PrimitiveSet
   albedo->clear();
   albedo->reserve(n);
   for (size_t i = 0; i < n; ++i) {
-    albedo->push_back(particle_color(frame.body[i], frame.damage[i]));
+    albedo->push_back(particle_color(looks.of(frame.body[i]), frame.damage[i], looks.damage_colors));
     const int32_t trim = trimtope_of.empty() ? -1 : trimtope_of[i];
     const int32_t tet = tet_of.empty() ? -1 : tet_of[i];
     const real half = real(0.5) * std::cbrt(real(rest.volume[i]));

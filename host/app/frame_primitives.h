@@ -13,6 +13,7 @@
 #include "host/fragments/fragments_file.h"
 #include "host/fragments/voronoi_trimtopes.h"
 #include "host/io/frame.h"
+#include "render/looks.h"
 #include "render/primitive_set.h"
 
 namespace pd {
@@ -21,15 +22,13 @@ namespace pd {
 // axis-aligned (below float resolution; keeps the faces of a resting lattice on shared planes).
 constexpr double kAxisAlignedRotation = 1e-7;
 
-// Linear RGB albedo of a particle of `body` with the given damage in [0, 1].
-Vec3 particle_color(int32_t body, float damage);
-
 // Primitives and albedos of one frame (not yet a kd-tree), in particle order: one primitive per
-// particle. `trimtopes`, `tets` and `fragments` may be null. Throws std::invalid_argument when
-// the frame, the trimtopes, the tets or the fragments do not match the rest file.
+// particle, its albedo by its body's look. `trimtopes`, `tets` and `fragments` may be null. Throws
+// std::invalid_argument when the frame, the trimtopes, the tets or the fragments do not match the rest file.
 void frame_primitives(const RestData& rest, const FrameData& frame, PrimitiveSet* prims,
                       std::vector<Vec3>* albedo, const RestTrimtopes* trimtopes = nullptr,
-                      const FragmentsFrame* fragments = nullptr, const EmbeddedTets* tets = nullptr);
+                      const FragmentsFrame* fragments = nullptr, const EmbeddedTets* tets = nullptr,
+                      const RunLooks& looks = RunLooks());
 
 // Bounding box of the cubes of side cbrt(volume) centred at `positions`.
 Box cube_bounds(const std::vector<Vec3>& positions, const std::vector<float>& volume);

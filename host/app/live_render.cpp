@@ -11,19 +11,8 @@ namespace pd {
 LiveRender::LiveRender(const Scene& scene, const std::string& out_dir, const std::string& backend)
     : out_dir_(out_dir), every_(scene.render->every) {
   const SceneRender& r = *scene.render;
-  RenderOptions o;
-  o.dir = out_dir;
+  RenderOptions o = render_options_from_scene(scene, out_dir);
   o.backend = backend;
-  o.width = int(r.width);
-  o.height = int(r.height);
-  o.spp = int(r.spp);
-  if (r.eye) o.eye = Vec3{real((*r.eye)[0]), real((*r.eye)[1]), real((*r.eye)[2])};
-  if (r.look_at) o.look_at = Vec3{real((*r.look_at)[0]), real((*r.look_at)[1]), real((*r.look_at)[2])};
-  o.vfov_degrees = real(r.vfov);
-  if (scene.floor) o.floor_y = real(scene.floor_height);
-  o.material = r.material;
-  o.ior = real(r.ior);
-  o.environment = r.environment == "sky" ? "sky" : r.environment_path;
   try {
     renderer_ = std::make_unique<RunRenderer>(o, "");
   } catch (const EnvironmentError& e) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "host/app/backend_choice.h"
+#include "host/app/checkpoint.h"
 #include "host/app/run.h"
 #include "host/app/run_folder.h"
 #include "host/fragments/tet_file.h"
@@ -62,6 +63,33 @@ std::vector<std::string> select_frame_files(const std::string& dir, const std::v
     chosen.push_back(all[size_t(it - numbers.begin())]);
   }
   return chosen;
+}
+
+RenderOptions render_options_from_scene(const Scene& scene, const std::string& dir) {
+  const SceneRender& r = *scene.render;
+  RenderOptions o;
+  o.dir = dir;
+  o.width = int(r.width);
+  o.height = int(r.height);
+  o.spp = int(r.spp);
+  if (r.eye) o.eye = Vec3{real((*r.eye)[0]), real((*r.eye)[1]), real((*r.eye)[2])};
+  if (r.look_at) o.look_at = Vec3{real((*r.look_at)[0]), real((*r.look_at)[1]), real((*r.look_at)[2])};
+  o.vfov_degrees = real(r.vfov);
+  if (scene.floor) o.floor_y = real(scene.floor_height);
+  o.material = r.material;
+  o.ior = real(r.ior);
+  o.environment = r.environment == "sky" ? "sky" : r.environment_path;
+  o.damage_colors = r.damage_colors;
+  // Body looks by body id (the body's index in the scene).
+  o.body_looks.resize(scene.bodies.size());
+  for (const SceneBodyLook& l : r.bodies)
+    for (size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (scene.bodies[b].name != l.body) continue;
+      BodyLook look = l.look.empty() ? default_look(int32_t(b), r.material == "glass") : *named_look(l.look);
+      if (l.color) look.albedo = Vec3{real((*l.color)[0]), real((*l.color)[1]), real((*l.color)[2])};
+      o.body_looks[b] = look;
+    }
+  return o;
 }
 
 void check_render_options(const RenderOptions& o) {
@@ -129,9 +157,16 @@ std::string RunRenderer::device() const {
 
 std::string RunRenderer::scene_summary() const {
   const size_t n_trim = trimtopes_ ? trimtopes_->size() : 0, n_tets = tets_ ? tets_->tets.size() : 0;
-  char buf[256];
+  std::string looks = options_.material;
+  for (const std::optional<BodyLook>& l : options_.body_looks)
+    if (l) {
+      looks += ", looks per body";
+      break;
+    }
+  if (options_.damage_colors) looks += ", damage colours";
+  char buf[320];
   std::snprintf(buf, sizeof buf, "%zu cubes, %zu tetrahedra, %zu trimtopes (%s), %s",
-                rest_.size() - n_trim - n_tets, n_tets, n_trim, options_.material.c_str(),
+                rest_.size() - n_trim - n_tets, n_tets, n_trim, looks.c_str(),
                 settings_.environment ? settings_.environment->path.c_str() : "procedural sky");
   return buf;
 }
@@ -144,9 +179,15 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
   if (fs::exists(fragments_path)) fragments = read_fragments_file(fragments_path.string());
   PrimitiveSet prims;
   std::vector<Vec3> albedo;
+  const RunLooks looks{options_.body_looks, options_.material == "glass", options_.damage_colors};
   frame_primitives(rest_, frame, &prims, &albedo, trimtopes_ ? &*trimtopes_ : nullptr,
-                   fragments ? &*fragments : nullptr, tets_ ? &*tets_ : nullptr);
-  std::vector<uint8_t> material(options_.material == "glass" ? albedo.size() : 0, kMaterialGlass);
+                   fragments ? &*fragments : nullptr, tets_ ? &*tets_ : nullptr, looks);
+  // A surface per particle where any is glass (none: all opaque).
+  std::vector<uint8_t> material(albedo.size());
+  bool any_glass = false;
+  for (size_t i = 0; i < material.size(); ++i)
+    any_glass |= (material[i] = looks.of(frame.body[i]).surface) == kMaterialGlass;
+  if (!any_glass) material.clear();
   RenderScene scene = make_render_scene(std::move(prims), std::move(albedo), std::move(material));
   const fs::path colliders_path = fs::path(options_.dir) / colliders_file_name(frame.frame);
   if (fs::exists(colliders_path)) {
@@ -210,7 +251,64 @@ int64_t frame_number(const std::string& frame_file) {
 
 }  // namespace
 
-int render_frames(const RenderOptions& o) {
+namespace {
+
+bool given(const RenderOptions& o, const char* option) {
+  return std::find(o.given.begin(), o.given.end(), option) != o.given.end();
+}
+
+// `cli` with the run's scene's [render] settings for every option not given on the command
+// line, where the run's manifest names a scene that still loads unchanged (same fingerprint) and
+// has a [render] block; else `cli` as it is. `note`: what was taken, or why nothing was.
+RenderOptions with_scene_render(const RenderOptions& cli, std::string* note) {
+  std::optional<RunManifest> manifest;
+  try {
+    manifest = read_manifest(cli.dir);
+  } catch (const RunFolderError&) {
+  }
+  if (!manifest) return cli;
+  std::error_code ec;
+  if (!fs::is_regular_file(manifest->scene_path, ec) ||
+      scene_fingerprint(manifest->scene_path, manifest->overrides) != manifest->scene_hash) {
+    *note = "the run's scene " + manifest->scene_path + " is gone or changed: its [render] block is not used";
+    return cli;
+  }
+  Scene scene;
+  try {
+    scene = load_scene(manifest->scene_path, manifest->overrides);
+  } catch (const std::exception& e) {
+    *note = std::string("the run's scene does not load (") + e.what() + "): its [render] block is not used";
+    return cli;
+  }
+  if (!scene.render) return cli;
+  RenderOptions o = render_options_from_scene(scene, cli.dir);
+  o.out = cli.out;
+  o.backend = cli.backend;
+  o.movie = cli.movie;
+  o.frames = cli.frames;
+  o.given = cli.given;
+  if (given(cli, "--width")) o.width = cli.width;
+  if (given(cli, "--height")) o.height = cli.height;
+  if (given(cli, "--spp")) o.spp = cli.spp;
+  if (given(cli, "--eye")) o.eye = cli.eye;
+  if (given(cli, "--look-at")) o.look_at = cli.look_at;
+  if (given(cli, "--vfov")) o.vfov_degrees = cli.vfov_degrees;
+  if (given(cli, "--material")) {
+    o.material = cli.material;
+    o.body_looks.clear();  // one material for every body, as the option says
+  }
+  if (given(cli, "--ior")) o.ior = cli.ior;
+  if (given(cli, "--environment")) o.environment = cli.environment;
+  if (given(cli, "--damage-colors")) o.damage_colors = cli.damage_colors;
+  *note = "the scene's [render] block (" + scene.path + "), with the options given here";
+  return o;
+}
+
+}  // namespace
+
+int render_frames(const RenderOptions& cli) {
+  std::string scene_note;
+  const RenderOptions o = with_scene_render(cli, &scene_note);
   check_render_options(o);
   const std::vector<std::string> frames = select_frame_files(o.dir, o.frames);
   if (frames.empty()) {
@@ -220,6 +318,7 @@ int render_frames(const RenderOptions& o) {
   RunRenderer renderer(o, frames.back());
   if (!renderer.backend_note().empty()) std::printf("backend    %s\n", renderer.backend_note().c_str());
   std::printf("device     %s\n", renderer.device().c_str());
+  if (!scene_note.empty()) std::printf("settings   %s\n", scene_note.c_str());
   std::printf("images     %d x %d, %d spp, %s, %zu frames -> %s\n", o.width, o.height, o.spp,
               renderer.scene_summary().c_str(), frames.size(), renderer.image_dir().c_str());
   // Images written into a run's folder join its journal (host/app/run_folder.h): --overwrite and

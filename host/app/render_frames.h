@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "host/app/frame_primitives.h"
+#include "host/scene/scene.h"
 #include "render/renderer.h"
 
 namespace pd {
@@ -24,12 +25,20 @@ struct RenderOptions {
   real vfov_degrees = 35;
   bool floor = true;
   std::optional<real> floor_y;      // default: bottom of the lowest cube of the rest and last frames
-  std::string material = "opaque";  // opaque | glass: the material of every body
-  real ior = real(1.5);             // glass index of refraction
-  std::string environment = "sky";  // "sky" (procedural) or the path of a Radiance .hdr map
-  bool movie = true;                // DIR/render/movie.mp4 when ffmpeg is on PATH (all frames only)
-  std::vector<int64_t> frames;      // frame numbers to render; empty: every frame of the run
+  std::string material = "opaque";  // opaque | glass: the material of every body without a look
+  std::vector<std::optional<BodyLook>> body_looks;  // per body id: the scene's [render.bodies]
+  bool damage_colors = false;                       // tint damaged particles red
+  real ior = real(1.5);                             // glass index of refraction
+  std::string environment = "sky";                  // "sky" (procedural) or the path of a Radiance .hdr map
+  bool movie = true;            // DIR/render/movie.mp4 when ffmpeg is on PATH (all frames only)
+  std::vector<int64_t> frames;  // frame numbers to render; empty: every frame of the run
+  // `perifrac render`: the options given on the command line (their long names); the others take
+  // the run's scene's [render] block where it has one (render_frames).
+  std::vector<std::string> given;
 };
+
+// The options of a scene's [render] block (which it must have) for the run folder `dir`.
+RenderOptions render_options_from_scene(const Scene& scene, const std::string& dir);
 
 // The run's frame files frame_NNNNN.pfr, in order; with `wanted` (frame numbers), only those.
 // Throws IoError when the folder cannot be listed, std::invalid_argument naming a wanted frame the

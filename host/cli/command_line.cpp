@@ -244,8 +244,10 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
       ->expected(3);
   cmd->add_option("--vfov", o.vfov_degrees, "vertical field of view in degrees")
       ->check(CLI::Range(0.1, 179.9));
-  cmd->add_option("--material", o.material, "opaque | glass: the material of every body")
+  cmd->add_option("--material", o.material,
+                  "opaque | glass: the material of every body (replaces the scene's looks)")
       ->check(CLI::IsMember({"opaque", "glass"}));
+  cmd->add_flag("--damage-colors", o.damage_colors, "tint damaged particles red");
   cmd->add_option("--ior", o.ior, "glass index of refraction")->check(CLI::Range(1.0, 4.0));
   cmd->add_option("--environment", o.environment,
                   "sky (procedural) or a Radiance .hdr latitude-longitude map");
@@ -253,6 +255,13 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
   cmd->add_option("--frames", o.frames, "frame numbers to render, e.g. 20,60 (default: all; no movie)")
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
+  // What the command line gave, noted when parsing ends; the rest comes from the run's scene's
+  // [render] block, if any (render_frames).
+  cmd->parse_complete_callback([render, cmd] {
+    for (const CLI::Option* opt : cmd->get_options())
+      if (opt->count() > 0 && !opt->get_lnames().empty())
+        render->options.given.push_back("--" + opt->get_lnames().front());
+  });
   on_parsed(cmd, chosen, [&actions, render] {
     const std::vector<double>& eye = render->eye;
     const std::vector<double>& look_at = render->look_at;

@@ -30,6 +30,7 @@
 #include "host/geometry/shapes.h"
 #include "host/io/input_file.h"
 #include "host/scene/scene.h"
+#include "render/looks.h"
 
 namespace pd {
 
@@ -566,8 +567,9 @@ const Keys kRegionShapes = {"box", "sphere", "mesh"};
 const Keys kRegionShapeKeys[] = {
     {"box_min", "box_max"}, {"center", "radius"}, {"mesh", "scale", "translate"}};
 const Keys kOutputKeys = {"vtk", "binary"};
-const Keys kRenderKeys = {"eye", "look_at",  "vfov", "width",       "height",
-                          "spp", "material", "ior",  "environment", "every"};
+const Keys kRenderKeys = {"eye",      "look_at", "vfov",        "width", "height",        "spp",
+                          "material", "ior",     "environment", "every", "damage_colors", "bodies"};
+const Keys kRenderBodyKeys = {"look", "color"};
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
 constexpr double kMaxHorizon = 12;  // delta / lambda; beyond this the bond families explode
@@ -1100,6 +1102,25 @@ SceneRender parse_render(const TableReader& r, const std::string& file, bool wri
     r.fail("environment", "the path is empty", "\"sky\" or the path of a Radiance .hdr file");
   if (s.environment != "sky") s.environment_path = resolve_path(file, s.environment);
   r.integer("every", s.every, 1);
+  r.boolean("damage_colors", s.damage_colors);
+  // [render.bodies.NAME]: a look and a colour per body (the names are checked against the bodies
+  // in parse_root).
+  Keys looks;
+  for (const std::string& name : look_names()) looks.push_back(name);
+  for (const auto& [name, body] : r.named_tables("bodies", kRenderBodyKeys)) {
+    SceneBodyLook b;
+    b.body = name;
+    body.string("look", b.look, looks);
+    std::array<double, 3> color{};
+    if (body.numbers("color", color, "an array of 3 numbers [r, g, b] in [0, 1] (linear RGB)")) {
+      for (double c : color)
+        if (!(c >= 0 && c <= 1))
+          body.fail("color", "a component is outside [0, 1]", "an array of 3 numbers [r, g, b] in [0, 1]");
+      b.color = color;
+    }
+    if (b.look.empty() && !b.color) body.fail("", "names neither a look nor a colour", "look, color or both");
+    s.bodies.push_back(b);
+  }
   if (!write_binary)
     r.fail("", "needs the binary frames it renders", "output.binary = true with a [render] block");
   return s;
@@ -1189,6 +1210,13 @@ Scene parse_root(const toml::table& root, const std::string& path) {
   // [render]
   if (top.has("render"))
     scene.render = parse_render(top.table("render", kRenderKeys), path, scene.write_binary);
+  if (scene.render) {
+    Keys names;
+    for (const SceneBody& b : scene.bodies) names.push_back(b.name);
+    for (const SceneBodyLook& l : scene.render->bodies)
+      if (std::find(names.begin(), names.end(), l.body) == names.end())
+        scene_error(path, "render.bodies." + l.body, "no body is named " + quoted(l.body), join(names, true));
+  }
   return scene;
 }
 

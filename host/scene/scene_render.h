@@ -6,8 +6,16 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace pd {
+
+// [render.bodies.NAME]: how one body looks (render/looks.h).
+struct SceneBodyLook {
+  std::string body;                            // a [[bodies]] name
+  std::string look;                            // a named look; empty: the body's default look
+  std::optional<std::array<double, 3>> color;  // linear RGB in [0, 1], replacing the look's colour
+};
 
 struct SceneRender {
   std::optional<std::array<double, 3>> eye, look_at;  // default: a 3/4 view framing the rest box
@@ -17,8 +25,10 @@ struct SceneRender {
   std::string material = "opaque";                    // "opaque" | "glass": every body
   double ior = 1.5;                                   // glass index of refraction, in [1, 4]
   std::string environment = "sky";                    // "sky" or a Radiance .hdr file, as written
-  std::string environment_path;  // the .hdr path resolved against the scene file's folder
-  int64_t every = 1;             // render every N-th output frame (frame 0 included), >= 1
+  std::string environment_path;       // the .hdr path resolved against the scene file's folder
+  int64_t every = 1;                  // render every N-th output frame (frame 0 included), >= 1
+  bool damage_colors = false;         // tint damaged particles red (a debugging view)
+  std::vector<SceneBodyLook> bodies;  // per-body looks, in the file's order
 };
 
 }  // namespace pd

@@ -14,6 +14,15 @@
 #include "host/geometry/tetgen.h"
 #include "render/movie.h"
 
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#define STBI_ONLY_PNG
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#include <stb/stb_image.h>
+#pragma GCC diagnostic pop
+
 namespace pd {
 namespace {
 
@@ -58,6 +67,76 @@ class LiveRender : public ::testing::Test {
 };
 
 const char* kGridBody = "size = [0.02, 0.01, 0.01]\nspacing = 0.002\n";
+
+// A PNG's pixels (RGB, row by row); empty when it does not load.
+struct Png {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  const unsigned char* at(int x, int y) const { return &rgb[3 * (size_t(y) * size_t(width) + size_t(x))]; }
+};
+Png read_png(const std::string& path) {
+  Png p;
+  int comp = 0;
+  unsigned char* data = stbi_load(path.c_str(), &p.width, &p.height, &comp, 3);
+  if (data) p.rgb.assign(data, data + 3 * size_t(p.width) * size_t(p.height));
+  stbi_image_free(data);
+  return p;
+}
+
+// A body's look from [render.bodies.NAME] colours it in the run's images, and `perifrac render`
+// of the finished run takes the scene's [render] block (camera, size, looks) unless an option
+// says otherwise; damage colours only on request.
+TEST_F(LiveRender, BodyLooksColourTheLiveAndTheLaterImages) {
+  const std::string look =
+      "[render]\nwidth = 32\nheight = 24\nspp = 1\nlook_at = [0, 0, 0]\n"
+      "eye = [0, 0, 0.08]\n[render.bodies.slab]\nlook = \"clay\"\n"
+      "color = [0.9, 0.02, 0.02]\n";
+  const Result r = run_perifrac("run " + scene("name = \"slab\"\n" + std::string(kGridBody), look) +
+                                " --backend cpu --out " + out());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("looks per body"), std::string::npos) << r.output;
+  const Png live = read_png(out() + "/render/frame_00002.png");
+  ASSERT_EQ(live.width, 32);
+  const unsigned char* centre = live.at(16, 12);
+  EXPECT_GT(int(centre[0]), 3 * int(centre[1]) + 10) << "the slab is drawn in its red";
+  EXPECT_GT(int(centre[0]), 3 * int(centre[2]) + 10);
+
+  // Later: the same settings from the scene give the same image.
+  const Result again =
+      run_perifrac("render " + out() + " --backend cpu --frames 2 --out " + out() + "/again");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("settings   the scene's [render] block"), std::string::npos) << again.output;
+  EXPECT_EQ(read_png(out() + "/again/frame_00002.png").rgb, live.rgb);
+  // An option given wins over the scene; --material replaces the looks.
+  const Result wide = run_perifrac(
+      "render " + out() + " --backend cpu --frames 2 --width 40 --material opaque --out " + out() + "/wide");
+  ASSERT_EQ(wide.exit_code, 0) << wide.output;
+  const Png w = read_png(out() + "/wide/frame_00002.png");
+  ASSERT_EQ(w.width, 40);
+  const unsigned char* grey = w.at(20, 12);
+  EXPECT_LT(int(grey[0]), 2 * int(grey[1])) << "the default palette is no red";
+}
+
+TEST_F(LiveRender, BodyLookMistakesNameTheKey) {
+  const struct {
+    const char* render;
+    const char* message;
+  } cases[] = {
+      {"[render.bodies.slab]\nlook = \"marble\"\n", "render.bodies.slab.look"},
+      {"[render.bodies.lid]\nlook = \"clay\"\n", "render.bodies.lid"},
+      {"[render.bodies.slab]\ncolor = [1.5, 0, 0]\n", "render.bodies.slab.color"},
+      {"[render.bodies.slab]\n", "names neither a look nor a colour"},
+      {"[render]\ndamage_colors = 1\n", "render.damage_colors"},
+  };
+  for (const auto& c : cases) {
+    const std::string render =
+        std::string(c.render).rfind("[render]", 0) == 0 ? c.render : "[render]\n" + std::string(c.render);
+    const Result r = run_perifrac("run " + scene("name = \"slab\"\n" + std::string(kGridBody), render) +
+                                  " --backend cpu --out " + out());
+    EXPECT_EQ(r.exit_code, 2) << c.render << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.render << r.output;
+  }
+}
 
 TEST_F(LiveRender, RunRendersEveryNthFrameAsItGoes) {
   const Result r = run_perifrac("run " +

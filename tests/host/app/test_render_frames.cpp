@@ -127,14 +127,6 @@ TEST_F(RenderFramesTest, FramedCameraSeesTheBlockInTheMiddle) {
   EXPECT_NE(std::vector<uint8_t>(centre, centre + 3), std::vector<uint8_t>(corner, corner + 3));
 }
 
-TEST(ParticleColor, BodiesDifferAndDamageTintsRed) {
-  const Vec3 a = particle_color(0, 0), b = particle_color(1, 0), hurt = particle_color(0, 1);
-  EXPECT_NE(a.x, b.x);
-  EXPECT_GT(hurt.x - hurt.z, a.x - a.z);
-  const Vec3 negative = particle_color(-1, 0);  // any body id maps into the palette
-  EXPECT_GE(negative.x, 0);
-}
-
 TEST_F(RenderFramesTest, RejectsMismatchedFramesAndMissingInputs) {
   FrameData short_frame = read_frame_file(path("frame_00000.pfr"));
   short_frame.position.pop_back();
