@@ -6,12 +6,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <exception>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -321,6 +326,15 @@ std::vector<VoronoiElements> voronoi_elements(const SetupResult& setup) {
   return elements;
 }
 
+// PERIFRAC_OUTPUT_THREAD: 1 (the default) writes each frame on a thread of its own while the
+// engine steps on; 0 writes it before the next step (for measurements). Another value is an error.
+bool output_thread_wanted() {
+  const char* v = std::getenv("PERIFRAC_OUTPUT_THREAD");
+  if (!v || std::string(v) == "1") return true;
+  if (std::string(v) == "0") return false;
+  throw std::invalid_argument("PERIFRAC_OUTPUT_THREAD='" + std::string(v) + "' (allowed: 0 or 1)");
+}
+
 // The per-frame outputs of a run in its output folder: frame files, the VTK series, the fragment
 // outputs, the energy log and, with a [render] block, the frames rendered as they come.
 class RunOutput {
@@ -347,32 +361,58 @@ class RunOutput {
           links.indirect() + links.unlinked(), links.indirect(), links.unlinked());
   }
 
+  ~RunOutput() {
+    if (job_.joinable()) job_.join();  // (an error of a run already failing is not rethrown)
+  }
+  RunOutput(const RunOutput&) = delete;
+  RunOutput& operator=(const RunOutput&) = delete;
+
   const std::string& dir() const { return out_; }
   RunFolder& folder() { return folder_; }
   EnergyLog& energy_log() { return energy_log_; }
-  // The fragment statistics of the last frame written, for the progress line.
-  const std::string& fragment_log() const { return fragment_log_; }
   size_t fragment_pieces() const { return fragments_.components().count(); }
 
-  // Writes frame `frame` of the engine's current state: its fragment outputs, frame files and
-  // rendering.
-  void write_frame(int64_t frame) {
-    folder_.begin_frame(frame);
+  // Writes frame `frame` of the engine's current state. What needs the engine happens now (the
+  // frame's particles and bonds downloaded, the colliders' poses copied); the rest (fragments,
+  // frame files, rendering, the manifest, then `done` called with the fragment statistics) on a
+  // thread of its own while the engine steps on to the next frame, or here with
+  // PERIFRAC_OUTPUT_THREAD=0. drain() waits for it; the files are the same either way.
+  void write_frame(int64_t frame, std::function<void(const std::string&)> done = {}) {
+    drain();
     Engine& engine = *sim_.engine;
     FrameData f = frame_data(engine, sim_.setup.input.particles, bonds_.count, frame);
     if (frame > 0) engine.read_bonds(bonds_);
-    const ComponentStats stats = fragments_.process(f, bonds_);
-    fragment_log_ = format_component_stats(stats);
-    fragment_csv_.add(frame, f.step, f.time, stats);
-    if (sim_.scene.write_binary) write_frame_file(out_ + "/" + frame_file_name(frame, "pfr"), f);
-    if (sim_.scene.write_vtk) {
-      const std::string name = frame_file_name(frame, "vtu");
-      write_vtu(out_ + "/" + name, f);
-      series_.add(f.time, name);
-    }
-    colliders_.write_frame(frame, f.time, engine.colliders());
-    if (live_) live_->frame(frame);
-    folder_.frame_done(frame);
+    auto job = [this, frame, f = std::move(f), colliders = engine.colliders(),
+                done = std::move(done)]() mutable {
+      folder_.begin_frame(frame);
+      const ComponentStats stats = fragments_.process(f, bonds_);
+      fragment_log_ = format_component_stats(stats);
+      fragment_csv_.add(frame, f.step, f.time, stats);
+      if (sim_.scene.write_binary) write_frame_file(out_ + "/" + frame_file_name(frame, "pfr"), f);
+      if (sim_.scene.write_vtk) {
+        const std::string name = frame_file_name(frame, "vtu");
+        write_vtu(out_ + "/" + name, f);
+        series_.add(f.time, name);
+      }
+      colliders_.write_frame(frame, f.time, colliders);
+      if (live_) live_->frame(frame);
+      folder_.frame_done(frame);
+      if (done) done(fragment_log_);
+    };
+    if (!threaded_) return job();
+    job_ = std::thread([this, job = std::move(job)]() mutable {
+      try {
+        job();
+      } catch (...) {
+        error_ = std::current_exception();
+      }
+    });
+  }
+
+  // Waits for the frame being written, if any; rethrows what its writing threw.
+  void drain() {
+    if (job_.joinable()) job_.join();
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
   }
 
   // Takes over a checkpoint's fragment smoothing, VTK series and energy log (moved from `c`).
@@ -386,6 +426,7 @@ class RunOutput {
 
   // Puts the energy log, the VTK series and the fragment smoothing into checkpoint `c`.
   void save(RunCheckpoint& c) {
+    drain();
     c.energy_log = energy_log_.text();
     c.fragment_log = fragment_csv_.text();
     c.series = series_.entries();
@@ -395,6 +436,7 @@ class RunOutput {
   // The end-of-run outputs of a run resumed after its last frame: the fragment pieces of the
   // engine's current bonds.
   void finish_complete_run() {
+    drain();
     sim_.engine->read_bonds(bonds_);
     fragments_.find_components(bonds_);
     fragments_.write_meshes();
@@ -402,6 +444,7 @@ class RunOutput {
 
   // The end-of-run outputs: the live render's summary and movie, and the fragment pieces.
   void finish() {
+    drain();
     if (live_) live_->finish();
     fragments_.write_meshes();
   }
@@ -418,6 +461,9 @@ class RunOutput {
   FragmentLog fragment_csv_;
   ColliderOutput colliders_;
   std::string fragment_log_;
+  bool threaded_ = output_thread_wanted();
+  std::thread job_;  // the frame being written (write_frame)
+  std::exception_ptr error_;
 };
 
 // Where the frame loop starts: the first frame to simulate and the energy the run started with.
@@ -448,6 +494,7 @@ RunStart start_fresh_run(Simulation& sim, RunOutput& output) {
                                ", strain " + finite_or_not(e.strain) + ", gravity " +
                                finite_or_not(e.gravity) + "): the scene's numbers are out of range");
   output.write_frame(0);
+  output.drain();
   output.energy_log().add(0, 0, 0.0, start.energy0);
   return start;
 }
@@ -563,21 +610,37 @@ bool checkpoint_due(const RunOptions& opt, int64_t frame, double seconds_since_l
   return by_count || by_time || InterruptGuard::signal_received();
 }
 
-// The progress line after `frame`: speed, time left, broken bonds, energy balance and fragments
-// (rewritten in place on a terminal).
-void print_progress(const Simulation& sim, int64_t frame, int64_t first_frame, double elapsed, double excess,
-                    const std::string& fragment_log, bool tty) {
+// What the progress line after a frame says of the engine, taken when the frame is written.
+struct Progress {
+  int64_t frame = 0, frames = 0, step = 0;
+  double steps_per_s = 0, eta = 0, broken = 0, excess = 0;
+};
+
+Progress progress_after(const Simulation& sim, int64_t frame, int64_t first_frame, double elapsed,
+                        double excess) {
   const Scene& scene = sim.scene;
   Engine& engine = *sim.engine;
+  Progress p;
   const int64_t done = frame - first_frame + 1;
-  const double steps_per_s = double(done * scene.steps_per_frame) / elapsed;
-  const double eta = elapsed / double(done) * double(scene.frames - frame);
+  p.frame = frame;
+  p.frames = scene.frames;
+  p.step = engine.step();
+  p.steps_per_s = double(done * scene.steps_per_frame) / elapsed;
+  p.eta = elapsed / double(done) * double(scene.frames - frame);
   const int64_t bonds = engine.family_stats().bonds;
-  const double broken = bonds > 0 ? double(engine.broken_bonds()) / double(bonds) : 0;
+  p.broken = bonds > 0 ? double(engine.broken_bonds()) / double(bonds) : 0;
+  p.excess = excess;
+  return p;
+}
+
+// The progress line: speed, time left, broken bonds, energy balance and fragments (rewritten in
+// place on a terminal).
+void print_progress(const Progress& p, const std::string& fragment_log, bool tty) {
   std::printf(
       "%sframe %lld/%lld  step %lld  %.0f steps/s  ETA %s  broken %.3f%%  energy balance %+.2f%%  %s%s",
-      tty ? "\r" : "", (long long)frame, (long long)scene.frames, (long long)engine.step(), steps_per_s,
-      format_duration(eta).c_str(), 100 * broken, 100 * excess, fragment_log.c_str(), tty ? "   " : "\n");
+      tty ? "\r" : "", (long long)p.frame, (long long)p.frames, (long long)p.step, p.steps_per_s,
+      format_duration(p.eta).c_str(), 100 * p.broken, 100 * p.excess, fragment_log.c_str(),
+      tty ? "   " : "\n");
   std::fflush(stdout);
 }
 
@@ -624,28 +687,32 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
           tty ? "\n" : "", (long long)frame, (long long)engine.step(), output.dir().c_str());
       return kExitInterrupted;
     }
+    output.drain();  // the last frame's files are complete before anything else is written
     if (stopped_by_non_finite(sim, frame, output.dir())) return kExitBlowUp;
     const Energy energy = engine.energy();
     const double excess = energy_excess(start.energy0, energy);
     if (stopped_by_energy_growth(sim, start.energy0, energy, excess, growth_limit, frame, output.dir()))
       return kExitBlowUp;
     output.energy_log().add(frame, engine.step(), engine.time(), energy);
-    output.write_frame(frame);
-
     const auto now = std::chrono::steady_clock::now();
+    const Progress progress = progress_after(sim, frame, start.first_frame,
+                                             std::chrono::duration<double>(now - t0).count(), excess);
+    output.write_frame(
+        frame, [progress, tty](const std::string& fragments) { print_progress(progress, fragments, tty); });
+
     if (checkpoint_due(opt, frame, std::chrono::duration<double>(now - last_checkpoint).count())) {
       write_run_checkpoint(sim, opt, output, start.energy0, frame);
       last_checkpoint = now;
     }
     if (InterruptGuard::signal_received()) {
+      output.drain();
       std::printf(
           "%sinterrupted after frame %lld: checkpoint written; continue with: perifrac run --resume %s\n",
           tty ? "\n" : "", (long long)frame, output.dir().c_str());
       return kExitInterrupted;
     }
-    print_progress(sim, frame, start.first_frame, std::chrono::duration<double>(now - t0).count(), excess,
-                   output.fragment_log(), tty);
   }
+  output.drain();
   if (tty) std::printf("\n");
   return kExitOk;
 }
@@ -666,6 +733,7 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame) {
 
 int run_command(const RunOptions& options) {
   RunOptions opt = options;
+  output_thread_wanted();  // a bad PERIFRAC_OUTPUT_THREAD is refused before the set-up's work
   std::optional<RunCheckpoint> resume;
   if (!opt.resume.empty()) resume = open_resume(opt);
   // A folder this run may not use is refused before the set-up's work (and again under its lock).
