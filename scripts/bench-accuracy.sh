@@ -41,16 +41,17 @@ rm -f "$CSV"
 # Sweep settings: resolution lists per problem (particles across the width / plate height).
 if [[ $QUICK == 1 ]]; then
   declare -A RES=([wave_bar]=4,6,8 [tension_bar_pmb]=4,6,8 [tension_bar_lps]=4,6,8 [cantilever_pmb]=4
-                  [cantilever_lps]=4 [bar_twist_lps]=4,6 [bar_spin_lps]=4,6 [crack_branching]=20)
+                  [cantilever_lps]=4 [bar_twist_lps]=4,6 [bar_spin_lps]=4,6 [crack_branching]=20
+                  [notched_bar_pmb]=10)
   DELTAS="3 4" DTS="0.5"
 else
   declare -A RES=([wave_bar]=4,6,8,12 [tension_bar_pmb]=4,6,8,12 [tension_bar_lps]=4,6,8,12
                   [cantilever_pmb]=4,6 [cantilever_lps]=4,6 [bar_twist_lps]=4,6,8
-                  [bar_spin_lps]=4,6,8 [crack_branching]=20,40)
+                  [bar_spin_lps]=4,6,8 [crack_branching]=20,40 [notched_bar_pmb]=10,20)
   DELTAS="3 4" DTS="0.25 0.5 0.9"
 fi
 PROBLEMS=${PROBLEMS:-"wave_bar tension_bar_pmb tension_bar_lps cantilever_pmb cantilever_lps bar_twist_lps bar_spin_lps
-  crack_branching"}
+  crack_branching notched_bar_pmb"}
 
 backends="cpu"
 "$BIN" info 2>/dev/null | grep -q '^cuda *available' && backends="cpu cuda"

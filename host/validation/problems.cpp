@@ -45,6 +45,10 @@ const std::vector<ValidationProblem>& validation_problems() {
        "pre-notched glass plate: crack speed, branches, symmetry",
        {20, 40, 80},
        run_crack_branching},
+      {"notched_bar_pmb",
+       "double-edge-notched glass bar pulled to failure: failure stress against LEFM (K_Ic = sqrt(E G0))",
+       {10, 20, 30},
+       run_notched_bar_pmb},
   };
   return problems;
 }

@@ -53,5 +53,6 @@ std::vector<ValidationResult> run_cantilever_lps(const ValidationCase& c);
 std::vector<ValidationResult> run_bar_twist_lps(const ValidationCase& c);
 std::vector<ValidationResult> run_bar_spin_lps(const ValidationCase& c);
 std::vector<ValidationResult> run_crack_branching(const ValidationCase& c);
+std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c);
 
 }  // namespace pd
