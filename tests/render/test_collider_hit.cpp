@@ -1,12 +1,15 @@
 // Rays against colliders (render/collider_hit.h): each shape's entry point against its analytic
-// value, turned and moved by the collider's pose; the nearest of several; planes and rays from
-// inside unseen; and the renderer drawing a collider where the image had sky.
+// value, turned and moved by the collider's pose; a mesh collider (sphere tracing of its distance
+// grid) against the sphere it meshes; the nearest of several; planes and rays from inside unseen;
+// and the renderer drawing a collider, a mesh one too, where the image had sky.
 #include "render/collider_hit.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "host/geometry/distance_grid.h"
+#include "host/geometry/shapes.h"
 #include "render/renderer.h"
 
 namespace pd {
@@ -49,6 +52,41 @@ TEST(ColliderHit, EachShapeIsEnteredWhereItsSurfaceIs) {
               1e-5);
   EXPECT_TRUE(std::isnan(entry(shape(kColliderPlane, {}), {0, 5, 0}, down)));          // not drawn
   EXPECT_TRUE(std::isnan(entry(shape(kColliderSphere, {1, 0, 0}), {0, 0, 0}, down)));  // from inside
+}
+
+// A mesh collider of a sphere of radius 1 meshed at edge 0.05, its distance grid at 0.05 (the
+// grid's values appended to `grids`), at `center`.
+Collider sphere_mesh_collider(std::vector<float>& grids, Vec3 center = {0, 0, 0}) {
+  const DistanceGrid g = distance_grid(sphere_mesh(1, 0.05), true, 0.05, 0.2);
+  Collider c = shape(kColliderMesh, {1, 1, 1}, center);
+  c.grid_origin = {real(g.origin[0]), real(g.origin[1]), real(g.origin[2])};
+  c.grid_cell = real(g.cell);
+  for (int a = 0; a < 3; ++a) c.grid_dims[a] = g.dims[size_t(a)];
+  c.grid_offset = int64_t(grids.size());
+  grids.insert(grids.end(), g.distance.begin(), g.distance.end());
+  return c;
+}
+
+TEST(ColliderHit, MeshIsEnteredWhereItsSurfaceIs) {
+  std::vector<float> grids;
+  const Collider c = sphere_mesh_collider(grids, {0, 0, 3});
+  for (const real x : {real(0), real(0.5), real(-0.8)}) {
+    real t = INFINITY;
+    Vec3 n;
+    const Collider list[1] = {c};
+    ASSERT_EQ(nearest_collider({list, 1}, make_ray({x, 5, 3}, {0, -1, 0}, 0, INFINITY), &t, &n, grids.data()), 0)
+        << x;
+    // Short of the surface by at most the sphere tracing's stopping distance (0.3 cells of the
+    // distance, 0.3 cells / cos(incidence) along the ray), give or take the mesh's chords.
+    const real cos_incidence = std::sqrt(1 - x * x);
+    EXPECT_NEAR(t, 5 - cos_incidence, 0.3 * 0.05 / cos_incidence + 0.005) << x;
+    EXPECT_NEAR(n.x, x, 0.06) << x;
+  }
+  real t = INFINITY;
+  Vec3 n;
+  const Collider list[1] = {c};
+  EXPECT_EQ(nearest_collider({list, 1}, make_ray({real(1.5), 5, 3}, {0, -1, 0}, 0, INFINITY), &t, &n, grids.data()),
+            -1);  // beside it
 }
 
 TEST(ColliderHit, PoseTurnsAndMovesTheShape) {
@@ -94,6 +132,19 @@ TEST(ColliderHit, RendererDrawsTheColliderOverTheSky) {
   };
   EXPECT_NE(pixel(sky, 16, 12), pixel(drawn, 16, 12));  // the centre: the sphere
   EXPECT_EQ(pixel(sky, 0, 0), pixel(drawn, 0, 0));      // a corner: still sky
+  // The same sphere as a mesh collider draws the same silhouette.
+  scene.colliders = {sphere_mesh_collider(scene.collider_grids)};
+  const ImageRGB8 mesh = renderer->render_frame(scene, camera, s).image;
+  int differ = 0, covered = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const bool in_sphere = pixel(drawn, x, y) != pixel(sky, x, y);
+      const bool in_mesh = pixel(mesh, x, y) != pixel(sky, x, y);
+      covered += in_sphere;
+      differ += in_sphere != in_mesh;
+    }
+  EXPECT_GT(covered, 20);
+  EXPECT_LE(differ, 4) << "pixels covered by one of the two only (the silhouette's edge)";
 }
 
 }  // namespace
