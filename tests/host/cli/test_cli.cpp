@@ -134,6 +134,29 @@ TEST_F(Cli, TooStiffColliderIsRefused) {
   EXPECT_NE(u.output.find("colliders"), std::string::npos) << u.output;
 }
 
+// Collider mistakes through the binary: each one `error:` line naming the scene and the key, exit 2,
+// before any work: an open mesh as a free body (it has no inside, so no mass), a negative mass,
+// an unknown shape.
+TEST_F(Cli, ColliderMistakesAreOneLine) {
+  std::ofstream(dir_ / "sheet.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const struct {
+    std::string collider, key;
+  } cases[] = {
+      {"shape = \"mesh\"\nmesh = \"sheet.obj\"\ncenter = [0, 0.2, 0]\ndensity = 1000.0\n", "colliders[0]"},
+      {"shape = \"sphere\"\nradius = 0.01\ncenter = [0, 0.2, 0]\nmass = -1.0\n", "colliders[0].mass"},
+      {"shape = \"cone\"\ncenter = [0, 0.2, 0]\n", "colliders[0].shape"},
+  };
+  for (const auto& c : cases) {
+    const Result r =
+        run_perifrac("run " + scene(kGoodBody, "[[colliders]]\n" + c.collider) + " --backend cpu --out " + out());
+    expect_scene_error(r, c.key);
+    size_t lines = 0;
+    for (char ch : r.output) lines += ch == '\n';
+    EXPECT_EQ(lines, 1u) << "one line, nothing before it\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out())) << c.collider;
+  }
+}
+
 // dt = "auto" runs at half the stable time step and says so.
 TEST_F(Cli, AutomaticTimeStep) {
   const std::string path = (dir_ / "scene.toml").string();
