@@ -74,7 +74,8 @@ TEST(ColliderHit, MeshIsEnteredWhereItsSurfaceIs) {
     real t = INFINITY;
     Vec3 n;
     const Collider list[1] = {c};
-    ASSERT_EQ(nearest_collider({list, 1}, make_ray({x, 5, 3}, {0, -1, 0}, 0, INFINITY), &t, &n, grids.data()), 0)
+    ASSERT_EQ(nearest_collider({list, 1}, make_ray({x, 5, 3}, {0, -1, 0}, 0, INFINITY), &t, &n, grids.data()),
+              0)
         << x;
     // Short of the surface by at most the sphere tracing's stopping distance (0.3 cells of the
     // distance, 0.3 cells / cos(incidence) along the ray), give or take the mesh's chords.
@@ -85,8 +86,9 @@ TEST(ColliderHit, MeshIsEnteredWhereItsSurfaceIs) {
   real t = INFINITY;
   Vec3 n;
   const Collider list[1] = {c};
-  EXPECT_EQ(nearest_collider({list, 1}, make_ray({real(1.5), 5, 3}, {0, -1, 0}, 0, INFINITY), &t, &n, grids.data()),
-            -1);  // beside it
+  EXPECT_EQ(
+      nearest_collider({list, 1}, make_ray({real(1.5), 5, 3}, {0, -1, 0}, 0, INFINITY), &t, &n, grids.data()),
+      -1);  // beside it
 }
 
 TEST(ColliderHit, PoseTurnsAndMovesTheShape) {

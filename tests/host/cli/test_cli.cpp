@@ -147,8 +147,8 @@ TEST_F(Cli, ColliderMistakesAreOneLine) {
       {"shape = \"cone\"\ncenter = [0, 0.2, 0]\n", "colliders[0].shape"},
   };
   for (const auto& c : cases) {
-    const Result r =
-        run_perifrac("run " + scene(kGoodBody, "[[colliders]]\n" + c.collider) + " --backend cpu --out " + out());
+    const Result r = run_perifrac("run " + scene(kGoodBody, "[[colliders]]\n" + c.collider) +
+                                  " --backend cpu --out " + out());
     expect_scene_error(r, c.key);
     size_t lines = 0;
     for (char ch : r.output) lines += ch == '\n';
