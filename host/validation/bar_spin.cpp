@@ -12,6 +12,7 @@
 // Also reported: the angular momentum after 1.5 turns against its initial value (pair forces
 // along the bonds conserve it exactly, up to round-off).
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "host/validation/lattice.h"
@@ -93,13 +94,8 @@ std::vector<ValidationResult> bar_spin(const ValidationCase& c, const ElasticSol
   std::vector<ValidationResult> out = {
       make_result(std::string(name) + "/stretch", stretch, reference),
       make_result(std::string(name) + "/angular_momentum", angular_momentum() / momentum0, 1.0)};
-  for (auto& r : out) {
-    r.particles = int64_t(in.particles.size());
-    r.steps = engine->step();
-    r.wall_s = clock.seconds();
-    r.note = std::to_string(kTurns) + " turns of " + std::to_string(turn_steps) + " steps";
-  }
-  return out;
+  return stamped(std::move(out), in, *engine, clock,
+                 std::to_string(kTurns) + " turns of " + std::to_string(turn_steps) + " steps");
 }
 
 }  // namespace

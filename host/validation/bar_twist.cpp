@@ -97,11 +97,8 @@ std::vector<ValidationResult> bar_twist(const ValidationCase& c, const ElasticSo
   const double final_torque = torque.back();
   ValidationResult r = make_result(std::string(name) + "/twist_angle", final_torque * side / stiffness,
                                    final_torque * side / reference_stiffness);
-  r.particles = int64_t(in.particles.size());
-  r.steps = engine->step();
-  r.wall_s = clock.seconds();
-  r.note = "GJ_measured/GJ " + std::to_string(stiffness / reference_stiffness);
-  return {r};
+  return stamped({r}, in, *engine, clock,
+                 "GJ_measured/GJ " + std::to_string(stiffness / reference_stiffness));
 }
 
 }  // namespace

@@ -80,11 +80,8 @@ std::vector<ValidationResult> cantilever(const ValidationCase& c, const ElasticS
   for (size_t k = peak; k < end; ++k) mean += 0.5 * (w[k] + w[k + 1]) / double(end - peak);
 
   ValidationResult r = make_result(std::string(name) + "/tip_deflection", mean, reference);
-  r.particles = int64_t(in.particles.size());
-  r.steps = engine->step();
-  r.wall_s = clock.seconds();
-  r.note = "period " + std::to_string(2 * double(peak) * double(chunk) * dt * 1e3) + " ms";
-  return {r};
+  return stamped({r}, in, *engine, clock,
+                 "period " + std::to_string(2 * double(peak) * double(chunk) * dt * 1e3) + " ms");
 }
 
 }  // namespace

@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "cuda/engine/material.h"
@@ -177,13 +178,7 @@ std::vector<ValidationResult> run_crack_branching(const ValidationCase& c) {
   char note[160];
   std::snprintf(note, sizeof note, "max tip speed %.0f m/s = %.2f c_R (c_R %.0f m/s); %lld cracked particles",
                 max_speed, max_speed / rayleigh, rayleigh, (long long)cracked);
-  for (auto& r : out) {
-    r.particles = int64_t(in.particles.size());
-    r.steps = engine->step();
-    r.wall_s = clock.seconds();
-    r.note = note;
-  }
-  return out;
+  return stamped(std::move(out), in, *engine, clock, note);
 }
 
 }  // namespace pd

@@ -5,7 +5,12 @@
 #include <chrono>
 #include <cstdint>
 
+#include <string>
+#include <vector>
+
+#include "cuda/engine/engine.h"
 #include "cuda/engine/particle_set.h"
+#include "host/validation/validation.h"
 
 namespace pd {
 
@@ -57,5 +62,19 @@ class WallClock {
  private:
   std::chrono::steady_clock::time_point start_;
 };
+
+// `out`, each figure stamped with the run that measured it: its particles, steps, wall time since
+// `clock` started and `note`.
+inline std::vector<ValidationResult> stamped(std::vector<ValidationResult> out, const SimulationInput& in,
+                                             const Engine& engine, const WallClock& clock,
+                                             const std::string& note) {
+  for (ValidationResult& r : out) {
+    r.particles = int64_t(in.particles.size());
+    r.steps = engine.step();
+    r.wall_s = clock.seconds();
+    r.note = note;
+  }
+  return out;
+}
 
 }  // namespace pd

@@ -16,6 +16,7 @@
 //   as thick as wide lies between the two.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "cuda/engine/material.h"
@@ -97,13 +98,7 @@ std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c) {
   std::snprintf(note, sizeof note,
                 "peak %.3g MPa at strain %.3g (LEFM %.3g MPa, strain %.3g); s0 %.3g; %d x %d x %d particles",
                 peak / 1e6, peak_strain, failure / 1e6, failure / glass.youngs, s0, nx, n, nz);
-  for (auto& r : out) {
-    r.particles = int64_t(in.particles.size());
-    r.steps = engine->step();
-    r.wall_s = clock.seconds();
-    r.note = note;
-  }
-  return out;
+  return stamped(std::move(out), in, *engine, clock, note);
 }
 
 }  // namespace pd

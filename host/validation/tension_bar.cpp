@@ -14,6 +14,7 @@
 // decayed. Reported: the gauge elongation under the final force against F L_g / (E A), and nu
 // against the model's (1/4 for PMB, the input for the state-based solid).
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "host/validation/lattice.h"
@@ -89,13 +90,7 @@ std::vector<ValidationResult> tension_bar(const ValidationCase& c, const Elastic
   const double reference = force * width / (solid.youngs * width * width);
   std::vector<ValidationResult> out = {make_result(std::string(name) + "/elongation", measured, reference),
                                        make_result(std::string(name) + "/poisson", nu, solid.nu())};
-  for (auto& r : out) {
-    r.particles = int64_t(in.particles.size());
-    r.steps = engine->step();
-    r.wall_s = clock.seconds();
-    r.note = "E_measured " + std::to_string(modulus / 1e9) + " GPa";
-  }
-  return out;
+  return stamped(std::move(out), in, *engine, clock, "E_measured " + std::to_string(modulus / 1e9) + " GPa");
 }
 
 }  // namespace

@@ -72,11 +72,7 @@ std::vector<ValidationResult> run_wave_bar(const ValidationCase& c) {
   const double speed = fit_slope(times.data(), fronts.data(), times.size());
 
   ValidationResult r = make_result("wave_bar/front_speed", speed, c0);
-  r.particles = int64_t(in.particles.size());
-  r.steps = engine->step();
-  r.wall_s = clock.seconds();
-  r.note = std::to_string(times.size()) + " front samples";
-  return {r};
+  return stamped({r}, in, *engine, clock, std::to_string(times.size()) + " front samples");
 }
 
 }  // namespace pd
