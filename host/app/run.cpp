@@ -345,8 +345,9 @@ class RunOutput {
       : sim_(sim),
         folder_(folder),
         out_(folder.dir()),
-        live_(sim.scene.render ? std::make_unique<LiveRender>(sim.scene, out_, backend_name(sim.backend))
-                               : nullptr),
+        live_(sim.scene.render && sim.scene.render->every > 0
+                  ? std::make_unique<LiveRender>(sim.scene, out_, backend_name(sim.backend))
+                  : nullptr),
         series_(out_, "particles"),
         bonds_(bonds_as_built(*sim.engine)),
         fragments_(sim.setup.input, bonds_, {out_, opt.blend_frames}, sim.setup.adjacency, sim.setup.embedded,

@@ -1101,7 +1101,7 @@ SceneRender parse_render(const TableReader& r, const std::string& file, bool wri
   if (s.environment.empty())
     r.fail("environment", "the path is empty", "\"sky\" or the path of a Radiance .hdr file");
   if (s.environment != "sky") s.environment_path = resolve_path(file, s.environment);
-  r.integer("every", s.every, 1);
+  r.integer("every", s.every, 0);
   r.boolean("damage_colors", s.damage_colors);
   // [render.bodies.NAME]: a look and a colour per body (the names are checked against the bodies
   // in parse_root).

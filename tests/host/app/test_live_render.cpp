@@ -117,6 +117,24 @@ TEST_F(LiveRender, BodyLooksColourTheLiveAndTheLaterImages) {
   EXPECT_LT(int(grey[0]), 2 * int(grey[1])) << "the default palette is no red";
 }
 
+// every = 0: nothing is rendered while the run goes, and the block still gives `perifrac render`
+// its settings (the gallery's scenes carry their looks this way).
+TEST_F(LiveRender, EveryZeroRendersNothingButKeepsTheLooks) {
+  const std::string look =
+      "[render]\nevery = 0\nwidth = 32\nheight = 24\nspp = 1\nlook_at = [0, 0, 0]\n"
+      "eye = [0, 0, 0.08]\n[render.bodies.slab]\ncolor = [0.9, 0.02, 0.02]\n";
+  const Result r = run_perifrac("run " + scene("name = \"slab\"\n" + std::string(kGridBody), look) +
+                                " --backend cpu --out " + out());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(out() + "/render")) << r.output;
+  const Result later = run_perifrac("render " + out() + " --backend cpu --frames 2");
+  ASSERT_EQ(later.exit_code, 0) << later.output;
+  const Png image = read_png(out() + "/render/frame_00002.png");
+  ASSERT_EQ(image.width, 32);
+  const unsigned char* centre = image.at(16, 12);
+  EXPECT_GT(int(centre[0]), 3 * int(centre[1]) + 10) << "the slab in its colour";
+}
+
 TEST_F(LiveRender, BodyLookMistakesNameTheKey) {
   const struct {
     const char* render;
