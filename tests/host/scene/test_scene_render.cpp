@@ -103,7 +103,7 @@ TEST(SceneRender, MistakesNameTheKeyAndWhatIsAllowed) {
   expect_error("[render]\nior = 0.9\n", "render.ior", "a number in [1, 4]");
   expect_error("[render]\nenvironment = \"\"\n", "render.environment", "the path is empty");
   expect_error("[render]\nenvironment = 3\n", "render.environment", "expected a string");
-  expect_error("[render]\nevery = 0\n", "render.every", "an integer >= 1");
+  expect_error("[render]\nevery = -1\n", "render.every", "an integer >= 0");
   expect_error("", "render", "expected a table", "render = 1\n");
   expect_error("[output]\nbinary = false\n[render]\n", "render", "output.binary = true");
 }
