@@ -63,6 +63,16 @@ class WallClock {
   std::chrono::steady_clock::time_point start_;
 };
 
+// The mean of the x reactions of two grips pulled apart along x (the left one's force on the
+// bar, minus the right one's): the axial force the bar carries.
+inline double grip_force(const ParticleState& s, const std::vector<int>& left,
+                         const std::vector<int>& right) {
+  double f = 0;
+  for (int p : left) f += 0.5 * s.force[size_t(p)].x;
+  for (int p : right) f -= 0.5 * s.force[size_t(p)].x;
+  return f;
+}
+
 // `out`, each figure stamped with the run that measured it: its particles, steps, wall time since
 // `clock` started and `note`.
 inline std::vector<ValidationResult> stamped(std::vector<ValidationResult> out, const SimulationInput& in,

@@ -87,9 +87,7 @@ std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c) {
   while (engine->step() < steps) {
     engine->advance(chunk);
     engine->read_state(s);
-    double f = 0;
-    for (int p : left) f += 0.5 * s.force[p].x;
-    for (int p : right) f -= 0.5 * s.force[p].x;
+    const double f = grip_force(s, left, right);
     const double stress = f / (kWidth * thickness);
     if (stress > peak) peak = stress, peak_strain = rate * engine->time();
   }

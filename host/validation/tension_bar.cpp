@@ -74,9 +74,7 @@ std::vector<ValidationResult> tension_bar(const ValidationCase& c, const Elastic
   while (engine->step() < steps) {
     engine->advance(chunk);
     engine->read_state(s);
-    double f = 0;
-    for (int p : left) f += 0.5 * s.force[p].x;
-    for (int p : right) f -= 0.5 * s.force[p].x;
+    const double f = grip_force(s, left, right);
     stress.push_back(f / (width * width));
     axial.push_back(slope(0));
     lateral.push_back(0.5 * (slope(1) + slope(2)));
