@@ -16,6 +16,7 @@ struct KernelFeatures {
   bool plastic = false;         // some state-based material is plastic
   bool anisotropic = false;     // some state-based material has an anisotropy matrix G
   bool weak_bonds = false;      // some bonds carry a strength factor (pre-cracks and weakening)
+  bool surface = false;         // some bond-based material has the surface correction
   bool lattice = false;         // some bodies have lattice families (host/lattice_families.h)
   bool lattice_listed = false;  // ... whose partners are read from the lists (a partitioned rank)
 };
@@ -36,7 +37,10 @@ inline KernelFeatures features_of(const MaterialTable& mt, bool contact) {
   f.contact = contact;
   for (int k = 0; k < mt.count; ++k) {
     const Material& m = mt.m[k];
-    if (m.model != kStateBased) continue;
+    if (m.model != kStateBased) {
+      f.surface = f.surface || m.surface_correction;
+      continue;
+    }
     f.state_based = true;
     f.plastic = f.plastic || m.plastic;
     f.anisotropic = f.anisotropic || m.anisotropic;

@@ -128,7 +128,9 @@ void launch_collisions(Exec& ex, ParticlesView p, ContactView c, MaterialTable m
 // Kernel 4, one instantiation per feature set so a scene pays only for what it uses, in two
 // forms (bond_screen.h): kScreened, the pass without the breaking path. Writes the force (the
 // other force kernels add to it) and raises `broke` where a bond broke.
-template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kScreened>
+// kSurface: bond-based materials with the surface correction (springforces.h).
+template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kScreened,
+          bool kSurface>
 PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
                                     const MaterialTable& mt, int32_t* broke) {
   if constexpr (kStateBased && kScreened)
@@ -136,13 +138,13 @@ PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const Bon
   else if constexpr (kStateBased)
     state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt, broke);
   else if constexpr (kScreened)
-    screened_spring_forces<kWeak, kLattice>(i, p, b, mt, broke);
+    screened_spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke);
   else
-    spring_forces<kWeak, kLattice>(i, p, b, mt, broke);
+    spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke);
 }
 
 template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kScreened,
-          class Exec>
+          bool kSurface, class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r,
                                  int32_t* broke) {
   // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
@@ -157,10 +159,11 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
                                          {"weak", kWeak},
                                          {"lattice", kLattice == kLatticeOffsets},
                                          {"lattice-listed", kLattice == kLatticeListed},
-                                         {"screened", kScreened}});
+                                         {"screened", kScreened},
+                                         {"surface", kSurface}});
   ex.template parallel_for_from<kMinBlocks>(name.c_str(), r.first, r.count, [=] PD_HD(int64_t i) {
-    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened>(int32_t(i), p, b, mt,
-                                                                                       broke);
+    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened, kSurface>(
+        int32_t(i), p, b, mt, broke);
   });
 }
 
@@ -168,22 +171,24 @@ template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
                          ParticleRange r, bool screened, int32_t* broke) {
   static_bools(
-      [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto listed,
-          auto screen) {
+      [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto listed, auto screen,
+          auto surface) {
         constexpr bool kState = decltype(state_based)::value;
         constexpr bool kPlastic = kState && decltype(plastic)::value;
         constexpr bool kAniso = kState && decltype(anisotropic)::value;
         constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
-        // Plasticity and anisotropy exist only for state-based materials, listed partners only
-        // with lattice families: no copies for the combinations that cannot occur.
+        constexpr bool kSurface = decltype(surface)::value;
+        // Plasticity and anisotropy exist only for state-based materials, the surface correction
+        // only for bond-based ones, listed partners only with lattice families: no copies for the
+        // combinations that cannot occur.
         if constexpr ((kState || (!decltype(plastic)::value && !decltype(anisotropic)::value)) &&
-                      (kLattice || !kListed))
+                      !(kState && kSurface) && (kLattice || !kListed))
           launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
-                                      lattice_mode(kLattice, kListed), decltype(screen)::value>(ex, p, b, mt,
-                                                                                                r, broke);
+                                      lattice_mode(kLattice, kListed), decltype(screen)::value, kSurface>(
+              ex, p, b, mt, r, broke);
       },
       f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds, f.lattice,
-      f.lattice && f.lattice_listed, screened);
+      f.lattice && f.lattice_listed, screened, f.surface);
 }
 
 // Kernel 5.
@@ -228,6 +233,19 @@ void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt,
     fill_family(int32_t(i), p, h, mt, b);
     sort_family(int32_t(i), p, b);
   });
+}
+
+// Bond-based set-up: the surface correction's factors, per particle then per bond.
+template <class Exec>
+void launch_surface_factor(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+  ex.parallel_for("family/surface_factor", p.n,
+                  [=] PD_HD(int64_t i) { update_surface_factor(int32_t(i), p, b, mt); });
+}
+
+template <class Exec>
+void launch_surface_bond_factors(Exec& ex, ParticlesView p, BondsView b) {
+  ex.parallel_for("family/surface_bond", p.n,
+                  [=] PD_HD(int64_t i) { surface_bond_factors(int32_t(i), p, b); });
 }
 
 // State-based set-up: weighted volumes.

@@ -14,7 +14,8 @@
 //   length  kParticles: one per particle; kSlots: one per bond slot of the sliced-ELL families
 //           (BondsView::slot); kSlices: one per slice of kSliceWidth particles, plus one
 //   when    kForAll; kForStateBased, kForPlastic: state-based / plastic materials only; kForWeakBonds:
-//           scenes whose cuts weaken bonds; kForPartitioned: runs over several ranks
+//           scenes whose cuts weaken bonds; kForSurface: bond-based materials with the surface
+//           correction; kForPartitioned: runs over several ranks
 //           (cuda/parallel/). Otherwise the array is empty (a null view).
 //   saved   kSaved: a run changes it, so checkpoints save it and a restore puts it back bit for
 //           bit; kDerived: it follows from the scene (or, for plastic_mirror, from `plastic`)
@@ -42,7 +43,7 @@ struct Ledger {
 };
 
 enum FieldLength { kParticles, kSlots, kSlices };
-enum FieldWhen { kForAll, kForStateBased, kForPlastic, kForWeakBonds, kForPartitioned };
+enum FieldWhen { kForAll, kForStateBased, kForPlastic, kForWeakBonds, kForSurface, kForPartitioned };
 enum FieldSaved { kDerived, kSaved };
 enum FieldHalo { kHaloNone, kHaloSetup, kHaloStep };
 enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
@@ -80,6 +81,8 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
   /* initial family; z phi_i = 1 - intact/initial bonds of the last step (damage, set by `init`); */ \
   /* w (plastic materials) the trial deviatoric norm |t^d| that `plasticity` tests (`init`)       */ \
   X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep, kFrameNone)                          \
+  /* the surface correction's factors along x, y, z (bond-based; set-up, surface_correction.h) */    \
+  X(surface_factor, Vec3, kParticles, kForSurface, kDerived, kHaloSetup, kFrameNone)                 \
   /* index of the particle in the whole run, which orders families and contact lists (order_of) */   \
   X(global_id, const int32_t, kParticles, kForPartitioned, kDerived, kHaloNone, kFrameNone)
 
@@ -99,7 +102,10 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
   X(plastic_mirror, real, kSlots, kForPlastic, kDerived, kHaloNone, kFrameNone)                    \
   /* per slot, the factor q/255 on the bond's strain limit (cuda/engine/bond_cuts.h), the same  */ \
   /* in both stored directions                                                                  */ \
-  X(strength, const uint8_t, kSlots, kForWeakBonds, kDerived, kHaloNone, kFrameNone)
+  X(strength, const uint8_t, kSlots, kForWeakBonds, kDerived, kHaloNone, kFrameNone)               \
+  /* per slot, the surface correction's factor on the bond's micromodulus (bond-based; set-up, */  \
+  /* surface_correction.h), the same in both stored directions                                  */ \
+  X(surface_bond, real, kSlots, kForSurface, kDerived, kHaloNone, kFrameNone)
 
 // All of them, particles first.
 #define PD_STATE_FIELDS(X) PD_PARTICLE_FIELDS(X) PD_BOND_FIELDS(X)
@@ -122,10 +128,11 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
 // Bytes a particle's own arrays take (every field of length kParticles that exists for a run
 // with these features).
 struct FieldNeeds {
-  bool state_based = false, plastic = false, weak_bonds = false, partitioned = false;
+  bool state_based = false, plastic = false, weak_bonds = false, partitioned = false, surface = false;
   constexpr bool operator()(FieldWhen w) const {
     return w == kForAll || (w == kForStateBased && state_based) || (w == kForPlastic && plastic) ||
-           (w == kForWeakBonds && weak_bonds) || (w == kForPartitioned && partitioned);
+           (w == kForWeakBonds && weak_bonds) || (w == kForSurface && surface) ||
+           (w == kForPartitioned && partitioned);
   }
 };
 

@@ -46,8 +46,9 @@ class EngineImpl final : public Engine {
     features_ = features_of(materials_, contact_);
     colliders_host_ = in.colliders;
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");
-    state_.upload(mem_, in.particles,
-                  FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr});
+    state_.upload(
+        mem_, in.particles,
+        FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr, features_.surface});
     owned_ = state_.n;
     held_ = state_.n;
     if (rank) {
@@ -71,6 +72,7 @@ class EngineImpl final : public Engine {
                                                   features_.weak_bonds, lattice_, family_);
       features_.lattice_listed = features_.lattice;
     }
+    if (features_.surface) set_up_surface_correction();
     double collider_stiffness = 0;
     for (const Collider& c : colliders_host_)  // (the indent law's stiffness grows with the depth: not here)
       if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
@@ -263,6 +265,20 @@ class EngineImpl final : public Engine {
   }
   // The contact lists' view, or an empty one in a run without contact.
   ContactView contact_view() { return contact_ ? contacts_.view(exec_, step_params_.dt) : ContactView{}; }
+
+  // Bond-based set-up: the surface correction's factors from the families as built (on a
+  // partitioned rank its ghosts' from their owners: a bond's factor takes both ends'), then
+  // each bond's at its slot.
+  void set_up_surface_correction() {
+    state_.allocate(mem_, kSlots, state_.neighbor.size(), FieldNeeds{false, false, false, false, true});
+    state_.surface_factor.upload(std::vector<Vec3>(state_.surface_factor.size(), Vec3{1, 1, 1}));
+    state_.surface_bond.upload(std::vector<real>(state_.surface_bond.size(), real(1)));
+    for (int round = 0; round < kSurfaceCorrectionRounds; ++round) {
+      launch_surface_factor(exec_, particles(), bonds(), materials_);
+      if (halo_.active()) halo_.exchange(state_.surface_factor);
+      launch_surface_bond_factors(exec_, particles(), bonds());
+    }
+  }
 
   // State-based set-up: the weighted volumes m from the families as built, and for plastic
   // materials the per-bond history (zero).

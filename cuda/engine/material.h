@@ -9,6 +9,28 @@ namespace pd {
 // force per unit volume squared per unit stretch (Silling & Askari 2005, eq. 15).
 double pmb_micromodulus(double bulk_modulus, double horizon);
 
+// Sums over the family of a particle deep inside a simple-cubic lattice of spacing lambda (the
+// bonds the family builder makes: |xi| <= the family radius, kHorizonSlack included), each bond
+// counting with its partial-volume fraction beta (volume_fraction) and V_j = lambda^3:
+//   bond_sum     = sum_j |xi| beta V_j, whose continuum value is pi delta^4;
+//   crossing_sum = sum over the bonds with xi_z > 0 of xi_z |xi| beta / lambda^3 times V_i V_j
+//                  (the bonds that cross a lattice plane, per unit area, weighted by length),
+//                  whose continuum value is pi delta^5 / 5;
+//   axial_sum    = sum_j n_x^4 |xi| beta V_j (n = xi / |xi|), the uniaxial strain's sum along x
+//                  (the same along y and z), whose continuum value is pi delta^4 / 5.
+struct LatticeFamilySums {
+  double bond_sum = 0, crossing_sum = 0, axial_sum = 0;
+};
+LatticeFamilySums lattice_family_sums(const Material& m);
+
+// The PMB micromodulus that gives the bulk modulus K exactly to an interior particle of the
+// lattice: c = 18 K / bond_sum (pmb_micromodulus with the lattice sum in place of pi delta^4).
+double pmb_lattice_micromodulus(double bulk_modulus, const Material& m);
+
+// The PMB critical stretch whose broken bonds across a lattice plane release the fracture
+// energy G0 per unit area: G0 = c s0^2 crossing_sum / 2 (pmb_critical_stretch on the lattice).
+double pmb_lattice_critical_stretch(double fracture_energy, double micromodulus, const Material& m);
+
 // Critical stretch from fracture energy, 3D PMB: s0 = sqrt(5 G0 / (9 K delta)) (Silling &
 // Askari 2005, eq. 21). Levine et al. 2014 print sqrt(5G/(K delta)), three times larger.
 double pmb_critical_stretch(double fracture_energy, double bulk_modulus, double horizon);

@@ -33,7 +33,7 @@ PD_HD inline Energy& operator+=(Energy& a, const Energy& b) {
   return a = a + b;
 }
 
-// Strain energy of particle i: PMB sum_j c s^2 |xi| beta V_i V_j / 4; LPS
+// Strain energy of particle i: PMB sum_j c g_ij s^2 |xi| beta V_i V_j / 4; LPS
 // V_i (K theta^2 / 2 + (15 mu / (2 m)) sum_j omega (e^d - e^p)^2 beta V_j).
 PD_HD inline double strain_energy(int32_t i, const ParticlesView& p, const BondsView& b, const Material& m) {
   const real vol_i = p.volume(i);
@@ -45,7 +45,8 @@ PD_HD inline double strain_energy(int32_t i, const ParticlesView& p, const Bonds
       const real ep = b.plastic ? b.plastic[slot] : real(0);
       sum += double(lps_bond_energy(g, si.x, si.y, ep, vol_i, m));
     } else {
-      sum += double(pmb_bond_energy(g.e * g.inv_r0, g.r0, vol_i, g.weight(m), m));
+      const real weight = b.surface_bond ? surface_bond_weight<true>(g.weight(m), b, slot) : g.weight(m);
+      sum += double(pmb_bond_energy(g.e * g.inv_r0, g.r0, vol_i, weight, m));
     }
   });
   if (state) sum += 0.5 * double(m.bulk_modulus) * double(si.x) * double(si.x) * double(vol_i);

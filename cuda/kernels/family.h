@@ -7,6 +7,7 @@
 
 #include "cuda/kernels/bond.h"
 #include "cuda/kernels/collection.h"
+#include "cuda/kernels/surface_correction.h"
 #include "cuda/views.h"
 
 namespace pd {
@@ -78,7 +79,8 @@ PD_HD inline int32_t position_in_family(const BondsView& b, int32_t j, int32_t i
 }
 
 // The Silling & Askari (2005, eq. 29) stability rate of particle i over its family as built:
-// sum_j beta V_j c / |xi_j| / rho_i, so that dt_c,i = sqrt(2 / rate). State-based materials use
+// sum_j g_ij beta V_j c / |xi_j| / rho_i, so that dt_c,i = sqrt(2 / rate) (g_ij the surface
+// correction's factor on the bond, 1 without it). State-based materials use
 // the micromodulus of the PMB material with the same P-wave modulus, c = 18 K' / (pi delta^4),
 // K' = (K + 4 mu / 3) / 1.8 (PMB's own P-wave modulus is 1.8 K), as host/material.h's estimate.
 // collider_stiffness: the largest penalty collider stiffness K (colliders.h), whose push
@@ -96,7 +98,8 @@ PD_HD inline double stability_rate(int32_t i, ParticlesView p, BondsView b, cons
   for (int32_t k = 0; k < b.count[i]; ++k) {
     const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
     const real r0 = length(xyz(p.rest[j]) - xyz(p.rest[i]));
-    sum += double(volume_fraction(r0, m)) * double(p.volume(j)) * c / double(r0);
+    sum += double(surface_bond_at(b, b.slot(i, k))) * double(volume_fraction(r0, m)) * double(p.volume(j)) *
+           c / double(r0);
   }
   return (sum * double(p.volume(i)) + collider_stiffness * std::cbrt(double(p.volume(i)))) *
          double(p.inv_mass[i]);

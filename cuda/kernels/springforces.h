@@ -2,13 +2,15 @@
 // bond of particle i: stretch s = (|y| - |xi|)/|xi| with y = xi + (u_j - u_i); remove the
 // bond when s > w max(tau'_i, tau'_j) (w the bond's strength, 1 unless the scene weakens
 // bonds; both ends decide identically, so momentum is kept);
-// record the minimum stretch for eq. 5; accumulate f_i = sum_j c s V_i V_j beta_ij y/|y|.
+// record the minimum stretch for eq. 5; accumulate f_i = sum_j c g_ij s V_i V_j beta_ij y/|y|
+// (g_ij the surface correction's factor, 1 without it).
 #pragma once
 
 #include <cmath>
 
 #include "cuda/kernels/bond.h"
 #include "cuda/kernels/bond_screen.h"
+#include "cuda/kernels/surface_correction.h"
 
 namespace pd {
 
@@ -18,13 +20,24 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, co
   return real(0.25) * m.micromodulus * s * s * r0 * vol_i * weight_j;
 }
 
+// A bond's weight beta V_j times the surface correction's factor on its micromodulus
+// (surface_correction.h), read at the bond's slot; the weight alone without the correction
+// (kSurface false), at no cost.
+template <bool kSurface>
+PD_HD inline real surface_bond_weight(real weight, const BondsView& b, int64_t slot) {
+  if constexpr (kSurface)
+    return weight * b.surface_bond[slot];
+  else
+    return weight;
+}
+
 // The entry loop unrolled 8 times where bonds may be weakened, as the compiler picks (2) else
 // (bench/NOTES.md: each the faster of the two for its kernel).
 template <bool kWeak>
 constexpr int kSpringUnroll = kWeak ? 8 : 2;
 
 // The breaking pass: the forces, and the bonds that break now removed. Raises `broke` when one does.
-template <bool kWeak, int kLattice = kLatticeAsView>
+template <bool kWeak, int kLattice = kLatticeAsView, bool kSurface = false>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                 int32_t* broke) {
   const Material& m = mt.m[p.material[i]];
@@ -34,13 +47,14 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
       i, p, b, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
+        const real weight = surface_bond_weight<kSurface>(g.weight(m), b, slot);
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
-          p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, g.weight(m), m));
+          p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, weight, m));
           if (kRaiseInBranch<kWeak>) raise_flag(broke);
           return false;  // broken: for_each_intact_bond records it
         }
         smin = min_of(s, smin);
-        f += (s * g.weight(m) * g.inv_r) * g.y;
+        f += (s * weight * g.inv_r) * g.y;
         return true;
       });
   write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact,
@@ -52,7 +66,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
 // tau_j)); where it holds, the breaking pass runs for the particle from the start and its results
 // are kept. The sums are the breaking pass's expressions in its order, so where no bond breaks
 // both passes give the same bits.
-template <bool kWeak, int kLattice = kLatticeAsView>
+template <bool kWeak, int kLattice = kLatticeAsView, bool kSurface = false>
 PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                          int32_t* broke) {
   const Material& m = mt.m[p.material[i]];
@@ -65,9 +79,9 @@ PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b
         const real s = g.e * g.inv_r0;
         nearest = max_of(nearest, kWeak ? s - bond_strength<kWeak>(b, slot, g) * tau_i : s);
         smin = min_of(s, smin);
-        f += (s * g.weight(m) * g.inv_r) * g.y;
+        f += (s * surface_bond_weight<kSurface>(g.weight(m), b, slot) * g.inv_r) * g.y;
       });
-  if (may_break<kWeak>(nearest, tau_i)) return spring_forces<kWeak, kLattice>(i, p, b, mt, broke);
+  if (may_break<kWeak>(nearest, tau_i)) return spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke);
   write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact, nullptr);
 }
 

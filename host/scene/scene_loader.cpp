@@ -491,6 +491,7 @@ const Keys kMaterialKeys = {"model",
                             "strain_limit_scatter",
                             "compression_alpha",
                             "partial_volumes",
+                            "surface_correction",
                             "fracture",
                             "damage_alpha",
                             "plastic",
@@ -683,6 +684,10 @@ SceneMaterial parse_material(const std::string& name, const TableReader& r) {
   r.number("compression_alpha", m.compression_alpha, at_least(0));
   bool partial = false;
   if (r.boolean("partial_volumes", partial)) m.partial_volumes = partial;
+  if (m.model == "state_based" && r.has("surface_correction"))
+    r.fail("surface_correction", "only for model = \"bond_based\" (the state-based solid has none yet)",
+           "for state_based: leave it out");
+  r.boolean("surface_correction", m.surface_correction);
 
   // State-based extras: fracture criterion, plasticity, anisotropy.
   r.string("fracture", m.fracture, {"chen", "stretch"});

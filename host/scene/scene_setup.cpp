@@ -76,11 +76,13 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   summary.spacing = spacing;
   summary.horizon = delta;
   if (!state) {
-    m.micromodulus = real(pmb_micromodulus(sm.bulk_modulus, delta));
+    const double c = pmb_lattice_micromodulus(sm.bulk_modulus, m);
+    m.micromodulus = real(c);
+    m.surface_correction = sm.surface_correction ? 1 : 0;
+    m.axial_sum = real(lattice_family_sums(m).axial_sum);
     summary.micromodulus = m.micromodulus;
-    summary.strain_limit = sm.strain_limit
-                               ? *sm.strain_limit
-                               : pmb_critical_stretch(*sm.fracture_energy, sm.bulk_modulus, delta);
+    summary.strain_limit =
+        sm.strain_limit ? *sm.strain_limit : pmb_lattice_critical_stretch(*sm.fracture_energy, c, m);
     summary.critical_dt = pmb_critical_time_step(sm.density, sm.bulk_modulus, delta);
     return m;
   }

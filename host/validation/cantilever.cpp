@@ -37,7 +37,7 @@ std::vector<ValidationResult> cantilever(const ValidationCase& c, const ElasticS
   const double g = kRootStrain * solid.youngs * h / (3 * solid.density * length * length);
   SimulationInput in;
   in.materials.count = 1;
-  in.materials.m[0] = validation_material(solid, lambda, m);
+  in.materials.m[0] = validation_material(solid, lambda, m, c.surface_correction);
   in.step.dt = real(dt);
   in.step.gravity = {0, real(-g), 0};
   const double corner[3] = {-clamp * lambda, -0.5 * h, -0.5 * h};

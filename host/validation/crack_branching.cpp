@@ -2,7 +2,7 @@
 // Fract. 162:229; Bobaru & Zhang 2015, Int. J. Fract. 196:59): a 100 x 40 mm plate, E = 72 GPa,
 // rho = 2440 kg/m^3, G0 = 3.8 J/m^2, a 50 mm notch from the middle of the left edge, loaded on
 // the top and bottom edges. Here: a thin slab of ceil(delta/lambda) particle layers, PMB with the
-// 3D critical stretch s0 = sqrt(5 G0 / (9 K delta)) and no strain-limit scatter (the set-up is
+// lattice critical stretch (pmb_lattice_critical_stretch) and no strain-limit scatter (the set-up is
 // mirror-symmetric about the notch plane). The notch is a slot of the particle rows nearest the
 // notch plane, as many as it takes for no bond to cross it (the engine bonds every pair of a body
 // within the horizon), so its width is about delta. The load is a step traction sigma on the top
@@ -85,12 +85,13 @@ std::vector<ValidationResult> run_crack_branching(const ValidationCase& c) {
   pl.nx = int(std::lround(kWidth / lambda));
   pl.ny = c.resolution + ((c.resolution - slot) % 2 != 0 ? 1 : 0);
   pl.nz = int(std::ceil(m));
-  const double s0 = pmb_critical_stretch(3.8, glass.bulk(), delta);
+  const Material mat = validation_material(glass, lambda, m, c.surface_correction);
+  const double s0 = pmb_lattice_critical_stretch(3.8, double(mat.micromodulus), mat);
   const double traction = kLoadFraction * glass.youngs * s0;
 
   SimulationInput in;
   in.materials.count = 1;
-  in.materials.m[0] = validation_material(glass, lambda, m);
+  in.materials.m[0] = mat;
   in.materials.m[0].compression_alpha = real(0.25);
   const double corner[3] = {0, -0.5 * pl.ny * lambda, 0};
   const int slot_lo = (pl.ny - slot) / 2, notch_cells = int(std::lround(kNotch / lambda));

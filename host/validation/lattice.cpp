@@ -4,7 +4,7 @@
 
 namespace pd {
 
-Material validation_material(const ElasticSolid& s, double lambda, double m) {
+Material validation_material(const ElasticSolid& s, double lambda, double m, bool surface_correction) {
   Material mat;
   mat.horizon = real(m * lambda);
   mat.spacing = real(lambda);
@@ -12,7 +12,9 @@ Material validation_material(const ElasticSolid& s, double lambda, double m) {
   mat.partial_volumes = 1;
   if (!s.state_based) {
     mat.model = kBondBased;
-    mat.micromodulus = real(pmb_micromodulus(s.bulk(), m * lambda));
+    mat.micromodulus = real(pmb_lattice_micromodulus(s.bulk(), mat));
+    mat.surface_correction = surface_correction ? 1 : 0;
+    mat.axial_sum = real(lattice_family_sums(mat).axial_sum);
     return mat;
   }
   mat.model = kStateBased;

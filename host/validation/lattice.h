@@ -28,8 +28,9 @@ struct ElasticSolid {
 };
 
 // Kernel constants at spacing lambda and horizon m lambda, with partial volumes (the choice that
-// makes the lattice sums closest to the continuum integrals; docs/validation.md).
-Material validation_material(const ElasticSolid& s, double lambda, double m);
+// makes the lattice sums closest to the continuum integrals; docs/validation.md); bond-based:
+// the lattice's micromodulus, with or without the surface correction.
+Material validation_material(const ElasticSolid& s, double lambda, double m, bool surface_correction);
 
 // The continuum stable time step estimate of host/material.h for this solid.
 double validation_critical_dt(const ElasticSolid& s, double lambda, double m);

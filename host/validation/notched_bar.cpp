@@ -7,7 +7,7 @@
 // bend, and clamping its ends lowers K well below the pin-loaded handbook value). The grips move apart at a
 // constant strain rate (as in tension_bar, every particle starting with the homogeneous velocity field, so no
 // stress wave is launched) up to twice the expected failure strain over 40 width transit times. PMB with the
-// 3D critical stretch s0 = sqrt(5 G0 / (9 K delta)) and no strain-limit scatter.
+// lattice critical stretch (pmb_lattice_critical_stretch) and no strain-limit scatter.
 //   measured: the peak of the grips' mean reaction over the run, as a stress F / (W t);
 //   reference: K_I = sigma sqrt(pi a) F(a/b) = K_Ic = sqrt(E G0) (plane stress), b = W/2, with
 //   Tada's double-edge-crack factor F(r) = (1.122 - 0.561 r - 0.205 r^2 + 0.471 r^3 - 0.190 r^4)
@@ -45,10 +45,11 @@ std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c) {
   const WallClock clock;
   const ElasticSolid glass{72e9, 0.25, 2440, false};
   const int n = c.resolution;
-  const double m = c.delta_over_lambda, lambda = kWidth / n, delta = m * lambda;
+  const double m = c.delta_over_lambda, lambda = kWidth / n;
   const int grip = int(std::ceil(m)), nz = std::max(1, n / 2), nx = 3 * n + 2 * grip + (3 * n) % 2;
   const double thickness = nz * lambda, a = kNotchOverWidth * kWidth;
-  const double s0 = pmb_critical_stretch(kFractureEnergy, glass.bulk(), delta);
+  const Material mat = validation_material(glass, lambda, m, c.surface_correction);
+  const double s0 = pmb_lattice_critical_stretch(kFractureEnergy, double(mat.micromodulus), mat);
   const double failure =
       std::sqrt(glass.youngs * kFractureEnergy) /
       (std::sqrt(M_PI * a) * double_edge_crack_factor(a / (0.5 * kWidth)));  // sigma_f [Pa]
@@ -59,7 +60,7 @@ std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c) {
 
   SimulationInput in;
   in.materials.count = 1;
-  in.materials.m[0] = validation_material(glass, lambda, m);
+  in.materials.m[0] = mat;
   in.step.dt = real(dt);
   const double half = 0.5 * nx * lambda;  // nx even: x = 0 lies between two columns
   const double corner[3] = {-half, -0.5 * kWidth, 0};

@@ -16,7 +16,8 @@ namespace pd {
 struct ValidationCase {
   int resolution = 0;
   double delta_over_lambda = 3;
-  double dt_fraction = 0.5;  // dt / dt_c, dt_c from the continuum estimate (host/material.h)
+  double dt_fraction = 0.5;        // dt / dt_c, dt_c from the continuum estimate (host/material.h)
+  bool surface_correction = true;  // bond-based materials (cuda/kernels/surface_correction.h)
   Backend backend = Backend::kCpu;
 };
 

@@ -34,7 +34,7 @@ TEST_F(DemoScene, BreaksIntoPiecesThatFlyApart) {
   const std::string command = std::string(PERIFRAC_BINARY) +
                               " run " PERIFRAC_SOURCE_DIR
                               "/scenes/demo_window.toml --backend cpu --scale 0.02 "
-                              "--set simulation.dt=2e-6 --set simulation.steps_per_frame=500 --frames 24 "
+                              "--set simulation.dt=1.6e-6 --set simulation.steps_per_frame=625 --frames 24 "
                               "--set render.width=16 --set render.height=16 --set render.every=1000 --out " +
                               out + " > " + path("log") + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << testing::read_all(path("log"));
