@@ -63,13 +63,13 @@ double bonds_per_particle(double horizon_ratio) {
   return 4.0 / 3.0 * M_PI * r * r * r;
 }
 
-double engine_bytes_per_particle(double horizon_ratio, bool plastic) {
+double engine_bytes_per_particle(double horizon_ratio, bool plastic, bool surface) {
   const double bonds = bonds_per_particle(horizon_ratio);
   // Lattice families: a stencil id (2 B) and the present, intact and (with weakened bonds) weak
   // bits, in 32-bit words.
   const double lattice = 2 + 3 * 4 * std::ceil(bonds / 32);
   return kEngineParticleBytes + lattice +
-         bonds * kEllPadding * field_bytes<kSlots>(FieldNeeds{true, plastic, false});
+         bonds * kEllPadding * field_bytes<kSlots>(FieldNeeds{true, plastic, false, false, surface});
 }
 
 std::string format_bytes(double bytes) {
@@ -81,10 +81,11 @@ std::string format_bytes(double bytes) {
   return buf;
 }
 
-ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic, int ranks, int ranks_per_host) {
+ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic, bool surface, int ranks,
+                               int ranks_per_host) {
   // Engine bytes per particle of the whole run, on one rank's backend.
   const double share = ranks > 1 ? kRankGhostAllowance / double(ranks) : 1.0;
-  const double engine = engine_bytes_per_particle(horizon_ratio, plastic) * share;
+  const double engine = engine_bytes_per_particle(horizon_ratio, plastic, surface) * share;
   const double host_free = double(host_available_bytes());
   const double host_per =
       double(std::max(ranks_per_host, 1)) * (kHostBytesPerParticle + (b == Backend::kCpu ? engine : 0));

@@ -27,8 +27,8 @@ size_t backend_available_bytes(Backend b);
 double bonds_per_particle(double horizon_ratio);
 
 // Engine memory per particle: the particle arrays, the collision hash and the bonds (4 B each,
-// 14 B with a plastic history).
-double engine_bytes_per_particle(double horizon_ratio, bool plastic);
+// 12 B with a plastic history, 4 B more with the bond-based surface correction's factors).
+double engine_bytes_per_particle(double horizon_ratio, bool plastic, bool surface);
 
 // Host memory per particle while a scene is set up and run (particle set, geometry, outputs).
 inline constexpr double kHostBytesPerParticle = 160;
@@ -39,10 +39,11 @@ struct ParticleBudget {
 };
 
 // The largest particle count a run on `b` can hold, given the largest horizon ratio of its
-// materials and whether any is plastic; the CPU engine shares the host's memory. A run over
+// materials, whether any is plastic and whether any bond-based one has the surface correction; the
+// CPU engine shares the host's memory. A run over
 // `ranks` ranks (cuda/parallel/), `ranks_per_host` of them on this host: each rank's engine holds
 // its share plus ghosts, every rank holds the whole particle set on the host while it sets up.
-ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic, int ranks = 1,
+ParticleBudget particle_budget(Backend b, double horizon_ratio, bool plastic, bool surface, int ranks = 1,
                                int ranks_per_host = 1);
 
 // The share of the particles a rank's engine holds, ghosts included, as the budget assumes it.

@@ -375,15 +375,16 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
 
 SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend) {
   double horizon = 1;
-  bool plastic = false;
+  bool plastic = false, surface = false;
   for (const SceneMaterial& m : scene.materials) {
     horizon = std::max(horizon, m.horizon);
     plastic = plastic || m.plastic.has_value();
+    surface = surface || (m.model == "bond_based" && m.surface_correction);
   }
   const auto world = world_comm();  // a run split over MPI ranks budgets per rank
   const ParticleBudget budget =
-      world ? particle_budget(backend, horizon, plastic, world->size(), world->local_size())
-            : particle_budget(backend, horizon, plastic);
+      world ? particle_budget(backend, horizon, plastic, surface, world->size(), world->local_size())
+            : particle_budget(backend, horizon, plastic, surface);
   SetupOptions o(scale);
   o.max_particles = budget.max_particles;
   o.budget_why = budget.why;

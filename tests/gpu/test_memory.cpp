@@ -21,7 +21,7 @@ TEST(GpuMemory, SceneLargerThanTheDeviceIsRefusedBeforeSetup) {
       "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
       "[[bodies]]\nmaterial = \"glass\"\nsize = [0.8, 0.8, 0.8]\nspacing = 0.001\n",
       "huge.toml");
-  const ParticleBudget budget = particle_budget(Backend::kCuda, 3, false);
+  const ParticleBudget budget = particle_budget(Backend::kCuda, 3, false, true);
   ASSERT_LT(budget.max_particles, 512000000) << "a GPU with more than ~450 GB?";
   SetupOptions options;
   options.max_particles = budget.max_particles;

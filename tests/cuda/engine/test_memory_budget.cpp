@@ -31,7 +31,10 @@ class ScopedEnv {
 TEST(MemoryBudget, BondsPerParticleCountsTheCellsOfThePartialVolumeSphere) {
   // delta = 3 lambda with partial volumes reaches 3.5 lambda: 4/3 pi 3.5^3 = 179.6 cells.
   EXPECT_NEAR(bonds_per_particle(3), 179.59, 0.01);
-  EXPECT_GT(engine_bytes_per_particle(3, true), engine_bytes_per_particle(3, false));
+  EXPECT_GT(engine_bytes_per_particle(3, true, false), engine_bytes_per_particle(3, false, false));
+  // The surface correction's factor: 4 B per bond slot, padding included.
+  EXPECT_NEAR(engine_bytes_per_particle(3, false, true) - engine_bytes_per_particle(3, false, false),
+              4 * 179.59 * 1.15, 1);
 }
 
 TEST(MemoryBudget, HostMemoryIsReadAndCanBeCapped) {
@@ -55,8 +58,8 @@ TEST(MemoryBudget, BadCapIsAnErrorNamingTheVariable) {
 
 TEST(MemoryBudget, BudgetFollowsTheFreeMemory) {
   const ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", "100");
-  const ParticleBudget b = particle_budget(Backend::kCpu, 3, false);
-  const double per = kHostBytesPerParticle + engine_bytes_per_particle(3, false);
+  const ParticleBudget b = particle_budget(Backend::kCpu, 3, false, true);
+  const double per = kHostBytesPerParticle + engine_bytes_per_particle(3, false, true);
   EXPECT_EQ(b.max_particles, int64_t(100.0 * (1 << 20) / per));
   EXPECT_NE(b.why.find("free host memory"), std::string::npos) << b.why;
 }
@@ -65,9 +68,9 @@ TEST(MemoryBudget, BudgetFollowsTheFreeMemory) {
 // both ranks of the host hold the whole particle set.
 TEST(MemoryBudget, RanksShareTheEngineButEachHoldsTheParticleSet) {
   const ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", "100");
-  const ParticleBudget b = particle_budget(Backend::kCpu, 3, false, 4, 2);
+  const ParticleBudget b = particle_budget(Backend::kCpu, 3, false, true, 4, 2);
   const double per =
-      2 * (kHostBytesPerParticle + engine_bytes_per_particle(3, false) * kRankGhostAllowance / 4);
+      2 * (kHostBytesPerParticle + engine_bytes_per_particle(3, false, true) * kRankGhostAllowance / 4);
   EXPECT_EQ(b.max_particles, int64_t(100.0 * (1 << 20) / per));
   EXPECT_NE(b.why.find("split over 4 ranks"), std::string::npos) << b.why;
 }
@@ -79,7 +82,7 @@ TEST(MemoryBudget, OversizedSceneIsRefusedBeforeItsParticlesAreMade) {
       "[[bodies]]\nmaterial = \"glass\"\nsize = [0.1, 0.1, 0.1]\nspacing = 0.001\n",
       "big.toml");
   const ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", "20");
-  const ParticleBudget budget = particle_budget(Backend::kCpu, 3, false);
+  const ParticleBudget budget = particle_budget(Backend::kCpu, 3, false, true);
   SetupOptions options;
   options.max_particles = budget.max_particles;
   options.budget_why = budget.why;
