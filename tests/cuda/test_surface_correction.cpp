@@ -66,6 +66,22 @@ TEST(SurfaceCorrection, UniformStretchStoresTheInteriorEnergyAlongEachAxis) {
   }
 }
 
+// Irregular particles (as tets and Voronoi cells are) get the correction from their own families:
+// a block jittered by 0.3 lambda stores, along each axis, what the regular block does with the
+// correction (measured 0.1-0.2% apart, against 34-45% below without it); tolerance 3%, the
+// regular block's own residual.
+TEST(SurfaceCorrection, IrregularParticlesAreCorrectedAsRegularOnes) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const double regular = energy_ratio(block(12, 8, 6, true), axis, 1e-4);
+    const double jittered = energy_ratio(block(12, 8, 6, true, 0.3), axis, 1e-4);
+    const double plain = energy_ratio(block(12, 8, 6, false, 0.3), axis, 1e-4);
+    std::printf(
+        "  axis %d: energy / interior energy, jittered %.4f (regular %.4f, jittered uncorrected %.4f)\n",
+        axis, jittered, regular, plain);
+    EXPECT_NEAR(jittered / regular, 1.0, 0.03) << axis;
+  }
+}
+
 // The factor is the same from both ends of a bond, so the bond forces cancel in pairs: the total
 // force on a free jittered block with random velocities stays zero to float round-off.
 TEST(SurfaceCorrection, CorrectedBondsKeepMomentum) {
