@@ -11,14 +11,15 @@ namespace pd {
 
 // The physics of a run.
 struct KernelFeatures {
-  bool contact = false;         // contact lists and collisions
-  bool state_based = false;     // some material is state-based: dilatation in `init`
-  bool plastic = false;         // some state-based material is plastic
-  bool anisotropic = false;     // some state-based material has an anisotropy matrix G
-  bool weak_bonds = false;      // some bonds carry a strength factor (pre-cracks and weakening)
-  bool surface = false;         // some bond-based material has the surface correction
-  bool lattice = false;         // some bodies have lattice families (host/lattice_families.h)
-  bool lattice_listed = false;  // ... whose partners are read from the lists (a partitioned rank)
+  bool contact = false;          // contact lists and collisions
+  bool state_based = false;      // some material is state-based: dilatation in `init`
+  bool plastic = false;          // some state-based material is plastic
+  bool anisotropic = false;      // some state-based material has an anisotropy matrix G
+  bool weak_bonds = false;       // some bonds carry a strength factor (pre-cracks and weakening)
+  bool surface = false;          // some bond-based material has the surface correction
+  bool surface_factors = false;  // some material has it (the factors are made at set-up)
+  bool lattice = false;          // some bodies have lattice families (host/lattice_families.h)
+  bool lattice_listed = false;   // ... whose partners are read from the lists (a partitioned rank)
 };
 
 // How a kernel walks lattice families, fixed at compile time so that a run pays only for the
@@ -37,6 +38,7 @@ inline KernelFeatures features_of(const MaterialTable& mt, bool contact) {
   f.contact = contact;
   for (int k = 0; k < mt.count; ++k) {
     const Material& m = mt.m[k];
+    f.surface_factors = f.surface_factors || m.surface_correction;
     if (m.model != kStateBased) {
       f.surface = f.surface || m.surface_correction;
       continue;

@@ -237,9 +237,9 @@ void launch_fill_family(Exec& ex, ParticlesView p, HashView h, MaterialTable mt,
 
 // Bond-based set-up: the surface correction's factors, per particle then per bond.
 template <class Exec>
-void launch_surface_factor(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+void launch_surface_factor(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, int round) {
   ex.parallel_for("family/surface_factor", p.n,
-                  [=] PD_HD(int64_t i) { update_surface_factor(int32_t(i), p, b, mt); });
+                  [=] PD_HD(int64_t i) { update_surface_factor(int32_t(i), p, b, mt, round); });
 }
 
 template <class Exec>

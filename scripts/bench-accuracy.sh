@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Accuracy benchmark of the validation problems (docs/validation.md): sweeps resolution, horizon
 # delta/lambda (3, 4), precision (float build; double build with -DPERIFRAC_DOUBLE=ON), backend
-# (cpu; cuda when the binary has it and a GPU answers), dt / dt_c and, for the bond-based
-# problems, the surface correction (on, and off at delta = 3 lambda), through `perifrac validate`.
+# (cpu; cuda when the binary has it and a GPU answers), dt / dt_c and the surface correction (each
+# model's default, and the other way at delta = 3 lambda: off for bond-based problems, on for
+# state-based ones), through `perifrac validate`.
 # Writes to bench/accuracy/ (or --out): accuracy.csv, pareto.png (error against wall time),
 # convergence.png (error against resolution) and summary.md (Pareto-optimal and recommended
 # settings per measured figure, with the device, CPU and date). Not a test: nothing is asserted.
@@ -56,10 +57,10 @@ PROBLEMS=${PROBLEMS:-"wave_bar tension_bar_pmb tension_bar_lps cantilever_pmb ca
 
 backends="cpu"
 "$BIN" info 2>/dev/null | grep -q '^cuda *available' && backends="cpu cuda"
-run() {  # binary backend problem resolutions delta dt [surface correction: on | off]
-  echo "$(basename "$(dirname "$1")") $2 $3 res $4 delta/lambda $5 dt $6 dt_c surface ${7:-on}" >&2
+run() {  # binary backend problem resolutions delta dt [surface correction: default | on | off]
+  echo "$(basename "$(dirname "$1")") $2 $3 res $4 delta/lambda $5 dt $6 dt_c surface ${7:-default}" >&2
   "$1" validate --problem "$3" --resolution "$4" --delta-over-lambda "$5" --dt-fraction "$6" --backend "$2" \
-    --surface-correction "${7:-on}" --csv "$CSV" --quiet || echo "warning: $3 at $4 exited with $?" >&2
+    --surface-correction "${7:-default}" --csv "$CSV" --quiet || echo "warning: $3 at $4 exited with $?" >&2
 }
 BOND_BASED="wave_bar tension_bar_pmb cantilever_pmb crack_branching notched_bar_pmb"
 for bin in "$BIN" ${BIN_DOUBLE:+"$BIN_DOUBLE"}; do
@@ -71,7 +72,8 @@ for bin in "$BIN" ${BIN_DOUBLE:+"$BIN_DOUBLE"}; do
       for dt in $DTS; do
         [[ $dt == 0.5 ]] || run "$bin" "$backend" "$p" "$res" 3 "$dt"
       done
-      if [[ " $BOND_BASED " == *" $p "* ]]; then run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.5 off; fi
+      if [[ " $BOND_BASED " == *" $p "* ]]; then other=off; else other=on; fi
+      run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.5 "$other"
     done
   done
 done

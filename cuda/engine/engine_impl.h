@@ -46,9 +46,9 @@ class EngineImpl final : public Engine {
     features_ = features_of(materials_, contact_);
     colliders_host_ = in.colliders;
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");
-    state_.upload(
-        mem_, in.particles,
-        FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr, features_.surface});
+    state_.upload(mem_, in.particles,
+                  FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr,
+                             features_.surface_factors});
     owned_ = state_.n;
     held_ = state_.n;
     if (rank) {
@@ -72,7 +72,7 @@ class EngineImpl final : public Engine {
                                                   features_.weak_bonds, lattice_, family_);
       features_.lattice_listed = features_.lattice;
     }
-    if (features_.surface) set_up_surface_correction();
+    if (features_.surface_factors) set_up_surface_correction();
     double collider_stiffness = 0;
     for (const Collider& c : colliders_host_)  // (the indent law's stiffness grows with the depth: not here)
       if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
@@ -274,7 +274,7 @@ class EngineImpl final : public Engine {
     state_.surface_factor.upload(std::vector<Vec3>(state_.surface_factor.size(), Vec3{1, 1, 1}));
     state_.surface_bond.upload(std::vector<real>(state_.surface_bond.size(), real(1)));
     for (int round = 0; round < kSurfaceCorrectionRounds; ++round) {
-      launch_surface_factor(exec_, particles(), bonds(), materials_);
+      launch_surface_factor(exec_, particles(), bonds(), materials_, round);
       if (halo_.active()) halo_.exchange(state_.surface_factor);
       launch_surface_bond_factors(exec_, particles(), bonds());
     }

@@ -69,8 +69,8 @@ inline void count_family_stats(FamilyStats& family, const std::vector<int32_t>& 
 // allocated, when the backend has not enough free.
 template <class Exec>
 void check_bond_memory(int64_t slots, int32_t n, const KernelFeatures& features, Backend backend) {
-  const double per_slot =
-      field_bytes<kSlots>(FieldNeeds{features.state_based, features.plastic, false, false, features.surface});
+  const double per_slot = field_bytes<kSlots>(
+      FieldNeeds{features.state_based, features.plastic, false, false, features.surface_factors});
   const double need = double(slots) * per_slot;
   const double free = double(backend_available_bytes(backend));
   if (need <= free) return;

@@ -56,7 +56,8 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
                   ? g.e - ep_ij > w * limit_i && g.e - ep_ji > w * chen_extension_limit(tau_j, state_j.z, m)
                   : s > max_of(tau_i, tau_j) * w;
           if (breaks) {
-            p.ledger[i].released += double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m));
+            p.ledger[i].released +=
+                double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m, surface_bond_at(b, slot)));
             if (kRaiseInBranch<kWeak>) raise_flag(broke);
             return false;  // broken: for_each_intact_bond records it
           }
@@ -66,7 +67,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
         }
         smin = min_of(s, smin);
         const ForceStateCoefficients k_j = force_state_coefficients(state_j.x, state_j.y, m);
-        const real t = influence<kAnisotropic>(g.xi, g.inv_r0, m) *
+        const real t = influence<kAnisotropic>(g.xi, g.inv_r0, m) * surface_bond_at(b, slot) *
                        ((k_i.a + k_j.a) * g.e - (k_i.a * ep_ij + k_j.a * ep_ji) + (k_i.c + k_j.c) * g.r0);
         f += (t * g.weight(m) * g.inv_r) * g.y;
         return true;

@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "cuda/kernels/bond.h"
+#include "cuda/kernels/surface_correction.h"
 #include "cuda/views.h"
 
 namespace pd {
@@ -52,9 +53,10 @@ PD_HD inline real force_state(real omega, real r0, real e, real theta, real inv_
 // W_i = K theta_i^2 / 2 + (15 mu / (2 m_i)) sum_j omega (e^d - e^p)^2 beta V_j, times V_i).
 template <class Geometry>
 PD_HD inline real lps_bond_energy(const Geometry& g, real theta, real inv_mw, real ep, real vol_i,
-                                  const Material& m) {
+                                  const Material& m, real factor) {
   const real ed = g.e - theta * g.r0 * real(1.0 / 3.0) - ep;
-  return real(7.5) * m.shear_modulus * inv_mw * influence(g.xi, g.inv_r0, m) * ed * ed * g.weight(m) * vol_i;
+  return real(7.5) * m.shear_modulus * inv_mw * (influence(g.xi, g.inv_r0, m) * factor) * ed * ed *
+         g.weight(m) * vol_i;
 }
 
 // Chen eq. 18 as the paper's text means it: s^omega = (e - e^p) / delta against a limit that
@@ -76,7 +78,8 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
     const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
     const Vec3 xi = xyz(p.rest[j]) - xyz(p.rest[i]);
     const real r0 = length(xi);
-    sum += influence(xi, real(1) / r0, m) * r0 * r0 * volume_fraction(r0, m) * p.volume(j);
+    sum += influence(xi, real(1) / r0, m) * surface_bond_at(b, b.slot(i, k)) * r0 * r0 *
+           volume_fraction(r0, m) * p.volume(j);
   }
   p.state[i].y = real(1) / sum;
 }
@@ -105,7 +108,8 @@ PD_HD inline DilatationPass dilatation_pass(int32_t i, const ParticlesView& p, c
   real sum = 0, s_dd = 0, s_dr = 0, s_rr = 0;
   // The entry loop unrolled 8 times: plastic init -3% time against the compiler's 2 (bench/NOTES.md).
   for_each_intact_bond<kLattice, 8>(i, p, b, [&](int64_t slot, int32_t, const auto& g) {
-    const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m), weight = g.weight(m);
+    const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m) * surface_bond_at(b, slot),
+               weight = g.weight(m);
     sum += omega * g.r0 * g.e * weight;
     if constexpr (kNorm) {
       const real d = g.e - b.plastic[slot] - theta_prev * g.r0 * real(1.0 / 3.0);

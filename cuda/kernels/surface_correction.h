@@ -1,15 +1,22 @@
-// The surface correction of bond-based materials, computed once at set-up: the energy method
-// with a factor per direction (Madenci & Oterkus 2014, sec. 4.2; reviewed by Le & Bobaru 2018,
-// Comput. Mech. 61:499). Under a uniaxial strain eps along axis k, a PMB particle's energy
-// density is c eps^2 sum_j n_k^4 |xi| beta V_j / 4 (n = xi / |xi|): a sum over its family, which
-// a free surface cuts short. Particle i's factor along k is g_k = A / sum_j n_k^4 |xi| beta V_j,
-// with A the same sum over a family inside the lattice (Material::axial_sum), so that each of
-// the three uniaxial strains stores the interior's energy. A bond along n takes
+// The surface correction, computed once at set-up: the energy method with a factor per direction
+// (Madenci & Oterkus 2014, sec. 4.2; reviewed by Le & Bobaru 2018, Comput. Mech. 61:499).
+// Bond-based: under a uniaxial strain eps along axis k a PMB particle's energy density is
+// c eps^2 sum_j n_k^4 |xi| beta V_j / 4 (n = xi / |xi|), a sum over its family, which a free surface
+// cuts short. Particle i's factor along k is g_k = A / sum_j n_k^4 |xi| beta V_j, with A the same
+// sum over a family inside the lattice (Material::axial_sum), so that each of the three uniaxial
+// strains stores the interior's energy. A bond along n takes
 //   G = (sum_k (n_k / gbar_k)^2)^(-1/2),  gbar_k = (g_k,i + g_k,j) / 2
 // (the ellipse through the three axes' mean factors) on its micromodulus, the same from both
-// ends: it stays a pair potential that keeps momentum and energy. Inside the body every factor
-// is 1 to round-off; the kernels read G per bond slot, so the correction costs one coalesced
-// load per bond and nothing else.
+// ends: it stays a pair potential that keeps momentum and energy.
+// State-based: the solid's dilatation theta = (3 / m) sum_j omega |xi| e beta V_j is exact under a
+// uniform strain only where the family's second moment sum_j omega |xi|^2 beta V_j n n is
+// isotropic; a cut family (a sphere minus a cap, an edge) has more along the surface than across
+// it, and the bar comes out too stiff. The factors are those of the second moment's diagonal,
+// sum_j omega n_k^2 |xi|^2 beta V_j against the interior's m / 3, and G multiplies the influence
+// function omega of the bond in every sum (m, theta, the force and energy states, the yield norm):
+// a state-based solid with another influence function, whose forces still come from an energy.
+// Inside the body every factor is 1 to round-off; the kernels read G per bond slot, so the
+// correction costs one coalesced load per bond and nothing else.
 #pragma once
 
 #include "cuda/kernels/bond.h"
@@ -23,21 +30,29 @@ constexpr double kMaxSurfaceFactor = 8.0;
 // Rounds of the factors' fixed point at set-up. One round is the energy method as published; the
 // bonds from particles inside the body to the surface layer then take part of their partners'
 // factors, which stiffens the layer under the surface, and further rounds take that back, at the
-// cost of the lateral contraction (the factors across the surface grow). Measured on the PMB
-// tension bar 8 particles across (CPU, float, delta = 3 lambda, partial volumes; the interior
-// lattice's own Young's modulus is +1.4% along its axes), elongation error / nu against 1/4:
-// 1 round 6.8% / 0.246, 2 rounds 4.0% / 0.235, 3 rounds 2.5% / 0.230, 5 rounds 1.6% / 0.225
-// (without the correction 18% / 0.267). Three: the elongation within 3% with nu within 10%.
-constexpr int kSurfaceCorrectionRounds = 3;
+// cost of the lateral contraction (the factors across the surface grow). Measured on the tension
+// bar 8 particles across (CPU, float, delta = 3 lambda, partial volumes), elongation error / nu:
+//   PMB (nu 1/4; the interior lattice's own E is +1.4% along its axes): 1 round 6.8% / 0.246,
+//   2 rounds 4.0% / 0.235, 3 rounds 2.5% / 0.230, 5 rounds 1.6% / 0.225 (none: 18% / 0.267);
+//   state-based (nu 0.3): 1 round 13% / 0.304, 2 rounds 9.1% / 0.291, 3 rounds 6.5% / 0.284,
+//   5 rounds 4.6% / 0.277 (none: 18% / 0.323).
+// PMB takes three (the elongation within 3%, nu within 10%), state-based two (nu within 0.01).
+constexpr int kSurfaceRoundsBondBased = 3;
+constexpr int kSurfaceRoundsStateBased = 2;
+constexpr int kSurfaceCorrectionRounds = 3;  // the most of the two
 
-// Set-up, one round: the particle's three sums with its bonds' current factors (surface_bond, 1
-// at the start), and each of its factors times the interior's sum over its own.
-PD_HD inline void update_surface_factor(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+// Set-up, round `round`: the particle's three sums with its bonds' current factors (surface_bond,
+// 1 at the start), and each of its factors times the interior's sum over its own (particles whose
+// material has had its rounds keep theirs).
+PD_HD inline void update_surface_factor(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                                        int round) {
   const Material& m = mt.m[p.material[i]];
-  if (m.model != kBondBased || !m.surface_correction) {
+  if (!m.surface_correction) {
     p.surface_factor[i] = {1, 1, 1};
     return;
   }
+  const bool state = m.model == kStateBased;
+  if (round >= (state ? kSurfaceRoundsStateBased : kSurfaceRoundsBondBased)) return;
   const Vec3 x_i = xyz(p.rest[i]);
   double sum[3] = {0, 0, 0};
   for (int32_t k = 0; k < b.count[i]; ++k) {
@@ -48,7 +63,7 @@ PD_HD inline void update_surface_factor(int32_t i, ParticlesView p, BondsView b,
     const double w =
         double(b.surface_bond[slot]) * r0 * double(volume_fraction(real(r0), m)) * double(p.volume(j));
     const double n[3] = {double(xi.x) / r0, double(xi.y) / r0, double(xi.z) / r0};
-    for (int a = 0; a < 3; ++a) sum[a] += w * n[a] * n[a] * n[a] * n[a];
+    for (int a = 0; a < 3; ++a) sum[a] += state ? w * n[a] * n[a] : w * n[a] * n[a] * n[a] * n[a];
   }
   const Vec3 old = p.surface_factor[i];
   const double g0[3] = {double(old.x), double(old.y), double(old.z)};

@@ -19,6 +19,10 @@ const char* const kValidationCsvHeader =
 
 namespace {
 
+const char* surface_name(const ValidationCase& c) {
+  return !c.surface_correction ? "default" : *c.surface_correction ? "on" : "off";
+}
+
 const char* precision_name() {
   return sizeof(real) == 8 ? "double" : "float";
 }
@@ -28,7 +32,7 @@ std::string csv_row(const ValidationResult& r, const ValidationCase& c) {
   std::snprintf(line, sizeof line, "%s,%s,%s,%d,%g,%g,%lld,%lld,%.4f,%.9g,%.9g,%.6g,%s\n", r.problem.c_str(),
                 backend_name(c.backend), precision_name(), c.resolution, c.delta_over_lambda, c.dt_fraction,
                 (long long)r.particles, (long long)r.steps, r.wall_s, r.measured, r.reference, r.rel_error,
-                c.surface_correction ? "on" : "off");
+                surface_name(c));
   return line;
 }
 
@@ -78,7 +82,7 @@ int validate_command(const ValidateOptions& o) {
   if (!note.empty() && !o.quiet) std::printf("backend    %s\n", note.c_str());
   c.delta_over_lambda = o.delta_over_lambda;
   c.dt_fraction = o.dt_fraction;
-  c.surface_correction = o.surface != "off";
+  if (o.surface != "default") c.surface_correction = o.surface == "on";
 
   int status = 0;
   for (const ValidationProblem* p : selected) {
@@ -90,11 +94,11 @@ int validate_command(const ValidateOptions& o) {
         if (!std::isfinite(r.measured)) status = 3;
         if (!o.quiet)
           std::printf(
-              "%-32s %-4s %-6s res %3d  d/l %g  dt %.2f dt_c  surface %-3s  %8lld particles %7lld steps "
+              "%-32s %-4s %-6s res %3d  d/l %g  dt %.2f dt_c  surface %-7s  %8lld particles %7lld steps "
               "%8.2f s  measured %-12.6g reference %-12.6g error %6.2f%%  (%s)\n",
               r.problem.c_str(), backend_name(c.backend), precision_name(), res, c.delta_over_lambda,
-              c.dt_fraction, c.surface_correction ? "on" : "off", (long long)r.particles, (long long)r.steps,
-              r.wall_s, r.measured, r.reference, 100 * r.rel_error, r.note.c_str());
+              c.dt_fraction, surface_name(c), (long long)r.particles, (long long)r.steps, r.wall_s,
+              r.measured, r.reference, 100 * r.rel_error, r.note.c_str());
       }
       std::fflush(stdout);
       if (!o.csv.empty()) append_csv(o.csv, rows);

@@ -8,14 +8,14 @@
 namespace pd {
 
 struct ValidateOptions {
-  std::string problem = "all";   // a name from validation_problems(), or "all"
-  std::vector<int> resolutions;  // empty: each problem's default sweep
-  double delta_over_lambda = 3;  // horizon in spacings, >= 1
-  double dt_fraction = 0.5;      // dt / dt_c, > 0
-  std::string backend = "cpu";   // "cpu" | "cuda" | "auto"
-  std::string surface = "on";    // bond-based surface correction: "on" | "off"
-  std::string csv;               // rows appended here (header first when the file is new); "" = none
-  bool quiet = false;            // no per-row lines on stdout
+  std::string problem = "all";      // a name from validation_problems(), or "all"
+  std::vector<int> resolutions;     // empty: each problem's default sweep
+  double delta_over_lambda = 3;     // horizon in spacings, >= 1
+  double dt_fraction = 0.5;         // dt / dt_c, > 0
+  std::string backend = "cpu";      // "cpu" | "cuda" | "auto"
+  std::string surface = "default";  // surface correction: "default" (each model's) | "on" | "off"
+  std::string csv;                  // rows appended here (header first when the file is new); "" = none
+  bool quiet = false;               // no per-row lines on stdout
 };
 
 // The CSV header (bench/accuracy/accuracy.csv).

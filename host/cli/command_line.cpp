@@ -215,8 +215,9 @@ void add_validate(CLI::App& app, const CommandActions& actions, std::function<in
   cmd->add_option("--backend", validate->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cmd->add_option("--surface-correction", validate->surface,
-                  "on | off: the bond-based materials' surface correction (default on)")
-      ->check(CLI::IsMember({"on", "off"}));
+                  "default | on | off: the surface correction (default: each model's, on for bond-based, off "
+                  "for state-based)")
+      ->check(CLI::IsMember({"default", "on", "off"}));
   cmd->add_option("--csv", validate->csv, "append rows to this CSV");
   cmd->add_flag("--quiet", validate->quiet, "no per-row output");
   on_parsed(cmd, chosen, [&actions, validate] { return actions.validate(*validate); });

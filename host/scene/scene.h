@@ -60,10 +60,10 @@ struct SceneMaterial {
   std::optional<double> strain_limit;         // explicit critical stretch tau, in (0, 1)
   std::optional<double>
       fracture_energy;  // G0 [J/m^2] -> tau (pmb_lattice_critical_stretch); exactly one of the two
-  double strain_limit_scatter = 0.02;   // relative standard deviation of the normal scatter, in [0, 0.5]
-  double compression_alpha = 0.25;      // alpha of Levine eq. 5, >= 0
-  std::optional<bool> partial_volumes;  // default: true for state_based, false for bond_based
-  bool surface_correction = true;       // bond_based: the surface correction (surface_correction.h)
+  double strain_limit_scatter = 0.02;      // relative standard deviation of the normal scatter, in [0, 0.5]
+  double compression_alpha = 0.25;         // alpha of Levine eq. 5, >= 0
+  std::optional<bool> partial_volumes;     // default: true for state_based, false for bond_based
+  std::optional<bool> surface_correction;  // default: true for bond_based, false for state_based
 };
 
 // A body: a solid (a procedural shape or a mesh file) filled with particles of one kind.

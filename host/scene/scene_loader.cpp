@@ -684,16 +684,18 @@ SceneMaterial parse_material(const std::string& name, const TableReader& r) {
   r.number("compression_alpha", m.compression_alpha, at_least(0));
   bool partial = false;
   if (r.boolean("partial_volumes", partial)) m.partial_volumes = partial;
-  if (m.model == "state_based" && r.has("surface_correction"))
-    r.fail("surface_correction", "only for model = \"bond_based\" (the state-based solid has none yet)",
-           "for state_based: leave it out");
-  r.boolean("surface_correction", m.surface_correction);
+  bool surface = false;
+  if (r.boolean("surface_correction", surface)) m.surface_correction = surface;
 
   // State-based extras: fracture criterion, plasticity, anisotropy.
   r.string("fracture", m.fracture, {"chen", "stretch"});
   r.number("damage_alpha", m.damage_alpha, at_least(0));
   if (r.has("plastic")) m.plastic = parse_plastic(r.table("plastic", kPlasticKeys));
   if (r.has("anisotropy")) m.anisotropy = parse_anisotropy(r.table("anisotropy", kAnisotropyKeys));
+  if (m.anisotropy && m.surface_correction.value_or(false))
+    r.fail("surface_correction",
+           "is not available with anisotropy (its factors assume an isotropic influence)",
+           "false, or no anisotropy");
   return m;
 }
 

@@ -78,7 +78,7 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   if (!state) {
     const double c = pmb_lattice_micromodulus(sm.bulk_modulus, m);
     m.micromodulus = real(c);
-    m.surface_correction = sm.surface_correction ? 1 : 0;
+    m.surface_correction = sm.surface_correction.value_or(true) ? 1 : 0;
     m.axial_sum = real(lattice_family_sums(m).axial_sum);
     summary.micromodulus = m.micromodulus;
     summary.strain_limit =
@@ -88,6 +88,8 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   }
   m.bulk_modulus = real(sm.bulk_modulus);
   m.shear_modulus = real(sm.shear_modulus);
+  m.surface_correction = sm.surface_correction.value_or(false) ? 1 : 0;
+  m.axial_sum = real(lattice_family_sums(m).bond_sum / 3);  // the second moment's, per axis
   m.chen_fracture = sm.fracture == "chen" ? 1 : 0;
   if (sm.plastic) {
     m.plastic = 1;
@@ -379,7 +381,7 @@ SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend
   for (const SceneMaterial& m : scene.materials) {
     horizon = std::max(horizon, m.horizon);
     plastic = plastic || m.plastic.has_value();
-    surface = surface || (m.model == "bond_based" && m.surface_correction);
+    surface = surface || m.surface_correction.value_or(m.model == "bond_based");
   }
   const auto world = world_comm();  // a run split over MPI ranks budgets per rank
   const ParticleBudget budget =

@@ -4,7 +4,8 @@
 
 namespace pd {
 
-Material validation_material(const ElasticSolid& s, double lambda, double m, bool surface_correction) {
+Material validation_material(const ElasticSolid& s, double lambda, double m,
+                             std::optional<bool> surface_correction) {
   Material mat;
   mat.horizon = real(m * lambda);
   mat.spacing = real(lambda);
@@ -13,7 +14,7 @@ Material validation_material(const ElasticSolid& s, double lambda, double m, boo
   if (!s.state_based) {
     mat.model = kBondBased;
     mat.micromodulus = real(pmb_lattice_micromodulus(s.bulk(), mat));
-    mat.surface_correction = surface_correction ? 1 : 0;
+    mat.surface_correction = surface_correction.value_or(true) ? 1 : 0;
     mat.axial_sum = real(lattice_family_sums(mat).axial_sum);
     return mat;
   }
@@ -21,6 +22,8 @@ Material validation_material(const ElasticSolid& s, double lambda, double m, boo
   mat.bulk_modulus = real(s.bulk());
   mat.shear_modulus = real(s.shear());
   mat.chen_fracture = 0;  // the stretch criterion: validation bonds never reach their limit
+  mat.surface_correction = surface_correction.value_or(false) ? 1 : 0;
+  mat.axial_sum = real(lattice_family_sums(mat).bond_sum / 3);
   return mat;
 }
 

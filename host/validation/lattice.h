@@ -29,8 +29,10 @@ struct ElasticSolid {
 
 // Kernel constants at spacing lambda and horizon m lambda, with partial volumes (the choice that
 // makes the lattice sums closest to the continuum integrals; docs/validation.md); bond-based:
-// the lattice's micromodulus, with or without the surface correction.
-Material validation_material(const ElasticSolid& s, double lambda, double m, bool surface_correction);
+// the lattice's micromodulus; the surface correction as given, else each model's default (on for
+// bond-based, off for state-based).
+Material validation_material(const ElasticSolid& s, double lambda, double m,
+                             std::optional<bool> surface_correction);
 
 // The continuum stable time step estimate of host/material.h for this solid.
 double validation_critical_dt(const ElasticSolid& s, double lambda, double m);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,8 +17,10 @@ namespace pd {
 struct ValidationCase {
   int resolution = 0;
   double delta_over_lambda = 3;
-  double dt_fraction = 0.5;        // dt / dt_c, dt_c from the continuum estimate (host/material.h)
-  bool surface_correction = true;  // bond-based materials (cuda/kernels/surface_correction.h)
+  double dt_fraction = 0.5;  // dt / dt_c, dt_c from the continuum estimate (host/material.h)
+  // The surface correction (cuda/kernels/surface_correction.h); none: each model's default (on
+  // for bond-based materials, off for state-based ones).
+  std::optional<bool> surface_correction;
   Backend backend = Backend::kCpu;
 };
 

@@ -153,7 +153,7 @@ TEST(SceneLoader, CompleteSceneParses) {
   EXPECT_DOUBLE_EQ(glass.strain_limit_scatter, 0.1);
   EXPECT_DOUBLE_EQ(glass.compression_alpha, 0.3);
   EXPECT_EQ(glass.partial_volumes, std::optional<bool>(false));
-  EXPECT_FALSE(glass.surface_correction);
+  EXPECT_EQ(glass.surface_correction, std::optional<bool>(false));
   EXPECT_EQ(rubber.name, "rubber");
   EXPECT_FALSE(rubber.strain_limit.has_value());
   ASSERT_TRUE(rubber.fracture_energy.has_value());
@@ -210,7 +210,7 @@ TEST(SceneLoader, DefaultsApplyWhenKeysAreAbsent) {
   EXPECT_EQ(s.materials[0].strain_limit_scatter, dm.strain_limit_scatter);
   EXPECT_EQ(s.materials[0].compression_alpha, dm.compression_alpha);
   EXPECT_FALSE(s.materials[0].partial_volumes.has_value());
-  EXPECT_TRUE(s.materials[0].surface_correction);
+  EXPECT_FALSE(s.materials[0].surface_correction.has_value());
 
   const SceneBody db;
   ASSERT_EQ(s.bodies.size(), 1u);
@@ -669,12 +669,16 @@ TEST(SceneLoader, StateBasedElasticConstantsExactlyOnePair) {
   expect_error(kMaterial + "shear_modulus = 1e9\n" + kBody, "materials.glass.shear_modulus", "bulk_modulus");
 }
 
-// The surface correction is a bond-based key (the state-based solid has none yet); a boolean.
-TEST(SceneLoader, SurfaceCorrectionIsBondBasedOnly) {
+// The surface correction: a boolean for either model, not with anisotropy (its factors assume an
+// isotropic influence function).
+TEST(SceneLoader, SurfaceCorrectionIsABooleanAndNotForAnisotropy) {
   const Scene s = parse_scene(kMaterial + "surface_correction = false\n" + kBody, kFile);
-  EXPECT_FALSE(s.materials[0].surface_correction);
-  expect_error(kSteel + "youngs_modulus = 1e9\npoisson_ratio = 0.3\nsurface_correction = true\n" + kSteelBody,
-               "materials.steel.surface_correction", "only for model = \"bond_based\"");
+  EXPECT_EQ(s.materials[0].surface_correction, std::optional<bool>(false));
+  const std::string steel = kSteel + "youngs_modulus = 1e9\npoisson_ratio = 0.3\nsurface_correction = true\n";
+  EXPECT_EQ(parse_scene(steel + kSteelBody, kFile).materials[0].surface_correction,
+            std::optional<bool>(true));
+  expect_error(steel + "[materials.steel.anisotropy]\ndirection = [0, 0, 1]\nratio = 2\n" + kSteelBody,
+               "materials.steel.surface_correction", "anisotropy");
   expect_error(kMaterial + "surface_correction = 1\n" + kBody, "materials.glass.surface_correction",
                "true or false");
 }

@@ -12,7 +12,7 @@
 namespace pd {
 namespace {
 
-ValidationCase at(int resolution, bool surface_correction = true) {
+ValidationCase at(int resolution, std::optional<bool> surface_correction = std::nullopt) {
   ValidationCase c;
   c.resolution = resolution;
   c.surface_correction = surface_correction;
@@ -59,6 +59,19 @@ TEST(Validation, SurfaceCorrectedPmbBarIsWithinThreePercentAtEightAcross) {
   EXPECT_LT(figure(fine, "tension_bar_pmb/elongation").rel_error, 0.03);
   EXPECT_LT(figure(coarse, "tension_bar_pmb/elongation").rel_error, 0.06);
   for (const auto* r : {&coarse, &fine}) EXPECT_LT(figure(*r, "tension_bar_pmb/poisson").rel_error, 0.12);
+}
+
+// The state-based bar with the surface correction (opt-in for state-based materials): the factors
+// make the cut families' second moments isotropic, so the dilatation of the near-surface layer
+// stops over-counting the axial strain: at n = 8, nu within 0.01 of the input 0.3 (the issue's
+// target; measured 0.2905, 0.323 without) and the elongation error at most 0.6 of the uncorrected
+// one (measured 9.1% against 18.1%).
+TEST(Validation, SurfaceCorrectedLpsBarHasTheInputPoissonRatio) {
+  const auto on = run_tension_bar_lps(at(8, true)), off = run_tension_bar_lps(at(8));
+  print(on);
+  EXPECT_LT(std::fabs(figure(on, "tension_bar_lps/poisson").measured - 0.3), 0.01);
+  EXPECT_LT(figure(on, "tension_bar_lps/elongation").rel_error,
+            0.6 * figure(off, "tension_bar_lps/elongation").rel_error);
 }
 
 // State-based bar: same bounds; nu converges to the input 0.3, not to PMB's 1/4.
