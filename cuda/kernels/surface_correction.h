@@ -93,7 +93,10 @@ PD_HD inline void surface_bond_factors(int32_t i, ParticlesView p, BondsView b) 
   }
 }
 
-// The factor on the bond at `slot` (1 where the run has no factors): set-up and diagnostics.
+// The factor on the bond at `slot`, 1 where the run has no factors (then exactly the uncorrected
+// bits): set-up, the energy, and the state-based kernels' influence function (one loop-invariant
+// test per particle where the compiler hoists it; bond-based forces use springforces.h's
+// compile-time form).
 PD_HD inline real surface_bond_at(const BondsView& b, int64_t slot) {
   return b.surface_bond ? b.surface_bond[slot] : real(1);
 }
