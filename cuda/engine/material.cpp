@@ -42,10 +42,6 @@ double pmb_lattice_critical_stretch(double fracture_energy, double micromodulus,
   return std::sqrt(2.0 * fracture_energy / (micromodulus * lattice_family_sums(m).crossing_sum));
 }
 
-double pmb_critical_stretch(double fracture_energy, double bulk_modulus, double horizon) {
-  return std::sqrt(5.0 * fracture_energy / (9.0 * bulk_modulus * horizon));
-}
-
 double pmb_critical_time_step(double density, double bulk_modulus, double horizon) {
   return std::sqrt(2.0 * density * horizon * horizon / (36.0 * bulk_modulus));
 }

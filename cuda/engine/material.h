@@ -28,12 +28,10 @@ LatticeFamilySums lattice_family_sums(const Material& m);
 double pmb_lattice_micromodulus(double bulk_modulus, const Material& m);
 
 // The PMB critical stretch whose broken bonds across a lattice plane release the fracture
-// energy G0 per unit area: G0 = c s0^2 crossing_sum / 2 (pmb_critical_stretch on the lattice).
+// energy G0 per unit area: G0 = c s0^2 crossing_sum / 2. Its continuum limit is Silling &
+// Askari's (2005, eq. 21) s0 = sqrt(5 G0 / (9 K delta)); Levine et al. 2014 print
+// sqrt(5G/(K delta)), three times larger.
 double pmb_lattice_critical_stretch(double fracture_energy, double micromodulus, const Material& m);
-
-// Critical stretch from fracture energy, 3D PMB: s0 = sqrt(5 G0 / (9 K delta)) (Silling &
-// Askari 2005, eq. 21). Levine et al. 2014 print sqrt(5G/(K delta)), three times larger.
-double pmb_critical_stretch(double fracture_energy, double bulk_modulus, double horizon);
 
 // Critical time step of an explicit PMB integration (Silling & Askari 2005, eq. 29) for a
 // particle with the continuum family sum_j V_j c/|xi_j| ~ c 2 pi delta^2 = 36 K / delta^2:
