@@ -14,8 +14,8 @@
 //   length  kParticles: one per particle; kSlots: one per bond slot of the sliced-ELL families
 //           (BondsView::slot); kSlices: one per slice of kSliceWidth particles, plus one
 //   when    kForAll; kForStateBased, kForPlastic: state-based / plastic materials only; kForWeakBonds:
-//           scenes whose cuts weaken bonds; kForSurface: bond-based materials with the surface
-//           correction; kForPartitioned: runs over several ranks
+//           scenes whose cuts weaken bonds; kForSurface: materials with the surface correction
+//           (either model); kForPartitioned: runs over several ranks
 //           (cuda/parallel/). Otherwise the array is empty (a null view).
 //   saved   kSaved: a run changes it, so checkpoints save it and a restore puts it back bit for
 //           bit; kDerived: it follows from the scene (or, for plastic_mirror, from `plastic`)
@@ -81,7 +81,7 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
   /* initial family; z phi_i = 1 - intact/initial bonds of the last step (damage, set by `init`); */ \
   /* w (plastic materials) the trial deviatoric norm |t^d| that `plasticity` tests (`init`)       */ \
   X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep, kFrameNone)                          \
-  /* the surface correction's factors along x, y, z (bond-based; set-up, surface_correction.h) */    \
+  /* the surface correction's factors along x, y, z (set-up, surface_correction.h)              */   \
   X(surface_factor, Vec3, kParticles, kForSurface, kDerived, kHaloSetup, kFrameNone)                 \
   /* index of the particle in the whole run, which orders families and contact lists (order_of) */   \
   X(global_id, const int32_t, kParticles, kForPartitioned, kDerived, kHaloNone, kFrameNone)
@@ -103,8 +103,8 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
   /* per slot, the factor q/255 on the bond's strain limit (cuda/engine/bond_cuts.h), the same  */ \
   /* in both stored directions                                                                  */ \
   X(strength, const uint8_t, kSlots, kForWeakBonds, kDerived, kHaloNone, kFrameNone)               \
-  /* per slot, the surface correction's factor on the bond's micromodulus (bond-based; set-up, */  \
-  /* surface_correction.h), the same in both stored directions                                  */ \
+  /* per slot, the surface correction's factor on the bond (on its micromodulus, bond-based; on */ \
+  /* its influence function, state-based; set-up, surface_correction.h), the same both ways     */ \
   X(surface_bond, real, kSlots, kForSurface, kDerived, kHaloNone, kFrameNone)
 
 // All of them, particles first.

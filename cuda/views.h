@@ -213,13 +213,14 @@ struct Material {
   // overlapped fraction, so families reach delta + lambda/2; otherwise families end at delta.
   uint8_t partial_volumes = 1;
   PD_HD real family_radius() const { return partial_volumes ? horizon + real(0.5) * spacing : horizon; }
-  // Bond-based:
-  real micromodulus = 0;  // c = 18 K / sum_j |xi| beta V_j over an interior lattice family [N/m^6]
-  // Surface correction (bond-based; cuda/kernels/surface_correction.h): each bond's micromodulus
-  // times a factor that restores the interior's energy where a surface cuts families short.
-  // axial_sum: sum_j n_x^4 |xi| beta V_j over an interior lattice family [m^4].
+  // Surface correction (either model; cuda/kernels/surface_correction.h): a factor per bond that
+  // restores the interior's response where a surface cuts families short. axial_sum: the
+  // interior lattice family's per-axis sum the factors restore: bond-based sum_j n_x^4 |xi| beta
+  // V_j, state-based sum_j n_x^2 |xi| beta V_j (the second moment's, omega |xi|^2 = delta |xi|).
   uint8_t surface_correction = 0;
   real axial_sum = 0;
+  // Bond-based:
+  real micromodulus = 0;  // c = 18 K / sum_j |xi| beta V_j over an interior lattice family [N/m^6]
   // State-based:
   real bulk_modulus = 0;      // K [Pa]
   real shear_modulus = 0;     // mu [Pa]

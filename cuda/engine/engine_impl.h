@@ -266,7 +266,8 @@ class EngineImpl final : public Engine {
   // The contact lists' view, or an empty one in a run without contact.
   ContactView contact_view() { return contact_ ? contacts_.view(exec_, step_params_.dt) : ContactView{}; }
 
-  // Bond-based set-up: the surface correction's factors from the families as built (on a
+  // Set-up of the surface correction (before the state-based weighted volumes, which take the
+  // bonds' factors): the factors from the families as built (on a
   // partitioned rank its ghosts' from their owners: a bond's factor takes both ends'), then
   // each bond's at its slot.
   void set_up_surface_correction() {
