@@ -49,6 +49,11 @@ ball=(scenes/wrecking_ball.toml --scale 0.05 --frames 3 --set 'colliders[1].path
 step equiv-colliders-cpu "$bin" run --overwrite "${ball[@]}" --backend cpu --out "$OUT/equiv-colliders-cpu"
 step equiv-colliders-gpu "$bin" run --overwrite "${ball[@]}" --backend cuda --out "$OUT/equiv-colliders-gpu"
 step equiv-colliders-compare "$bin" compare "$OUT/equiv-colliders-cpu" "$OUT/equiv-colliders-gpu"
+# A mesh collider: the steel wedge (its distance grid) driven into the stone block from frame 1.
+wedge=(scenes/wedge_splits_block.toml --scale 0.1 --frames 3)
+step equiv-mesh-cpu "$bin" run --overwrite "${wedge[@]}" --backend cpu --out "$OUT/equiv-mesh-cpu"
+step equiv-mesh-gpu "$bin" run --overwrite "${wedge[@]}" --backend cuda --out "$OUT/equiv-mesh-gpu"
+step equiv-mesh-compare "$bin" compare "$OUT/equiv-mesh-cpu" "$OUT/equiv-mesh-gpu"
 # A free collider: the iron ball, pushed back by the wall it hits from the first frame. One frame
 # (1 ms of contact): after it this coarse wall shatters into grit, where the order of the sums in the
 # ball's reaction grows into different cracks (measured 2026-11-26 on an H200: displacement 3.3e-6
