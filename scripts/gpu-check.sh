@@ -45,7 +45,10 @@ for extra in chen_bar_twist:0.3 chen_thin_sheet_tear:0.1; do
   step "equiv-$name-compare" "$bin" compare "$OUT/equiv-$name-cpu" "$OUT/equiv-$name-gpu"
 done
 # Colliders: a wall resting on frictional ground, hit by a scripted sphere from the first frame.
-ball=(scenes/wrecking_ball.toml --scale 0.05 --frames 3 --set 'colliders[1].path=[[0, 0, 0.55, -0.36], [0.2, 0, 0.55, 0.44]]')
+# Two frames (13% of the bonds broken): in the third the coarse wall shatters (43% broken) and the
+# CPU's and GPU's roundings grow into different debris (measured 2026-11-26 on an H100, surface
+# correction on: displacement 2.9e-5, 3.4e-4, 9.9e-3 after frames 1, 2, 3).
+ball=(scenes/wrecking_ball.toml --scale 0.05 --frames 2 --set 'colliders[1].path=[[0, 0, 0.55, -0.36], [0.2, 0, 0.55, 0.44]]')
 step equiv-colliders-cpu "$bin" run --overwrite "${ball[@]}" --backend cpu --out "$OUT/equiv-colliders-cpu"
 step equiv-colliders-gpu "$bin" run --overwrite "${ball[@]}" --backend cuda --out "$OUT/equiv-colliders-gpu"
 step equiv-colliders-compare "$bin" compare "$OUT/equiv-colliders-cpu" "$OUT/equiv-colliders-gpu"
