@@ -103,9 +103,10 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
   /* per slot, the factor q/255 on the bond's strain limit (cuda/engine/bond_cuts.h), the same  */ \
   /* in both stored directions                                                                  */ \
   X(strength, const uint8_t, kSlots, kForWeakBonds, kDerived, kHaloNone, kFrameNone)               \
-  /* per slot, the surface correction's factor on the bond (on its micromodulus, bond-based; on */ \
-  /* its influence function, state-based; set-up, surface_correction.h), the same both ways     */ \
-  X(surface_bond, real, kSlots, kForSurface, kDerived, kHaloNone, kFrameNone)
+  /* per slot, the surface correction's factor on the bond in steps of 2^-12 (on its           */  \
+  /* micromodulus, bond-based; on its influence function, state-based; set-up,                 */  \
+  /* surface_correction.h), the same both ways                                                 */  \
+  X(surface_bond, uint16_t, kSlots, kForSurface, kDerived, kHaloNone, kFrameNone)
 
 // All of them, particles first.
 #define PD_STATE_FIELDS(X) PD_PARTICLE_FIELDS(X) PD_BOND_FIELDS(X)

@@ -70,6 +70,13 @@ struct LatticeView {
   // A partitioned rank (cuda/parallel/): partners are read from the family's list, as a rank's
   // indices are not the whole run's lattice; the geometry still comes from the stencil.
   uint8_t listed_partners = 0;
+  // Bond-based materials with the surface correction (cuda/kernels/surface_correction.h): per
+  // particle the start of its row in `surface_table`, the stored bond factor of each stencil
+  // entry. Particles placed alike in their body share a row, so a lattice bond's factor comes
+  // from a small table that stays in cache instead of its slot, whose index the loop would
+  // otherwise compute for every bond (lattice_families.h surface_rows).
+  ArrayView<const int32_t> surface_row;
+  ArrayView<const uint16_t> surface_table;
 };
 
 struct BondsView {

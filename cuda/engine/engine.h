@@ -28,6 +28,7 @@ struct FamilyStats {
   double mean = 0;
   int64_t slots = 0;              // sliced-ELL storage, padding included
   int64_t lattice_particles = 0;  // particles whose partners are found by offset (lattice_families.h)
+  int64_t surface_rows = 0;       // rows of surface-corrected lattice bond factors (SurfaceRows)
   BondCutCounts cuts;
 };
 

@@ -62,7 +62,14 @@ class EngineImpl final : public Engine {
       world_ = comm;
     }
     build_families(mem_, state_, owned_, materials_, features_, backend(), family_);
-    if (!in.cuts.empty()) features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_);
+    // The surface correction's factors come from the families before the pre-cracks: a crack is
+    // not a surface of the body (none formed in the run is either), and corrected crack faces
+    // raise the toughness at a notch's tip (docs/validation.md, notched_bar_pmb).
+    if (features_.surface_factors) set_up_surface_correction();
+    if (!in.cuts.empty()) {
+      features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_);
+      if (features_.surface_factors) launch_surface_bond_factors(exec_, particles(), bonds(), materials_);
+    }
     if (in.lattice_families && !rank)  // (lattice offsets are indices of the whole run)
       features_.lattice = build_lattice_families(mem_, state_, in.particles, materials_, features_.weak_bonds,
                                                  lattice_, family_);
@@ -72,7 +79,7 @@ class EngineImpl final : public Engine {
                                                   features_.weak_bonds, lattice_, family_);
       features_.lattice_listed = features_.lattice;
     }
-    if (features_.surface_factors) set_up_surface_correction();
+    if (features_.surface && !lattice_.empty()) upload_surface_rows(mem_, state_, lattice_, family_);
     double collider_stiffness = 0;
     for (const Collider& c : colliders_host_)  // (the indent law's stiffness grows with the depth: not here)
       if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
@@ -267,17 +274,17 @@ class EngineImpl final : public Engine {
   ContactView contact_view() { return contact_ ? contacts_.view(exec_, step_params_.dt) : ContactView{}; }
 
   // Set-up of the surface correction (before the state-based weighted volumes, which take the
-  // bonds' factors): the factors from the families as built (on a
+  // bonds' factors): the factors from the families as built, before cuts (on a
   // partitioned rank its ghosts' from their owners: a bond's factor takes both ends'), then
   // each bond's at its slot.
   void set_up_surface_correction() {
     state_.allocate(mem_, kSlots, state_.neighbor.size(), FieldNeeds{false, false, false, false, true});
     state_.surface_factor.upload(std::vector<Vec3>(state_.surface_factor.size(), Vec3{1, 1, 1}));
-    state_.surface_bond.upload(std::vector<real>(state_.surface_bond.size(), real(1)));
+    state_.surface_bond.upload(std::vector<uint16_t>(state_.surface_bond.size(), kSurfaceBondOne));
     for (int round = 0; round < kSurfaceCorrectionRounds; ++round) {
       launch_surface_factor(exec_, particles(), bonds(), materials_, round);
       if (halo_.active()) halo_.exchange(state_.surface_factor);
-      launch_surface_bond_factors(exec_, particles(), bonds());
+      launch_surface_bond_factors(exec_, particles(), bonds(), materials_);
     }
   }
 

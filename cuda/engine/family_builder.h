@@ -28,6 +28,8 @@ struct LatticeState {
   DeviceArray<Stencil, Exec> stencils;
   DeviceArray<StencilEntry, Exec> entries;
   DeviceArray<uint32_t, Exec> present, intact, weak;
+  DeviceArray<int32_t, Exec> surface_row;  // bond-based surface correction (upload_surface_rows)
+  DeviceArray<uint16_t, Exec> surface_table;
   bool listed_partners = false;  // a partitioned rank's (LatticeView::listed_partners)
 
   bool empty() const { return tables.stencils.empty(); }
@@ -41,6 +43,8 @@ struct LatticeState {
     v.present = view_of(present);
     v.intact = view_of(intact);
     v.weak = view_of(weak);
+    v.surface_row = view_of(surface_row);
+    v.surface_table = view_of(surface_table);
     return v;
   }
 };
@@ -168,6 +172,20 @@ bool upload_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s
   mark_weak_lattice_bonds(lattice.tables, lists, strength);
   lattice.weak = mem.make_from(lattice.tables.weak);
   return true;
+}
+
+// The surface correction's factors of the lattice particles' bonds (set at their slots) as rows
+// of factors per stencil entry on the backend (lattice_families.h surface_rows), for the
+// bond-based kernels.
+template <class Exec>
+void upload_surface_rows(DeviceMemory<Exec>& mem, const EngineState<Exec>& s, LatticeState<Exec>& lattice,
+                         FamilyStats& family) {
+  std::vector<uint16_t> factors;
+  s.surface_bond.download(factors);
+  const SurfaceRows rows = surface_rows(lattice.tables, download_bonds(s), factors);
+  lattice.surface_row = mem.make_from(rows.row);
+  lattice.surface_table = mem.make_from(rows.table);
+  family.surface_rows = rows.rows;
 }
 
 // After a restore: the intact bits follow the restored families (the layout as built, the

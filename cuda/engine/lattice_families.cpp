@@ -8,6 +8,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 #include "cuda/engine/bond_cuts.h"
@@ -273,6 +274,40 @@ void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
       if (strength[size_t(v.slot(i, k))] < kStrengthLevels) lf.weak[word] |= bit;
     });
   }
+}
+
+SurfaceRows surface_rows(const LatticeFamilies& lf, const BondLists& bonds,
+                         const std::vector<uint16_t>& surface_bond) {
+  const BondsView v = bonds.view();
+  SurfaceRows out;
+  out.row.assign(lf.stencil.size(), -1);
+  // Each row's start in the table, found by its values (hashed FNV-1a style).
+  struct RowHash {
+    size_t operator()(const std::vector<uint16_t>& r) const {
+      uint64_t h = 1469598103934665603ull;
+      for (const uint16_t x : r) h = (h ^ x) * 1099511628211ull;
+      return size_t(h);
+    }
+  };
+  std::unordered_map<std::vector<uint16_t>, int32_t, RowHash> starts;
+  std::vector<uint16_t> row;
+  for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
+    const int32_t s = lf.stencil[size_t(i)];
+    if (s < 0) continue;
+    row.assign(size_t(lf.stencils[size_t(s)].size), 0);
+    for_each_present_bond(lf, i, [&](int32_t q, size_t, uint32_t, int32_t k) {
+      row[size_t(q)] = surface_bond[size_t(v.slot(i, k))];
+    });
+    const auto [at, added] = starts.try_emplace(row, int32_t(out.table.size()));
+    if (added) {
+      if (out.table.size() + row.size() > size_t(std::numeric_limits<int32_t>::max()))
+        throw std::length_error("the surface correction's table of lattice rows outgrew 2^31 entries");
+      out.table.insert(out.table.end(), row.begin(), row.end());
+      ++out.rows;
+    }
+    out.row[size_t(i)] = at->second;
+  }
+  return out;
 }
 
 void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds, bool listed_partners) {

@@ -47,6 +47,18 @@ LatticeFamilies rank_lattice_families(const ParticleSet& ps, const MaterialTable
 void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
                              const std::vector<uint8_t>& strength);
 
+// The surface correction's stored bond factors of the lattice particles as rows of a table, one
+// per stencil entry (0 where the family lacks the entry, never read): per particle the start of
+// its row, or -1 (an explicit family), and the rows, each stored once however many particles
+// have it. `surface_bond` holds the factors at the slots of `bonds`.
+struct SurfaceRows {
+  std::vector<int32_t> row;     // per particle
+  std::vector<uint16_t> table;  // the rows, one after another
+  int64_t rows = 0;
+};
+SurfaceRows surface_rows(const LatticeFamilies& lf, const BondLists& bonds,
+                         const std::vector<uint16_t>& surface_bond);
+
 // Recomputes the intact bits from `bonds` (a restored snapshot). Throws std::invalid_argument
 // when a lattice particle's listed bonds are not its present stencil bonds in stencil order
 // (partners checked by offset unless `listed_partners`: a partitioned rank's indices).

@@ -27,7 +27,7 @@ size_t backend_available_bytes(Backend b);
 double bonds_per_particle(double horizon_ratio);
 
 // Engine memory per particle: the particle arrays, the collision hash and the bonds (4 B each,
-// 12 B with a plastic history, 4 B more with the bond-based surface correction's factors).
+// 12 B with a plastic history, 2 B more with the surface correction's factors).
 double engine_bytes_per_particle(double horizon_ratio, bool plastic, bool surface);
 
 // Host memory per particle while a scene is set up and run (particle set, geometry, outputs).

@@ -51,6 +51,7 @@ struct BondGeometryOf {
   real volume_j;                 // the partner's volume V_j (kWeighted: beta V_j)
   real tau_j;                    // the partner's effective strain limit
   bool weak;                     // the bond may carry a strength factor (BondsView::strength)
+  int32_t entry;                 // kWeighted: the bond's stencil entry
   PD_HD real weight(const Material& m) const {
     if constexpr (kWeighted)
       return volume_j;
@@ -75,6 +76,7 @@ PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, V
   g.volume_j = rest_j.w;
   g.tau_j = disp_j.w;
   g.weak = true;
+  g.entry = -1;
   return g;
 }
 
@@ -127,7 +129,7 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
 
 // Geometry of a lattice bond: the reference vector, lengths and weight from the stencil entry.
 PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Vec4 disp_i, Vec4 disp_j,
-                                                       bool weak) {
+                                                       bool weak, int32_t entry) {
   LatticeBondGeometry g;
   g.xi = xyz(s.xi);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
@@ -141,6 +143,7 @@ PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Ve
   g.volume_j = s.weight;
   g.tau_j = disp_j.w;
   g.weak = weak;
+  g.entry = entry;
   return g;
 }
 
@@ -188,7 +191,7 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
         j = l.listed_partners ? bond_partner(b.neighbor[slot]) : i + e.offset;
       else
         j = i + e.offset;
-      if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u))) {
+      if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u, w0 + q))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
         l.intact[word] = intact;  // rare: stored at once, nothing kept for later

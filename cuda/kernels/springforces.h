@@ -21,14 +21,29 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, co
 }
 
 // A bond's weight beta V_j times the surface correction's factor on its micromodulus
-// (surface_correction.h), read at the bond's slot; the weight alone without the correction
+// (surface_correction.h): a lattice bond's from its particle's row of factors per stencil entry
+// (`row`, surface_row_of), a listed bond's at its slot; the weight alone without the correction
 // (kSurface false), at no cost.
-template <bool kSurface>
-PD_HD inline real surface_bond_weight(real weight, const BondsView& b, int64_t slot) {
-  if constexpr (kSurface)
-    return weight * b.surface_bond[slot];
-  else
+template <bool kSurface, class Geometry>
+PD_HD inline real surface_bond_weight(real weight, const BondsView& b, int64_t slot, const Geometry& g,
+                                      const uint16_t* row) {
+  if constexpr (!kSurface)
     return weight;
+  else if constexpr (std::is_same_v<Geometry, LatticeBondGeometry>)
+    return weight * surface_bond_value(row[g.entry]);
+  else
+    return weight * surface_bond_value(b.surface_bond[slot]);
+}
+
+// Particle i's row of lattice bond factors (kSurface, a lattice particle), else null.
+template <bool kSurface>
+PD_HD inline const uint16_t* surface_row_of(const BondsView& b, int32_t i) {
+  if constexpr (kSurface) {
+    const ArrayView<const int32_t>& rows = b.lattice.surface_row;
+    return rows.size > 0 && rows[i] >= 0 ? b.lattice.surface_table.data() + rows[i] : nullptr;
+  } else {
+    return nullptr;
+  }
 }
 
 // The entry loop unrolled 8 times where bonds may be weakened, as the compiler picks (2) else
@@ -44,10 +59,11 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};  // sum over the intact bonds of s beta V_j y/|y| (c V_i applied once at the end)
   real smin = real(INFINITY);
+  const uint16_t* row = surface_row_of<kSurface>(b, i);
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
       i, p, b, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
-        const real weight = surface_bond_weight<kSurface>(g.weight(m), b, slot);
+        const real weight = surface_bond_weight<kSurface>(g.weight(m), b, slot, g, row);
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
           p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, weight, m));
           if (kRaiseInBranch<kWeak>) raise_flag(broke);
@@ -74,12 +90,13 @@ PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b
   Vec3 f{0, 0, 0};
   real smin = real(INFINITY);
   real nearest = -real(INFINITY);  // the largest s - w tau_i (s alone without weakened bonds)
+  const uint16_t* row = surface_row_of<kSurface>(b, i);
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
       i, p, b, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         nearest = max_of(nearest, kWeak ? s - bond_strength<kWeak>(b, slot, g) * tau_i : s);
         smin = min_of(s, smin);
-        f += (s * surface_bond_weight<kSurface>(g.weight(m), b, slot) * g.inv_r) * g.y;
+        f += (s * surface_bond_weight<kSurface>(g.weight(m), b, slot, g, row) * g.inv_r) * g.y;
       });
   if (may_break<kWeak>(nearest, tau_i)) return spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke);
   write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact, nullptr);

@@ -15,8 +15,11 @@
 // sum_j omega n_k^2 |xi|^2 beta V_j against the interior's m / 3, and G multiplies the influence
 // function omega of the bond in every sum (m, theta, the force and energy states, the yield norm):
 // a state-based solid with another influence function, whose forces still come from an energy.
-// Inside the body every factor is 1 to round-off; the kernels read G per bond slot, so the
-// correction costs one coalesced load per bond and nothing else.
+// Inside the body every factor is 1. G is stored per bond slot in 16 bits (below); bond-based
+// kernels read a lattice bond's from a table of rows shared by the particles placed alike in
+// their body (cuda/engine/lattice_families.h surface_rows), which stays in cache and spares the
+// loop the slot's index. Pre-cracks are not surfaces: the factors come from the families before
+// the cuts (cuda/engine/engine_impl.h).
 #pragma once
 
 #include "cuda/kernels/bond.h"
@@ -41,6 +44,34 @@ constexpr int kSurfaceRoundsBondBased = 3;
 constexpr int kSurfaceRoundsStateBased = 2;
 constexpr int kSurfaceCorrectionRounds = 3;  // the most of the two
 
+// Bond factors are stored in 16 bits, in steps of 2^-12 (surface_bond_at): 0.024% of an interior
+// bond's stiffness, far below what the correction itself leaves (percents, above), and up to 16,
+// past kMaxSurfaceFactor. Half the bytes a float takes: the bond-based kernels are issue-bound
+// at about 1 B per bond otherwise, and every byte per bond costs them (bench/REPORT.md).
+constexpr double kSurfaceBondStep = 1.0 / 4096;
+constexpr uint16_t kSurfaceBondOne = 4096;
+
+// A stored bond factor's value (exact in float).
+PD_HD inline real surface_bond_value(uint16_t stored) {
+  return real(stored) * real(kSurfaceBondStep);
+}
+
+// A bond's reference vector as the set-up takes it: rest_j - rest_i on a grid of 1/1024 of the
+// spacing, so that on a box grid, whose bond vectors are whole spacings but for the rounding of
+// the particles' positions (1e-6 of a spacing), particles placed alike relative to the body's
+// faces get bit-identical factors (their bonds' factors are then stored once per such class,
+// cuda/engine/surface_rows.h). Elsewhere it moves a bond by at most 1/2048 of the spacing.
+PD_HD inline Vec3 set_up_bond_vector(Vec3 rest_i, Vec3 rest_j, const Material& m) {
+  const Vec3 xi = rest_j - rest_i;
+  if (!(m.spacing > 0)) return xi;
+  const double q = double(m.spacing) / 1024;
+  auto snap = [q](real x) {
+    const double n = std::floor(std::fabs(double(x)) / q + 0.5);
+    return real(x < 0 ? -n * q : n * q);
+  };
+  return {snap(xi.x), snap(xi.y), snap(xi.z)};
+}
+
 // Set-up, round `round`: the particle's three sums with its bonds' current factors (surface_bond,
 // 1 at the start), and each of its factors times the interior's sum over its own (particles whose
 // material has had its rounds keep theirs).
@@ -58,10 +89,10 @@ PD_HD inline void update_surface_factor(int32_t i, ParticlesView p, BondsView b,
   for (int32_t k = 0; k < b.count[i]; ++k) {
     const int64_t slot = b.slot(i, k);
     const int32_t j = bond_partner(b.neighbor[slot]);
-    const Vec3 xi = xyz(p.rest[j]) - x_i;
+    const Vec3 xi = set_up_bond_vector(x_i, xyz(p.rest[j]), m);
     const double r0 = double(length(xi));
-    const double w =
-        double(b.surface_bond[slot]) * r0 * double(volume_fraction(real(r0), m)) * double(p.volume(j));
+    const double w = double(surface_bond_value(b.surface_bond[slot])) * r0 *
+                     double(volume_fraction(real(r0), m)) * double(p.volume(j));
     const double n[3] = {double(xi.x) / r0, double(xi.y) / r0, double(xi.z) / r0};
     for (int a = 0; a < 3; ++a) sum[a] += state ? w * n[a] * n[a] : w * n[a] * n[a] * n[a] * n[a];
   }
@@ -75,21 +106,24 @@ PD_HD inline void update_surface_factor(int32_t i, ParticlesView p, BondsView b,
   p.surface_factor[i] = {real(g[0]), real(g[1]), real(g[2])};
 }
 
-// The factor on a bond along xi between particles with factors gi and gj (componentwise).
-PD_HD inline real surface_bond_factor(Vec3 xi, Vec3 gi, Vec3 gj) {
+// The factor on a bond along xi between particles with factors gi and gj (componentwise), as
+// stored.
+PD_HD inline uint16_t surface_bond_factor(Vec3 xi, Vec3 gi, Vec3 gj) {
   const real gx = real(0.5) * (gi.x + gj.x), gy = real(0.5) * (gi.y + gj.y), gz = real(0.5) * (gi.z + gj.z);
   const real sum = xi.x * xi.x / (gx * gx) + xi.y * xi.y / (gy * gy) + xi.z * xi.z / (gz * gz);
-  return std::sqrt(dot(xi, xi) / sum);
+  const double g = double(std::sqrt(dot(xi, xi) / sum)) / kSurfaceBondStep;
+  return uint16_t(g < 65535.0 ? std::floor(g + 0.5) : 65535.0);
 }
 
 // Set-up, second pass (every particle's factors known, ghosts' included): each bond's factor at
 // its slot.
-PD_HD inline void surface_bond_factors(int32_t i, ParticlesView p, BondsView b) {
+PD_HD inline void surface_bond_factors(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+  const Material& m = mt.m[p.material[i]];
   const Vec3 x_i = xyz(p.rest[i]);
   for (int32_t k = 0; k < b.count[i]; ++k) {
     const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
-    b.surface_bond[b.slot(i, k)] =
-        surface_bond_factor(xyz(p.rest[j]) - x_i, p.surface_factor[i], p.surface_factor[j]);
+    b.surface_bond[b.slot(i, k)] = surface_bond_factor(set_up_bond_vector(x_i, xyz(p.rest[j]), m),
+                                                       p.surface_factor[i], p.surface_factor[j]);
   }
 }
 
@@ -98,7 +132,7 @@ PD_HD inline void surface_bond_factors(int32_t i, ParticlesView p, BondsView b) 
 // test per particle where the compiler hoists it; bond-based forces use springforces.h's
 // compile-time form).
 PD_HD inline real surface_bond_at(const BondsView& b, int64_t slot) {
-  return b.surface_bond ? b.surface_bond[slot] : real(1);
+  return b.surface_bond ? surface_bond_value(b.surface_bond[slot]) : real(1);
 }
 
 }  // namespace pd

@@ -147,8 +147,11 @@ int bench_command(const BenchOptions& opt) {
               input.particles.size(), (long long)fam.bonds, fam.mean,
               double(engine->memory_bytes()) / (1 << 20), (long long)opt.steps);
   std::printf("set-up     scene %.2f s, engine %.2f s\n", scene_seconds, engine_seconds);
-  std::printf("families   %lld of %zu particles find their partners by lattice offset\n",
+  std::printf("families   %lld of %zu particles find their partners by lattice offset",
               (long long)fam.lattice_particles, input.particles.size());
+  if (fam.surface_rows > 0)
+    std::printf("; their surface correction in %lld rows of factors", (long long)fam.surface_rows);
+  std::printf("\n");
   print_kernel_table(std::cout, rows);
   std::printf("screened   springforces ran without the breaking path in %lld of the %lld steps\n",
               (long long)screened, (long long)opt.steps);
@@ -172,7 +175,8 @@ int bench_command(const BenchOptions& opt) {
      << json_escape(engine->device_name()) << "\",\n  \"backend\": \"" << backend_name(backend)
      << "\",\n  \"precision\": \"" << (sizeof(real) == 4 ? "float32" : "float64") << "\",\n  \"workload\": \""
      << workload << "\",\n  \"particles\": " << input.particles.size() << ",\n  \"bonds\": " << fam.bonds
-     << ",\n  \"lattice_particles\": " << fam.lattice_particles << ",\n  \"steps\": " << opt.steps
+     << ",\n  \"lattice_particles\": " << fam.lattice_particles
+     << ",\n  \"surface_rows\": " << fam.surface_rows << ",\n  \"steps\": " << opt.steps
      << ",\n  \"screened_steps\": " << screened << ",\n  \"wall_seconds\": " << wall
      << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds << ", \"engine\": " << engine_seconds << "}"
      << ",\n  \"kernels\": [\n";

@@ -32,9 +32,9 @@ TEST(MemoryBudget, BondsPerParticleCountsTheCellsOfThePartialVolumeSphere) {
   // delta = 3 lambda with partial volumes reaches 3.5 lambda: 4/3 pi 3.5^3 = 179.6 cells.
   EXPECT_NEAR(bonds_per_particle(3), 179.59, 0.01);
   EXPECT_GT(engine_bytes_per_particle(3, true, false), engine_bytes_per_particle(3, false, false));
-  // The surface correction's factor: 4 B per bond slot, padding included.
+  // The surface correction's factor: 2 B per bond slot, padding included.
   EXPECT_NEAR(engine_bytes_per_particle(3, false, true) - engine_bytes_per_particle(3, false, false),
-              4 * 179.59 * 1.15, 1);
+              2 * 179.59 * 1.15, 1);
 }
 
 TEST(MemoryBudget, HostMemoryIsReadAndCanBeCapped) {
