@@ -58,9 +58,10 @@ PD_HD inline real surface_bond_value(uint16_t stored) {
 
 // A bond's reference vector as the set-up takes it: rest_j - rest_i on a grid of 1/1024 of the
 // spacing, so that on a box grid, whose bond vectors are whole spacings but for the rounding of
-// the particles' positions (1e-6 of a spacing), particles placed alike relative to the body's
-// faces get bit-identical factors (their bonds' factors are then stored once per such class,
-// cuda/engine/surface_rows.h). Elsewhere it moves a bond by at most 1/2048 of the spacing.
+// the particles' positions (about 1e-5 of a spacing), particles placed alike relative to the
+// body's faces get bit-identical factors (their bonds' factors are then stored once per such
+// class, surface_rows in cuda/engine/lattice_families.h). Elsewhere it moves a bond by at most
+// 1/2048 of the spacing.
 PD_HD inline Vec3 set_up_bond_vector(Vec3 rest_i, Vec3 rest_j, const Material& m) {
   const Vec3 xi = rest_j - rest_i;
   if (!(m.spacing > 0)) return xi;
