@@ -9,6 +9,8 @@
 # Results go to $OUT/before-after (default out/before-after); exits 1 when the golden lists differ.
 # BEFORE_AFTER_ENGINE_ONLY=1: only the perifrac program is built and the renderer is not timed
 # (a change to the engine alone, on a short device budget).
+# BEFORE_AFTER_WORKLOADS='NAME|BENCH ARGS;...': these `perifrac bench` workloads in place of the
+# standard ones (e.g. 'vase|--scene scenes/vase_drop.toml --scale 4.27 --steps 1000 --warmup 100').
 set -uo pipefail
 cd "$(dirname "$0")/.."
 old_src=$(cd "$1" && pwd)
@@ -53,6 +55,7 @@ workloads=(
 for model in bond_based state_based anisotropic plastic; do
   workloads+=("lattice-$model|--lattice 100 --model $model --steps 300 --warmup 30")
 done
+[ -n "${BEFORE_AFTER_WORKLOADS:-}" ] && IFS=';' read -r -a workloads <<<"$BEFORE_AFTER_WORKLOADS"
 # rate LOG ROW: the bond-upd/s column of the first row whose name starts with ROW.
 rate() { awk -v row="$2" 'index($0, row) == 1 { for (k = NF; k > 0; --k) if ($k ~ /e[+]/) { print $k; exit } }' "$1"; }
 printf '%-26s %-5s %-14s %-14s\n' workload build springforces step | tee "$OUT/speed.txt"

@@ -151,6 +151,11 @@ int bench_command(const BenchOptions& opt) {
               (long long)fam.lattice_particles, input.particles.size());
   if (fam.surface_rows > 0)
     std::printf("; their surface correction in %lld rows of factors", (long long)fam.surface_rows);
+  // A slice's threads loop as long as its longest family: the bonds' share of the slots is the
+  // share of those iterations that visit a bond (spread family sizes lower it).
+  if (fam.slots > 0)
+    std::printf("; bonds fill %.1f%% of the %d-wide slices", 100.0 * double(fam.bonds) / double(fam.slots),
+                kSliceWidth);
   std::printf("\n");
   print_kernel_table(std::cout, rows);
   std::printf("screened   springforces ran without the breaking path in %lld of the %lld steps\n",
@@ -176,9 +181,10 @@ int bench_command(const BenchOptions& opt) {
      << "\",\n  \"precision\": \"" << (sizeof(real) == 4 ? "float32" : "float64") << "\",\n  \"workload\": \""
      << workload << "\",\n  \"particles\": " << input.particles.size() << ",\n  \"bonds\": " << fam.bonds
      << ",\n  \"lattice_particles\": " << fam.lattice_particles
-     << ",\n  \"surface_rows\": " << fam.surface_rows << ",\n  \"steps\": " << opt.steps
-     << ",\n  \"screened_steps\": " << screened << ",\n  \"wall_seconds\": " << wall
-     << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds << ", \"engine\": " << engine_seconds << "}"
+     << ",\n  \"surface_rows\": " << fam.surface_rows << ",\n  \"bond_slots\": " << fam.slots
+     << ",\n  \"steps\": " << opt.steps << ",\n  \"screened_steps\": " << screened
+     << ",\n  \"wall_seconds\": " << wall << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds
+     << ", \"engine\": " << engine_seconds << "}"
      << ",\n  \"kernels\": [\n";
   for (size_t k = 0; k < rows.size(); ++k) {
     const auto& r = rows[k];

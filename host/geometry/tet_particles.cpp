@@ -4,7 +4,9 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "host/geometry/curve_order.h"
 #include "host/geometry/grid_particles.h"
+#include "host/geometry/particle_order.h"
 
 namespace pd {
 
@@ -25,7 +27,8 @@ ParticleGeometry tet_particles(TetMesh mesh) {
   }
   g.adjacency = adjacency_from_pairs(n, std::move(pairs));
   g.tets = std::move(mesh);
-  clock.lap("tet particles + adjacency");
+  reorder_particles(g, morton_order(g.position));
+  clock.lap("tet particles + adjacency, in curve order");
   compute_lambda(g);
   clock.lap("nearest distances");
   return g;

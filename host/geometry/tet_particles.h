@@ -11,7 +11,8 @@
 
 namespace pd {
 
-// Particles of an existing tet mesh (kept in the result).
+// Particles of an existing tet mesh (kept in the result, its tets reordered along a space-filling
+// curve: curve_order.h).
 ParticleGeometry tet_particles(TetMesh mesh);
 
 // TetGen on the closed solid, then tet_particles. MeshError naming `name` when the volume bound

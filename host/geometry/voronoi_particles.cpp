@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "host/geometry/convex_cell.h"
+#include "host/geometry/curve_order.h"
 #include "host/geometry/grid_particles.h"
 #include "host/geometry/inside_test.h"
 #include "host/geometry/poisson_disk.h"
@@ -243,6 +244,7 @@ ParticleGeometry voronoi_particles(const TriMesh& solid, double r, uint64_t seed
   g.kind = ElementKind::voronoi;
   clock.lap("inside test");
   g.position = poisson_disk_points(solid, inside, r, seed);
+  g.position = permuted(g.position, morton_order(g.position));  // particles in curve order
   clock.lap("Poisson-disk sites");
   const size_t n = g.size();
   const double rho = 2 * r;  // cells are cut to the cube of half-side rho around their site

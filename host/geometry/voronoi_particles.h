@@ -18,7 +18,8 @@ namespace pd {
 // the clipped surface triangles and the parts of the cell's faces inside the solid (those by
 // the same theorem in the face's plane, down to the inside intervals of the cell's edges).
 // `min_distance` is r. MeshError naming `name` when the solid would need more than max_particles
-// sites (estimated at 0.7 per r^3, the density of maximal Poisson-disk samples).
+// sites (estimated at 0.7 per r^3, the density of maximal Poisson-disk samples). The sites come
+// in space-filling-curve order (curve_order.h).
 ParticleGeometry voronoi_particles(const TriMesh& solid, double min_distance, uint64_t seed,
                                    int64_t max_particles, const std::string& name);
 

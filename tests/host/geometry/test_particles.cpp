@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 
 #include "host/geometry/grid_particles.h"
 #include "host/geometry/inside_test.h"
@@ -135,7 +136,8 @@ TEST(TetParticles, KeepSurfaceLeavesTheSurfaceTriangles) {
   EXPECT_GT(split.tets.boundary_faces.size(), sphere.triangles.size());
 }
 
-// Barycentres against TetGen's own files, read here independently.
+// Barycentres against TetGen's own files, read here independently: each particle's tet is one
+// of the file's (particles come in curve order, not the file's), at its barycentre.
 TEST(TetParticles, BarycentresMatchTetgenFiles) {
   if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
   test::ScratchDir dir("tetgen");
@@ -151,11 +153,19 @@ TEST(TetParticles, BarycentresMatchTetgenFiles) {
   for (size_t k = 0; k < nv; ++k) node >> index >> v[k][0] >> v[k][1] >> v[k][2];
   ele >> nt >> dim >> a;
   ASSERT_EQ(nt, g.size());
+  std::map<std::array<int32_t, 4>, int> file_tets;  // corners sorted -> times seen
   for (size_t t = 0; t < nt; ++t) {
-    size_t c[4];
+    std::array<int32_t, 4> c{};
     ele >> index >> c[0] >> c[1] >> c[2] >> c[3];
-    const Vec3d expected = 0.25 * (v[c[0]] + v[c[1]] + v[c[2]] + v[c[3]]);
+    std::sort(c.begin(), c.end());
+    ++file_tets[c];
+  }
+  for (size_t t = 0; t < nt; ++t) {
+    std::array<int32_t, 4> c = g.tets.tets[t];
+    const Vec3d expected = 0.25 * (v[size_t(c[0])] + v[size_t(c[1])] + v[size_t(c[2])] + v[size_t(c[3])]);
     for (int k = 0; k < 3; ++k) ASSERT_NEAR(g.position[t][k], expected[k], 1e-14);
+    std::sort(c.begin(), c.end());
+    ASSERT_EQ(--file_tets[c], 0) << "tet " << t << " is not one of the file's, or is there twice";
   }
 }
 
