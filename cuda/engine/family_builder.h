@@ -94,10 +94,16 @@ void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned
                     const MaterialTable& materials, const KernelFeatures& features, Backend backend,
                     FamilyStats& family) {
   Exec& exec = mem.exec();
-  real horizon = 0;
-  for (int m = 0; m < materials.count; ++m) horizon = std::max(horizon, materials.m[m].family_radius());
+  // Cells no narrower than the longest reach a bond may have (family_reach).
+  double radius = 0;
+  for (int m = 0; m < materials.count; ++m) radius = std::max(radius, double(materials.m[m].family_radius()));
+  std::vector<Vec4> rest;
+  s.rest.download(rest);
+  double extent = 0;
+  for (const Vec4& x : rest) extent = std::max(extent, largest_coordinate(xyz(x)));
   SpatialHash<Exec> hash;
-  hash.allocate(mem, s.n, real(horizon * (1.0 + 2 * kHorizonSlack)));
+  hash.allocate(mem, s.n,
+                real((radius * (1.0 + 2 * kHorizonSlack) + 2 * kPositionSlack * extent) * (1.0 + 1e-6)));
   ParticlesView p = s.particles();
   launch_reset_bins(exec, "family/reset", hash.view(true));
   launch_collection<false>(exec, "family/collection", p, hash.view(false), hash.view(true));

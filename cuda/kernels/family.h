@@ -12,21 +12,40 @@
 
 namespace pd {
 
-// Relative slack on delta so lattice points at exactly delta survive round-off.
+// Relative slack on the family radius (itself rounded to float) so that lattice points at exactly
+// the radius survive its round-off.
 constexpr double kHorizonSlack = 1e-6;
+// The positions' round-off, relative to the largest coordinate magnitude of the two ends: each
+// float coordinate lies within 2^-24 of its magnitude of the exact point, so a difference's length
+// is off by at most sqrt(3) 2^-24 times the two magnitudes' sum; 2^-22 keeps a margin.
+constexpr double kPositionSlack = 0x1p-22;
+
+// The largest magnitude among a position's coordinates.
+PD_HD inline double largest_coordinate(Vec3 x) {
+  return fmax(fabs(double(x.x)), fmax(fabs(double(x.y)), fabs(double(x.z))));
+}
+
+// The largest reference distance of a bond between particles at `a` and `b` whose family radius is
+// `radius`: so that lattice points at exactly the radius are partners wherever the body sits (a
+// relative slack alone dropped them a few spacings from the origin: at 0.16 m with a 1 mm spacing
+// the positions' round-off is 2e-6 of delta). The same from both ends.
+PD_HD inline double family_reach(double radius, Vec3 a, Vec3 b) {
+  return radius * (1.0 + kHorizonSlack) + kPositionSlack * (largest_coordinate(a) + largest_coordinate(b));
+}
 
 template <class Visit>
 PD_HD inline void for_each_family_member(int32_t i, ParticlesView p, HashView h, const MaterialTable& mt,
                                          Visit visit) {
   const Vec3 xi = xyz(p.rest[i]);
-  const double delta = double(mt.m[p.material[i]].family_radius()) * (1.0 + kHorizonSlack);
+  const double radius = double(mt.m[p.material[i]].family_radius());
   const int32_t body = p.body[i];
   auto pos = [&](int32_t j) { return xyz(p.rest[j]); };
   for_each_nearby(xi, h, pos, [&](int32_t j) {
     if (j == i || p.body[j] != body) return;
-    const double dx = double(p.rest[j].x) - xi.x, dy = double(p.rest[j].y) - xi.y,
-                 dz = double(p.rest[j].z) - xi.z;
-    if (dx * dx + dy * dy + dz * dz <= delta * delta) visit(j);
+    const Vec3 xj = xyz(p.rest[j]);
+    const double dx = double(xj.x) - xi.x, dy = double(xj.y) - xi.y, dz = double(xj.z) - xi.z;
+    const double reach = family_reach(radius, xi, xj);
+    if (dx * dx + dy * dy + dz * dz <= reach * reach) visit(j);
   });
 }
 

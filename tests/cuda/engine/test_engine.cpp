@@ -31,17 +31,18 @@ std::vector<std::vector<int32_t>> families(Engine& e) {
   return out;
 }
 
-// O(N^2) reference: same body, distance at most delta (with the same slack).
+// O(N^2) reference: same body, distance at most the family radius (with the same slack).
 std::vector<std::vector<int32_t>> brute_force_families(const SimulationInput& in) {
   const auto& ps = in.particles;
   std::vector<std::vector<int32_t>> out(ps.size());
   for (size_t i = 0; i < ps.size(); ++i) {
-    const double delta = double(in.materials.m[ps.material[i]].family_radius()) * (1 + kHorizonSlack);
+    const double radius = double(in.materials.m[ps.material[i]].family_radius());
     for (size_t j = 0; j < ps.size(); ++j) {
       if (i == j || ps.body[i] != ps.body[j]) continue;
       const double dx = double(ps.rest[j].x) - ps.rest[i].x, dy = double(ps.rest[j].y) - ps.rest[i].y,
                    dz = double(ps.rest[j].z) - ps.rest[i].z;
-      if (dx * dx + dy * dy + dz * dz <= delta * delta) out[i].push_back(int32_t(j));
+      const double reach = family_reach(radius, ps.rest[i], ps.rest[j]);
+      if (dx * dx + dy * dy + dz * dz <= reach * reach) out[i].push_back(int32_t(j));
     }
   }
   return out;
@@ -60,6 +61,23 @@ TEST(EngineFamilies, LatticeInteriorNeighbourCounts) {
     EXPECT_EQ(e->family_stats().max, int32_t(expected));
     EXPECT_EQ(fam, brute_force_families(in));
   }
+}
+
+// Lattice points at exactly the horizon are partners wherever the body sits: the same block half a
+// metre from the origin (its float positions rounded at that magnitude, 1e-5 of delta; a relative
+// slack of 1e-6 alone dropped such bonds) has the families it has at the origin.
+TEST(EngineFamilies, HorizonPointsKeptFarFromTheOrigin) {
+  SimulationInput near = lattice_block(9, 9, 9, 1e-3);
+  near.materials.m[0].partial_volumes = false;
+  SimulationInput far = near;
+  for (size_t i = 0; i < far.particles.size(); ++i) {
+    const Vec3 x = near.particles.rest[i];
+    far.particles.rest[i] = {real(0.5 + double(x.x)), real(0.3 + double(x.y)), real(-0.4 + double(x.z))};
+  }
+  auto at_origin = make_cpu_engine(near), away = make_cpu_engine(far);
+  EXPECT_EQ(families(*away), families(*at_origin));
+  EXPECT_EQ(away->family_stats().max, 122);
+  EXPECT_EQ(families(*away), brute_force_families(far));
 }
 
 TEST(EngineFamilies, RandomPointsMatchBruteForce) {
