@@ -168,7 +168,7 @@ class EngineImpl final : public Engine {
 
   void read_state(ParticleState& out) override { state_.read_frame(out); }
 
-  void read_bonds(BondLists& out) override { out = download_bonds(state_); }
+  void read_bonds(BondLists& out) override { download_bonds(state_, out); }
 
   int64_t broken_bonds() override { return reduce_broken_bonds(exec_, bonds(), state_.intact.data()); }
 

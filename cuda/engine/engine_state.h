@@ -15,11 +15,12 @@
 
 namespace pd {
 
-// Downloads one field for a frame: whole, or the xyz part of each element.
+// Downloads one field for a frame into `out` (its memory kept when its size holds): whole, or the
+// xyz part of each element, through `whole`, kept likewise.
 template <FieldFrame kFrame, class T, class Exec, class Out>
-void read_frame_field(const DeviceArray<T, Exec>& array, std::vector<Out>& out) {
+void read_frame_field(const DeviceArray<T, Exec>& array, std::vector<Out>& out, std::vector<Vec4>& whole) {
   if constexpr (kFrame == kFrameXyz) {
-    std::vector<T> whole;
+    static_assert(std::is_same_v<T, Vec4>, "an xyz frame field is stored as Vec4");
     array.download(whole);
     out.resize(whole.size());
     for (size_t i = 0; i < whole.size(); ++i) out[i] = xyz(whole[i]);
@@ -116,10 +117,10 @@ struct EngineState {
 #undef PD_STATE_SAVED
   }
 
-  // The fields with a frame role, whole or their xyz part (ParticleState).
+  // The fields with a frame role, whole or their xyz part (ParticleState), into `out`'s memory.
   void read_frame(ParticleState& out) const {
 #define PD_STATE_FRAME(name, Type, length, when, saved, halo, frame) \
-  PD_IF_FRAME(frame, read_frame_field<frame>(name, out.name);)
+  PD_IF_FRAME(frame, read_frame_field<frame>(name, out.name, frame_whole_);)
     PD_PARTICLE_FIELDS(PD_STATE_FRAME)
 #undef PD_STATE_FRAME
   }
@@ -150,6 +151,9 @@ struct EngineState {
   void upload_saved(const EngineSnapshot& in) {
     for_each_saved(in, [](const char*, auto& array, const auto& host) { array.upload(host); });
   }
+
+ private:
+  mutable std::vector<Vec4> frame_whole_;  // read_frame's download of an xyz field, kept for the next
 };
 
 }  // namespace pd

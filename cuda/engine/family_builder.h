@@ -49,13 +49,20 @@ struct LatticeState {
   }
 };
 
-// Families as stored, copied back to the host.
+// Families as stored, copied back into `out`, whose vectors keep their memory when their size
+// holds: a run reads its bonds every frame, and fresh memory for them each time cost more than
+// the copy (the pages touched anew; bench/NOTES.md).
 template <class Exec>
-BondLists download_bonds(const EngineState<Exec>& s) {
-  BondLists out;
+void download_bonds(const EngineState<Exec>& s, BondLists& out) {
   s.slice_offset.download(out.slice_offset);
   s.count.download(out.count);
   s.neighbor.download(out.neighbor);
+}
+
+template <class Exec>
+BondLists download_bonds(const EngineState<Exec>& s) {
+  BondLists out;
+  download_bonds(s, out);
   return out;
 }
 

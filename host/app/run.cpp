@@ -103,9 +103,8 @@ RestData rest_data(const ParticleSet& ps) {
 }
 
 // Gathers one frame's per-particle data from the engine.
-FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count,
-                     int64_t frame) {
-  ParticleState s;
+FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame,
+                     ParticleState& s) {
   engine.read_state(s);
   FrameData f;
   f.frame = frame;
@@ -381,7 +380,7 @@ class RunOutput {
   void write_frame(int64_t frame, std::function<void(const std::string&)> done = {}) {
     drain();
     Engine& engine = *sim_.engine;
-    FrameData f = frame_data(engine, sim_.setup.input.particles, bonds_.count, frame);
+    FrameData f = frame_data(engine, sim_.setup.input.particles, bonds_.count, frame, state_);
     if (frame > 0) engine.read_bonds(bonds_);
     auto job = [this, frame, f = std::move(f), colliders = engine.colliders(),
                 done = std::move(done)]() mutable {
@@ -456,6 +455,7 @@ class RunOutput {
   std::string out_;
   std::unique_ptr<LiveRender> live_;
   PvdSeries series_;
+  ParticleState state_;  // the engine's state as last read back (its memory kept for the next frame)
   BondLists bonds_;
   FragmentOutput fragments_;
   EnergyLog energy_log_;
@@ -667,9 +667,28 @@ class StepPacer {
   int64_t chunk_ = 1;
 };
 
+// Where the frame loop's wall time goes, printed at the end of a run: what is not stepping is
+// what the output costs the run (issue 27: at most 15% of the stepping).
+struct LoopTimes {
+  double total = 0;   // the whole loop
+  double steps = 0;   // advancing the engine (kernels, and the host work between them)
+  double drain = 0;   // waiting for the last frame's output thread
+  double checks = 0;  // the blow-up checks and the energy
+  double read = 0;    // the frame's particles and bonds read back (write_frame's own part)
+  double checkpoints = 0;
+
+  // Seconds since `t`, added to `into`; returns now.
+  static std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point t, double& into) {
+    const auto now = std::chrono::steady_clock::now();
+    into += std::chrono::duration<double>(now - t).count();
+    return now;
+  }
+};
+
 // The frame loop: simulates and writes the frames from start.first_frame on, with checkpoints and a
 // progress line. Returns kExitOk, or kExitBlowUp / kExitInterrupted when it stopped early.
-int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const RunStart& start) {
+int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const RunStart& start,
+               LoopTimes& times) {
   Engine& engine = *sim.engine;
   const Scene& scene = sim.scene;
   auto last_checkpoint = std::chrono::steady_clock::now();
@@ -678,6 +697,7 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
   StepPacer pacer;
   const double growth_limit = energy_growth_limit(sim, opt);
   for (int64_t frame = start.first_frame; frame <= scene.frames; ++frame) {
+    auto t = std::chrono::steady_clock::now();
     // (A checkpoint written mid-frame resumes inside the frame: frame f ends at step f * steps.)
     if (!pacer.advance_to(engine, frame * scene.steps_per_frame)) {
       write_run_checkpoint(sim, opt, output, start.energy0, frame - 1);
@@ -688,7 +708,9 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
           tty ? "\n" : "", (long long)frame, (long long)engine.step(), output.dir().c_str());
       return kExitInterrupted;
     }
+    t = LoopTimes::lap(t, times.steps);
     output.drain();  // the last frame's files are complete before anything else is written
+    t = LoopTimes::lap(t, times.drain);
     if (stopped_by_non_finite(sim, frame, output.dir())) return kExitBlowUp;
     const Energy energy = engine.energy();
     const double excess = energy_excess(start.energy0, energy);
@@ -696,14 +718,17 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
       return kExitBlowUp;
     output.energy_log().add(frame, engine.step(), engine.time(), energy);
     const auto now = std::chrono::steady_clock::now();
+    t = LoopTimes::lap(t, times.checks);
     const Progress progress = progress_after(sim, frame, start.first_frame,
                                              std::chrono::duration<double>(now - t0).count(), excess);
     output.write_frame(
         frame, [progress, tty](const std::string& fragments) { print_progress(progress, fragments, tty); });
+    t = LoopTimes::lap(t, times.read);
 
     if (checkpoint_due(opt, frame, std::chrono::duration<double>(now - last_checkpoint).count())) {
       write_run_checkpoint(sim, opt, output, start.energy0, frame);
       last_checkpoint = now;
+      LoopTimes::lap(t, times.checkpoints);
     }
     if (InterruptGuard::signal_received()) {
       output.drain();
@@ -713,14 +738,22 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
       return kExitInterrupted;
     }
   }
+  const auto t = std::chrono::steady_clock::now();
   output.drain();
+  LoopTimes::lap(t, times.drain);
+  times.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (tty) std::printf("\n");
   return kExitOk;
 }
 
 // The end of a run: the kernel table, the end-of-run outputs and where they are.
-void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame) {
+void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, const LoopTimes& times) {
   const Scene& scene = sim.scene;
+  std::printf(
+      "frame loop %.2f s (%.2f times the stepping): stepping %.2f s, waiting for the output thread %.2f s, "
+      "frames read back %.2f s, checks and energy %.2f s, checkpoints %.2f s\n",
+      times.total, times.total / std::max(times.steps, 1e-9), times.steps, times.drain, times.read,
+      times.checks, times.checkpoints);
   const int64_t steps = (scene.frames - first_frame + 1) * scene.steps_per_frame;
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(sim.backend));
   print_kernel_table(std::cout,
@@ -754,8 +787,9 @@ int run_command(const RunOptions& options) {
 
   // From here on, SIGINT/SIGTERM ends the run after the frame with a checkpoint.
   const InterruptGuard interrupt;
-  if (const int code = run_frames(sim, opt, output, start); code != kExitOk) return code;
-  finish_run(sim, output, start.first_frame);
+  LoopTimes times;
+  if (const int code = run_frames(sim, opt, output, start, times); code != kExitOk) return code;
+  finish_run(sim, output, start.first_frame, times);
   return kExitOk;
 }
 

@@ -1,10 +1,11 @@
 // A run's frames written on a thread of their own while the engine steps on (host/app/run.cpp,
 // RunOutput::write_frame) give the files of frames written before stepping on
 // (PERIFRAC_OUTPUT_THREAD=0), bit for bit, checkpoints and the fragment outputs included; a bad
-// value of the variable is one error line before any work.
+// value of the variable is one error line before any work; the run reports where its loop's time went.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -53,6 +54,29 @@ TEST_F(RunOutputThread, WritesTheFilesOfTheSerialOrder) {
     ASSERT_NE(next, std::string::npos) << "frame " << f << "\n" << log;
     at = next;
   }
+}
+
+// The run ends with its frame loop's split: the parts are measured, none negative, and they add up
+// to the loop's wall time within what lies between them (the progress line, the loop's own work).
+TEST_F(RunOutputThread, EndsWithTheFrameLoopSplit) {
+  ASSERT_EQ(run("1", path("split")), 0) << testing::read_all(path("split.log"));
+  const std::string log = testing::read_all(path("split.log"));
+  const size_t at = log.find("frame loop ");
+  ASSERT_NE(at, std::string::npos) << log;
+  double total = 0, ratio = 0, steps = 0, drain = 0, read = 0, checks = 0, checkpoints = 0;
+  ASSERT_EQ(std::sscanf(log.c_str() + at,
+                        "frame loop %lf s (%lf times the stepping): stepping %lf s, waiting for the output "
+                        "thread %lf s, frames read back %lf s, checks and energy %lf s, checkpoints %lf s",
+                        &total, &ratio, &steps, &drain, &read, &checks, &checkpoints),
+            7)
+      << log.substr(at, 300);
+  EXPECT_GT(steps, 0);
+  for (double part : {drain, read, checks, checkpoints}) EXPECT_GE(part, 0);
+  EXPECT_GT(checkpoints, 0);  // a checkpoint every 2 frames
+  const double parts = steps + drain + read + checks + checkpoints;
+  EXPECT_LE(parts, total + 0.01);
+  EXPECT_GE(parts, 0.9 * total - 0.01);
+  EXPECT_NEAR(ratio, total / steps, 0.01 * ratio + 0.01);
 }
 
 TEST_F(RunOutputThread, BadValueIsRefusedBeforeTheWork) {
