@@ -5,6 +5,7 @@
 # through host memory and not overlapped. Prints a table (bond-updates/s end to end, efficiency
 # against one GPU) after the logs; the JSON of each run goes to $OUT/mpi-scaling/json.
 #   scripts/mpi-scaling.sh [BINARY] [MAX_GPUS]
+#   MPI_SCALING_RUNS="strong 1 128 200; weak 4 512 200" scripts/mpi-scaling.sh ...   (only these runs)
 # Glass plate sizes: --scale 32 is 4.12M particles (0.46G bonds), 128 is 16.8M, 512 is 67M,
 # 704 is 92M (1.0e10 bonds).
 set -uo pipefail
@@ -36,15 +37,24 @@ run() {
 
 gpus=(1)
 for g in 2 4 8; do [ "$g" -le "$max" ] && gpus+=("$g"); done
-for g in "${gpus[@]}"; do run strong "$g" 32 400; done
-for g in "${gpus[@]:1}"; do
-  run strong-host-halo "$g" 32 400 PERIFRAC_HALO=host
-  run strong-not-overlapped "$g" 32 400 PERIFRAC_HALO_OVERLAP=0
-done
-for g in "${gpus[@]}"; do run strong "$g" 128 200; done
-for g in "${gpus[@]:1}"; do run weak "$g" $((128 * g)) 200; done
-# Past 1e10 bonds (92M particles) on every GPU of the host.
-run large "${gpus[-1]}" 704 100
+if [ -n "${MPI_SCALING_RUNS:-}" ]; then
+  # Only these runs: "NAME GPUS SCALE STEPS [VAR=VALUE ...]; ..." (e.g. "strong 1 128 200; weak 4 512 200").
+  IFS=';' read -ra picked <<<"$MPI_SCALING_RUNS"
+  for entry in "${picked[@]}"; do
+    read -ra args <<<"$entry"
+    [ "${#args[@]}" -ge 4 ] && run "${args[@]}"
+  done
+else
+  for g in "${gpus[@]}"; do run strong "$g" 32 400; done
+  for g in "${gpus[@]:1}"; do
+    run strong-host-halo "$g" 32 400 PERIFRAC_HALO=host
+    run strong-not-overlapped "$g" 32 400 PERIFRAC_HALO_OVERLAP=0
+  done
+  for g in "${gpus[@]}"; do run strong "$g" 128 200; done
+  for g in "${gpus[@]:1}"; do run weak "$g" $((128 * g)) 200; done
+  # Past 1e10 bonds (92M particles) on every GPU of the host.
+  run large "${gpus[-1]}" 704 100
+fi
 
 # Efficiency: rate / (GPUs x one GPU's rate): strong against one GPU at the same scale; weak and
 # large against one GPU at 128.

@@ -58,7 +58,7 @@ class EngineImpl final : public Engine {
       const HaloOptions halo = halo_options_from_env();
       halo_ = Halo<Exec>(mem_, *rank, *comm, halo);
       overlap_ = halo.overlap < 0 ? !halo_.device_link() : halo.overlap == 1;
-      ghosts_ = ContactGhosts<Exec>(*rank, in.particles, *comm);
+      ghosts_ = ContactGhosts<Exec>(*rank, *comm);
       world_ = comm;
     }
     build_families(mem_, state_, owned_, materials_, features_, backend(), family_);

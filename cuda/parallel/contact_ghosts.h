@@ -1,12 +1,12 @@
 // Contact ghosts of a partitioned run: whenever the contact lists are built, each rank receives
 // the other ranks' particles that lie, at their current positions, within the contact reach of
 // the box around its own (except those it already holds as bond ghosts), so fragments that fly
-// across a rank boundary still collide. They are placed after the bond ghosts, in ascending
-// global index, and refreshed by the halo every step until the next build.
+// across a rank boundary still collide. They are chosen and packed where the state lives, placed
+// after the bond ghosts in ascending global index, and refreshed by the halo every step until
+// the next build.
 #pragma once
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -28,26 +28,41 @@ struct GhostRecord {
   uint16_t pad;
 };
 
+// An axis-aligned box in double precision. `+` is the union and the default (empty) box its
+// identity, so a backend's sum reduction gives the box around a set of points (exactly, in any
+// order).
+struct GhostBox {
+  double lo[3] = {1e300, 1e300, 1e300};
+  double hi[3] = {-1e300, -1e300, -1e300};
+
+  PD_HD GhostBox operator+(const GhostBox& o) const {
+    GhostBox u;
+    for (int a = 0; a < 3; ++a) {
+      u.lo[a] = lo[a] < o.lo[a] ? lo[a] : o.lo[a];
+      u.hi[a] = hi[a] > o.hi[a] ? hi[a] : o.hi[a];
+    }
+    return u;
+  }
+};
+
+// A particle's current position, X + u, in double precision.
+PD_HD inline GhostBox point_box(const Vec4& x, const Vec4& u) {
+  GhostBox b;
+  b.lo[0] = b.hi[0] = double(x.x) + u.x;
+  b.lo[1] = b.hi[1] = double(x.y) + u.y;
+  b.lo[2] = b.hi[2] = double(x.z) + u.z;
+  return b;
+}
+
+// The selection runs where the state lives (on the GPU of a CUDA rank): the box, each peer's test
+// and the packing of the chosen particles' records are kernels, and only those records travel to
+// the host, so a rebuild costs a few passes over the own particles instead of downloading them.
 template <class Exec>
 class ContactGhosts {
  public:
   ContactGhosts() = default;
-  // `local`: the rank's particles in layout order (own first).
-  ContactGhosts(const RankLayout& layout, const ParticleSet& local, Comm& comm)
-      : comm_(&comm), owned_(layout.owned), held_(int32_t(layout.global.size())), global_(layout.global) {
-    rest_.resize(size_t(owned_));
-    material_.assign(local.material.begin(), local.material.begin() + owned_);
-    body_.assign(local.body.begin(), local.body.begin() + owned_);
-    for (int32_t i = 0; i < owned_; ++i)
-      rest_[size_t(i)] = with_w(local.rest[size_t(i)], local.volume[size_t(i)]);
-    by_global_.resize(size_t(owned_));
-    for (int32_t i = 0; i < owned_; ++i) by_global_[size_t(i)] = i;
-    std::sort(by_global_.begin(), by_global_.end(),
-              [&](int32_t a, int32_t b) { return global_[size_t(a)] < global_[size_t(b)]; });
-    bond_ghost_of_.assign(layout.send.size(), std::vector<uint8_t>(size_t(owned_), 0));
-    for (size_t s = 0; s < layout.send.size(); ++s)
-      for (int32_t i : layout.send[s]) bond_ghost_of_[s][size_t(i)] = 1;
-  }
+  ContactGhosts(const RankLayout& layout, Comm& comm)
+      : comm_(&comm), owned_(layout.owned), held_(int32_t(layout.global.size())), send_(layout.send) {}
 
   // Replaces the contact ghosts in `state` (after its own particles and bond ghosts) with those
   // within `reach` of this rank's own now, and gives the halo their lists. Returns the particles
@@ -55,27 +70,16 @@ class ContactGhosts {
   int32_t gather(DeviceMemory<Exec>& mem, EngineState<Exec>& state, Halo<Exec>& halo, double reach) {
     const int ranks = comm_->size();
     const size_t peers = static_cast<size_t>(ranks);
-    std::vector<Vec4> disp(static_cast<size_t>(owned_));
-    std::vector<Vec3> vel(static_cast<size_t>(owned_));
     Exec& exec = mem.exec();
-    exec.download(disp.data(), state.disp.data(), disp.size() * sizeof(Vec4));
-    exec.download(vel.data(), state.vel.data(), vel.size() * sizeof(Vec3));
-    // Own particles' current positions, once for the box and every peer's test.
-    std::vector<std::array<double, 3>> position(static_cast<size_t>(owned_));
-    for (int32_t i = 0; i < owned_; ++i) {
-      const Vec4 &x = rest_[size_t(i)], &u = disp[size_t(i)];
-      position[size_t(i)] = {double(x.x) + u.x, double(x.y) + u.y, double(x.z) + u.z};
-    }
+    if (bond_ghost_of_.empty()) allocate(mem);
+    const Vec4* rest = state.rest.data();
+    const Vec4* disp = state.disp.data();
 
     // Every rank's box around its own particles' current positions.
-    std::vector<double> box = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
-    for (int32_t i = 0; i < owned_; ++i) {
-      const std::array<double, 3>& x = position[size_t(i)];
-      for (int a = 0; a < 3; ++a) {
-        box[size_t(a)] = std::min(box[size_t(a)], x[a]);
-        box[size_t(a + 3)] = std::max(box[size_t(a + 3)], x[a]);
-      }
-    }
+    const GhostBox mine = exec.template reduce_sum<GhostBox>(
+        "ghosts/box", owned_, [=] PD_HD(int64_t i) { return point_box(rest[i], disp[i]); });
+    std::vector<double> box(mine.lo, mine.lo + 3);
+    box.insert(box.end(), mine.hi, mine.hi + 3);
     std::vector<std::vector<char>> out(peers, to_bytes(box)), in(peers);
     for (int r = 0; r < ranks; ++r)
       in[size_t(r)].resize(r == comm_->rank() ? 0 : box.size() * sizeof(double));
@@ -86,21 +90,11 @@ class ContactGhosts {
     // ascending global index (the order the peer places them in).
     std::vector<std::vector<int32_t>> send(peers), recv(peers);
     std::vector<std::vector<GhostRecord>> records(peers);
-    const double margin = reach * 1.01;
     for (int s = 0; s < ranks; ++s) {
       if (s == comm_->rank()) continue;
       const std::vector<double> peer = from_bytes<double>(in[size_t(s)]);
-      for (const int32_t i : by_global_) {
-        if (bond_ghost_of_[size_t(s)][size_t(i)]) continue;
-        const std::array<double, 3>& x = position[size_t(i)];
-        bool near = true;
-        for (int a = 0; a < 3; ++a)
-          near = near && x[a] >= peer[size_t(a)] - margin && x[a] <= peer[size_t(a + 3)] + margin;
-        if (!near) continue;
-        send[size_t(s)].push_back(i);
-        records[size_t(s)].push_back({rest_[size_t(i)], disp[size_t(i)], vel[size_t(i)], global_[size_t(i)],
-                                      body_[size_t(i)], material_[size_t(i)], 0});
-      }
+      select(mem, state, peer, reach * 1.01, bond_ghost_of_[size_t(s)].data(), send[size_t(s)],
+             records[size_t(s)]);
     }
     // Their counts, then the records.
     for (int s = 0; s < ranks; ++s) {
@@ -159,7 +153,81 @@ class ContactGhosts {
 
   int32_t held() const { return held_; }
 
+  // (Public only because nvcc takes no device lambda in a private member function.)
+  // The own particles whose current position lies within `margin` of the box `peer` and that
+  // the peer does not hold (`held`): their local indices into `send` and their records into
+  // `records`, both in ascending global index.
+  void select(DeviceMemory<Exec>& mem, EngineState<Exec>& state, const std::vector<double>& peer,
+              double margin, const uint8_t* held, std::vector<int32_t>& send,
+              std::vector<GhostRecord>& records) {
+    Exec& exec = mem.exec();
+    GhostBox near_box;
+    for (int a = 0; a < 3; ++a) {
+      near_box.lo[a] = peer[size_t(a)] - margin;
+      near_box.hi[a] = peer[size_t(a + 3)] + margin;
+    }
+    const Vec4* rest = state.rest.data();
+    const Vec4* disp = state.disp.data();
+    const Vec3* vel = state.vel.data();
+    const int32_t* global = state.global_id.data();
+    const int32_t* body = state.body.data();
+    const uint16_t* material = state.material.data();
+    if (chosen_.size() == 0) {
+      chosen_ = mem.template make<int64_t>(size_t(owned_));
+      slot_ = mem.template make<int64_t>(size_t(owned_));
+    }
+    int64_t* chosen = chosen_.data();
+    int64_t* slot = slot_.data();
+    exec.parallel_for("ghosts/select", owned_, [=] PD_HD(int64_t i) {
+      const GhostBox x = point_box(rest[i], disp[i]);
+      bool near = !held[i];
+      for (int a = 0; a < 3; ++a) near = near && x.lo[a] >= near_box.lo[a] && x.lo[a] <= near_box.hi[a];
+      chosen[i] = near ? 1 : 0;
+    });
+    const int64_t count = exec.exclusive_scan(chosen, slot, owned_);
+    send.clear();
+    records.clear();
+    if (count == 0) return;
+    if (size_t(count) > picked_.size()) {
+      mem.drop(picked_);
+      mem.drop(packed_);
+      picked_ = mem.template make<int32_t>(size_t(count));
+      packed_ = mem.template make<GhostRecord>(size_t(count));
+    }
+    int32_t* picked = picked_.data();
+    GhostRecord* packed = packed_.data();
+    exec.parallel_for("ghosts/pack", owned_, [=] PD_HD(int64_t i) {
+      if (!chosen[i]) return;
+      const int64_t k = slot[i];
+      picked[k] = int32_t(i);
+      packed[k] = GhostRecord{rest[i], disp[i], vel[i], global[i], body[i], material[i], 0};
+    });
+    std::vector<int32_t> local(static_cast<size_t>(count));
+    std::vector<GhostRecord> got(static_cast<size_t>(count));
+    exec.download(local.data(), picked, local.size() * sizeof(int32_t));
+    exec.download(got.data(), packed, got.size() * sizeof(GhostRecord));
+    std::vector<size_t> order(got.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return got[a].global_id < got[b].global_id; });
+    send.resize(order.size());
+    records.resize(order.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+      send[k] = local[order[k]];
+      records[k] = got[order[k]];
+    }
+  }
+
  private:
+  // Per peer, which own particles it holds as bond ghosts.
+  void allocate(DeviceMemory<Exec>& mem) {
+    for (const std::vector<int32_t>& list : send_) {
+      std::vector<uint8_t> flags(size_t(owned_), 0);
+      for (int32_t i : list) flags[size_t(i)] = 1;
+      bond_ghost_of_.push_back(mem.make_from(flags));
+    }
+  }
+
   // Writes `values` at the contact ghosts' place of a state array.
   template <class T>
   void place(Exec& exec, T* array, const std::vector<T>& values) const {
@@ -167,13 +235,12 @@ class ContactGhosts {
   }
 
   Comm* comm_ = nullptr;
-  int32_t owned_ = 0, held_ = 0;  // own particles; own and bond ghosts
-  std::vector<int32_t> global_;
-  std::vector<int32_t> by_global_;  // own particles' local indices in ascending global index
-  std::vector<Vec4> rest_;
-  std::vector<uint16_t> material_;
-  std::vector<int32_t> body_;
-  std::vector<std::vector<uint8_t>> bond_ghost_of_;  // per peer, per own particle
+  int32_t owned_ = 0, held_ = 0;            // own particles; own and bond ghosts
+  std::vector<std::vector<int32_t>> send_;  // per peer, the own particles it holds as bond ghosts
+  std::vector<DeviceArray<uint8_t, Exec>> bond_ghost_of_;  // the same as flags per own particle
+  DeviceArray<int64_t, Exec> chosen_, slot_;               // per own particle: chosen, its place
+  DeviceArray<int32_t, Exec> picked_;                      // the chosen's local indices
+  DeviceArray<GhostRecord, Exec> packed_;                  // and their records
 };
 
 }  // namespace pd
