@@ -229,12 +229,10 @@ struct Material {
   // Bond-based:
   real micromodulus = 0;  // c = 18 K / sum_j |xi| beta V_j over an interior lattice family [N/m^6]
   // State-based:
-  real bulk_modulus = 0;       // K [Pa]
-  real shear_modulus = 0;      // mu [Pa]
-  real damage_alpha = 0;       // alpha of Chen eq. 18 (either model)
-  real damage_threshold = 0;   // phi_t: damage below it raises no limit (state_based.h damage_raise)
-  real damage_over_scale = 1;  // 1 / (1 - phi_t)
-  uint8_t chen_fracture = 1;   // 1: Chen eq. 18 from both ends; 0: stretch > max(tau_i, tau_j)
+  real bulk_modulus = 0;      // K [Pa]
+  real shear_modulus = 0;     // mu [Pa]
+  real damage_alpha = 0;      // alpha of Chen eq. 18
+  uint8_t chen_fracture = 1;  // 1: Chen eq. 18 from both ends; 0: stretch > max(tau_i, tau_j)
   uint8_t plastic = 0;
   real yield_psi0 = 0;     // Mitchell's yield constant psi_0 (Chen eq. 12)
   real plastic_limit = 0;  // Chen's gamma as a stretch: |e^p| <= plastic_limit |xi| (eq. 15)

@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
 # Shards, not grit (issue 31): the gallery's breaking scenes at their full size, each with a sweep of
-# the material's damage_alpha and damage_threshold (the strain limit times 1 + alpha * damage, or
-# with a threshold phi_t, 1 + alpha (damage - phi_t) / (1 - phi_t) above it), and what the breakage
+# the material's damage_alpha (the strain limit times 1 + alpha * damage), and what the breakage
 # leaves at the last frame: the share of the mass in single particles (dust), the heaviest piece's
 # share, the pieces in all and those of at least 8 particles, and the broken bonds. A still of the
 # last frame per run (damage colours: the crack pattern) goes to $OUT/shards-sweep/stills.
@@ -19,26 +18,22 @@ OUT=${OUT:-out}/shards-sweep
 mkdir -p "$OUT/stills"
 [[ -x $bin ]] || { echo "shards-sweep: no perifrac binary at '$bin'" >&2; exit 2; }
 
-# name | scene | material | settings, each ALPHA or ALPHA:THRESHOLD (the first is the scene's own);
-# SWEEP_<name> (e.g. SWEEP_vase="0 8:0.6") replaces a scene's list
+# name | scene | material | alphas (the first is the scene's own)
 SWEEPS=(
-  "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-0 5 10 10:0.6 20:0.6 20:0.75}"
-  "vase|vase_drop|clay|${SWEEP_vase:-0 3 10:0.6 20:0.7}"
-  "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-0.5 2 10:0.6 20:0.7}"
+  "glass_plate|glass_plate_projectile|glass|0 2 5 10"
+  "vase|vase_drop|clay|0 3 6"
+  "elastic_drop|chen_elastic_drop|jelly|0.5 2 5"
 )
 rows=()
 for sweep in "${SWEEPS[@]}"; do
   IFS='|' read -r name scene material alphas <<<"$sweep"
   [[ " $only " == *" $name "* ]] || continue
-  for setting in $alphas; do
-    alpha=${setting%%:*}
-    threshold=0
-    [[ $setting == *:* ]] && threshold=${setting#*:}
-    dir="$OUT/$name-a$alpha-t$threshold"
+  for alpha in $alphas; do
+    dir="$OUT/$name-a$alpha"
     t0=$SECONDS
     if ! "$bin" run --overwrite "scenes/$scene.toml" --set "materials.$material.damage_alpha=$alpha" \
-      --set "materials.$material.damage_threshold=$threshold" "${size[@]}" --out "$dir" >"$dir.log" 2>&1; then
-      rows+=("$(printf '%-13s %6s %5s  run failed: %s' "$name" "$alpha" "$threshold" "$(tail -n 1 "$dir.log")")")
+      "${size[@]}" --out "$dir" >"$dir.log" 2>&1; then
+      rows+=("$(printf '%-13s %6s  run failed: %s' "$name" "$alpha" "$(tail -n 1 "$dir.log")")")
       continue
     fi
     secs=$((SECONDS - t0))
@@ -46,17 +41,17 @@ for sweep in "${SWEEPS[@]}"; do
     # largest_particles, then pieces per size bin 1, 2-3, 4-7, 8-15, ...
     last=$(tail -n 1 "$dir/fragments.csv")
     broken=$(grep -o 'broken [0-9.]*%' "$dir.log" | tail -n 1)
-    rows+=("$(awk -F, -v n="$name" -v a="$alpha" -v t="$threshold" -v s="$secs" -v b="${broken#broken }" '{
+    rows+=("$(awk -F, -v n="$name" -v a="$alpha" -v s="$secs" -v b="${broken#broken }" '{
       big = 0; for (i = 12; i <= NF; ++i) big += $i
-      printf "%-13s %6s %5s %6d %9.1f%% %9.1f%% %8d %8d %8s %6ds", n, a, t, $1, 100 * $6, 100 * $7, $4, big, b, s }' <<<"$last")")
+      printf "%-13s %6s %6d %9.1f%% %9.1f%% %8d %8d %8s %6ds", n, a, $1, 100 * $6, 100 * $7, $4, big, b, s }' <<<"$last")")
     frame=$(cut -d, -f1 <<<"$last")
     "$bin" render "$dir" --frames "$frame" --width 960 --height 540 --spp 4 --out "$dir/still" >"$dir.render.log" 2>&1 &&
-      cp "$dir/still/frame_$(printf %05d "$frame").png" "$OUT/stills/$name-a$alpha-t$threshold.png"
+      cp "$dir/still/frame_$(printf %05d "$frame").png" "$OUT/stills/$name-a$alpha.png"
   done
 done
 {
   echo "shards-sweep: $("$bin" --version 2>/dev/null | head -n 1), $(date -u +%Y-%m-%d), scale ${SCALE:-1}"
   nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -n 1
-  printf '%-13s %6s %5s %6s %10s %10s %8s %8s %8s %7s\n' scene alpha phi_t frame singles largest pieces "pieces>=8" broken run
+  printf '%-13s %6s %6s %10s %10s %8s %8s %8s %7s\n' scene alpha frame singles largest pieces "pieces>=8" broken run
   printf '%s\n' "${rows[@]}"
 } | tee "$OUT/table.txt"

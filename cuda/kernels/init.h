@@ -16,15 +16,14 @@ PD_HD inline real effective_strain_limit(real tau0, real alpha, real strain_min)
 }
 
 // A bond-based particle's limit raised by its damage phi_i = 1 - intact/initial bonds of the last
-// force pass: tau'_i (1 + alpha phi_i), Chen eq. 18's factor (state_based.h, damage_raise: from
-// the damage threshold on where one is set) on Levine's limit.
+// force pass: tau'_i (1 + alpha phi_i), Chen eq. 18's factor (state_based.h) on Levine's limit.
 // A particle losing bonds holds its last ones longer, so fewer end as single-particle dust; the
 // bond test max(tau_i, tau_j) stays symmetric. alpha = 0 leaves the limit's bits as they are.
 PD_HD inline real damaged_strain_limit(real limit, int32_t i, ParticlesView p, BondsView b,
                                        const Material& m) {
   if (!(m.damage_alpha > real(0)) || b.count[i] == 0) return limit;
   const real damage = real(1) - real(p.intact[i]) / real(b.count[i]);
-  return limit * (real(1) + damage_raise(damage, m));
+  return limit * (real(1) + m.damage_alpha * damage);
 }
 
 template <bool kStateBased, bool kAnisotropic, int kLattice = kLatticeAsView, bool kPlastic = false>

@@ -64,20 +64,10 @@ PD_HD inline real lps_bond_energy(const Geometry& g, real theta, real inv_mw, re
 // s^omega by (1 + alpha phi), which makes damaged material weaker and, for alpha > 0, more
 // dust, where the text says alpha "increases the crack threshold as the material gets damaged"
 // and "mitigates the shattering effect" (docs/design-decisions.md, measured there).
-// How much damage phi raises a particle's limit: alpha phi (Chen eq. 18), or with a damage
-// threshold phi_t, alpha (phi - phi_t) / (1 - phi_t) above it and nothing below, so only
-// particles about to lose their last bonds hold on (fewer single-particle fragments) while the
-// flanks of a crack, which lose about half their bonds, break as without. phi_t = 0 gives alpha
-// phi's bits.
-PD_HD inline real damage_raise(real damage, const Material& m) {
-  const real over = damage - m.damage_threshold;
-  return m.damage_alpha * ((over > real(0) ? over : real(0)) * m.damage_over_scale);
-}
-
 // The limit on e - e^p: tau (1 + alpha phi) delta, so that s^omega > tau (1 + alpha phi) is
 // tested without a division (both ends of a bond evaluate it for both ends on the same numbers).
 PD_HD inline real chen_extension_limit(real tau, real damage, const Material& m) {
-  return tau * ((real(1) + damage_raise(damage, m)) * m.horizon);
+  return tau * ((real(1) + m.damage_alpha * damage) * m.horizon);
 }
 
 // m_i over the initial family (all bonds intact), once at set-up; state[i].y holds 1/m_i.

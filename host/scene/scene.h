@@ -54,7 +54,6 @@ struct SceneMaterial {
   double shear_modulus = 0;                   // mu [Pa], > 0; state_based only
   std::string fracture = "chen";              // state_based: "chen" (eq. 18) or "stretch" (Levine's max rule)
   double damage_alpha = 0;                    // alpha of Chen eq. 18, >= 0
-  double damage_threshold = 0;                // damage from which alpha raises the limit, [0, 0.95]
   std::optional<ScenePlastic> plastic;        // state_based only
   std::optional<SceneAnisotropy> anisotropy;  // state_based only
   double horizon = 3;                         // delta / lambda, >= 1

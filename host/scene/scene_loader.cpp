@@ -494,7 +494,6 @@ const Keys kMaterialKeys = {"model",
                             "surface_correction",
                             "fracture",
                             "damage_alpha",
-                            "damage_threshold",
                             "plastic",
                             "anisotropy"};
 const Keys kStateBasedOnlyKeys = {"shear_modulus", "youngs_modulus", "poisson_ratio",
@@ -691,7 +690,6 @@ SceneMaterial parse_material(const std::string& name, const TableReader& r) {
   // State-based extras: fracture criterion, plasticity, anisotropy.
   r.string("fracture", m.fracture, {"chen", "stretch"});
   r.number("damage_alpha", m.damage_alpha, at_least(0));
-  r.number("damage_threshold", m.damage_threshold, in_closed(0, 0.95));
   if (r.has("plastic")) m.plastic = parse_plastic(r.table("plastic", kPlasticKeys));
   if (r.has("anisotropy")) m.anisotropy = parse_anisotropy(r.table("anisotropy", kAnisotropyKeys));
   if (m.anisotropy && m.surface_correction.value_or(false))

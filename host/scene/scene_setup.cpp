@@ -73,8 +73,6 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   m.partial_volumes = sm.partial_volumes.value_or(state) ? 1 : 0;
   m.contact_spacing = real(contact_spacing);
   m.damage_alpha = real(sm.damage_alpha);
-  m.damage_threshold = real(sm.damage_threshold);
-  m.damage_over_scale = real(1 / (1 - sm.damage_threshold));
   summary.spacing = spacing;
   summary.horizon = delta;
   if (!state) {

@@ -24,7 +24,7 @@ TEST(Init, AlphaZeroDisablesStrengthening) {
 }
 
 // One bond-based particle of 8 initial bonds, `intact` of them left after the last force pass.
-real limit_after_init(int32_t intact, real damage_alpha, real damage_threshold = 0) {
+real limit_after_init(int32_t intact, real damage_alpha) {
   testing::ParticleArrays a;
   a.rest = {{0, 0, 0, 1}};
   a.disp = {{0, 0, 0, 0}};
@@ -40,8 +40,6 @@ real limit_after_init(int32_t intact, real damage_alpha, real damage_threshold =
   mt.count = 1;
   mt.m[0].compression_alpha = real(0.25);
   mt.m[0].damage_alpha = damage_alpha;
-  mt.m[0].damage_threshold = damage_threshold;
-  mt.m[0].damage_over_scale = real(1) / (real(1) - damage_threshold);
   init_particle<false, false>(0, a.view(), b, mt);
   return a.disp[0].w;
 }
@@ -52,20 +50,6 @@ TEST(Init, DamageRaisesABondBasedLimit) {
   EXPECT_FLOAT_EQ(limit_after_init(0, real(3)), real(2e-3) * 4);     // every bond gone: 1 + 3
   // alpha 0 (the default) gives eq. 5's bits whatever the damage.
   EXPECT_EQ(limit_after_init(2, real(0)), effective_strain_limit(real(1e-3), real(0.25), real(-4e-3)));
-}
-
-// With a damage threshold of 0.5 the raise starts there and reaches alpha at full damage: a crack
-// flank's particle (half its bonds gone) keeps eq. 5's limit, one about to be isolated holds on.
-TEST(Init, DamageThresholdRaisesOnlyParticlesAboutToBeIsolated) {
-  const real plain = real(2e-3);
-  EXPECT_EQ(limit_after_init(8, real(3), real(0.5)), plain);
-  EXPECT_EQ(limit_after_init(5, real(3), real(0.5)), plain);               // phi 3/8
-  EXPECT_EQ(limit_after_init(4, real(3), real(0.5)), plain);               // phi 1/2: at the threshold
-  EXPECT_FLOAT_EQ(limit_after_init(2, real(3), real(0.5)), plain * 2.5f);  // phi 3/4: 1 + 3 (1/4) / (1/2)
-  EXPECT_FLOAT_EQ(limit_after_init(0, real(3), real(0.5)), plain * 4);     // full damage: 1 + alpha
-  // Threshold 0 is the plain factor, bit for bit.
-  for (int32_t intact = 0; intact <= 8; ++intact)
-    EXPECT_EQ(limit_after_init(intact, real(3), real(0)), limit_after_init(intact, real(3)));
 }
 
 }  // namespace

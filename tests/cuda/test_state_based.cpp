@@ -319,12 +319,6 @@ TEST(StateBased, DamageRaisesTheBreakingLimit) {
   EXPECT_NEAR(chen_extension_limit(tau, real(0), m), 4.5e-6, 1e-6 * 4.5e-6);
   EXPECT_NEAR(chen_extension_limit(tau, real(0.5), m), 9e-6, 1e-6 * 9e-6);
   EXPECT_LT(chen_extension_limit(tau, real(0.2), m), chen_extension_limit(tau, real(1), m));
-  // With a threshold of 0.6 only damage past it raises the limit, reaching 1 + alpha at phi = 1.
-  m.damage_threshold = real(0.6);
-  m.damage_over_scale = real(1 / 0.4);
-  EXPECT_NEAR(chen_extension_limit(tau, real(0.5), m), 4.5e-6, 1e-6 * 4.5e-6);
-  EXPECT_NEAR(chen_extension_limit(tau, real(0.8), m), 9e-6, 1e-6 * 9e-6);
-  EXPECT_NEAR(chen_extension_limit(tau, real(1), m), 13.5e-6, 1e-6 * 13.5e-6);
 }
 
 // The coefficient form of the force state is the LPS force state (Chen eqs. 7-9) term by term.

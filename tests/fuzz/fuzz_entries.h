@@ -74,7 +74,6 @@ inline void require_valid_scene(const Scene& s) {
     require(m.strain_limit_scatter >= 0 && m.strain_limit_scatter <= 0.5, "scatter of " + m.name);
     require(std::isfinite(m.compression_alpha) && m.compression_alpha >= 0, "compression_alpha");
     require(std::isfinite(m.damage_alpha) && m.damage_alpha >= 0, "damage_alpha of " + m.name);
-    require(m.damage_threshold >= 0 && m.damage_threshold <= 0.95, "damage_threshold of " + m.name);
     if (m.plastic)
       require(std::isfinite(m.plastic->psi0) && std::isfinite(m.plastic->limit) && m.plastic->limit >= 0 &&
                   (m.plastic->yield_stress ? std::isfinite(*m.plastic->yield_stress) : m.plastic->psi0 > 0),

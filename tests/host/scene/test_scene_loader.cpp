@@ -510,9 +510,6 @@ TEST(SceneLoader, OutOfRangeValues) {
   expect_error(kMaterial + "horizon = 0.9\n" + kBody, "materials.glass.horizon", "out of range");
   expect_error(kMaterial + "horizon = 13\n" + kBody, "materials.glass.horizon", "out of range");
   expect_error(kMaterial + "strain_limit_scatter = 0.6\n" + kBody, "materials.glass.strain_limit_scatter");
-  // A threshold of 1 would divide by zero (the raise counts from it to full damage).
-  expect_error(kMaterial + "damage_threshold = 1\n" + kBody, "materials.glass.damage_threshold", "[0, 0.95]");
-  expect_error(kMaterial + "damage_threshold = -0.1\n" + kBody, "materials.glass.damage_threshold");
   expect_error("[simulation]\ndt = 0\n" + kMinimal, "simulation.dt", "out of range");
   expect_error("[simulation]\nframes = -1\n" + kMinimal, "simulation.frames", "out of range");
   expect_error("[simulation]\nframes = 1000000001\n" + kMinimal, "simulation.frames", "0 to 1000000000");
