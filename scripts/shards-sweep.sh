@@ -18,11 +18,12 @@ OUT=${OUT:-out}/shards-sweep
 mkdir -p "$OUT/stills"
 [[ -x $bin ]] || { echo "shards-sweep: no perifrac binary at '$bin'" >&2; exit 2; }
 
-# name | scene | material | alphas (the first is the scene's own)
+# name | scene | material | alphas (the first is the scene's own); SWEEP_<name> replaces a list
+# (e.g. SWEEP_vase="1 1.5 2")
 SWEEPS=(
-  "glass_plate|glass_plate_projectile|glass|0 2 5 10"
-  "vase|vase_drop|clay|0 3 6"
-  "elastic_drop|chen_elastic_drop|jelly|0.5 2 5"
+  "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-0 2 5 10}"
+  "vase|vase_drop|clay|${SWEEP_vase:-0 3 6}"
+  "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-0.5 2 5}"
 )
 rows=()
 for sweep in "${SWEEPS[@]}"; do
