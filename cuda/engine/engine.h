@@ -94,6 +94,12 @@ struct RankStats {
   int32_t overlapped = 0;        // 1: interior forces computed while the halo travels
 };
 
+// One stage of an engine's set-up and its wall time, the device's work in it included.
+struct SetupStage {
+  std::string name;
+  double seconds = 0;
+};
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -127,6 +133,8 @@ class Engine {
   virtual int64_t screened_passes() const = 0;
   // Per rank of a partitioned run, in rank order; empty for a run on one rank.
   virtual std::vector<RankStats> rank_stats() { return {}; }
+  // Where the set-up's time went, stage by stage (a partitioned run: rank 0's engine).
+  virtual std::vector<SetupStage> setup_stages() const { return {}; }
   // The colliders' poses and velocities now (free ones as the particles moved them).
   virtual std::vector<Collider> colliders() = 0;
 };

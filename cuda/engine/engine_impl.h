@@ -46,6 +46,7 @@ class EngineImpl final : public Engine {
     features_ = features_of(materials_, contact_);
     colliders_host_ = in.colliders;
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");
+    stage_start_ = std::chrono::steady_clock::now();
     state_.upload(mem_, in.particles,
                   FieldNeeds{features_.state_based, features_.plastic, false, rank != nullptr,
                              features_.surface_factors});
@@ -61,14 +62,18 @@ class EngineImpl final : public Engine {
       ghosts_ = ContactGhosts<Exec>(*rank, *comm);
       world_ = comm;
     }
+    end_stage("upload");
     build_families(mem_, state_, owned_, materials_, features_, backend(), family_);
+    end_stage("families");
     // The surface correction's factors come from the families before the pre-cracks: a crack is
     // not a surface of the body (none formed in the run is either), and corrected crack faces
     // raise the toughness at a notch's tip (docs/validation.md, notched_bar_pmb).
     if (features_.surface_factors) set_up_surface_correction();
+    end_stage("surface correction");
     if (!in.cuts.empty()) {
       features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_);
       if (features_.surface_factors) launch_surface_bond_factors(exec_, particles(), bonds(), materials_);
+      end_stage("pre-cracks");
     }
     if (in.lattice_families && !rank)  // (lattice offsets are indices of the whole run)
       features_.lattice = build_lattice_families(mem_, state_, in.particles, materials_, features_.weak_bonds,
@@ -80,11 +85,16 @@ class EngineImpl final : public Engine {
       features_.lattice_listed = features_.lattice;
     }
     if (features_.surface && !lattice_.empty()) upload_surface_rows(mem_, state_, lattice_, family_);
+    end_stage("lattice tables");
     double collider_stiffness = 0;
     for (const Collider& c : colliders_host_)  // (the indent law's stiffness grows with the depth: not here)
       if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
     critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_, collider_stiffness);
-    if (features_.state_based) set_up_state_based();
+    end_stage("stable step");
+    if (features_.state_based) {
+      set_up_state_based();
+      end_stage("state-based");
+    }
     if (contact_) contacts_.allocate(mem_, state_.n, materials_);
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0 || !colliders_host_.empty();
@@ -105,6 +115,7 @@ class EngineImpl final : public Engine {
       reactions_ = ColliderReactions<Exec>(mem_, owned_, free_.colliders(), colliders_host_.size());
       react_and_touch();
     }
+    end_stage("first forces");
     exec_.flush_stats();
   }
 
@@ -151,6 +162,8 @@ class EngineImpl final : public Engine {
   }
 
   // This rank's part of a partitioned run (PartitionedEngine::rank_stats).
+  std::vector<SetupStage> setup_stages() const override { return setup_stages_; }
+
   RankStats local_rank_stats() const {
     RankStats r;
     r.particles = owned_;
@@ -458,7 +471,17 @@ class EngineImpl final : public Engine {
   int32_t held_ = 0;         // particles with a place in the families (BondsView::n): own and bond ghosts
   bool overlap_ = true;      // a partitioned rank runs the interior part while the halo travels
   double step_seconds_ = 0;  // a partitioned rank's wall time in `advance`
-  Halo<Exec> halo_;          // a partitioned rank's ghost refresh (inactive otherwise)
+  // Set-up's stages: the time since the last stage ended, the device's queued work done.
+  void end_stage(const char* name) {
+    exec_.synchronize();
+    const auto now = std::chrono::steady_clock::now();
+    setup_stages_.push_back({name, std::chrono::duration<double>(now - stage_start_).count()});
+    stage_start_ = now;
+  }
+  std::chrono::steady_clock::time_point stage_start_;
+  std::vector<SetupStage> setup_stages_;
+
+  Halo<Exec> halo_;  // a partitioned rank's ghost refresh (inactive otherwise)
   ContactGhosts<Exec> ghosts_;
   Comm* world_ = nullptr;
 

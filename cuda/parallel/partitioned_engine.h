@@ -124,6 +124,12 @@ class PartitionedEngine final : public Engine {
   int64_t force_passes() const override { return local_->force_passes(); }
   int64_t screened_passes() const override { return local_->screened_passes(); }
   std::vector<Collider> colliders() override { return local_->colliders(); }
+  // Rank 0's: the partition, then its engine's stages.
+  std::vector<SetupStage> setup_stages() const override {
+    std::vector<SetupStage> stages = {{"partition", setup_seconds_[0]}};
+    for (const SetupStage& s : local_->setup_stages()) stages.push_back(s);
+    return stages;
+  }
   std::vector<RankStats> rank_stats() override {
     command(Op::kRankStats);
     return std::move(ranks_out_);

@@ -91,6 +91,14 @@ std::string json_escape(const std::string& s) {
   return o;
 }
 
+// "name": seconds, ... of the engine's set-up stages.
+std::string stage_json(const std::vector<SetupStage>& stages) {
+  std::ostringstream js;
+  for (size_t k = 0; k < stages.size(); ++k)
+    js << (k ? ", " : "") << "\"" << json_escape(stages[k].name) << "\": " << stages[k].seconds;
+  return js.str();
+}
+
 }  // namespace
 
 int bench_command(const BenchOptions& opt) {
@@ -147,6 +155,13 @@ int bench_command(const BenchOptions& opt) {
               input.particles.size(), (long long)fam.bonds, fam.mean,
               double(engine->memory_bytes()) / (1 << 20), (long long)opt.steps);
   std::printf("set-up     scene %.2f s, engine %.2f s\n", scene_seconds, engine_seconds);
+  const std::vector<SetupStage> stages = engine->setup_stages();
+  if (!stages.empty()) {
+    std::printf("set-up     engine stages:");
+    for (size_t k = 0; k < stages.size(); ++k)
+      std::printf("%s %s %.2f s", k ? "," : "", stages[k].name.c_str(), stages[k].seconds);
+    std::printf("\n");
+  }
   std::printf("families   %lld of %zu particles find their partners by lattice offset",
               (long long)fam.lattice_particles, input.particles.size());
   if (fam.surface_rows > 0)
@@ -184,7 +199,7 @@ int bench_command(const BenchOptions& opt) {
      << ",\n  \"surface_rows\": " << fam.surface_rows << ",\n  \"bond_slots\": " << fam.slots
      << ",\n  \"steps\": " << opt.steps << ",\n  \"screened_steps\": " << screened
      << ",\n  \"wall_seconds\": " << wall << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds
-     << ", \"engine\": " << engine_seconds << "}"
+     << ", \"engine\": " << engine_seconds << ", \"engine_stages\": {" << stage_json(stages) << "}}"
      << ",\n  \"kernels\": [\n";
   for (size_t k = 0; k < rows.size(); ++k) {
     const auto& r = rows[k];

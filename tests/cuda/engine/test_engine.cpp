@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <string>
 #include <utility>
 
 #include "cuda/engine/engine.h"
@@ -17,6 +19,7 @@ namespace pd {
 namespace {
 
 using testing::lattice_block;
+using testing::state_block;
 
 // Family of each particle as a sorted list, from the sliced-ELL storage.
 std::vector<std::vector<int32_t>> families(Engine& e) {
@@ -106,6 +109,34 @@ TEST(EngineReadBack, KeepsTheCallersMemory) {
     EXPECT_EQ(state.disp[i].x, fresh_state.disp[i].x);
     EXPECT_EQ(state.vel[i].z, fresh_state.vel[i].z);
   }
+}
+
+// The set-up's stages, in the order they run, each timed; pre-cracks and the state-based
+// set-up only where the run has them.
+TEST(EngineSetup, ReportsItsStagesInOrder) {
+  std::vector<std::string> names;
+  auto stage_names = [&](const SimulationInput& in) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto engine = make_cpu_engine(in);
+    const double whole = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::vector<std::string> out;
+    double sum = 0;
+    for (const SetupStage& s : engine->setup_stages()) {
+      out.push_back(s.name);
+      EXPECT_GE(s.seconds, 0) << s.name;
+      sum += s.seconds;
+    }
+    EXPECT_LE(sum, whole);
+    return out;
+  };
+  EXPECT_EQ(stage_names(lattice_block(6, 5, 4, 1e-3)),
+            (std::vector<std::string>{"upload", "families", "surface correction", "lattice tables",
+                                      "stable step", "first forces"}));
+  SimulationInput cracked = state_block(6, 5, 4, 1e-3, 1e-3, false);
+  cracked.cuts = {CutTriangle{{{{2.5e-3, -1, -1}, {2.5e-3, 1, -1}, {2.5e-3, 0, 1}}}, 0, -1}};
+  EXPECT_EQ(stage_names(cracked),
+            (std::vector<std::string>{"upload", "families", "surface correction", "pre-cracks",
+                                      "lattice tables", "stable step", "state-based", "first forces"}));
 }
 
 TEST(EngineFamilies, RandomPointsMatchBruteForce) {
