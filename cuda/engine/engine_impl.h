@@ -70,21 +70,32 @@ class EngineImpl final : public Engine {
     // raise the toughness at a notch's tip (docs/validation.md, notched_bar_pmb).
     if (features_.surface_factors) set_up_surface_correction();
     end_stage("surface correction");
+    // The families on the host, downloaded once for the stages below that read them.
+    BondLists host_bonds;
+    bool have_host_bonds = false;
+    auto bonds_on_host = [&]() -> const BondLists& {
+      if (!have_host_bonds) download_bonds(state_, host_bonds);
+      have_host_bonds = true;
+      return host_bonds;
+    };
     if (!in.cuts.empty()) {
-      features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_);
+      features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_, host_bonds);
+      have_host_bonds = true;
       if (features_.surface_factors) launch_surface_bond_factors(exec_, particles(), bonds(), materials_);
       end_stage("pre-cracks");
     }
     if (in.lattice_families && !rank)  // (lattice offsets are indices of the whole run)
       features_.lattice = build_lattice_families(mem_, state_, in.particles, materials_, features_.weak_bonds,
-                                                 lattice_, family_);
+                                                 lattice_, family_, bonds_on_host());
     if (rank_lattice) {
       lattice_.listed_partners = true;
-      features_.lattice = upload_lattice_families(mem_, state_, rank_lattice(download_bonds(state_)),
-                                                  features_.weak_bonds, lattice_, family_);
+      features_.lattice = upload_lattice_families(mem_, state_, rank_lattice(bonds_on_host()),
+                                                  features_.weak_bonds, lattice_, family_, bonds_on_host());
       features_.lattice_listed = features_.lattice;
     }
-    if (features_.surface && !lattice_.empty()) upload_surface_rows(mem_, state_, lattice_, family_);
+    if (features_.surface && !lattice_.empty())
+      upload_surface_rows(mem_, state_, lattice_, family_, bonds_on_host());
+    host_bonds = BondLists();
     end_stage("lattice tables");
     double collider_stiffness = 0;
     for (const Collider& c : colliders_host_)  // (the indent law's stiffness grows with the depth: not here)
@@ -292,8 +303,8 @@ class EngineImpl final : public Engine {
   // each bond's at its slot.
   void set_up_surface_correction() {
     state_.allocate(mem_, kSlots, state_.neighbor.size(), FieldNeeds{false, false, false, false, true});
-    state_.surface_factor.upload(std::vector<Vec3>(state_.surface_factor.size(), Vec3{1, 1, 1}));
-    state_.surface_bond.upload(std::vector<uint16_t>(state_.surface_bond.size(), kSurfaceBondOne));
+    fill(mem_, state_.surface_factor, Vec3{1, 1, 1});
+    fill(mem_, state_.surface_bond, uint16_t(kSurfaceBondOne));
     for (int round = 0; round < kSurfaceCorrectionRounds; ++round) {
       launch_surface_factor(exec_, particles(), bonds(), materials_, round);
       if (halo_.active()) halo_.exchange(state_.surface_factor);

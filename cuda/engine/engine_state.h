@@ -40,6 +40,13 @@ void grow(DeviceMemory<Exec>& mem, DeviceArray<T, Exec>& a, size_t n) {
   a = std::move(bigger);
 }
 
+// Every entry of `a` set to `value`, on the backend.
+template <class T, class Exec>
+void fill(DeviceMemory<Exec>& mem, DeviceArray<T, Exec>& a, T value) {
+  const ArrayView<T> to = view_of(a);
+  mem.exec().parallel_for("state/fill", to.size, [=] PD_HD(int64_t i) { to[i] = value; });
+}
+
 template <class Exec>
 struct EngineState {
   int32_t n = 0;

@@ -139,11 +139,12 @@ void build_families(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned
 
 // Pre-cracks and weakened surfaces: bonds crossing them leave the families (compacted on the
 // host) or keep a strength factor, before anything is derived from the families. Returns
-// whether some bond was weakened (the `strength` field then exists).
+// whether some bond was weakened (the `strength` field then exists). `lists` is left holding the
+// families as uploaded.
 template <class Exec>
 bool apply_cuts(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned, const SimulationInput& in,
-                FamilyStats& family) {
-  BondLists lists = download_bonds(s);
+                FamilyStats& family, BondLists& lists) {
+  download_bonds(s, lists);
   std::vector<uint8_t> strength;
   family.cuts = cut_bonds(in.cuts, in.particles.rest, in.particles.body, lists, strength);
   s.neighbor.upload(lists.neighbor);
@@ -155,22 +156,23 @@ bool apply_cuts(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned, co
   return true;
 }
 
-// Box-grid bodies find their partners by offset (cuda/engine/lattice_families.h). Returns
-// whether some body has a stencil.
+// Box-grid bodies find their partners by offset (cuda/engine/lattice_families.h), from the
+// families `lists` (as on the backend). Returns whether some body has a stencil.
 template <class Exec>
 bool build_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s, const ParticleSet& ps,
                             const MaterialTable& materials, bool weak_bonds, LatticeState<Exec>& lattice,
-                            FamilyStats& family) {
-  return upload_lattice_families(mem, s, lattice_families(ps, materials, download_bonds(s)), weak_bonds,
-                                 lattice, family);
+                            FamilyStats& family, const BondLists& lists) {
+  return upload_lattice_families(mem, s, lattice_families(ps, materials, lists), weak_bonds, lattice, family,
+                                 lists);
 }
 
 // Lattice tables made elsewhere (a partitioned rank's part of the whole run's, whose partners are
-// read from the lists) on the backend. Returns whether some particle has a stencil.
+// read from the lists) on the backend; `lists` the families as on the backend. Returns whether
+// some particle has a stencil.
 template <class Exec>
 bool upload_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s, LatticeFamilies tables,
-                             bool weak_bonds, LatticeState<Exec>& lattice, FamilyStats& family) {
-  const BondLists lists = download_bonds(s);
+                             bool weak_bonds, LatticeState<Exec>& lattice, FamilyStats& family,
+                             const BondLists& lists) {
   lattice.tables = std::move(tables);
   family.lattice_particles = lattice.tables.particles();
   if (lattice.empty()) return false;
@@ -192,10 +194,10 @@ bool upload_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s
 // bond-based kernels.
 template <class Exec>
 void upload_surface_rows(DeviceMemory<Exec>& mem, const EngineState<Exec>& s, LatticeState<Exec>& lattice,
-                         FamilyStats& family) {
+                         FamilyStats& family, const BondLists& lists) {
   std::vector<uint16_t> factors;
   s.surface_bond.download(factors);
-  const SurfaceRows rows = surface_rows(lattice.tables, download_bonds(s), factors);
+  const SurfaceRows rows = surface_rows(lattice.tables, lists, factors);
   lattice.surface_row = mem.make_from(rows.row);
   lattice.surface_table = mem.make_from(rows.table);
   family.surface_rows = rows.rows;
