@@ -28,19 +28,26 @@ class Comm {
   virtual double min(double value) = 0;
   virtual double max(double value) = 0;
   virtual uint32_t bit_or(uint32_t value) = 0;
-  // Point to point with every other rank at once: send[r] goes to rank r and recv[r] (sized by
-  // the caller, the length rank r sends) is filled from it. Empty buffers are skipped.
-  virtual void exchange(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& recv) = 0;
-  // The same, split so that work goes on while the messages travel: start_exchange posts a send
-  // and a receive per peer (send[r] to rank r, recv[r] from it; empty ones skipped) and returns;
-  // finish_exchanges waits for every one started. The buffers stay untouched until then. Several
-  // may be started before one finish: the messages of one peer pair up in the order started.
+  // Point to point with every other rank at once, split so that work goes on while the messages
+  // travel: start_exchange posts a send and a receive per peer (send[r] to rank r, recv[r] from
+  // it; empty ones skipped) and returns; finish_exchanges waits for every one started. The
+  // buffers stay untouched until then. Several may be started before one finish: the messages of
+  // one peer pair up in the order started.
   struct Buffer {
     char* data = nullptr;
     size_t bytes = 0;
   };
   virtual void start_exchange(const std::vector<Buffer>& send, const std::vector<Buffer>& recv) = 0;
   virtual void finish_exchanges() = 0;
+  // The same at once: send[r] goes to rank r and recv[r] (sized by the caller, the length rank r
+  // sends) is filled from it. Empty buffers are skipped.
+  void exchange(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& recv) {
+    std::vector<Buffer> out(send.size()), in(recv.size());
+    for (size_t r = 0; r < send.size(); ++r) out[r] = {const_cast<char*>(send[r].data()), send[r].size()};
+    for (size_t r = 0; r < recv.size(); ++r) in[r] = {recv[r].data(), recv[r].size()};
+    start_exchange(out, in);
+    finish_exchanges();
+  }
   // Every rank's `data` on `root`, one buffer per rank (of any length); other ranks get nothing.
   virtual void gather(const std::vector<char>& data, std::vector<std::vector<char>>& out, int root) = 0;
   // Ends every rank's process with `code` (an error on one rank that the others cannot see).

@@ -85,14 +85,6 @@ class MpiComm final : public Comm {
     return out;
   }
 
-  void exchange(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& recv) override {
-    std::vector<Buffer> out(send.size()), in(recv.size());
-    for (size_t r = 0; r < send.size(); ++r) out[r] = {const_cast<char*>(send[r].data()), send[r].size()};
-    for (size_t r = 0; r < recv.size(); ++r) in[r] = {recv[r].data(), recv[r].size()};
-    start_exchange(out, in);
-    finish_exchanges();
-  }
-
   void start_exchange(const std::vector<Buffer>& send, const std::vector<Buffer>& recv) override {
     for (int r = 0; r < size_; ++r) {
       if (r == rank_) continue;

@@ -36,14 +36,6 @@ class ThreadComm final : public Comm {
   uint32_t bit_or(uint32_t) override { unused(); }
   void gather(const std::vector<char>&, std::vector<std::vector<char>>&, int) override { unused(); }
   [[noreturn]] void abort(int) override { unused(); }
-  void exchange(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& recv) override {
-    std::vector<Buffer> out(send.size()), in(recv.size());
-    for (size_t r = 0; r < send.size(); ++r) out[r] = {const_cast<char*>(send[r].data()), send[r].size()};
-    for (size_t r = 0; r < recv.size(); ++r) in[r] = {recv[r].data(), recv[r].size()};
-    start_exchange(out, in);
-    finish_exchanges();
-  }
-
   void start_exchange(const std::vector<Buffer>& send, const std::vector<Buffer>& recv) override {
     std::lock_guard<std::mutex> lock(mail_.m);
     for (int r = 0; r < size_; ++r) {
