@@ -130,7 +130,14 @@ ParticleGeometry box_grid_particles(const Vec3d& center, const Vec3d& size, doub
   std::vector<int32_t> id(g.size());
   for (size_t i = 0; i < id.size(); ++i) id[i] = int32_t(i);  // x fastest, then y, z
   grid_adjacency(g, id, n);
-  compute_lambda(g);
+  // A full box grid's nearest neighbours are one spacing apart: no search (at 16.6M particles it
+  // took about as long as the rest of the scene's set-up).
+  if (g.size() < 2) {
+    compute_lambda(g);
+  } else {
+    g.lambda.assign(g.size(), spacing);
+    g.min_distance = spacing;
+  }
   return g;
 }
 

@@ -76,6 +76,15 @@ TEST(GridParticles, BoxGridKeepsTheBoxLayout) {
   EXPECT_NEAR(g.total_volume(), 0.1 * 0.05 * 0.03, 1e-12);
   expect_symmetric(g.adjacency);
   EXPECT_EQ(g.adjacency.degree(0), 3);  // a corner cube
+  // Nearest distances: the spacing, as the search over the positions finds it (to their round-off).
+  ParticleGeometry searched = g;
+  compute_lambda(searched);
+  ASSERT_EQ(g.lambda.size(), g.size());
+  for (size_t i = 0; i < g.size(); ++i) EXPECT_NEAR(g.lambda[i], searched.lambda[i], 1e-8) << i;
+  EXPECT_EQ(g.min_distance, 0.01);
+  EXPECT_NEAR(searched.min_distance, 0.01, 1e-8);
+  // One cube has no neighbour.
+  EXPECT_EQ(box_grid_particles({0, 0, 0}, {0.01, 0.01, 0.01}, 0.01).min_distance, 0);
 }
 
 TEST(GridParticles, SpotVolume) {
