@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <parallel/algorithm>  // __gnu_parallel::sort (OpenMP)
 #include <utility>
 
 #include "cuda/kernels/family.h"
@@ -48,10 +49,14 @@ void bisect(const ParticleSet& ps, const std::vector<double>& weight, std::vecto
   int axis = 0;
   for (int a = 1; a < 3; ++a)
     if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
-  std::sort(ids.begin(), ids.end(), [&](int32_t a, int32_t b) {
-    const double ca = coordinate(ps.rest[size_t(a)], axis), cb = coordinate(ps.rest[size_t(b)], axis);
-    return ca < cb || (ca == cb && a < b);
-  });
+  // Ordered along the axis, ties by index: (coordinate, index) pairs sorted side by side rather
+  // than indices compared through the positions (a cache miss per comparison at 10^7 particles).
+  std::vector<std::pair<double, int32_t>> keyed(ids.size());
+#pragma omp parallel for schedule(static)
+  for (size_t k = 0; k < ids.size(); ++k) keyed[k] = {coordinate(ps.rest[size_t(ids[k])], axis), ids[k]};
+  __gnu_parallel::sort(keyed.begin(), keyed.end());
+  for (size_t k = 0; k < ids.size(); ++k) ids[k] = keyed[k].second;
+  keyed = {};
   const int left = count / 2;
   double total = 0;
   for (int32_t i : ids) total += weight[size_t(i)];
