@@ -24,10 +24,10 @@ struct KernelFeatures {
 
 // How a kernel walks lattice families, fixed at compile time so that a run pays only for the
 // form it uses: none (every family from its list), partners at the stencil entries' offsets (one
-// rank: indices are the lattice's), partners from the family's list with the geometry from the
-// stencil (a partitioned rank, whose indices are not the lattice's), or as the view says (the
-// kernels off the step's hot path).
-enum LatticeMode : int { kNoLattice = 0, kLatticeOffsets = 1, kLatticeListed = 2, kLatticeAsView = 3 };
+// rank: indices are the lattice's), or at the offsets unless the particle's stencil is `listed`
+// (a partitioned rank, whose own particles near its boundary read partners from their lists;
+// also the kernels off the step's hot path, which serve both).
+enum LatticeMode : int { kNoLattice = 0, kLatticeOffsets = 1, kLatticeListed = 2 };
 
 constexpr int lattice_mode(bool lattice, bool listed) {
   return lattice ? (listed ? kLatticeListed : kLatticeOffsets) : kNoLattice;

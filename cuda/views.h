@@ -39,7 +39,10 @@ constexpr int kSliceWidth = 32;
 // bond q's partner at its own index + offset[q] and its reference bond vector in the table,
 // so the force loops read no partner index and no partner reference position. Its stored
 // family lists the same bonds in the same (stencil) order, so per-bond state and every other
-// reader of `neighbor` see the same slots.
+// reader of `neighbor` see the same slots. On a partitioned rank (cuda/parallel/) the whole
+// run's offsets are not the rank's: a body's stencil there is `listed` (partners read from the
+// lists, the geometry from the stencil), and a copy with the rank's local offsets serves the
+// particles whose partners all sit at them (lattice_families.h rank_lattice_families).
 struct StencilEntry {
   Vec4 xi;         // xyz: reference bond vector [m]; w: |xi|
   real inv_r0;     // 1 / |xi|
@@ -49,8 +52,9 @@ struct StencilEntry {
 };
 
 struct Stencil {
-  int32_t first = 0;  // first entry in LatticeView::entries
-  int32_t size = 0;   // entries (<= 32 kLatticeWords)
+  int32_t first = 0;   // first entry in LatticeView::entries
+  int32_t size = 0;    // entries (<= 32 kLatticeWords)
+  int32_t listed = 0;  // partners read from the family's list, not at the offsets (below)
 };
 
 constexpr int kLatticeWords = 16;  // stencils of up to 512 bonds (delta + lambda/2 <= 4.5 lambda)
@@ -67,9 +71,6 @@ struct LatticeView {
   // Scenes with weakened bonds only: the bonds whose strength factor is below 1, so that only
   // those read it (same layout).
   ArrayView<const uint32_t> weak;
-  // A partitioned rank (cuda/parallel/): partners are read from the family's list, as a rank's
-  // indices are not the whole run's lattice; the geometry still comes from the stencil.
-  uint8_t listed_partners = 0;
   // Bond-based materials with the surface correction (cuda/kernels/surface_correction.h): per
   // particle the start of its row in `surface_table`, the stored bond factor of each stencil
   // entry. Particles placed alike in their body share a row, so a lattice bond's factor comes

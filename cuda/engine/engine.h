@@ -27,8 +27,9 @@ struct FamilyStats {
   int32_t min = 0, max = 0;
   double mean = 0;
   int64_t slots = 0;              // sliced-ELL storage, padding included
-  int64_t lattice_particles = 0;  // particles whose partners are found by offset (lattice_families.h)
-  int64_t surface_rows = 0;       // rows of surface-corrected lattice bond factors (SurfaceRows)
+  int64_t lattice_particles = 0;  // particles with lattice families (lattice_families.h)
+  int64_t lattice_listed = 0;  // of them, those reading partners from their lists (a rank's, Stencil::listed)
+  int64_t surface_rows = 0;    // rows of surface-corrected lattice bond factors (SurfaceRows)
   BondCutCounts cuts;
 };
 

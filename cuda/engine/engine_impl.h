@@ -88,7 +88,6 @@ class EngineImpl final : public Engine {
       features_.lattice = build_lattice_families(mem_, state_, in.particles, materials_, features_.weak_bonds,
                                                  lattice_, family_, bonds_on_host());
     if (rank_lattice) {
-      lattice_.listed_partners = true;
       features_.lattice = upload_lattice_families(mem_, state_, rank_lattice(bonds_on_host()),
                                                   features_.weak_bonds, lattice_, family_, bonds_on_host());
       features_.lattice_listed = features_.lattice;

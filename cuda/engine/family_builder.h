@@ -30,12 +30,10 @@ struct LatticeState {
   DeviceArray<uint32_t, Exec> present, intact, weak;
   DeviceArray<int32_t, Exec> surface_row;  // bond-based surface correction (upload_surface_rows)
   DeviceArray<uint16_t, Exec> surface_table;
-  bool listed_partners = false;  // a partitioned rank's (LatticeView::listed_partners)
 
   bool empty() const { return tables.stencils.empty(); }
   LatticeView view() const {
     LatticeView v;
-    v.listed_partners = listed_partners;
     v.words = tables.words;
     v.stencil = view_of(stencil);
     v.stencils = view_of(stencils);
@@ -175,6 +173,7 @@ bool upload_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s
                              const BondLists& lists) {
   lattice.tables = std::move(tables);
   family.lattice_particles = lattice.tables.particles();
+  family.lattice_listed = lattice.tables.listed_particles();
   if (lattice.empty()) return false;
   lattice.stencil = mem.make_from(lattice.tables.stencil);
   lattice.stencils = mem.make_from(lattice.tables.stencils);
@@ -212,7 +211,7 @@ void refresh_lattice_after_restore(const EngineState<Exec>& s, const std::vector
   s.slice_offset.download(lists.slice_offset);
   s.count.download(lists.count);
   lists.neighbor = neighbor;
-  refresh_lattice_intact(lattice.tables, lists, lattice.listed_partners);
+  refresh_lattice_intact(lattice.tables, lists);
 }
 
 // Smallest stable step over the particles, from the families as built and the stiffest

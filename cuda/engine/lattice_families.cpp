@@ -174,6 +174,72 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BoxGrid& g, con
   return true;
 }
 
+// On a partitioned rank, after add_stencil gave the body its stencil `id` (partners as the whole
+// run's offsets, which are not the rank's): that stencil becomes `listed`, and a copy with the
+// rank's own offsets serves the rows whose present partners all sit at them. Each entry's offset
+// is the one most rows with every entry present agree on (a sample of them, spread over the
+// body's rows): in a part of the layout ordered as a box grid (the interior, then the boundary,
+// each by global index) a row whose partner lies in another part finds it elsewhere, each at
+// its own distance, while the rows of the part agree. Every row is then checked against the
+// offsets, so any layout is served correctly, box-shaped parts well.
+void add_local_stencil(LatticeFamilies& lf, int16_t id, std::vector<int32_t> rows, const BondsView& v) {
+  const Stencil st = lf.stencils[size_t(id)];
+  lf.stencils[size_t(id)].listed = 1;
+  if (rows.empty() || lf.stencils.size() >= size_t(std::numeric_limits<int16_t>::max())) return;
+  std::sort(rows.begin(), rows.end());
+  const size_t n = lf.stencil.size();
+  const auto full = [&](int32_t row) {
+    for (int32_t q = 0; q < st.size; ++q)
+      if (!(lf.present[size_t(q / 32) * n + size_t(row)] >> (q % 32) & 1u)) return false;
+    return true;
+  };
+  // Whether row's present partners sit at `offset`.
+  const auto fits = [&](int32_t row, const std::vector<int32_t>& offset) {
+    int32_t k = 0;
+    for (int32_t q = 0; q < st.size; ++q) {
+      if (!(lf.present[size_t(q / 32) * n + size_t(row)] >> (q % 32) & 1u)) continue;
+      const int64_t j = int64_t(row) + offset[size_t(q)];
+      if (j < 0 || j >= int64_t(n) || bond_partner(v.neighbor[v.slot(row, k++)]) != j) return false;
+    }
+    return true;
+  };
+  const int32_t count = int32_t(rows.size());
+  std::vector<int32_t> sample;
+  const int32_t stride = std::max(1, count / 4096);
+  for (int32_t r = 0; r < count; r += stride)
+    if (full(rows[size_t(r)])) sample.push_back(rows[size_t(r)]);
+  if (sample.empty()) return;
+  std::vector<int32_t> best(size_t(st.size)), seen(sample.size());
+  for (int32_t q = 0; q < st.size; ++q) {
+    for (size_t s = 0; s < sample.size(); ++s)
+      seen[s] = bond_partner(v.neighbor[v.slot(sample[s], q)]) - sample[s];
+    std::sort(seen.begin(), seen.end());
+    size_t most = 0;
+    for (size_t s = 0, t = 0; s < seen.size(); s = t) {
+      for (t = s; t < seen.size() && seen[t] == seen[s]; ++t) {
+      }
+      if (t - s > most) most = t - s, best[size_t(q)] = seen[s];
+    }
+  }
+  int32_t best_fit = 0;
+#pragma omp parallel for schedule(static) reduction(+ : best_fit)
+  for (int32_t r = 0; r < count; ++r) best_fit += fits(rows[size_t(r)], best);
+  if (best_fit == 0) return;
+  const int16_t local = int16_t(lf.stencils.size());
+  Stencil copy = st;
+  copy.first = int32_t(lf.entries.size());
+  copy.listed = 0;
+  lf.stencils.push_back(copy);
+  for (int32_t q = 0; q < st.size; ++q) {
+    StencilEntry e = lf.entries[size_t(st.first + q)];
+    e.offset = best[size_t(q)];
+    lf.entries.push_back(e);
+  }
+#pragma omp parallel for schedule(static)
+  for (int32_t r = 0; r < count; ++r)
+    if (fits(rows[size_t(r)], best)) lf.stencil[size_t(rows[size_t(r)])] = local;
+}
+
 // Each body of `ps` whose particles are contiguous, as [first, end).
 std::vector<std::pair<int32_t, int32_t>> contiguous_bodies(const ParticleSet& ps) {
   const int32_t n = int32_t(ps.size());
@@ -201,6 +267,11 @@ std::vector<std::pair<int32_t, int32_t>> contiguous_bodies(const ParticleSet& ps
 
 int64_t LatticeFamilies::particles() const {
   return std::count_if(stencil.begin(), stencil.end(), [](int16_t s) { return s >= 0; });
+}
+
+int64_t LatticeFamilies::listed_particles() const {
+  return std::count_if(stencil.begin(), stencil.end(),
+                       [&](int16_t s) { return s >= 0 && stencils[size_t(s)].listed; });
 }
 
 LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds) {
@@ -245,7 +316,8 @@ LatticeFamilies rank_lattice_families(const ParticleSet& ps, const MaterialTable
       const int32_t j = global[size_t(bond_partner(nb))];
       return bond_intact(nb) ? j : ~j;
     };
-    add_stencil(ps, mt.m[ps.material[size_t(g.first)]], g, body, lf, &reduce);
+    if (add_stencil(ps, mt.m[ps.material[size_t(g.first)]], g, body, lf, &reduce))
+      add_local_stencil(lf, int16_t(lf.stencils.size() - 1), body.rows, v);
   }
   return lf;
 }
@@ -310,7 +382,7 @@ SurfaceRows surface_rows(const LatticeFamilies& lf, const BondLists& bonds,
   return out;
 }
 
-void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds, bool listed_partners) {
+void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds) {
   const BondsView v = bonds.view();
   for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
     const int32_t s = lf.stencil[size_t(i)];
@@ -319,12 +391,11 @@ void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds, bool li
       return std::invalid_argument("the restored families differ from the engine's at particle " +
                                    std::to_string(i) + " (a snapshot of another scene or version)");
     };
+    const Stencil& st = lf.stencils[size_t(s)];
     int32_t listed = 0;
     for_each_present_bond(lf, i, [&](int32_t q, size_t word, uint32_t bit, int32_t k) {
       const int32_t nb = k < v.count[i] ? v.neighbor[v.slot(i, k)] : -1;
-      if (k >= v.count[i] ||
-          (!listed_partners &&
-           bond_partner(nb) != i + lf.entries[size_t(lf.stencils[size_t(s)].first + q)].offset))
+      if (k >= v.count[i] || (!st.listed && bond_partner(nb) != i + lf.entries[size_t(st.first + q)].offset))
         throw differ();
       lf.intact[word] = bond_intact(nb) ? lf.intact[word] | bit : lf.intact[word] & ~bit;
       listed = k + 1;

@@ -14,12 +14,13 @@ namespace pd {
 struct LatticeFamilies {
   int32_t words = 0;                  // mask words per particle
   std::vector<int16_t> stencil;       // per particle: its stencil, or -1
-  std::vector<Stencil> stencils;      // one per box-grid body
+  std::vector<Stencil> stencils;      // one per box-grid body (a rank: and one with local offsets)
   std::vector<StencilEntry> entries;  // the stencils' entries, ascending offset within each
   std::vector<uint32_t> present;      // words x n, word w of particle i at w * n + i
   std::vector<uint32_t> intact;       // same layout
   std::vector<uint32_t> weak;         // same layout; scenes with weakened bonds only
   int64_t particles() const;          // particles with a lattice family
+  int64_t listed_particles() const;   // of them, those whose stencil is `listed`
 };
 
 // The bodies of `ps` whose particles are contiguous, laid out as a box grid of at least 2 per
@@ -39,6 +40,10 @@ struct StencilReduce {
 // A partitioned rank's part of the tables lattice_families makes for the whole run `ps`, from
 // the rank's own families (`local`, partners as local indices, `global` mapping them to the whole
 // run's, its own particles first): rows in the rank's local order. Collective over the ranks.
+// Each body's stencil is the whole run's, `listed`; where the rank's own particles of the body
+// sit in its local order as on a grid of their own (a partition's box of the body in ascending
+// global index), a copy of it with the local offsets serves every particle whose partners all
+// sit at them, so those read no partner index, as on one rank.
 LatticeFamilies rank_lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& local,
                                       const std::vector<int32_t>& global, int32_t owned,
                                       StencilReduce& reduce);
@@ -61,7 +66,7 @@ SurfaceRows surface_rows(const LatticeFamilies& lf, const BondLists& bonds,
 
 // Recomputes the intact bits from `bonds` (a restored snapshot). Throws std::invalid_argument
 // when a lattice particle's listed bonds are not its present stencil bonds in stencil order
-// (partners checked by offset unless `listed_partners`: a partitioned rank's indices).
-void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds, bool listed_partners = false);
+// (partners checked by offset where its stencil is not `listed`).
+void refresh_lattice_intact(LatticeFamilies& lf, const BondLists& bonds);
 
 }  // namespace pd

@@ -185,12 +185,10 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
       const StencilEntry& e = entries[w0 + q];
       const int64_t slot = first_slot + int64_t(k0 + bit_count(present & ((1u << q) - 1u))) * kSliceWidth;
       int32_t j;
-      if constexpr (kLattice == kLatticeListed)
-        j = bond_partner(b.neighbor[slot]);
-      else if constexpr (kLattice == kLatticeAsView)
-        j = l.listed_partners ? bond_partner(b.neighbor[slot]) : i + e.offset;
-      else
+      if constexpr (kLattice == kLatticeOffsets)
         j = i + e.offset;
+      else
+        j = st.listed ? bond_partner(b.neighbor[slot]) : i + e.offset;
       if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u, w0 + q))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
@@ -207,7 +205,7 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
 // returns the bonds still intact after the visits. kLattice (LatticeMode, features.h): how
 // lattice families are walked (kNoLattice: every family is read from its list, and the lattice
 // loop is not compiled in); kUnroll as for_each_intact_lattice_bond.
-template <int kLattice = kLatticeAsView, int kUnroll = 2, class Visit>
+template <int kLattice = kLatticeListed, int kUnroll = 2, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                           Visit&& visit) {
   const int32_t stencil = kLattice != kNoLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;

@@ -26,7 +26,7 @@ PD_HD inline real damaged_strain_limit(real limit, int32_t i, ParticlesView p, B
   return limit * (real(1) + m.damage_alpha * damage);
 }
 
-template <bool kStateBased, bool kAnisotropic, int kLattice = kLatticeAsView, bool kPlastic = false>
+template <bool kStateBased, bool kAnisotropic, int kLattice = kLatticeListed, bool kPlastic = false>
 PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   const real limit = effective_strain_limit(p.strain_limit0[i], m.compression_alpha, p.strain_min[i]);

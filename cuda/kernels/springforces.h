@@ -52,7 +52,7 @@ template <bool kWeak>
 constexpr int kSpringUnroll = kWeak ? 8 : 2;
 
 // The breaking pass: the forces, and the bonds that break now removed. Raises `broke` when one does.
-template <bool kWeak, int kLattice = kLatticeAsView, bool kSurface = false>
+template <bool kWeak, int kLattice = kLatticeListed, bool kSurface = false>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                 int32_t* broke) {
   const Material& m = mt.m[p.material[i]];
@@ -82,7 +82,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
 // tau_j)); where it holds, the breaking pass runs for the particle from the start and its results
 // are kept. The sums are the breaking pass's expressions in its order, so where no bond breaks
 // both passes give the same bits.
-template <bool kWeak, int kLattice = kLatticeAsView, bool kSurface = false>
+template <bool kWeak, int kLattice = kLatticeListed, bool kSurface = false>
 PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                          int32_t* broke) {
   const Material& m = mt.m[p.material[i]];

@@ -78,13 +78,13 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
 }
 
 // The breaking pass, and the screened pass with the breaking pass where it cannot rule a break out.
-template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeAsView>
+template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeListed>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                int32_t* broke) {
   state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, true, true>(i, p, b, mt, broke);
 }
 
-template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeAsView>
+template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeListed>
 PD_HD inline void screened_state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
                                         int32_t* broke) {
   if (!state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, false, true>(i, p, b, mt, broke))

@@ -131,7 +131,7 @@ PD_HD inline DilatationPass dilatation_pass(int32_t i, const ParticlesView& p, c
 
 // kPlastic: the scene has plastic materials; their particles also get the trial norm, the
 // elastic bodies of such a scene sum theta alone (one branch per particle, none per bond).
-template <bool kAnisotropic = true, int kLattice = kLatticeAsView, bool kPlastic = false>
+template <bool kAnisotropic = true, int kLattice = kLatticeListed, bool kPlastic = false>
 PD_HD inline DilatationPass dilatation(int32_t i, const ParticlesView& p, const BondsView& b,
                                        const Material& m) {
   if constexpr (kPlastic)

@@ -256,6 +256,7 @@ class PartitionedEngine final : public Engine {
     family_.mean = double(family_.bonds) / double(n_);
     family_.slots = global_offset_.back();
     family_.lattice_particles = comm_->sum(mine.lattice_particles);
+    family_.lattice_listed = comm_->sum(mine.lattice_listed);
     family_.surface_rows = comm_->sum(mine.surface_rows);  // (each rank's table its own)
     family_.cuts.removed = comm_->sum(mine.cuts.removed);
     family_.cuts.weakened = comm_->sum(mine.cuts.weakened);

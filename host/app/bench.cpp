@@ -164,6 +164,9 @@ int bench_command(const BenchOptions& opt) {
   }
   std::printf("families   %lld of %zu particles find their partners by lattice offset",
               (long long)fam.lattice_particles, input.particles.size());
+  if (fam.lattice_listed > 0)
+    std::printf(" (%lld of them in the ranks' boundary layers read them from their lists)",
+                (long long)fam.lattice_listed);
   if (fam.surface_rows > 0)
     std::printf("; their surface correction in %lld rows of factors", (long long)fam.surface_rows);
   // A slice's threads loop as long as its longest family: the bonds' share of the slots is the
@@ -196,6 +199,7 @@ int bench_command(const BenchOptions& opt) {
      << "\",\n  \"precision\": \"" << (sizeof(real) == 4 ? "float32" : "float64") << "\",\n  \"workload\": \""
      << workload << "\",\n  \"particles\": " << input.particles.size() << ",\n  \"bonds\": " << fam.bonds
      << ",\n  \"lattice_particles\": " << fam.lattice_particles
+     << ",\n  \"lattice_listed_particles\": " << fam.lattice_listed
      << ",\n  \"surface_rows\": " << fam.surface_rows << ",\n  \"bond_slots\": " << fam.slots
      << ",\n  \"steps\": " << opt.steps << ",\n  \"screened_steps\": " << screened
      << ",\n  \"wall_seconds\": " << wall << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds

@@ -13,6 +13,7 @@
 #include "cuda/engine/bond_cuts.h"
 #include "cuda/engine/engine.h"
 #include "cuda/engine/lattice_families.h"
+#include "cuda/parallel/partition.h"
 #include "tests/support/fixtures.h"
 
 namespace pd {
@@ -157,6 +158,49 @@ class ThreadReduce {
   std::condition_variable cv_;
 };
 
+// A rank's families as the engine builds them: its own particles' (global[0, owned)) whole-run
+// families, partners as local indices (global: local -> whole-run index).
+BondLists local_bonds(const BondsView& wv, const std::vector<int32_t>& global, int32_t owned) {
+  std::vector<int32_t> local_of(static_cast<size_t>(wv.n));
+  for (size_t l = 0; l < global.size(); ++l) local_of[size_t(global[l])] = int32_t(l);
+  BondLists b;
+  b.count.assign(global.size(), 0);
+  int32_t longest = 0;
+  for (int32_t l = 0; l < owned; ++l) longest = std::max(longest, wv.count[global[size_t(l)]]);
+  const int64_t slices = (int64_t(global.size()) + kSliceWidth - 1) / kSliceWidth;
+  for (int64_t q = 0; q <= slices; ++q) b.slice_offset.push_back(q * int64_t(longest) * kSliceWidth);
+  b.neighbor.assign(size_t(b.slice_offset.back()), 0);
+  const BondsView lv = b.view();
+  for (int32_t l = 0; l < owned; ++l) {
+    const int32_t g = global[size_t(l)];
+    b.count[size_t(l)] = wv.count[g];
+    for (int32_t k = 0; k < wv.count[g]; ++k) {
+      const int32_t nb = wv.neighbor[wv.slot(g, k)];
+      const int32_t j = local_of[size_t(bond_partner(nb))];
+      b.neighbor[size_t(lv.slot(l, k))] = bond_intact(nb) ? j : ~j;
+    }
+  }
+  return b;
+}
+
+// Every rank's rank_lattice_families, the ranks as threads.
+std::vector<LatticeFamilies> rank_parts(const SimulationInput& in, const std::vector<BondLists>& locals,
+                                        const std::vector<std::vector<int32_t>>& globals,
+                                        const std::vector<int32_t>& owned) {
+  const int ranks = int(locals.size());
+  ThreadReduce shared(ranks);
+  std::vector<LatticeFamilies> parts(static_cast<size_t>(ranks));
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+    threads.emplace_back([&, r] {
+      ThreadReduce::Rank reduce(&shared);
+      parts[size_t(r)] = rank_lattice_families(in.particles, in.materials, locals[size_t(r)],
+                                               globals[size_t(r)], owned[size_t(r)], reduce);
+    });
+  for (auto& t : threads) t.join();
+  return parts;
+}
+
 TEST(LatticeFamilies, RanksBuildTheirPartsOfTheWholeRunsTables) {
   // Two box bodies; rank 0 owns the first 30 particles (a corner of the first body: alone, its
   // families use no offset below the first layer, so its stencil needs the other ranks'), rank 1
@@ -174,8 +218,6 @@ TEST(LatticeFamilies, RanksBuildTheirPartsOfTheWholeRunsTables) {
   const BondsView wv = whole_bonds.view();
   const int ranks = 3;
   const auto owner = [&](int32_t g) { return g < 30 ? 0 : g < n / 2 ? 1 : 2; };
-  ThreadReduce shared(ranks);
-  std::vector<LatticeFamilies> parts(ranks);
   std::vector<std::vector<int32_t>> globals(ranks);
   std::vector<int32_t> owned(ranks, 0);
   std::vector<BondLists> locals(ranks);
@@ -186,54 +228,92 @@ TEST(LatticeFamilies, RanksBuildTheirPartsOfTheWholeRunsTables) {
     owned[size_t(r)] = int32_t(global.size());
     for (int32_t g = 0; g < n; ++g)
       if (owner(g) != r) global.push_back(g);
-    std::vector<int32_t> local_of(static_cast<size_t>(n));
-    for (size_t l = 0; l < global.size(); ++l) local_of[size_t(global[l])] = int32_t(l);
-    // The local families: the own particles' whole-run families, partners as local indices.
-    BondLists& b = locals[size_t(r)];
-    b.count.assign(global.size(), 0);
-    int32_t longest = 0;
-    for (int32_t l = 0; l < owned[size_t(r)]; ++l) longest = std::max(longest, wv.count[global[size_t(l)]]);
-    const int64_t slices = (int64_t(global.size()) + kSliceWidth - 1) / kSliceWidth;
-    for (int64_t q = 0; q <= slices; ++q) b.slice_offset.push_back(q * int64_t(longest) * kSliceWidth);
-    b.neighbor.assign(size_t(b.slice_offset.back()), 0);
-    const BondsView lv = b.view();
-    for (int32_t l = 0; l < owned[size_t(r)]; ++l) {
-      const int32_t g = global[size_t(l)];
-      b.count[size_t(l)] = wv.count[g];
-      for (int32_t k = 0; k < wv.count[g]; ++k) {
-        const int32_t nb = wv.neighbor[wv.slot(g, k)];
-        const int32_t j = local_of[size_t(bond_partner(nb))];
-        b.neighbor[size_t(lv.slot(l, k))] = bond_intact(nb) ? j : ~j;
-      }
-    }
+    locals[size_t(r)] = local_bonds(wv, global, owned[size_t(r)]);
   }
-  std::vector<std::thread> threads;
-  for (int r = 0; r < ranks; ++r)
-    threads.emplace_back([&, r] {
-      ThreadReduce::Rank reduce(&shared);
-      parts[size_t(r)] = rank_lattice_families(in.particles, in.materials, locals[size_t(r)],
-                                               globals[size_t(r)], owned[size_t(r)], reduce);
-    });
-  for (auto& t : threads) t.join();
+  const std::vector<LatticeFamilies> parts = rank_parts(in, locals, globals, owned);
+  int64_t at_offsets = 0;
   for (int r = 0; r < ranks; ++r) {
     const LatticeFamilies& p = parts[size_t(r)];
-    ASSERT_EQ(p.stencils.size(), whole.stencils.size()) << "rank " << r;
-    ASSERT_EQ(p.entries.size(), whole.entries.size()) << "rank " << r;
-    for (size_t e = 0; e < p.entries.size(); ++e) {
-      EXPECT_EQ(p.entries[e].offset, whole.entries[e].offset);
-      EXPECT_EQ(p.entries[e].weight, whole.entries[e].weight);
-    }
     ASSERT_EQ(p.words, whole.words);
     const size_t held = p.stencil.size();
+    const BondsView lv = locals[size_t(r)].view();
     for (int32_t l = 0; l < owned[size_t(r)]; ++l) {
       const int32_t g = globals[size_t(r)][size_t(l)];
-      EXPECT_EQ(p.stencil[size_t(l)], whole.stencil[size_t(g)]) << "rank " << r << " particle " << g;
+      ASSERT_GE(p.stencil[size_t(l)], 0) << "rank " << r << " particle " << g;
+      // The rank's stencil is the whole run's: its entries' geometry, and its offsets where it
+      // is the listed one; the copy with local offsets finds every partner at them.
+      const Stencil& st = p.stencils[size_t(p.stencil[size_t(l)])];
+      const Stencil& wst = whole.stencils[size_t(whole.stencil[size_t(g)])];
+      ASSERT_EQ(st.size, wst.size);
+      EXPECT_EQ(wst.listed, 0);
+      at_offsets += st.listed == 0;
+      int32_t k = 0;
+      for (int32_t q = 0; q < st.size; ++q) {
+        const StencilEntry &e = p.entries[size_t(st.first + q)], &we = whole.entries[size_t(wst.first + q)];
+        EXPECT_EQ(e.weight, we.weight);
+        EXPECT_EQ(e.xi.w, we.xi.w);
+        if (st.listed) {
+          EXPECT_EQ(e.offset, we.offset);
+        }
+        if (!bit(p, p.present, l, q)) continue;
+        const int32_t j = bond_partner(lv.neighbor[lv.slot(l, k++)]);
+        if (!st.listed) {
+          EXPECT_EQ(j, l + e.offset) << "rank " << r << " particle " << g << " entry " << q;
+        }
+      }
       for (int32_t w = 0; w < whole.words; ++w) {
         EXPECT_EQ(p.present[size_t(w) * held + size_t(l)], whole.present[size_t(w) * size_t(n) + size_t(g)]);
         EXPECT_EQ(p.intact[size_t(w) * held + size_t(l)], whole.intact[size_t(w) * size_t(n) + size_t(g)]);
       }
     }
   }
+  // Ranks 1 and 2 hold whole layers in reverse order: their inner particles find their partners
+  // at (negated) offsets of their own.
+  EXPECT_GT(at_offsets, n / 4);
+}
+
+TEST(LatticeFamilies, RanksOfAPartitionReadPartnersAtLocalOffsetsAwayFromTheirBoundaries) {
+  // A 40 x 24 x 8 block on 4 ranks as the partition lays them out (own particles interior first,
+  // then boundary, each by global index; then the ghosts): the interior particles farther than a
+  // horizon from their part's boundary read partners at local offsets, the others from lists.
+  const SimulationInput in = lattice_block(40, 24, 8, 1e-3);
+  const BondLists whole_bonds = bonds_of(in);
+  const BondsView wv = whole_bonds.view();
+  const int ranks = 4;
+  const Partition partition = partition_particles(in.particles, in.materials, ranks);
+  std::vector<BondLists> locals(ranks);
+  std::vector<std::vector<int32_t>> globals(ranks);
+  std::vector<int32_t> owned(ranks);
+  for (int r = 0; r < ranks; ++r) {
+    const RankLayout layout = rank_layout(partition, r);
+    globals[size_t(r)] = layout.global;
+    owned[size_t(r)] = layout.owned;
+    locals[size_t(r)] = local_bonds(wv, layout.global, layout.owned);
+  }
+  const std::vector<LatticeFamilies> parts = rank_parts(in, locals, globals, owned);
+  int64_t lattice = 0, listed = 0;
+  for (int r = 0; r < ranks; ++r) {
+    const LatticeFamilies& p = parts[size_t(r)];
+    lattice += p.particles();
+    listed += p.listed_particles();
+    const BondsView lv = locals[size_t(r)].view();
+    for (int32_t l = 0; l < owned[size_t(r)]; ++l) {
+      const Stencil& st = p.stencils[size_t(p.stencil[size_t(l)])];
+      if (st.listed) continue;
+      int32_t k = 0;
+      for (int32_t q = 0; q < st.size; ++q)
+        if (bit(p, p.present, l, q)) {
+          ASSERT_EQ(bond_partner(lv.neighbor[lv.slot(l, k++)]), l + p.entries[size_t(st.first + q)].offset)
+              << "rank " << r << " particle " << l << " entry " << q;
+        }
+      ASSERT_EQ(k, lv.count[l]);
+    }
+  }
+  EXPECT_EQ(lattice, int64_t(in.particles.size()));
+  // Each part is 20 x 12 x 8 with two faces on other parts. Its interior is the 17 x 9 x 8
+  // particles beyond a horizon (3 spacings) of those faces; of them, those whose partners are all
+  // interior too, 14 x 6 x 8, read partners at offsets.
+  EXPECT_EQ(lattice - listed, 4 * 14 * 6 * 8);
 }
 
 // Relative L2 difference of two vector fields.
