@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <map>
+#include <parallel/algorithm>  // __gnu_parallel::sort (OpenMP)
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 #include "cuda/engine/bond_cuts.h"
@@ -65,20 +64,16 @@ bool find_box_grid(const ParticleSet& ps, int32_t first, int32_t end, BoxGrid& g
 // The families a stencil is made from, as rows of the tables: row r is the whole run's particle
 // gid(r), whose partners' whole-run indices and intact flags partner(r, k) gives in family order
 // (one run: every particle, row = index; a partitioned rank: its own particles of the body, rows
-// in its local order).
+// in its local order). Partner is a callable, inlined into add_stencil's loops over every bond.
+template <class Partner>
 struct BodyRows {
   std::vector<int32_t> rows, gids;  // the body's particles: their rows and whole-run indices
-  std::function<int32_t(int32_t row)> count;
-  std::function<int32_t(int32_t row, int32_t k)> partner;  // whole-run index, ~index if broken
+  const int32_t* count = nullptr;   // per row: its family's size
+  Partner partner;                  // (row, k) -> whole-run index, ~index if broken
 };
 
-// Builds body `g`'s stencil from its families and sets its rows' bits; false (nothing changed)
-// when the families do not fit a stencil. Bonds are identified by their index offset j - i alone
-// (no division per bond): no bond is longer than the family radius, so along each axis it spans
-// at most `bound` cells, and a grid wider than 2 bound along x and y gives every such cell offset
-// its own index offset. With `reduce` (a partitioned rank) the fit and the offsets used are
-// combined over the ranks, so every rank builds the stencil one run builds.
-bool add_stencil(const ParticleSet& ps, const Material& m, const BoxGrid& g, const BodyRows& body,
+template <class Partner>
+bool add_stencil(const ParticleSet& ps, const Material& m, const BoxGrid& g, const BodyRows<Partner>& body,
                  LatticeFamilies& lf, StencilReduce* reduce) {
   std::array<int32_t, 3> bound{};
   for (int a = 0; a < 3; ++a) bound[a] = int32_t(std::floor(double(m.family_radius()) * (1 + 1e-4) / g.h[a]));
@@ -105,7 +100,7 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BoxGrid& g, con
   for (int32_t r = 0; r < rows; ++r) {
     const int32_t row = body.rows[size_t(r)], i = body.gids[size_t(r)];
     int32_t previous = -1;
-    for (int32_t k = 0; k < body.count(row) && fits; ++k) {
+    for (int32_t k = 0; k < body.count[row] && fits; ++k) {
       const int32_t j = bond_partner(body.partner(row, k));
       const int64_t at = reach + (j - i);
       // Another body, not ascending, or beyond the bounds.
@@ -163,7 +158,7 @@ bool add_stencil(const ParticleSet& ps, const Material& m, const BoxGrid& g, con
   for (int32_t r = 0; r < rows; ++r) {
     const int32_t row = body.rows[size_t(r)], i = body.gids[size_t(r)];
     lf.stencil[size_t(row)] = id;
-    for (int32_t k = 0; k < body.count(row); ++k) {
+    for (int32_t k = 0; k < body.count[row]; ++k) {
       const int32_t nb = body.partner(row, k);
       const int32_t q = entry_of[size_t(reach + (bond_partner(nb) - i))];
       const size_t word = size_t(q / 32) * n + size_t(row);
@@ -281,11 +276,10 @@ LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt,
   for (const auto& [first, end] : contiguous_bodies(ps)) {
     BoxGrid g;
     if (!find_box_grid(ps, first, end, g)) continue;
-    BodyRows body;
+    const auto partner = [&](int32_t i, int32_t k) { return v.neighbor[v.slot(i, k)]; };
+    BodyRows<decltype(partner)> body{{}, {}, v.count.data(), partner};
     for (int32_t i = first; i < end; ++i) body.rows.push_back(i);
     body.gids = body.rows;
-    body.count = [&](int32_t i) { return v.count[i]; };
-    body.partner = [&](int32_t i, int32_t k) { return v.neighbor[v.slot(i, k)]; };
     add_stencil(ps, mt.m[ps.material[size_t(g.first)]], g, body, lf, nullptr);
   }
   return lf;
@@ -304,18 +298,17 @@ LatticeFamilies rank_lattice_families(const ParticleSet& ps, const MaterialTable
   for (const auto& [first, end] : contiguous_bodies(ps)) {
     BoxGrid g;
     if (!find_box_grid(ps, first, end, g)) continue;
-    BodyRows body;
+    const auto partner = [&](int32_t row, int32_t k) {
+      const int32_t nb = v.neighbor[v.slot(row, k)];
+      const int32_t j = global[size_t(bond_partner(nb))];
+      return bond_intact(nb) ? j : ~j;
+    };
+    BodyRows<decltype(partner)> body{{}, {}, v.count.data(), partner};
     for (auto it = std::lower_bound(own.begin(), own.end(), std::make_pair(first, int32_t(0)));
          it != own.end() && it->first < end; ++it) {
       body.rows.push_back(it->second);
       body.gids.push_back(it->first);
     }
-    body.count = [&](int32_t row) { return v.count[row]; };
-    body.partner = [&](int32_t row, int32_t k) {
-      const int32_t nb = v.neighbor[v.slot(row, k)];
-      const int32_t j = global[size_t(bond_partner(nb))];
-      return bond_intact(nb) ? j : ~j;
-    };
     if (add_stencil(ps, mt.m[ps.material[size_t(g.first)]], g, body, lf, &reduce))
       add_local_stencil(lf, int16_t(lf.stencils.size() - 1), body.rows, v);
   }
@@ -340,6 +333,7 @@ void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
                              const std::vector<uint8_t>& strength) {
   const BondsView v = bonds.view();
   lf.weak.assign(lf.present.size(), 0);
+#pragma omp parallel for schedule(static)  // each particle sets only its own words
   for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
     if (lf.stencil[size_t(i)] < 0) continue;
     for_each_present_bond(lf, i, [&](int32_t, size_t word, uint32_t bit, int32_t k) {
@@ -351,33 +345,74 @@ void mark_weak_lattice_bonds(LatticeFamilies& lf, const BondLists& bonds,
 SurfaceRows surface_rows(const LatticeFamilies& lf, const BondLists& bonds,
                          const std::vector<uint16_t>& surface_bond) {
   const BondsView v = bonds.view();
-  SurfaceRows out;
-  out.row.assign(lf.stencil.size(), -1);
-  // Each row's start in the table, found by its values (hashed FNV-1a style).
-  struct RowHash {
-    size_t operator()(const std::vector<uint16_t>& r) const {
-      uint64_t h = 1469598103934665603ull;
-      for (const uint16_t x : r) h = (h ^ x) * 1099511628211ull;
-      return size_t(h);
-    }
+  const int32_t n = int32_t(lf.stencil.size());
+  // Particle i's row: its factor per stencil entry, 0 where its family lacks the entry.
+  // Calls f(q, x) for each entry q of lattice particle i's stencil, x its bond's factor (0 where
+  // its family lacks the entry): the particle's row.
+  const auto for_each_in_row = [&](int32_t i, auto f) {
+    const int32_t size = lf.stencils[size_t(lf.stencil[size_t(i)])].size;
+    int32_t k = 0;
+    for (int32_t q = 0; q < size; ++q)
+      f(q, lf.present[size_t(q / 32) * size_t(n) + size_t(i)] >> (q % 32) & 1u
+               ? surface_bond[size_t(v.slot(i, k++))]
+               : uint16_t(0));
   };
-  std::unordered_map<std::vector<uint16_t>, int32_t, RowHash> starts;
+  const auto row_of = [&](int32_t i, std::vector<uint16_t>& row) {
+    row.assign(size_t(lf.stencils[size_t(lf.stencil[size_t(i)])].size), 0);
+    for_each_in_row(i, [&](int32_t q, uint16_t x) { row[size_t(q)] = x; });
+  };
+  // Rows hashed (FNV-1a) in parallel and sorted by (hash, particle): each particle's
+  // representative is the first particle of its hash, checked equal in parallel (a particle
+  // whose row differs, a hash collision, is its own representative).
+  std::vector<std::pair<uint64_t, int32_t>> keyed;
+  keyed.reserve(size_t(n));
+  for (int32_t i = 0; i < n; ++i)
+    if (lf.stencil[size_t(i)] >= 0) keyed.push_back({0, i});
+  const int64_t lattice = int64_t(keyed.size());
+#pragma omp parallel for schedule(static)
+  for (int64_t e = 0; e < lattice; ++e) {
+    uint64_t h = 1469598103934665603ull;
+    for_each_in_row(keyed[size_t(e)].second, [&](int32_t, uint16_t x) { h = (h ^ x) * 1099511628211ull; });
+    keyed[size_t(e)].first = h;
+  }
+  __gnu_parallel::sort(keyed.begin(), keyed.end());
+  // Per entry its hash's ordinal; per ordinal the first particle and its row.
+  std::vector<int32_t> ordinal(static_cast<size_t>(lattice)), head;
+  for (int64_t e = 0; e < lattice; ++e) {
+    if (e == 0 || keyed[size_t(e - 1)].first != keyed[size_t(e)].first)
+      head.push_back(keyed[size_t(e)].second);
+    ordinal[size_t(e)] = int32_t(head.size()) - 1;
+  }
+  std::vector<std::vector<uint16_t>> head_row(head.size());
+#pragma omp parallel for schedule(dynamic, 64)
+  for (size_t o = 0; o < head.size(); ++o) row_of(head[o], head_row[o]);
+  std::vector<int32_t> rep(size_t(n), -1);
+#pragma omp parallel for schedule(static)
+  for (int64_t e = 0; e < lattice; ++e) {
+    const int32_t i = keyed[size_t(e)].second, o = ordinal[size_t(e)];
+    const std::vector<uint16_t>& first = head_row[size_t(o)];
+    bool same = lf.stencils[size_t(lf.stencil[size_t(i)])].size == int32_t(first.size());
+    if (same && i != head[size_t(o)])
+      for_each_in_row(i, [&](int32_t q, uint16_t x) { same = same && first[size_t(q)] == x; });
+    rep[size_t(i)] = same ? head[size_t(o)] : i;
+  }
+  // Rows stored in the order of their first particle; each particle points at its
+  // representative's.
+  SurfaceRows out;
+  out.row.assign(size_t(n), -1);
   std::vector<uint16_t> row;
-  for (int32_t i = 0; i < int32_t(lf.stencil.size()); ++i) {
-    const int32_t s = lf.stencil[size_t(i)];
-    if (s < 0) continue;
-    row.assign(size_t(lf.stencils[size_t(s)].size), 0);
-    for_each_present_bond(lf, i, [&](int32_t q, size_t, uint32_t, int32_t k) {
-      row[size_t(q)] = surface_bond[size_t(v.slot(i, k))];
-    });
-    const auto [at, added] = starts.try_emplace(row, int32_t(out.table.size()));
-    if (added) {
+  for (int32_t i = 0; i < n; ++i) {
+    if (rep[size_t(i)] < 0) continue;
+    if (rep[size_t(i)] == i) {
+      row_of(i, row);
       if (out.table.size() + row.size() > size_t(std::numeric_limits<int32_t>::max()))
         throw std::length_error("the surface correction's table of lattice rows outgrew 2^31 entries");
+      out.row[size_t(i)] = int32_t(out.table.size());
       out.table.insert(out.table.end(), row.begin(), row.end());
       ++out.rows;
+    } else {
+      out.row[size_t(i)] = out.row[size_t(rep[size_t(i)])];
     }
-    out.row[size_t(i)] = at->second;
   }
   return out;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -314,6 +315,43 @@ TEST(LatticeFamilies, RanksOfAPartitionReadPartnersAtLocalOffsetsAwayFromTheirBo
   // particles beyond a horizon (3 spacings) of those faces; of them, those whose partners are all
   // interior too, 14 x 6 x 8, read partners at offsets.
   EXPECT_EQ(lattice - listed, 4 * 14 * 6 * 8);
+}
+
+// The surface factors' rows: every lattice particle's row holds its bonds' factors by stencil
+// entry (0 where its family lacks the entry), each distinct row is stored once, in the order of
+// the first particle that has it.
+TEST(LatticeFamilies, SurfaceRowsHoldEachParticlesFactorsOnce) {
+  const SimulationInput in = lattice_block(14, 11, 9, 1e-3);
+  const BondLists bonds = bonds_of(in);
+  const LatticeFamilies lf = lattice_families(in.particles, in.materials, bonds);
+  const BondsView v = bonds.view();
+  // Factors that depend on the bond's direction and on how near the particle is to the low x
+  // face, so that rows repeat along y and z and differ along x.
+  std::vector<uint16_t> factor(bonds.neighbor.size(), 0);
+  const int32_t n = int32_t(in.particles.size());
+  for (int32_t i = 0; i < n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int32_t j = bond_partner(v.neighbor[v.slot(i, k)]);
+      factor[size_t(v.slot(i, k))] = uint16_t(1000 + 7 * std::min(i % 14, 4) + (j - i + 4096) % 97);
+    }
+  const SurfaceRows rows = surface_rows(lf, bonds, factor);
+  std::map<std::vector<uint16_t>, int32_t> seen;  // row -> its start
+  int32_t next = 0;
+  for (int32_t i = 0; i < n; ++i) {
+    const Stencil& st = lf.stencils[size_t(lf.stencil[size_t(i)])];
+    std::vector<uint16_t> row(size_t(st.size), 0);
+    int32_t k = 0;
+    for (int32_t q = 0; q < st.size; ++q)
+      if (bit(lf, lf.present, i, q)) row[size_t(q)] = factor[size_t(v.slot(i, k++))];
+    for (int32_t q = 0; q < st.size; ++q)
+      ASSERT_EQ(rows.table[size_t(rows.row[size_t(i)] + q)], row[size_t(q)]);
+    const auto [at, added] = seen.try_emplace(row, next);
+    if (added) next += st.size;
+    EXPECT_EQ(rows.row[size_t(i)], at->second) << "particle " << i;
+  }
+  EXPECT_EQ(rows.rows, int64_t(seen.size()));
+  EXPECT_EQ(rows.table.size(), size_t(next));
+  EXPECT_LT(rows.rows, n / 3);  // 8 classes along x, 7 along y and z: 392 rows
 }
 
 // Relative L2 difference of two vector fields.
