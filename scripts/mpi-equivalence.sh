@@ -86,13 +86,19 @@ else
   status=1
 fi
 
-# `perifrac bench` under mpirun reports every rank: particles, ghosts, rate and halo traffic.
-mpirun -np 2 "$bin" bench --lattice 16 --steps 5 --warmup 1 --backend "$backend" --out "$out/bench" >"$out/bench.log" 2>&1
+# `perifrac bench` under mpirun reports every rank: particles, ghosts, rate and halo traffic; and
+# most of a 32^3 lattice's particles read their partners at the ranks' local offsets (12,288 of
+# the 32,768 lie within two horizons of the cut between the two halves and read their lists).
+mpirun -np 2 "$bin" bench --lattice 32 --steps 5 --warmup 1 --backend "$backend" --out "$out/bench" >"$out/bench.log" 2>&1
 json=$(ls "$out"/bench/*.json)
+listed=$(sed -n 's/.*"lattice_listed_particles": \([0-9]*\).*/\1/p' "$json")
 if [ "$(grep -c '"halo_bytes_per_step": [1-9]' "$json")" -ne 2 ]; then
   echo "mpi-equivalence: bench on 2 ranks does not report two ranks with halo traffic ($json)" >&2
   status=1
+elif [ "${listed:-32768}" -gt 16384 ]; then
+  echo "mpi-equivalence: bench on 2 ranks: ${listed:-?} of 32768 lattice particles read partners from lists ($json)" >&2
+  status=1
 else
-  echo "mpi-equivalence: bench on 2 ranks reports both ranks ($(grep -o '"halo_transport": "[^"]*"' "$json" | sort -u | tr '\n' ' '))"
+  echo "mpi-equivalence: bench on 2 ranks reports both ranks ($(grep -o '"halo_transport": "[^"]*"' "$json" | sort -u | tr '\n' ' ')), $listed of 32768 lattice particles reading lists"
 fi
 exit $status
