@@ -72,6 +72,12 @@ struct BodyRows {
   Partner partner;                  // (row, k) -> whole-run index, ~index if broken
 };
 
+// Builds body `g`'s stencil from its families and sets its rows' bits; false (nothing changed)
+// when the families do not fit a stencil. Bonds are identified by their index offset j - i alone
+// (no division per bond): no bond is longer than the family radius, so along each axis it spans
+// at most `bound` cells, and a grid wider than 2 bound along x and y gives every such cell offset
+// its own index offset. With `reduce` (a partitioned rank) the fit and the offsets used are
+// combined over the ranks, so every rank builds the stencil one run builds.
 template <class Partner>
 bool add_stencil(const ParticleSet& ps, const Material& m, const BoxGrid& g, const BodyRows<Partner>& body,
                  LatticeFamilies& lf, StencilReduce* reduce) {
@@ -346,7 +352,6 @@ SurfaceRows surface_rows(const LatticeFamilies& lf, const BondLists& bonds,
                          const std::vector<uint16_t>& surface_bond) {
   const BondsView v = bonds.view();
   const int32_t n = int32_t(lf.stencil.size());
-  // Particle i's row: its factor per stencil entry, 0 where its family lacks the entry.
   // Calls f(q, x) for each entry q of lattice particle i's stencil, x its bond's factor (0 where
   // its family lacks the entry): the particle's row.
   const auto for_each_in_row = [&](int32_t i, auto f) {
