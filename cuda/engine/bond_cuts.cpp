@@ -85,22 +85,15 @@ bool segment_crosses_triangle(const P3& p, const P3& q, const CutTriangle& t) {
 }
 
 BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<Vec3>& rest,
-                        const std::vector<int32_t>& body, BondLists& bonds, std::vector<uint8_t>& strength) {
+                        const std::vector<int32_t>& body, double longest, BondLists& bonds,
+                        std::vector<uint8_t>& strength) {
   BondCutCounts report;
   strength.clear();
-  if (cuts.empty()) return report;
+  if (cuts.empty() || !(longest > 0)) return report;
   const BondsView b = bonds.view();
   const int32_t n = b.n;
 
   // The grid's cell: the longest bond, so every bond starts in a cell that lists what it crosses.
-  double longest = 0;
-#pragma omp parallel for reduction(max : longest) schedule(static)
-  for (int32_t i = 0; i < n; ++i)
-    for (int32_t k = 0; k < b.count[i]; ++k) {
-      const P3 d = sub(to_p3(rest[size_t(bond_partner(b.neighbor[b.slot(i, k)]))]), to_p3(rest[size_t(i)]));
-      longest = std::max(longest, std::sqrt(dot3(d, d)));
-    }
-  if (!(longest > 0)) return report;
   const CutTester tester(cuts, longest);
 
   // Per slot: the strength of the weakest triangle the bond crosses (1 for none); then each

@@ -22,9 +22,11 @@ constexpr int kStrengthLevels = 255;
 // 1..255 (255 for bonds that cross none). `strength` is left empty when no bond is weakened.
 // A bond crosses a triangle when its open rest segment meets the closed triangle; the test runs
 // on the segment from the lower particle index to the higher, so both stored directions of a
-// bond get the same answer. `rest` and `body` are the particles' rest positions and bodies.
+// bond get the same answer. `rest` and `body` are the particles' rest positions and bodies; no
+// bond is longer than `longest` (longest_bond_bound).
 BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<Vec3>& rest,
-                        const std::vector<int32_t>& body, BondLists& bonds, std::vector<uint8_t>& strength);
+                        const std::vector<int32_t>& body, double longest, BondLists& bonds,
+                        std::vector<uint8_t>& strength);
 
 // True when the open segment p -> q meets the closed triangle (Moller-Trumbore, double).
 bool segment_crosses_triangle(const std::array<double, 3>& p, const std::array<double, 3>& q,

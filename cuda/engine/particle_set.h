@@ -28,6 +28,10 @@ struct ParticleSet {
              uint8_t flag_bits = 0, uint8_t anchor_group = 0);
 };
 
+// A length no bond of `ps` exceeds: the largest family radius of `mt` with more than the slack
+// family_reach (cuda/kernels/family.h) adds for the particles farthest from the origin.
+double longest_bond_bound(const ParticleSet& ps, const MaterialTable& mt);
+
 // Everything an engine needs to run: particles, material constants and step parameters.
 // `springforces` in its screened form (cuda/kernels/bond_screen.h) while no bond broke in the
 // last passes (kAuto), never (kOff), or in every pass (kAlways); the results are the same.

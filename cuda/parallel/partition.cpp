@@ -6,8 +6,6 @@
 #include <parallel/algorithm>  // __gnu_parallel::sort (OpenMP)
 #include <utility>
 
-#include "cuda/kernels/family.h"
-
 namespace pd {
 
 namespace {
@@ -86,10 +84,7 @@ Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, in
 
   // A rank's ghosts: every other rank's particle within the largest family radius (with room for
   // round-off) of the box around its own. A superset of the partners its families find.
-  double reach = 0, extent = 0;
-  for (int m = 0; m < mt.count; ++m) reach = std::max(reach, double(mt.m[m].family_radius()));
-  for (const Vec3& x : ps.rest) extent = std::max(extent, largest_coordinate(x));
-  reach = reach * (1.0 + 1e-4) + 2 * kPositionSlack * extent;  // the longest family_reach, and more
+  const double reach = longest_bond_bound(ps, mt);
   std::vector<Box> boxes(static_cast<size_t>(ranks));
   for (size_t i = 0; i < n; ++i) boxes[size_t(p.owner[i])].add(ps.rest[i]);
   p.ghosts.assign(size_t(ranks), {});

@@ -427,7 +427,8 @@ TEST(LatticeFamilies, CutAndWeakenedBondsKeepTheirSlots) {
   BondLists lists;
   e->read_bonds(lists);
   std::vector<uint8_t> strength;
-  cut_bonds(in.cuts, in.particles.rest, in.particles.body, lists,
+  cut_bonds(in.cuts, in.particles.rest, in.particles.body, longest_bond_bound(in.particles, in.materials),
+            lists,
             strength);  // lists already cut: weakens only
   LatticeFamilies lf = lattice_families(in.particles, in.materials, lists);
   mark_weak_lattice_bonds(lf, lists, strength);
