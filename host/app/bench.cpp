@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "cuda/engine/engine.h"
 #include "cuda/engine/material.h"
@@ -14,6 +15,7 @@
 #include "host/app/kernel_report.h"
 #include "host/app/provenance.h"
 #include "host/app/run.h"
+#include "host/app/time_step_check.h"
 #include "host/io/atomic_file.h"
 #include "host/scene/scene_setup.h"
 
@@ -109,11 +111,16 @@ int bench_command(const BenchOptions& opt) {
   std::string workload;
   SimulationInput input;
   const auto setup_start = std::chrono::steady_clock::now();
+  Scene scene;
   if (!opt.scene.empty()) {
-    const Scene scene = load_scene(opt.scene);
-    input = setup_scene(scene, setup_options_for(scene, opt.scale, backend)).input;
+    scene = load_scene(opt.scene, opt.overrides);
+    const SetupResult setup = setup_scene(scene, setup_options_for(scene, opt.scale, backend));
+    // A scene scaled past its time step would time a blow-up: refused as `perifrac run` does.
+    check_time_step(scene, setup, opt.allow_unstable_dt);
+    input = setup.input;
     workload = std::filesystem::path(opt.scene).stem().string();
   } else {
+    if (!opt.overrides.empty()) throw std::invalid_argument("bench: --set needs --scene");
     input = lattice_input(opt);
     workload = "lattice" + std::to_string(opt.lattice) + "_h" + std::to_string(int(opt.horizon)) + "_" +
                opt.model + (opt.contact ? "_contact" : "");
@@ -133,6 +140,14 @@ int bench_command(const BenchOptions& opt) {
   const double engine_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - engine_start).count();
   const FamilyStats& fam = engine->family_stats();
+  const double dt = double(input.step.dt), family_dt = engine->critical_time_step();
+  if (!opt.scene.empty()) {
+    check_family_time_step(scene, dt, family_dt, opt.allow_unstable_dt);
+  } else if (dt > family_dt && !opt.allow_unstable_dt) {
+    throw std::invalid_argument("bench: the lattice's dt " + std::to_string(dt) +
+                                " s exceeds the stable time step of its families, " +
+                                std::to_string(family_dt) + " s (allowed: a larger --horizon)");
+  }
   engine->advance(opt.warmup);
   engine->stats().reset_times();
   const int64_t screened_before = engine->screened_passes();
@@ -144,6 +159,8 @@ int bench_command(const BenchOptions& opt) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const int64_t screened = engine->screened_passes() - screened_before;
   const std::vector<RankStats> ranks = rank_deltas(ranks_before, engine->rank_stats());
+  // Whether the workload broke anything: a scene's fracture, or none for the elastic lattice.
+  const int64_t broken = engine->broken_bonds();
 
   const std::string date = utc_now("%Y-%m-%dT%H:%M:%SZ"), rev = git_revision();
   // (Under mpirun the kernel table is rank 0's: its kernels over its own bonds.)
@@ -154,6 +171,8 @@ int bench_command(const BenchOptions& opt) {
   std::printf("size       %zu particles, %lld bonds (mean %.1f per particle), %.1f MiB, %lld steps\n",
               input.particles.size(), (long long)fam.bonds, fam.mean,
               double(engine->memory_bytes()) / (1 << 20), (long long)opt.steps);
+  std::printf("time step  dt %.4g s = %.2f of the families' stable step%s\n", dt, dt / family_dt,
+              dt > family_dt ? " (unstable, allowed by --allow-unstable-dt)" : "");
   std::printf("set-up     scene %.2f s, engine %.2f s\n", scene_seconds, engine_seconds);
   const std::vector<SetupStage> stages = engine->setup_stages();
   if (!stages.empty()) {
@@ -180,6 +199,8 @@ int bench_command(const BenchOptions& opt) {
               (long long)screened, (long long)opt.steps);
   std::printf("wall       %.3f s for %lld steps: %.3e bond-updates/s end to end\n", wall,
               (long long)opt.steps, double(fam.bonds) * double(opt.steps) / wall);
+  std::printf("broken     %lld of %lld bonds after %lld steps (%.4g s simulated, warm-up included)\n",
+              (long long)broken, (long long)fam.bonds, (long long)engine->step(), engine->time());
   for (size_t r = 0; r < ranks.size(); ++r) {
     const RankStats& k = ranks[r];
     std::printf(
@@ -201,9 +222,11 @@ int bench_command(const BenchOptions& opt) {
      << ",\n  \"lattice_particles\": " << fam.lattice_particles
      << ",\n  \"lattice_listed_particles\": " << fam.lattice_listed
      << ",\n  \"surface_rows\": " << fam.surface_rows << ",\n  \"bond_slots\": " << fam.slots
-     << ",\n  \"steps\": " << opt.steps << ",\n  \"screened_steps\": " << screened
-     << ",\n  \"wall_seconds\": " << wall << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds
-     << ", \"engine\": " << engine_seconds << ", \"engine_stages\": {" << stage_json(stages) << "}}"
+     << ",\n  \"steps\": " << opt.steps << ",\n  \"screened_steps\": " << screened << ",\n  \"dt\": " << dt
+     << ",\n  \"dt_over_stable\": " << dt / family_dt << ",\n  \"broken_bonds\": " << broken
+     << ",\n  \"simulated_seconds\": " << engine->time() << ",\n  \"wall_seconds\": " << wall
+     << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds << ", \"engine\": " << engine_seconds
+     << ", \"engine_stages\": {" << stage_json(stages) << "}}"
      << ",\n  \"kernels\": [\n";
   for (size_t k = 0; k < rows.size(); ++k) {
     const auto& r = rows[k];

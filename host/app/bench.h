@@ -5,21 +5,24 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace pd {
 
 struct BenchOptions {
-  std::string scene;                 // a scene file, or empty for the lattice
-  double scale = 1.0;                // scene particle-count scale
-  int64_t lattice = 100;             // particles per side of the synthetic cube
-  double horizon = 3.0;              // delta / lambda of the lattice
-  bool contact = false;              // lattice: launch collection + collisions
-  bool explicit_families = false;    // box-grid bodies read partner indices as other bodies do
-  std::string screen = "auto";       // springforces: auto | off | always (cuda/kernels/bond_screen.h)
-  std::string model = "bond_based";  // lattice material: bond_based | state_based | plastic
+  std::string scene;                   // a scene file, or empty for the lattice
+  std::vector<std::string> overrides;  // --set KEY=VALUE, applied to the scene file
+  double scale = 1.0;                  // scene particle-count scale
+  int64_t lattice = 100;               // particles per side of the synthetic cube
+  double horizon = 3.0;                // delta / lambda of the lattice
+  bool contact = false;                // lattice: launch collection + collisions
+  bool explicit_families = false;      // box-grid bodies read partner indices as other bodies do
+  std::string screen = "auto";         // springforces: auto | off | always (cuda/kernels/bond_screen.h)
+  std::string model = "bond_based";    // lattice material: bond_based | state_based | plastic
   std::string backend = "auto";
   int64_t steps = 200;
   int64_t warmup = 20;
+  bool allow_unstable_dt = false;  // time a dt past the stable step (refused otherwise, as by run)
   std::string out = "bench/results";
 };
 

@@ -13,7 +13,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -29,6 +28,7 @@
 #include "host/app/kernel_report.h"
 #include "host/app/live_render.h"
 #include "host/app/run_folder.h"
+#include "host/app/time_step_check.h"
 #include "host/fragments/fragment_log.h"
 #include "host/fragments/fragment_output.h"
 #include "host/fragments/tet_file.h"
@@ -75,22 +75,6 @@ void print_setup(const Scene& scene, const SetupResult& setup, const RunOptions&
   std::printf("time step  dt %.4g s = %.2f dt_c (continuum estimate)%s; %lld steps per frame\n", setup.dt,
               setup.dt / setup.critical_dt, scene.dt_auto ? ", chosen by dt = \"auto\"" : "",
               (long long)scene.steps_per_frame);
-}
-
-// A dt above the stable limit is a user mistake unless explicitly allowed.
-void check_time_step(const Scene& scene, const SetupResult& setup, bool allow) {
-  if (setup.dt <= setup.critical_dt || allow) return;
-  // The material that sets the limit, named with what sets its stable step.
-  const MaterialSummary* stiffest = &setup.materials.front();
-  for (const MaterialSummary& m : setup.materials)
-    if (m.critical_dt < stiffest->critical_dt) stiffest = &m;
-  std::ostringstream msg;
-  msg << "dt = " << setup.dt << " s exceeds the stable time step " << setup.critical_dt
-      << " s of the stiffest material ('" << stiffest->name << "', from its density and moduli: materials."
-      << stiffest->name << ")"
-      << (scene.colliders.empty() ? "" : " with the colliders' push (colliders' stiffness)")
-      << " (allowed: dt <= " << setup.critical_dt << "; pass --allow-unstable-dt to run anyway)";
-  throw SceneError(scene.path, "simulation.dt", msg.str());
 }
 
 RestData rest_data(const ParticleSet& ps) {
@@ -249,13 +233,7 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
   const double family_dt = engine.critical_time_step();
   std::printf("stability  dt_c from the families %.4g s (continuum estimate %.4g s): dt = %.2f of it\n",
               family_dt, setup.critical_dt, setup.dt / family_dt);
-  if (setup.dt > family_dt && !opt.allow_unstable_dt) {
-    std::ostringstream msg;
-    msg << "dt = " << setup.dt << " s exceeds the stable time step " << family_dt
-        << " s computed from the particles' families (allowed: dt <= " << family_dt
-        << "; pass --allow-unstable-dt to run anyway)";
-    throw SceneError(sim.scene.path, "simulation.dt", msg.str());
-  }
+  check_family_time_step(sim.scene, setup.dt, family_dt, opt.allow_unstable_dt);
 }
 
 // The run's output folder: --out, else out/<scene name>.

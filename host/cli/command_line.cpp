@@ -70,6 +70,7 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
   CLI::App* cmd = app.add_subcommand("bench", "time the step kernels (bond-updates/s, occupancy)");
   cmd->add_option("--scene", bench->scene, "scene file; default: a synthetic lattice cube");
   cmd->add_option("--scale", bench->scale, "scene particle-count factor");
+  cmd->add_option("--set", bench->overrides, "KEY=VALUE: change one scene key (repeatable)");
   cmd->add_option("--lattice", bench->lattice, "lattice particles per side");
   cmd->add_option("--horizon", bench->horizon, "lattice delta / lambda");
   cmd->add_flag("--contact", bench->contact, "lattice: include collection + collisions");
@@ -87,6 +88,8 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cmd->add_option("--steps", bench->steps, "timed steps");
   cmd->add_option("--warmup", bench->warmup, "untimed steps first");
+  cmd->add_flag("--allow-unstable-dt", bench->allow_unstable_dt,
+                "time the steps even if dt exceeds the stable time step");
   cmd->add_option("--out", bench->out, "results folder");
   on_parsed(cmd, chosen, [&actions, bench] { return actions.bench(*bench); });
 }

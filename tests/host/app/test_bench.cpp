@@ -1,0 +1,137 @@
+// `perifrac bench` (host/app/bench.h): what it says of the run besides its rates, here whether
+// the workload broke bonds, printed and in the JSON, for a scene that fractures and for the elastic
+// lattice that must not.
+#include "host/app/bench.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "host/scene/scene.h"
+#include "tests/support/temp_dir.h"
+
+namespace pd {
+namespace {
+
+using testing::read_all;
+
+// A plastic plate hit by a block at 200 m/s (the resume test's scene). About 1,400 particles.
+constexpr const char* kImpactScene = R"([simulation]
+steps_per_frame = 20
+frames = 16
+dt = "auto"
+[contact]
+enabled = true
+stiffness = 1e9
+[materials.metal]
+model = "state_based"
+density = 2700.0
+youngs_modulus = 10e9
+poisson_ratio = 0.3
+strain_limit = 0.01
+[materials.metal.plastic]
+yield_stress = 20e6
+[materials.block]
+model = "state_based"
+density = 7800.0
+youngs_modulus = 50e9
+poisson_ratio = 0.3
+strain_limit = 0.5
+[[bodies]]
+material = "metal"
+size = [0.04, 0.04, 0.006]
+spacing = 0.002
+[[bodies]]
+material = "block"
+center = [0.0, 0.0, 0.008]
+size = [0.008, 0.008, 0.008]
+spacing = 0.002
+velocity = [0.0, 0.0, -200.0]
+)";
+
+class Bench : public testing::TempDirTest {
+ protected:
+  // Runs the bench; returns what it printed, and the JSON it wrote in `json`.
+  std::string run(BenchOptions opt, std::string& json) {
+    opt.backend = "cpu";
+    opt.out = path("results");
+    ::testing::internal::CaptureStdout();
+    const int code = bench_command(opt);
+    const std::string printed = ::testing::internal::GetCapturedStdout();
+    EXPECT_EQ(code, 0) << printed;
+    for (const auto& e : std::filesystem::directory_iterator(opt.out)) json = read_all(e.path().string());
+    return printed;
+  }
+};
+
+// The count printed on the "broken" line and the JSON's, which must agree.
+int64_t broken_bonds(const std::string& printed, const std::string& json) {
+  std::smatch line, field;
+  if (!std::regex_search(printed, line, std::regex(R"(broken +(\d+) of \d+ bonds after (\d+) steps)")) ||
+      !std::regex_search(json, field, std::regex(R"("broken_bonds": (\d+))"))) {
+    ADD_FAILURE() << "no broken-bond count in\n" << printed << "\n" << json;
+    return -1;
+  }
+  EXPECT_EQ(line[1].str(), field[1].str());
+  return std::stoll(line[1].str());
+}
+
+TEST_F(Bench, ReportsTheBondsAnImpactBroke) {
+  const std::string scene = path("impact.toml");
+  std::ofstream(scene) << kImpactScene;
+  BenchOptions opt;
+  opt.scene = scene;
+  opt.warmup = 20;
+  opt.steps = 100;
+  std::string json;
+  EXPECT_EQ(broken_bonds(run(opt, json), json), 0);  // the plate holds at its strain limit (1%)
+  // A brittle plate (--set) breaks: about a thousand bonds in these 120 steps.
+  std::filesystem::remove_all(path("results"));
+  opt.overrides = {"materials.metal.strain_limit=0.001"};
+  const std::string printed = run(opt, json);
+  EXPECT_GT(broken_bonds(printed, json), 100);
+  EXPECT_NE(printed.find("after 120 steps"), std::string::npos) << printed;  // warm-up included
+}
+
+// A dt past the stable step is refused naming the key, as `perifrac run` refuses it, unless
+// allowed; the allowed run says it is unstable.
+TEST_F(Bench, RefusesAnUnstableTimeStepUnlessAllowed) {
+  const std::string scene = path("impact.toml");
+  std::ofstream(scene) << kImpactScene;
+  BenchOptions opt;
+  opt.scene = scene;
+  opt.backend = "cpu";
+  opt.out = path("results");
+  opt.overrides = {"simulation.dt=2e-6"};
+  opt.warmup = 0;
+  opt.steps = 2;
+  try {
+    bench_command(opt);
+    ADD_FAILURE() << "an unstable dt was timed";
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(scene), std::string::npos) << message;
+    EXPECT_NE(message.find("simulation.dt"), std::string::npos) << message;
+    EXPECT_NE(message.find("allowed: dt <="), std::string::npos) << message;
+  }
+  opt.allow_unstable_dt = true;
+  std::string json;
+  const std::string printed = run(opt, json);
+  EXPECT_NE(printed.find("(unstable, allowed by --allow-unstable-dt)"), std::string::npos) << printed;
+}
+
+TEST_F(Bench, ReportsNoBrokenBondForTheElasticLattice) {
+  BenchOptions opt;
+  opt.lattice = 10;
+  opt.warmup = 2;
+  opt.steps = 10;
+  std::string json;
+  const std::string printed = run(opt, json);
+  EXPECT_EQ(broken_bonds(printed, json), 0);
+}
+
+}  // namespace
+}  // namespace pd
