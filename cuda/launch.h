@@ -32,12 +32,27 @@ inline std::string kernel_variant(const char* kernel,
 }
 
 // The particles a launch runs over: [first, first + count) of the view's (a partitioned rank
-// runs the force kernels over its interior particles while the halo travels, then over the rest).
+// runs the force kernels over its interior particles while the halo travels, then over the rest),
+// or where `ids` is set the particles ids[first], ..., ids[first + count - 1]. `skip_listed`
+// leaves out the lattice particles whose stencil is `listed`: a partitioned rank runs the rest
+// in one rank's lattice loop (partners at offsets) and those in a launch of their own.
 struct ParticleRange {
   int32_t first = 0, count = 0;
+  const int32_t* ids = nullptr;
+  bool skip_listed = false;
 };
 inline ParticleRange all_particles(const ParticlesView& p) {
   return {0, p.n};
+}
+
+// The particle of launch index t over range r, or -1 where r leaves it out.
+PD_HD inline int32_t range_particle(const ParticleRange& r, int64_t t, const BondsView& b) {
+  const int32_t i = r.ids ? r.ids[t] : int32_t(t);
+  if (r.skip_listed) {
+    const int32_t s = b.lattice.stencil[i];
+    if (s >= 0 && b.lattice.stencils[s].listed) return -1;
+  }
+  return i;
 }
 
 // Kernel 1.
@@ -48,15 +63,26 @@ void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable m
                                                              {"lattice", kLattice == kLatticeOffsets},
                                                              {"lattice-listed", kLattice == kLatticeListed},
                                                              {"plastic", kPlastic}});
-  ex.parallel_for_from(name.c_str(), r.first, r.count, [=] PD_HD(int64_t i) {
-    init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(int32_t(i), p, b, mt);
+  ex.parallel_for_from(name.c_str(), r.first, r.count, [=] PD_HD(int64_t t) {
+    const int32_t i = range_particle(r, t, b);
+    if (i >= 0) init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(i, p, b, mt);
   });
 }
 
+// `listed`: on a partitioned rank with lattice families, the particles of r whose stencil is
+// `listed` (ids); see launch_springforces.
 template <class Exec>
-void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
-                 ParticleRange r) {
+void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f, ParticleRange r,
+                 ParticleRange listed = {}) {
   if (!f.state_based) return launch_init_variant<false, false, kNoLattice, false>(ex, p, b, mt, r);
+  if (f.lattice && f.lattice_listed) {  // as launch_springforces
+    KernelFeatures offsets = f;
+    offsets.lattice_listed = false;
+    r.skip_listed = true;
+    launch_init(ex, p, b, mt, offsets, r);
+    if (listed.count == 0) return;
+    r = listed;
+  }
   static_bools(
       [&](auto anisotropic, auto lattice, auto listed, auto plastic) {
         constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
@@ -161,15 +187,30 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
                                          {"lattice-listed", kLattice == kLatticeListed},
                                          {"screened", kScreened},
                                          {"surface", kSurface}});
-  ex.template parallel_for_from<kMinBlocks>(name.c_str(), r.first, r.count, [=] PD_HD(int64_t i) {
-    springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened, kSurface>(
-        int32_t(i), p, b, mt, broke);
+  ex.template parallel_for_from<kMinBlocks>(name.c_str(), r.first, r.count, [=] PD_HD(int64_t t) {
+    const int32_t i = range_particle(r, t, b);
+    if (i >= 0)
+      springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened, kSurface>(i, p, b,
+                                                                                                   mt, broke);
   });
 }
 
+// `listed`: on a partitioned rank with lattice families (f.lattice_listed), the particles of r
+// whose stencil is `listed` (ids), which read their partners from their lists. The others run
+// first in one rank's lattice loop (partners at the rank's offsets, no partner index read), the
+// listed ones then in the loop that tests the stencil per bond: one loop serving both ran 20%
+// slower per GPU than one rank's (bench/NOTES.md). Each particle's sums are the same either way.
 template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
-                         ParticleRange r, bool screened, int32_t* broke) {
+                         ParticleRange r, ParticleRange listed, bool screened, int32_t* broke) {
+  if (f.lattice && f.lattice_listed) {
+    KernelFeatures offsets = f;
+    offsets.lattice_listed = false;
+    r.skip_listed = true;
+    launch_springforces(ex, p, b, mt, offsets, r, {}, screened, broke);
+    if (listed.count == 0) return;
+    r = listed;
+  }
   static_bools(
       [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto listed, auto screen,
           auto surface) {

@@ -372,7 +372,9 @@ class EngineImpl final : public Engine {
     // On a partitioned rank, the ghosts' positions before `init` sums dilatations over partners
     // (state-based), and what `springforces` reads of a partner (strain limit, dilatation,
     // damage) after it, each while the interior particles' part runs.
-    const auto init = [&](ParticleRange r) { launch_init(exec_, p, b, materials_, features_, r); };
+    const auto init = [&](ParticleRange r) {
+      launch_init(exec_, p, b, materials_, features_, r, listed_in(r));
+    };
     if (features_.state_based)
       with_halo(init, state_.disp);
     else
@@ -423,8 +425,18 @@ class EngineImpl final : public Engine {
     const bool screened =
         screen_ == BondScreen::kAlways || (screen_ == BondScreen::kAuto && breaking_hold_ == 0);
     const int parity = int(force_passes_ % kBrokeFlags);
-    launch_springforces(exec_, p, b, materials_, features_, r, screened, exec_.flag(kFlagBroke + parity));
+    launch_springforces(exec_, p, b, materials_, features_, r, listed_in(r), screened,
+                        exec_.flag(kFlagBroke + parity));
     pass_screened_ = screened;
+  }
+
+  // The lattice particles of r whose stencil is `listed` (a partitioned rank's that read their
+  // partners from their lists), as a range of the ids of all of them.
+  ParticleRange listed_in(ParticleRange r) const {
+    const std::vector<int32_t>& ids = lattice_.listed_host;
+    const auto lo = std::lower_bound(ids.begin(), ids.end(), r.first);
+    const auto hi = std::lower_bound(lo, ids.end(), r.first + r.count);
+    return {int32_t(lo - ids.begin()), int32_t(hi - lo), lattice_.listed_ids.data()};
   }
 
   void take_broke_flags() {

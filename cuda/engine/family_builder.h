@@ -30,6 +30,10 @@ struct LatticeState {
   DeviceArray<uint32_t, Exec> present, intact, weak;
   DeviceArray<int32_t, Exec> surface_row;  // bond-based surface correction (upload_surface_rows)
   DeviceArray<uint16_t, Exec> surface_table;
+  // The particles whose stencil is `listed` (a partitioned rank's), ascending; the kernels run
+  // them in a launch of their own (launch_springforces).
+  std::vector<int32_t> listed_host;
+  DeviceArray<int32_t, Exec> listed_ids;
 
   bool empty() const { return tables.stencils.empty(); }
   LatticeView view() const {
@@ -181,6 +185,12 @@ bool upload_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s
   lattice.entries = mem.make_from(lattice.tables.entries);
   lattice.present = mem.make_from(lattice.tables.present);
   lattice.intact = mem.make_from(lattice.tables.intact);
+  lattice.listed_host.clear();
+  for (size_t i = 0; i < lattice.tables.stencil.size(); ++i) {
+    const int16_t st = lattice.tables.stencil[i];
+    if (st >= 0 && lattice.tables.stencils[size_t(st)].listed) lattice.listed_host.push_back(int32_t(i));
+  }
+  lattice.listed_ids = mem.make_from(lattice.listed_host);
   if (!weak_bonds) return true;
   std::vector<uint8_t> strength;
   s.strength.download(strength);
