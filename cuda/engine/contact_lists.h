@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <functional>
 
 #include "cuda/engine/device_memory.h"
@@ -66,7 +67,7 @@ class ContactLists {
     if (built_ && !moved) return pairs_;
     if (gather_ghosts) {
       p = gather_ghosts();
-      if (p.n != n_) size_lists(mem, p.n, int32_t(partner_.size() / size_t(std::max(n_, 1))));
+      if (p.n != n_) size_lists(mem, p.n, room_);
     }
     launch_reset_bins(exec, "pd/collection_reset", hash_.view(true));
     launch_collection<true>(exec, "pd/collection", p, hash_.view(false), hash_.view(true), materials);
@@ -80,23 +81,32 @@ class ContactLists {
       const size_t room = partner_.size() * 2;
       mem.drop(partner_);
       partner_ = mem.template make<int32_t>(room);
+      room_ *= 2;
     }
     built_ = true;
     return pairs_;
   }
 
-  // The hash and lists for n particles with room for `capacity` partners each.
+  // The hash and lists for n particles with room for `capacity` partners each. A partitioned
+  // rank's count changes at almost every build while fragments fly (its contact ghosts come and
+  // go), so the buffers are kept while they hold n particles and grown with room for 1/16 more,
+  // rather than freed and allocated anew at each build (gigabytes at 20M particles).
   void size_lists(DeviceMemory<Exec>& mem, int32_t n, int32_t capacity) {
+    n_ = n;
+    capacity = std::max(capacity, 1);
+    if (n <= rows_ && capacity <= room_) return;
+    const int64_t rows = rows_ == 0 ? n : std::min<int64_t>(int64_t(n) + std::max(n / 16, 1024), INT32_MAX);
     hash_.release(mem);
     mem.drop(origin_);
     mem.drop(count_);
     mem.drop(partner_);
-    n_ = n;
-    hash_.allocate(mem, n, cell_);
-    hash_.record = mem.template make<Vec4>(size_t(n));
-    origin_ = mem.template make<Vec4>(size_t(n));
-    count_ = mem.template make<int32_t>(size_t(n));
-    partner_ = mem.template make<int32_t>(size_t(std::max(capacity, 1)) * size_t(n));
+    rows_ = int32_t(rows);
+    room_ = capacity;
+    hash_.allocate(mem, rows_, cell_);
+    hash_.record = mem.template make<Vec4>(size_t(rows_));
+    origin_ = mem.template make<Vec4>(size_t(rows_));
+    count_ = mem.template make<int32_t>(size_t(rows_));
+    partner_ = mem.template make<int32_t>(size_t(room_) * size_t(rows_));
   }
 
   // The lists are built again from the next positions (after a restore).
@@ -104,7 +114,9 @@ class ContactLists {
   bool pairs() const { return pairs_; }
 
  private:
-  int32_t n_ = 0;
+  int32_t n_ = 0;     // particles the lists are for
+  int32_t rows_ = 0;  // particles the buffers hold (at least n_)
+  int32_t room_ = 0;  // partners each list has room for (partner_ holds room_ x rows_)
   SpatialHash<Exec> hash_;
   real quarter_max_ = 0, rest_skin_ = 0, skin_cap_ = 0, cell_ = 0;
   double reach_ = 0;
