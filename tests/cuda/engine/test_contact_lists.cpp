@@ -9,41 +9,29 @@
 #include <vector>
 
 #include "cuda/exec_cpu.h"
+#include "tests/support/particle_arrays.h"
 
 namespace pd {
 namespace {
 
 constexpr real kSpacing = real(0.01);
 
-// Particles in twins 0.5 spacing apart (within the reach of two at rest, 0.9 spacing), the twins
-// 3 spacings apart; the last `cluster` particles instead crowd within 0.3 spacing of one point.
-struct Cloud {
-  std::vector<Vec4> rest, disp;
-  std::vector<Vec3> vel;
-  std::vector<uint16_t> material;
-
-  Cloud(int32_t n, int32_t cluster) {
-    for (int32_t i = 0; i < n; ++i) {
-      Vec4 x{real((i / 2) * 3 + (i % 2) * 0.5) * kSpacing, 0, 0, real(1e-6)};
-      if (i >= n - cluster)
-        x = {real(-10 + 0.3 * (i % 7) / 7) * kSpacing, real(0.3 * (i % 5) / 5) * kSpacing,
-             real(0.3 * (i % 3) / 3) * kSpacing, real(1e-6)};
-      rest.push_back(x);
-      disp.push_back({0, 0, 0, 0});
-      vel.push_back({0, 0, 0});
-      material.push_back(0);
-    }
+// n particles in twins 0.5 spacing apart (within the reach of two at rest, 0.9 spacing), the twins
+// 3 spacings apart; the last `cluster` particles instead crowd within 0.4 spacing of one point.
+testing::ParticleArrays cloud(int32_t n, int32_t cluster) {
+  testing::ParticleArrays a;
+  for (int32_t i = 0; i < n; ++i) {
+    Vec4 x{real((i / 2) * 3 + (i % 2) * 0.5) * kSpacing, 0, 0, real(1e-6)};
+    if (i >= n - cluster)
+      x = {real(-10 + 0.3 * (i % 7) / 7) * kSpacing, real(0.3 * (i % 5) / 5) * kSpacing,
+           real(0.3 * (i % 3) / 3) * kSpacing, real(1e-6)};
+    a.rest.push_back(x);
+    a.disp.push_back({0, 0, 0, 0});
+    a.vel.push_back({0, 0, 0});
+    a.material.push_back(0);
   }
-  ParticlesView view() {
-    ParticlesView p;
-    p.n = int32_t(rest.size());
-    p.rest = view_of(rest);
-    p.disp = view_of(disp);
-    p.vel = view_of(vel);
-    p.material = view_of(material);
-    return p;
-  }
-};
+  return a;
+}
 
 MaterialTable spacing_table() {
   MaterialTable mt;
@@ -89,10 +77,10 @@ TEST(ContactLists, BuildEveryPairWithinReachInBuffersLargerThanTheCount) {
   // 500 particles in those buffers: room for 8 x 1,724 / 500 = 27 partners each. The last 40 are
   // in a cluster, whose lists (39 partners) outgrow that: the build doubles the room and builds
   // again.
-  Cloud cloud(500, 40);
+  testing::ParticleArrays particles = cloud(500, 40);
   lists.size_lists(mem, 500, kContactCapacity);
   EXPECT_EQ(mem.bytes(), before);
-  ASSERT_TRUE(lists.refresh(mem, cloud.view(), mt, real(1e-7)));
+  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, real(1e-7)));
   EXPECT_GT(mem.bytes(), before);
   for (int32_t i = 0; i < 460; ++i)
     EXPECT_EQ(list_of(lists, exec, i), std::vector<int32_t>{i ^ 1}) << "particle " << i;

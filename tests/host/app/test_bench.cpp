@@ -11,46 +11,13 @@
 #include <string>
 
 #include "host/scene/scene.h"
+#include "tests/support/scene_texts.h"
 #include "tests/support/temp_dir.h"
 
 namespace pd {
 namespace {
 
 using testing::read_all;
-
-// A plastic plate hit by a block at 200 m/s (the resume test's scene). About 1,400 particles.
-constexpr const char* kImpactScene = R"([simulation]
-steps_per_frame = 20
-frames = 16
-dt = "auto"
-[contact]
-enabled = true
-stiffness = 1e9
-[materials.metal]
-model = "state_based"
-density = 2700.0
-youngs_modulus = 10e9
-poisson_ratio = 0.3
-strain_limit = 0.01
-[materials.metal.plastic]
-yield_stress = 20e6
-[materials.block]
-model = "state_based"
-density = 7800.0
-youngs_modulus = 50e9
-poisson_ratio = 0.3
-strain_limit = 0.5
-[[bodies]]
-material = "metal"
-size = [0.04, 0.04, 0.006]
-spacing = 0.002
-[[bodies]]
-material = "block"
-center = [0.0, 0.0, 0.008]
-size = [0.008, 0.008, 0.008]
-spacing = 0.002
-velocity = [0.0, 0.0, -200.0]
-)";
 
 class Bench : public testing::TempDirTest {
  protected:
@@ -81,7 +48,7 @@ int64_t broken_bonds(const std::string& printed, const std::string& json) {
 
 TEST_F(Bench, ReportsTheBondsAnImpactBroke) {
   const std::string scene = path("impact.toml");
-  std::ofstream(scene) << kImpactScene;
+  std::ofstream(scene) << testing::kPlateImpactScene;
   BenchOptions opt;
   opt.scene = scene;
   opt.warmup = 20;
@@ -100,7 +67,7 @@ TEST_F(Bench, ReportsTheBondsAnImpactBroke) {
 // allowed; the allowed run says it is unstable.
 TEST_F(Bench, RefusesAnUnstableTimeStepUnlessAllowed) {
   const std::string scene = path("impact.toml");
-  std::ofstream(scene) << kImpactScene;
+  std::ofstream(scene) << testing::kPlateImpactScene;
   BenchOptions opt;
   opt.scene = scene;
   opt.backend = "cpu";

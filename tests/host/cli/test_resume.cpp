@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/scene_texts.h"
 #include "tests/support/temp_dir.h"
 
 namespace pd {
@@ -22,40 +23,9 @@ namespace {
 
 using testing::read_all;
 
-// A plastic state-based plate hit by a block: contact, plastic history and broken bonds all
-// carry state across a checkpoint. ~1,400 particles, 16 frames of 20 steps.
-constexpr const char* kScene = R"([simulation]
-steps_per_frame = 20
-frames = 16
-dt = "auto"
-[contact]
-enabled = true
-stiffness = 1e9
-[materials.metal]
-model = "state_based"
-density = 2700.0
-youngs_modulus = 10e9
-poisson_ratio = 0.3
-strain_limit = 0.01
-[materials.metal.plastic]
-yield_stress = 20e6
-[materials.block]
-model = "state_based"
-density = 7800.0
-youngs_modulus = 50e9
-poisson_ratio = 0.3
-strain_limit = 0.5
-[[bodies]]
-material = "metal"
-size = [0.04, 0.04, 0.006]
-spacing = 0.002
-[[bodies]]
-material = "block"
-center = [0.0, 0.0, 0.008]
-size = [0.008, 0.008, 0.008]
-spacing = 0.002
-velocity = [0.0, 0.0, -200.0]
-)";
+// Contact, plastic history and broken bonds all carry state across a checkpoint: 16 frames of
+// 20 steps.
+constexpr const char* kScene = testing::kPlateImpactScene;
 
 // Starts the binary with `args` (one thread, output to `log`); returns the child's pid.
 pid_t spawn(const std::vector<std::string>& args, const std::string& log, const std::string& cwd = "") {
