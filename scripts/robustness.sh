@@ -120,6 +120,8 @@ case_ "finite output" "overflow to infinity: blow-up caught, files finite" 3 "nu
 fresh o
 dtc=$("$BIN" "${P[@]}" "$OLDPWD/scenes/validation/stress_drop.toml" --frames 0 --out probe 2>/dev/null | sed -n 's/.*dt_c \([0-9.e+-]*\) s.*/\1/p' | sort -g | head -1)
 case_ "finite output" "--allow-unstable-dt at 2 dt_c: stops on energy growth" 3 "stops at 0.1" "$BIN" "${P[@]}" "$OLDPWD/scenes/validation/stress_drop.toml" --set "simulation.dt=$(awk -v a="$dtc" 'BEGIN { printf "%.6e", 2 * a }')" --allow-unstable-dt --out o
+fresh o
+case_ "finite output" "bench past the stable step: refused as run refuses it" 2 "simulation.dt: dt = .* exceeds the stable time step" "$BIN" bench --scene s.toml --set simulation.dt=1e-3 --backend cpu --steps 1 --out o
 
 # Resume
 fresh r
