@@ -3,6 +3,7 @@
 #include "cuda/parallel/partition.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 
@@ -122,6 +123,38 @@ TEST(Partition, SendAndReceiveListsPairUpAcrossRanks) {
   ASSERT_EQ(local.size(), layouts[1].global.size());
   for (size_t k = 0; k < local.size(); ++k)
     EXPECT_EQ(local.rest[k].x, b.ps.rest[size_t(layouts[1].global[k])].x);
+}
+
+// Every rank computes the partition alone, with whatever threads it has: the result must not
+// depend on them. Volumes varied so that the bisection's weights differ from particle to particle.
+TEST(Partition, IsTheSameOnAnyNumberOfThreads) {
+  Block b(30, 14, 9);
+  for (size_t i = 0; i < b.ps.size(); ++i) b.ps.volume[i] *= real(1 + 0.5 * double(i % 7) / 7);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Partition one = partition_particles(b.ps, b.mt, 5);
+  omp_set_num_threads(4);
+  const Partition four = partition_particles(b.ps, b.mt, 5);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one.owner, four.owner);
+  EXPECT_EQ(one.owned, four.owned);
+  EXPECT_EQ(one.ghosts, four.ghosts);
+  EXPECT_EQ(one.interior, four.interior);
+}
+
+// Where particles expect different numbers of bonds (half the block at twice the volume), the
+// ranks split the expected bonds, not the particles.
+TEST(Partition, SplitsTheExpectedBondsWhereParticlesDiffer) {
+  Block b(40, 10, 6);
+  for (size_t i = 0; i < b.ps.size(); ++i)
+    if (b.ps.rest[i].x < real(20 * kLambda)) b.ps.volume[i] *= 2;
+  for (int ranks : {2, 3, 4, 7}) {
+    const Partition p = partition_particles(b.ps, b.mt, ranks);
+    const PartitionBalance balance = partition_balance(p, b.ps, b.mt);
+    EXPECT_LT(balance.imbalance, 1.03) << ranks << " ranks";
+    if (ranks == 2)  // the light half's rank holds more particles
+      EXPECT_NE(balance.particles[0], balance.particles[1]);
+  }
 }
 
 }  // namespace
