@@ -44,9 +44,9 @@ Weight bisection_weight(const ParticleSet& ps, const MaterialTable& mt, size_t i
 
 // The position, in the order of `keyed` sorted, of the first element at which the weight in
 // front of it plus half its own reaches left / count of the total (keyed.size() if none): a
-// weighted quickselect, O(n) expected (serial: the parallel sort it replaced took 21 s of a
-// 92M-particle set-up on 16 threads). Leaves the elements before that position in front of it
-// and the rest behind, in no particular order within each part.
+// weighted quickselect, O(n) expected, serial (it replaces a parallel sort of the whole part,
+// O(n log n); bench/NOTES.md). Leaves the elements before that position in front of it and the
+// rest behind, in no particular order within each part.
 size_t weighted_cut(std::vector<std::pair<double, int32_t>>& keyed, const std::vector<Weight>& weight,
                     Weight total, int left, int count) {
   auto w = [&](size_t k) { return weight[size_t(keyed[k].second)]; };
