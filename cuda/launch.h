@@ -55,6 +55,21 @@ PD_HD inline int32_t range_particle(const ParticleRange& r, int64_t t, const Bon
   return i;
 }
 
+// A partitioned rank's lattice particles (f.lattice_listed) in two launches: those at the rank's
+// offsets in one rank's loop over r, the listed ones skipped, then those that read their partners
+// from their lists (`listed_ids`: their ids within r) in the loop that tests the stencil per bond.
+// One loop serving both ran 20% slower per GPU than one rank's (bench/NOTES.md); each particle's
+// sums are the same either way. Elsewhere one launch over r. launch(features, range).
+template <class Launch>
+void launch_listed_apart(KernelFeatures f, ParticleRange r, ParticleRange listed_ids, const Launch& launch) {
+  if (!(f.lattice && f.lattice_listed)) return launch(f, r);
+  KernelFeatures offsets = f;
+  offsets.lattice_listed = false;
+  r.skip_listed = true;
+  launch(offsets, r);
+  if (listed_ids.count > 0) launch(f, listed_ids);
+}
+
 // Kernel 1.
 template <bool kStateBased, bool kAnisotropic, int kLattice, bool kPlastic, class Exec>
 void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r) {
@@ -69,28 +84,22 @@ void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable m
   });
 }
 
-// `listed`: on a partitioned rank with lattice families, the particles of r whose stencil is
-// `listed` (ids); see launch_springforces.
+// `listed_ids`: on a partitioned rank with lattice families, the particles of r whose stencil is
+// `listed` (launch_listed_apart).
 template <class Exec>
 void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f, ParticleRange r,
-                 ParticleRange listed = {}) {
+                 ParticleRange listed_ids = {}) {
   if (!f.state_based) return launch_init_variant<false, false, kNoLattice, false>(ex, p, b, mt, r);
-  if (f.lattice && f.lattice_listed) {  // as launch_springforces
-    KernelFeatures offsets = f;
-    offsets.lattice_listed = false;
-    r.skip_listed = true;
-    launch_init(ex, p, b, mt, offsets, r);
-    if (listed.count == 0) return;
-    r = listed;
-  }
-  static_bools(
-      [&](auto anisotropic, auto lattice, auto listed, auto plastic) {
-        constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
-        if constexpr (kLattice || !kListed)  // (listed partners only with lattice families)
-          launch_init_variant<true, decltype(anisotropic)::value, lattice_mode(kLattice, kListed),
-                              decltype(plastic)::value>(ex, p, b, mt, r);
-      },
-      f.anisotropic, f.lattice, f.lattice && f.lattice_listed, f.plastic);
+  launch_listed_apart(f, r, listed_ids, [&](const KernelFeatures& g, ParticleRange q) {
+    static_bools(
+        [&](auto anisotropic, auto lattice, auto listed, auto plastic) {
+          constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
+          if constexpr (kLattice || !kListed)  // (listed partners only with lattice families)
+            launch_init_variant<true, decltype(anisotropic)::value, lattice_mode(kLattice, kListed),
+                                decltype(plastic)::value>(ex, p, b, mt, q);
+        },
+        g.anisotropic, g.lattice, g.lattice && g.lattice_listed, g.plastic);
+  });
 }
 
 // Kernel 5 (plastic state-based materials): the yield test of the return mapping, after `init`
@@ -195,41 +204,32 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
   });
 }
 
-// `listed`: on a partitioned rank with lattice families (f.lattice_listed), the particles of r
-// whose stencil is `listed` (ids), which read their partners from their lists. The others run
-// first in one rank's lattice loop (partners at the rank's offsets, no partner index read), the
-// listed ones then in the loop that tests the stencil per bond: one loop serving both ran 20%
-// slower per GPU than one rank's (bench/NOTES.md). Each particle's sums are the same either way.
+// `listed_ids`: on a partitioned rank with lattice families, the particles of r whose stencil is
+// `listed` (launch_listed_apart).
 template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
-                         ParticleRange r, ParticleRange listed, bool screened, int32_t* broke) {
-  if (f.lattice && f.lattice_listed) {
-    KernelFeatures offsets = f;
-    offsets.lattice_listed = false;
-    r.skip_listed = true;
-    launch_springforces(ex, p, b, mt, offsets, r, {}, screened, broke);
-    if (listed.count == 0) return;
-    r = listed;
-  }
-  static_bools(
-      [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto listed, auto screen,
-          auto surface) {
-        constexpr bool kState = decltype(state_based)::value;
-        constexpr bool kPlastic = kState && decltype(plastic)::value;
-        constexpr bool kAniso = kState && decltype(anisotropic)::value;
-        constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
-        constexpr bool kSurface = decltype(surface)::value;
-        // Plasticity and anisotropy exist only for state-based materials, the surface correction
-        // only for bond-based ones, listed partners only with lattice families: no copies for the
-        // combinations that cannot occur.
-        if constexpr ((kState || (!decltype(plastic)::value && !decltype(anisotropic)::value)) &&
-                      !(kState && kSurface) && (kLattice || !kListed))
-          launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
-                                      lattice_mode(kLattice, kListed), decltype(screen)::value, kSurface>(
-              ex, p, b, mt, r, broke);
-      },
-      f.state_based, f.state_based && f.plastic, f.state_based && f.anisotropic, f.weak_bonds, f.lattice,
-      f.lattice && f.lattice_listed, screened, f.surface);
+                         ParticleRange r, ParticleRange listed_ids, bool screened, int32_t* broke) {
+  launch_listed_apart(f, r, listed_ids, [&](const KernelFeatures& g, ParticleRange q) {
+    static_bools(
+        [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto listed,
+            auto screen, auto surface) {
+          constexpr bool kState = decltype(state_based)::value;
+          constexpr bool kPlastic = kState && decltype(plastic)::value;
+          constexpr bool kAniso = kState && decltype(anisotropic)::value;
+          constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
+          constexpr bool kSurface = decltype(surface)::value;
+          // Plasticity and anisotropy exist only for state-based materials, the surface correction
+          // only for bond-based ones, listed partners only with lattice families: no copies for the
+          // combinations that cannot occur.
+          if constexpr ((kState || (!decltype(plastic)::value && !decltype(anisotropic)::value)) &&
+                        !(kState && kSurface) && (kLattice || !kListed))
+            launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
+                                        lattice_mode(kLattice, kListed), decltype(screen)::value, kSurface>(
+                ex, p, b, mt, q, broke);
+        },
+        g.state_based, g.state_based && g.plastic, g.state_based && g.anisotropic, g.weak_bonds, g.lattice,
+        g.lattice && g.lattice_listed, screened, g.surface);
+  });
 }
 
 // Kernel 5.

@@ -152,8 +152,9 @@ TEST(Partition, SplitsTheExpectedBondsWhereParticlesDiffer) {
     const Partition p = partition_particles(b.ps, b.mt, ranks);
     const PartitionBalance balance = partition_balance(p, b.ps, b.mt);
     EXPECT_LT(balance.imbalance, 1.03) << ranks << " ranks";
-    if (ranks == 2)  // the light half's rank holds more particles
+    if (ranks == 2) {  // the light half's rank holds more particles
       EXPECT_NE(balance.particles[0], balance.particles[1]);
+    }
   }
 }
 
