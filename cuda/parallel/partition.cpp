@@ -11,9 +11,14 @@ namespace pd {
 namespace {
 
 // Bonds a particle is expected to have: the particles of its volume that fit in its family's ball.
+// A volume below an eighth of the cell lambda^3 counts as that eighth: a mesh's sliver tets (down to
+// 1e-16 of the median volume) have the partners their neighbours' volumes leave room for, not
+// 10^16 of them.
 double expected_bonds(const ParticleSet& ps, const MaterialTable& mt, size_t i) {
-  const double r = double(mt.m[ps.material[i]].family_radius());
-  return std::max(1.0, 4.18879020478639098 * r * r * r / std::max(double(ps.volume[i]), 1e-300));
+  const Material& m = mt.m[ps.material[i]];
+  const double r = double(m.family_radius()), lambda = double(m.spacing);
+  const double volume = std::max({double(ps.volume[i]), 0.125 * lambda * lambda * lambda, 1e-300});
+  return std::max(1.0, 4.18879020478639098 * r * r * r / volume);
 }
 
 struct Box {
@@ -34,12 +39,14 @@ double coordinate(const Vec3& p, int axis) {
   return axis == 0 ? p.x : axis == 1 ? p.y : p.z;
 }
 
-// A particle's weight in the bisection: its expected bonds in fixed point (2^-20), so that every
+// A particle's weight in the bisection: its expected bonds in fixed point (2^-16), so that every
 // sum is exact and the same in any order and on any number of threads: every rank computes the
-// partition alone and all must agree.
+// partition alone and all must agree. At most 2^14 bonds count (2^30 per particle), so the sums of
+// up to 2^31 particles stay within 2^61.
 using Weight = int64_t;
+constexpr double kMostCountedBonds = 16384;
 Weight bisection_weight(const ParticleSet& ps, const MaterialTable& mt, size_t i) {
-  return std::llround(std::ldexp(expected_bonds(ps, mt, i), 20));
+  return std::llround(std::ldexp(std::min(expected_bonds(ps, mt, i), kMostCountedBonds), 16));
 }
 
 // The position, in the order of `keyed` sorted, of the first element at which the weight in

@@ -158,5 +158,22 @@ TEST(Partition, SplitsTheExpectedBondsWhereParticlesDiffer) {
   }
 }
 
+// A mesh's sliver tets (volumes down to 1e-16 of the median) neither overflow the bisection's
+// fixed-point weights nor pull the split towards themselves: they count as particles of an eighth
+// of a cell, and the ranks still split the block evenly.
+TEST(Partition, SliverParticlesCountAsAnEighthOfACell) {
+  Block b(40, 10, 6);
+  for (size_t i = 0; i < b.ps.size(); i += 97) b.ps.volume[i] *= real(1e-20);
+  for (int ranks : {2, 3, 4}) {
+    const Partition p = partition_particles(b.ps, b.mt, ranks);
+    const PartitionBalance balance = partition_balance(p, b.ps, b.mt);
+    EXPECT_LT(balance.imbalance, 1.03) << ranks << " ranks";
+    for (int r = 0; r < ranks; ++r)
+      EXPECT_NEAR(double(balance.particles[size_t(r)]), double(b.ps.size()) / ranks,
+                  0.05 * double(b.ps.size()) / ranks)
+          << ranks << " ranks, rank " << r;
+  }
+}
+
 }  // namespace
 }  // namespace pd
