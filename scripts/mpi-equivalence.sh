@@ -86,6 +86,18 @@ else
   status=1
 fi
 
+# The run's report on 2 ranks: the two ranks' bonds add up to the run's (the vase's tets, whose
+# partition estimate is not exact).
+log="$out/ranks2/vase_tets.log"
+rank_bonds=$(sed -n 's/^ranks .* bonds \([0-9]*\) to \([0-9]*\), .*/\1 + \2/p' "$log")
+total_bonds=$(sed -n 's/^bonds *\([0-9]*\) .*/\1/p' "$log")
+if [ -z "$rank_bonds" ] || [ "$(($rank_bonds))" != "$total_bonds" ]; then
+  echo "mpi-equivalence: the bonds per rank ($rank_bonds) do not add up to the run's ($total_bonds): $log" >&2
+  status=1
+else
+  echo "mpi-equivalence: the bonds per rank add up to the run's ($rank_bonds = $total_bonds): $(grep -o 'imbalance.*' "$log")"
+fi
+
 # `perifrac bench` under mpirun reports every rank: particles, ghosts, rate and halo traffic; and
 # most of a 32^3 lattice's particles read their partners at the ranks' local offsets (12,288 of
 # the 32,768 lie within two horizons of the cut between the two halves and read their lists).

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -467,13 +468,23 @@ class PartitionedEngine final : public Engine {
     return mirror;
   }
 
-  // Rank 0: particles, ghosts and expected bonds per rank.
+  // Rank 0: particles, ghosts and bonds per rank, and the imbalance of the bonds built (largest
+  // over mean) next to the one the partition expected.
   void report_balance(const SimulationInput& in, const RankStats& rank0) const {
     const PartitionBalance b = partition_balance(partition_, in.particles, in.materials);
     const auto [lo, hi] = std::minmax_element(b.particles.begin(), b.particles.end());
     const auto [glo, ghi] = std::minmax_element(b.ghosts.begin(), b.ghosts.end());
-    std::printf("ranks      %d: particles per rank %lld to %lld, ghosts %lld to %lld, imbalance %.3f\n",
-                comm_->size(), (long long)*lo, (long long)*hi, (long long)*glo, (long long)*ghi, b.imbalance);
+    std::vector<int64_t> bonds(size_t(comm_->size()), 0);
+    for (int r = 0; r < comm_->size(); ++r)
+      for (int32_t g : partition_.owned[size_t(r)]) bonds[size_t(r)] += global_count_[size_t(g)];
+    const auto [blo, bhi] = std::minmax_element(bonds.begin(), bonds.end());
+    const double mean =
+        double(std::accumulate(bonds.begin(), bonds.end(), int64_t(0))) / double(bonds.size());
+    std::printf(
+        "ranks      %d: particles per rank %lld to %lld, ghosts %lld to %lld, bonds %lld to %lld, "
+        "imbalance %.3f (expected %.3f)\n",
+        comm_->size(), (long long)*lo, (long long)*hi, (long long)*glo, (long long)*ghi, (long long)*blo,
+        (long long)*bhi, mean > 0 ? double(*bhi) / mean : 1.0, b.imbalance);
     std::printf("halo       %s, %s\n", rank0.halo_transport,
                 rank0.overlapped ? "interior forces computed while it travels" : "not overlapped");
     std::printf("set-up     rank 0: partition %.2f s, its engine %.2f s (of which lattice tables %.2f s)\n",
