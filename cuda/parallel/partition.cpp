@@ -117,16 +117,13 @@ void bisect(const ParticleSet& ps, const std::vector<Weight>& weight, std::vecto
   bisect(ps, weight, std::move(high), first + left, count - left, out);
 }
 
-}  // namespace
-
-Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, int ranks) {
+// The bisection with the given weights, then every rank's ghosts and own particles.
+Partition partition_by_weight(const ParticleSet& ps, const MaterialTable& mt, int ranks,
+                              const std::vector<Weight>& weight) {
   const size_t n = ps.size();
   Partition p;
   p.ranks = ranks;
   p.owner.assign(n, 0);
-  std::vector<Weight> weight(n);
-#pragma omp parallel for schedule(static)
-  for (size_t i = 0; i < n; ++i) weight[i] = bisection_weight(ps, mt, i);
   std::vector<int32_t> ids(n);
   std::iota(ids.begin(), ids.end(), 0);
   bisect(ps, weight, std::move(ids), 0, ranks, p);
@@ -156,6 +153,23 @@ Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, in
         if (pass == 0) ++p.interior[size_t(p.owner[i])];
       }
   return p;
+}
+
+}  // namespace
+
+Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, int ranks) {
+  std::vector<Weight> weight(ps.size());
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < ps.size(); ++i) weight[i] = bisection_weight(ps, mt, i);
+  return partition_by_weight(ps, mt, ranks, weight);
+}
+
+Partition partition_particles(const ParticleSet& ps, const MaterialTable& mt, int ranks,
+                              const std::vector<int32_t>& bonds) {
+  std::vector<Weight> weight(ps.size());
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < ps.size(); ++i) weight[i] = Weight(bonds[i]) + 1;
+  return partition_by_weight(ps, mt, ranks, weight);
 }
 
 RankLayout rank_layout(const Partition& p, int rank) {

@@ -26,6 +26,11 @@ struct Partition {
 // The owner of each particle and every rank's ghosts.
 Partition partition_particles(const ParticleSet& particles, const MaterialTable& materials, int ranks);
 
+// The same with each particle weighted by the bonds its family holds (plus one for the particle
+// itself), as built: the split again where the estimate was off (a mesh's uneven elements).
+Partition partition_particles(const ParticleSet& particles, const MaterialTable& materials, int ranks,
+                              const std::vector<int32_t>& bonds);
+
 // One rank's view of the partition.
 struct RankLayout {
   int rank = 0;

@@ -33,33 +33,18 @@ class PartitionedEngine final : public Engine {
  public:
   PartitionedEngine(const SimulationInput& in, std::shared_ptr<Comm> comm, const std::string& device)
       : comm_(std::move(comm)), n_(int64_t(in.particles.size())) {
-    const auto t0 = std::chrono::steady_clock::now();
-    partition_ = partition_particles(in.particles, in.materials, comm_->size());
-    layout_ = rank_layout(partition_, comm_->rank());
-    own_by_global_.resize(size_t(layout_.owned));
-    for (int32_t i = 0; i < layout_.owned; ++i) own_by_global_[size_t(i)] = {layout_.global[size_t(i)], i};
-    std::sort(own_by_global_.begin(), own_by_global_.end());
-    SimulationInput local_input;
-    local_input.particles = local_particles(in.particles, layout_);
-    local_input.materials = in.materials;
-    local_input.step = in.step;
-    local_input.motion = in.motion;
-    local_input.colliders = in.colliders;
-    local_input.collider_grids = in.collider_grids;
-    local_input.collider_probes = in.collider_probes;
-    local_input.cuts = in.cuts;
-    local_input.contact = in.contact;
-    local_input.lattice_families = false;
-    local_input.screen = in.screen;
-    if (local_input.particles.size() == 0)
-      throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
-                               std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");
-    const auto t1 = std::chrono::steady_clock::now();
-    local_ =
-        std::make_unique<EngineImpl<Exec>>(local_input, device, &layout_, comm_.get(),
-                                           [&](const BondLists& local) { return rank_lattice(in, local); });
-    setup_seconds_[0] = std::chrono::duration<double>(t1 - t0).count();
-    setup_seconds_[1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    auto t0 = std::chrono::steady_clock::now();
+    build(in, device, partition_particles(in.particles, in.materials, comm_->size()), t0);
+    // The split weighs each particle by the bonds it is expected to have, exact on a lattice; where
+    // the families built are off by more than kResplitAbove (a mesh's elements of uneven size), the
+    // whole run is split again on their sizes, which every rank now knows, and set up anew.
+    first_imbalance_ = bond_imbalance();
+    if (first_imbalance_ > kResplitAbove) {
+      t0 = std::chrono::steady_clock::now();
+      const std::vector<int32_t> sizes = global_count_;
+      local_.reset();  // (its memory back before the next one's)
+      build(in, device, partition_particles(in.particles, in.materials, comm_->size(), sizes), t0);
+    }
     global_families();
     device_ = local_->device_name() + " x " + std::to_string(comm_->size()) + " ranks";
     critical_dt_ = comm_->min(local_->critical_time_step());
@@ -137,6 +122,56 @@ class PartitionedEngine final : public Engine {
   }
 
  private:
+  // The largest rank's bonds over the mean at which the run is split again.
+  static constexpr double kResplitAbove = 1.01;
+
+  // This rank's engine on `partition` (set-up times added to the stages' sums).
+  void build(const SimulationInput& in, const std::string& device, Partition partition,
+             std::chrono::steady_clock::time_point t0) {
+    partition_ = std::move(partition);
+    layout_ = rank_layout(partition_, comm_->rank());
+    own_by_global_.resize(size_t(layout_.owned));
+    for (int32_t i = 0; i < layout_.owned; ++i) own_by_global_[size_t(i)] = {layout_.global[size_t(i)], i};
+    std::sort(own_by_global_.begin(), own_by_global_.end());
+    SimulationInput local_input;
+    local_input.particles = local_particles(in.particles, layout_);
+    local_input.materials = in.materials;
+    local_input.step = in.step;
+    local_input.motion = in.motion;
+    local_input.colliders = in.colliders;
+    local_input.collider_grids = in.collider_grids;
+    local_input.collider_probes = in.collider_probes;
+    local_input.cuts = in.cuts;
+    local_input.contact = in.contact;
+    local_input.lattice_families = false;
+    local_input.screen = in.screen;
+    if (local_input.particles.size() == 0)
+      throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
+                               std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");
+    const auto t1 = std::chrono::steady_clock::now();
+    local_ =
+        std::make_unique<EngineImpl<Exec>>(local_input, device, &layout_, comm_.get(),
+                                           [&](const BondLists& local) { return rank_lattice(in, local); });
+    setup_seconds_[0] += std::chrono::duration<double>(t1 - t0).count();
+    setup_seconds_[1] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  }
+
+  // The families' bonds on each rank (every rank knows every particle's family size).
+  std::vector<int64_t> rank_bonds() const {
+    std::vector<int64_t> bonds(size_t(comm_->size()), 0);
+    for (int r = 0; r < comm_->size(); ++r)
+      for (int32_t g : partition_.owned[size_t(r)]) bonds[size_t(r)] += global_count_[size_t(g)];
+    return bonds;
+  }
+
+  // The largest rank's bonds over the mean.
+  double bond_imbalance() const {
+    const std::vector<int64_t> bonds = rank_bonds();
+    const double mean =
+        double(std::accumulate(bonds.begin(), bonds.end(), int64_t(0))) / double(bonds.size());
+    return mean > 0 ? double(*std::max_element(bonds.begin(), bonds.end())) / mean : 1.0;
+  }
+
   enum class Op : int64_t {
     kFinish,
     kAdvance,
@@ -227,7 +262,7 @@ class PartitionedEngine final : public Engine {
     } reduce(this);
     LatticeFamilies part =
         rank_lattice_families(in.particles, in.materials, local, layout_.global, layout_.owned, reduce);
-    setup_seconds_[2] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    setup_seconds_[2] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return part;
   }
 
@@ -469,22 +504,22 @@ class PartitionedEngine final : public Engine {
   }
 
   // Rank 0: particles, ghosts and bonds per rank, and the imbalance of the bonds built (largest
-  // over mean) next to the one the partition expected.
+  // over mean), with the one the estimate gave where the run was split again on the families.
   void report_balance(const SimulationInput& in, const RankStats& rank0) const {
     const PartitionBalance b = partition_balance(partition_, in.particles, in.materials);
     const auto [lo, hi] = std::minmax_element(b.particles.begin(), b.particles.end());
     const auto [glo, ghi] = std::minmax_element(b.ghosts.begin(), b.ghosts.end());
-    std::vector<int64_t> bonds(size_t(comm_->size()), 0);
-    for (int r = 0; r < comm_->size(); ++r)
-      for (int32_t g : partition_.owned[size_t(r)]) bonds[size_t(r)] += global_count_[size_t(g)];
+    const std::vector<int64_t> bonds = rank_bonds();
     const auto [blo, bhi] = std::minmax_element(bonds.begin(), bonds.end());
-    const double mean =
-        double(std::accumulate(bonds.begin(), bonds.end(), int64_t(0))) / double(bonds.size());
+    char again[96] = "";
+    if (first_imbalance_ > kResplitAbove)
+      std::snprintf(again, sizeof(again), " (split again on the families: %.3f on the estimate)",
+                    first_imbalance_);
     std::printf(
         "ranks      %d: particles per rank %lld to %lld, ghosts %lld to %lld, bonds %lld to %lld, "
-        "imbalance %.3f (expected %.3f)\n",
+        "imbalance %.3f%s\n",
         comm_->size(), (long long)*lo, (long long)*hi, (long long)*glo, (long long)*ghi, (long long)*blo,
-        (long long)*bhi, mean > 0 ? double(*bhi) / mean : 1.0, b.imbalance);
+        (long long)*bhi, bond_imbalance(), again);
     std::printf("halo       %s, %s\n", rank0.halo_transport,
                 rank0.overlapped ? "interior forces computed while it travels" : "not overlapped");
     std::printf("set-up     rank 0: partition %.2f s, its engine %.2f s (of which lattice tables %.2f s)\n",
@@ -497,6 +532,7 @@ class PartitionedEngine final : public Engine {
   RankLayout layout_;
   std::vector<std::pair<int32_t, int32_t>> own_by_global_;  // (global, local) of the own particles
   double setup_seconds_[3] = {0, 0, 0};  // partition, rank engine, lattice tables (within it)
+  double first_imbalance_ = 1;           // of the bonds on the estimate's split
   std::unique_ptr<EngineImpl<Exec>> local_;
   std::string device_;
   FamilyStats family_;

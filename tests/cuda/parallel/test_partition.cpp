@@ -175,5 +175,27 @@ TEST(Partition, SliverParticlesCountAsAnEighthOfACell) {
   }
 }
 
+// Split on the families' sizes (the second split of a run whose estimate was off): each rank
+// holds an even share of bonds plus particles, wherever the families are long or short.
+TEST(Partition, FamilySizesSplitAsEvenlyAsTheBisectionCan) {
+  const Block b(40, 10, 6);
+  std::vector<int32_t> bonds(b.ps.size());
+  for (size_t i = 0; i < bonds.size(); ++i) bonds[i] = b.ps.rest[i].x < real(10 * kLambda) ? 300 : 20;
+  for (int ranks : {2, 3, 4}) {
+    const Partition p = partition_particles(b.ps, b.mt, ranks, bonds);
+    std::vector<double> share(size_t(ranks), 0);
+    double total = 0;
+    for (int r = 0; r < ranks; ++r)
+      for (int32_t i : p.owned[size_t(r)]) share[size_t(r)] += bonds[size_t(i)] + 1;
+    for (double s : share) total += s;
+    // The cut falls between two particles (ordered along x, ties by index): off by at most a
+    // particle's weight (301) per level of the bisection.
+    for (int r = 0; r < ranks; ++r)
+      EXPECT_NEAR(share[size_t(r)], total / ranks, 3 * 301.0) << ranks << " ranks, rank " << r;
+    // The long families' end is split finer: rank 0 holds fewer particles than the last rank.
+    EXPECT_LT(p.owned[0].size(), p.owned[size_t(ranks - 1)].size()) << ranks << " ranks";
+  }
+}
+
 }  // namespace
 }  // namespace pd
