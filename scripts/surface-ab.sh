@@ -26,18 +26,28 @@ mkdir -p "$OUT"
 # name | scene | GPU scale | CPU scale | frames | still frame | camera (perifrac render options)
 ENTRIES=(
   "four_walls|chen_four_walls|1|0.05|60|60|--eye 0.35,0.25,-0.75 --look-at 0,-0.03,-0.02"
+  "elastic_vs_plastic|chen_elastic_vs_plastic_wall|1|0.1|60|60|"
   "glass_alpha_0|chen_glass_wall_alpha|1|0.05|60|60|--eye 0.12,0.12,-0.35 --look-at 0,0,-0.01"
   "ductile_gamma_0.1|chen_ductile_gamma|1|0.05|60|40|--eye 0.12,0.12,-0.35 --look-at 0,0,-0.01"
   "beams_bend|chen_beams_bend|1|0.2|60|20|"
   "bar_twist|chen_bar_twist|1|0.3|36|36|"
   "elastic_drop|chen_elastic_drop|1|0.1|60|60|--eye 0.9,0.6,1.4 --look-at 0.1,0.05,0"
   "thin_sheet|chen_thin_sheet_tear|1|0.1|60|50|"
+  "jello|chen_jello_bullet|1|0.1|60|40|"
+  "beams_poisson|chen_beams_poisson|1|0.3|150|150|"
+  "bar_swing|chen_bar_swing|1|0.3|60|20|"
+  "stretch_tear|chen_stretch_tear|1|0.1|60|50|"
+  "glass_pressed|chen_glass_wall_pressed|1|0.05|50|50|"
 )
 
-# The --set options that turn the correction on for every state-based material of a scene.
+# The --set options that turn the correction on for every isotropic state-based material of a
+# scene (anisotropic ones cannot have it).
 correction_sets() {
-  awk '/^\[materials\.[A-Za-z0-9_]+\]/ { name = $1; gsub(/^\[materials\.|\]$/, "", name) }
-       /^model *= *"state_based"/ && name != "" { printf "--set materials.%s.surface_correction=true ", name }' "$1"
+  awk '/^\[/ { name = "" } /^\[materials\.[A-Za-z0-9_]+\]/ { name = $1; gsub(/^\[materials\.|\]$/, "", name); order[++n] = name }
+       /^model *= *"state_based"/ && name != "" { state[name] = 1 }
+       /^\[materials\.[A-Za-z0-9_]+\.anisotropy\]/ { a = $1; gsub(/^\[materials\.|\.anisotropy\]$/, "", a); aniso[a] = 1 }
+       END { for (k = 1; k <= n; ++k) if (state[order[k]] && !aniso[order[k]])
+               printf "--set materials.%s.surface_correction=true ", order[k] }' "$1"
 }
 
 printf '%-18s %-4s %9s %9s %10s %8s %8s %8s\n' scene corr broken balance fragments singles largest "ms/step"
