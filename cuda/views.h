@@ -71,7 +71,7 @@ struct LatticeView {
   // Scenes with weakened bonds only: the bonds whose strength factor is below 1, so that only
   // those read it (same layout).
   ArrayView<const uint32_t> weak;
-  // Bond-based materials with the surface correction (cuda/kernels/surface_correction.h): per
+  // Materials with the surface correction (cuda/kernels/surface_correction.h): per
   // particle the start of its row in `surface_table`, the stored bond factor of each stencil
   // entry. Particles placed alike in their body share a row, so a lattice bond's factor comes
   // from a small table that stays in cache instead of its slot, whose index the loop would

@@ -92,7 +92,7 @@ class EngineImpl final : public Engine {
                                                   features_.weak_bonds, lattice_, family_, bonds_on_host());
       features_.lattice_listed = features_.lattice;
     }
-    if (features_.surface && !lattice_.empty())
+    if (features_.surface_factors && !lattice_.empty())
       upload_surface_rows(mem_, state_, lattice_, family_, bonds_on_host());
     host_bonds = BondLists();
     end_stage("lattice tables");

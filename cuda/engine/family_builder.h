@@ -28,7 +28,7 @@ struct LatticeState {
   DeviceArray<Stencil, Exec> stencils;
   DeviceArray<StencilEntry, Exec> entries;
   DeviceArray<uint32_t, Exec> present, intact, weak;
-  DeviceArray<int32_t, Exec> surface_row;  // bond-based surface correction (upload_surface_rows)
+  DeviceArray<int32_t, Exec> surface_row;  // the surface correction (upload_surface_rows)
   DeviceArray<uint16_t, Exec> surface_table;
   // The particles whose stencil is `listed` (a partitioned rank's), ascending; the kernels run
   // them in a launch of their own (launch_springforces).
@@ -201,7 +201,7 @@ bool upload_lattice_families(DeviceMemory<Exec>& mem, const EngineState<Exec>& s
 
 // The surface correction's factors of the lattice particles' bonds (set at their slots) as rows
 // of factors per stencil entry on the backend (lattice_families.h surface_rows), for the
-// bond-based kernels.
+// force and dilatation kernels of either model.
 template <class Exec>
 void upload_surface_rows(DeviceMemory<Exec>& mem, const EngineState<Exec>& s, LatticeState<Exec>& lattice,
                          FamilyStats& family, const BondLists& lists) {

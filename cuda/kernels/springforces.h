@@ -35,17 +35,6 @@ PD_HD inline real surface_bond_weight(real weight, const BondsView& b, int64_t s
     return weight * surface_bond_value(b.surface_bond[slot]);
 }
 
-// Particle i's row of lattice bond factors (kSurface, a lattice particle), else null.
-template <bool kSurface>
-PD_HD inline const uint16_t* surface_row_of(const BondsView& b, int32_t i) {
-  if constexpr (kSurface) {
-    const ArrayView<const int32_t>& rows = b.lattice.surface_row;
-    return rows.size > 0 && rows[i] >= 0 ? b.lattice.surface_table.data() + rows[i] : nullptr;
-  } else {
-    return nullptr;
-  }
-}
-
 // The entry loop unrolled 8 times where bonds may be weakened, as the compiler picks (2) else
 // (bench/NOTES.md: each the faster of the two for its kernel).
 template <bool kWeak>

@@ -32,6 +32,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
   Vec3 f{0, 0, 0};
   real smin = real(INFINITY);
   real nearest = -real(INFINITY);  // screened pass: the largest own-end margin (bond_screen.h)
+  const uint16_t* row = surface_row_of(b, i);
   // The entry loop unrolled 8 times: +3% (elastic) to +8% (plastic) against the compiler's 2
   // (bench/NOTES.md).
   const int32_t intact =
@@ -67,7 +68,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
         }
         smin = min_of(s, smin);
         const ForceStateCoefficients k_j = force_state_coefficients(state_j.x, state_j.y, m);
-        const real t = influence<kAnisotropic>(g.xi, g.inv_r0, m) * surface_bond_at(b, slot) *
+        const real t = influence<kAnisotropic>(g.xi, g.inv_r0, m) * surface_factor_of(b, slot, g, row) *
                        ((k_i.a + k_j.a) * g.e - (k_i.a * ep_ij + k_j.a * ep_ji) + (k_i.c + k_j.c) * g.r0);
         f += (t * g.weight(m) * g.inv_r) * g.y;
         return true;

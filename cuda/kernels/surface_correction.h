@@ -15,8 +15,8 @@
 // sum_j omega n_k^2 |xi|^2 beta V_j against the interior's m / 3, and G multiplies the influence
 // function omega of the bond in every sum (m, theta, the force and energy states, the yield norm):
 // a state-based solid with another influence function, whose forces still come from an energy.
-// Inside the body every factor is 1. G is stored per bond slot in 16 bits (below); bond-based
-// kernels read a lattice bond's from a table of rows shared by the particles placed alike in
+// Inside the body every factor is 1. G is stored per bond slot in 16 bits (below); the force
+// and dilatation kernels read a lattice bond's from a table of rows shared by the particles placed alike in
 // their body (cuda/engine/lattice_families.h surface_rows), which stays in cache and spares the
 // loop the slot's index. Pre-cracks are not surfaces: the factors come from the families before
 // the cuts (cuda/engine/engine_impl.h).
@@ -129,11 +129,33 @@ PD_HD inline void surface_bond_factors(int32_t i, ParticlesView p, BondsView b, 
 }
 
 // The factor on the bond at `slot`, 1 where the run has no factors (then exactly the uncorrected
-// bits): set-up, the energy, and the state-based kernels' influence function (one loop-invariant
-// test per particle where the compiler hoists it; bond-based forces use springforces.h's
-// compile-time form).
+// bits): set-up, the energy, and the state-based kernels' influence function for a listed bond
+// (one loop-invariant test per particle where the compiler hoists it; bond-based forces use
+// springforces.h's compile-time form).
 PD_HD inline real surface_bond_at(const BondsView& b, int64_t slot) {
   return b.surface_bond ? surface_bond_value(b.surface_bond[slot]) : real(1);
+}
+
+// Particle i's row of lattice bond factors (kSurface, a lattice particle of a run with rows;
+// cuda/engine/lattice_families.h surface_rows), else null.
+template <bool kSurface = true>
+PD_HD inline const uint16_t* surface_row_of(const BondsView& b, int32_t i) {
+  if constexpr (kSurface) {
+    const ArrayView<const int32_t>& rows = b.lattice.surface_row;
+    return rows.size > 0 && rows[i] >= 0 ? b.lattice.surface_table.data() + rows[i] : nullptr;
+  } else {
+    return nullptr;
+  }
+}
+
+// The state-based kernels' factor on a bond: a lattice bond's from its particle's row (the same
+// stored bits as at its slot, without the slot's index), else the slot's (1 without factors).
+template <class Geometry>
+PD_HD inline real surface_factor_of(const BondsView& b, int64_t slot, const Geometry& g,
+                                    const uint16_t* row) {
+  if constexpr (std::is_same_v<Geometry, LatticeBondGeometry>)
+    if (row) return surface_bond_value(row[g.entry]);
+  return surface_bond_at(b, slot);
 }
 
 }  // namespace pd
