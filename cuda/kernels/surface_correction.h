@@ -16,9 +16,9 @@
 // function omega of the bond in every sum (m, theta, the force and energy states, the yield norm):
 // a state-based solid with another influence function, whose forces still come from an energy.
 // Inside the body every factor is 1. G is stored per bond slot in 16 bits (below); the force
-// and dilatation kernels read a lattice bond's from a table of rows shared by the particles placed alike in
-// their body (cuda/engine/lattice_families.h surface_rows), which stays in cache and spares the
-// loop the slot's index. Pre-cracks are not surfaces: the factors come from the families before
+// and dilatation kernels read a lattice bond's from a table of rows shared by the particles
+// placed alike in their body (cuda/engine/lattice_families.h surface_rows), which stays in cache
+// and spares the loop the slot's index. Pre-cracks are not surfaces: the factors come from the families before
 // the cuts (cuda/engine/engine_impl.h).
 #pragma once
 
@@ -129,9 +129,9 @@ PD_HD inline void surface_bond_factors(int32_t i, ParticlesView p, BondsView b, 
 }
 
 // The factor on the bond at `slot`, 1 where the run has no factors (then exactly the uncorrected
-// bits): set-up, the energy, and the state-based kernels' influence function for a listed bond
-// (one loop-invariant test per particle where the compiler hoists it; bond-based forces use
-// springforces.h's compile-time form).
+// bits): set-up, the energy, and the energy a breaking state-based bond releases (the force and
+// dilatation kernels use surface_factor_of below, bond-based forces springforces.h's
+// compile-time form).
 PD_HD inline real surface_bond_at(const BondsView& b, int64_t slot) {
   return b.surface_bond ? surface_bond_value(b.surface_bond[slot]) : real(1);
 }
