@@ -18,8 +18,8 @@
 // Inside the body every factor is 1. G is stored per bond slot in 16 bits (below); the force
 // and dilatation kernels read a lattice bond's from a table of rows shared by the particles
 // placed alike in their body (cuda/engine/lattice_families.h surface_rows), which stays in cache
-// and spares the loop the slot's index. Pre-cracks are not surfaces: the factors come from the families before
-// the cuts (cuda/engine/engine_impl.h).
+// and spares the loop the slot's index. Pre-cracks are not surfaces: the factors come from the families
+// before the cuts (cuda/engine/engine_impl.h).
 #pragma once
 
 #include "cuda/kernels/bond.h"
