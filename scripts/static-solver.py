@@ -1,0 +1,293 @@
+#!/usr/bin/env python3
+"""Static linear solutions of perifrac's discrete peridynamic models, for studying surface
+corrections in seconds rather than dynamic runs (bench/NOTES.md, 2026-11-27).
+
+The same discrete model as the engine (cube lattice, delta = 3 lambda, partial volumes beta,
+omega = delta / |xi|) linearised: bond extensions e = B u, the energy 1/2 e^T M e, the stiffness
+B^T M B, solved with prescribed grips or clamps (scipy's sparse LU). Problems, as the validation
+problems define them (host/validation/):
+  bar         tension bar: free length 4 W between grips of 3 layers moved u_x = eps x; E from
+              the grips' force over the gauge's strain (the central width), nu from its lateral strain
+  bending     the same bar bent between grips (u_x = k x z, u_z = -k x^2 / 2): EI over E W^4 / 12
+  cantilever  the validation's beam, L = LH h, clamped by 3 layers under a uniform body force: the
+              tip deflection against Timoshenko's
+  uniform     every particle of the bar's body (grips included) moved by uniform strains: the
+              energy over the exact
+Models:
+  lps             the engine's LPS without correction
+  lps-axis        with the opt-in per-axis factors (surface_correction.h, --rounds, default 2)
+  lps-axis-dev    those and a per-particle deviatoric scale that makes the six modes right on average
+  pals            the position-aware linear solid (two 6 x 6 solves per particle)
+  pals-maxent     the same constraints met by exp(l.g) weights (never negative)
+  pals-odd        pals with the dilatation's odd moments also zero (16 multipliers)
+  pals-dil        pals's dilatation with the LPS deviatoric part
+  pmb, pmb-axis   bond-based, without and with the default correction (--rounds, default 3;
+                  --parallel-q Q puts the factor's increase on bonds parallel to the surface)
+--alpha A blends a pals model's weights with the LPS's: A pals + (1 - A) lps.
+Needs numpy and scipy (Debian: python3-numpy python3-scipy).
+"""
+import argparse
+import math
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spl
+
+LAMBDA, DELTA = 1.0, 3.0
+
+
+def beta(r):
+    return np.where(r <= DELTA - 0.5 * LAMBDA, 1.0, (DELTA + 0.5 * LAMBDA - r) / LAMBDA)
+
+
+def offsets():
+    reach = DELTA + 0.5 * LAMBDA
+    k = int(math.ceil(reach))
+    return np.array([(a, b, c) for a in range(-k, k + 1) for b in range(-k, k + 1) for c in range(-k, k + 1)
+                     if (a, b, c) != (0, 0, 0) and math.sqrt(a * a + b * b + c * c) * LAMBDA < reach], float)
+
+
+class Body:
+    """A box of nx x ny x nz cubes with its bonds listed once per direction."""
+
+    def __init__(self, nx, ny, nz, origin):
+        grid = np.stack(np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij"), -1).reshape(-1, 3)
+        self.idx = grid
+        self.pos = (grid + 0.5) * LAMBDA + np.asarray(origin, float)
+        self.n = len(grid)
+        self.vol = np.full(self.n, LAMBDA ** 3)
+        dims = np.array([nx, ny, nz])
+        bi, bj = [], []
+        for o in offsets().astype(int):
+            q = grid + o
+            ok = np.all((q >= 0) & (q < dims), 1)
+            bi.append(np.nonzero(ok)[0])
+            bj.append((q[ok, 0] * ny + q[ok, 1]) * nz + q[ok, 2])
+        self.bi, self.bj = np.concatenate(bi), np.concatenate(bj)
+        xi = self.pos[self.bj] - self.pos[self.bi]
+        self.r = np.linalg.norm(xi, axis=1)
+        self.nv = xi / self.r[:, None]
+        self.xi = xi
+        self.bw = beta(self.r) * self.vol[self.bj]
+        self.nb = len(self.bi)
+        rows = np.repeat(np.arange(self.nb), 6)
+        cols = np.stack([3 * self.bi, 3 * self.bi + 1, 3 * self.bi + 2, 3 * self.bj, 3 * self.bj + 1, 3 * self.bj + 2],
+                        1).ravel()
+        self.B = sp.csr_matrix((np.concatenate([-self.nv, self.nv], 1).ravel(), (rows, cols)), (self.nb, 3 * self.n))
+
+    def per_particle(self, values, width=None):
+        out = np.zeros((self.n,) if width is None else (self.n, width))
+        np.add.at(out, self.bi, values)
+        return out
+
+
+def interior_sums():
+    o = offsets() * LAMBDA
+    ro = np.linalg.norm(o, axis=1)
+    w = beta(ro) * LAMBDA ** 3
+    return {"m": np.sum(DELTA / ro * ro ** 2 * w), "bond_sum": np.sum(ro * w),
+            "axial4": np.sum((o[:, 0] / ro) ** 4 * ro * w)}
+
+
+def axis_factors(b, weight_of, axial, power, rounds, shape=None):
+    """The fixed point of surface_correction.h: per-axis factors, the ellipse of the ends' means."""
+    g = np.ones((b.n, 3))
+    G = np.ones(b.nb)
+    for _ in range(rounds):
+        sums = b.per_particle((G * weight_of)[:, None] * b.nv ** power, 3)
+        g = np.minimum(g * axial / sums, 8.0)
+        mean = 0.5 * (g[b.bi] + g[b.bj])
+        ellipse = 1 / np.sqrt(np.sum((b.nv / mean) ** 2, 1))
+        G = ellipse if shape is None else 1 + (ellipse - 1) * shape
+    return G
+
+
+def solve_moments(b, weight, basis, components, target):
+    """Per particle, the multipliers l with sum_j weight (1 + l.basis) components = target."""
+    k = basis.shape[1]
+    A = np.zeros((b.n, k, k))
+    np.add.at(A, b.bi, weight[:, None, None] * components[:, :, None] * basis[:, None, :])
+    rhs = target - b.per_particle(weight[:, None] * components, k)
+    lam = np.linalg.solve(A, rhs[:, :, None])[:, :, 0]
+    return 1 + np.sum(lam[b.bi] * basis, 1)
+
+
+def maxent_moments(b, weight, components, target, iterations=60):
+    """The weights exp(l.components) meeting the same constraints (Newton on the convex dual)."""
+    k = components.shape[1]
+    lam = np.zeros((b.n, k))
+    for _ in range(iterations):
+        f = np.exp(np.clip(np.sum(lam[b.bi] * components, 1), -30, 30))
+        grad = b.per_particle((weight * f)[:, None] * components, k) - target
+        hess = np.zeros((b.n, k, k))
+        np.add.at(hess, b.bi, (weight * f)[:, None, None] * components[:, :, None] * components[:, None, :])
+        lam -= np.clip(np.linalg.solve(hess + 1e-12 * np.eye(k), grad[:, :, None])[:, :, 0], -2, 2)
+    return np.exp(np.clip(np.sum(lam[b.bi] * components, 1), -30, 30))
+
+
+def state_weights(b, model, args):
+    """wd, wv: theta = sum wd |xi| e beta V, W = K theta^2 / 2 + mu sum wv (e^d)^2 beta V."""
+    s = interior_sums()
+    omega = DELTA / b.r
+    own_m = b.per_particle(omega * b.r ** 2 * b.bw)[b.bi]
+    lps = (3 * omega / own_m, 7.5 * omega / own_m)
+    if model == "lps":
+        return lps
+    if model.startswith("lps-axis"):
+        G = axis_factors(b, b.r * b.bw, s["bond_sum"] / 3, 2, args.rounds or 2)
+        m = b.per_particle(omega * G * b.r ** 2 * b.bw)[b.bi]
+        wd, wv = 3 * omega * G / m, 7.5 * omega * G / m
+        if model == "lps-axis-dev":
+            e = deviatoric_modes(b.nv)
+            got = b.per_particle((wv * b.r ** 2 * b.bw)[:, None] * e ** 2, 6)
+            wv = wv * (8.0 / np.sum(got, 1))[b.bi]  # the six modes' targets, 3 x 2/3 + 3 x 2, add to 8
+        return wd, wv
+    n = b.nv
+    g = np.stack([n[:, 0] ** 2, n[:, 1] ** 2, n[:, 2] ** 2, 2 * n[:, 0] * n[:, 1], 2 * n[:, 0] * n[:, 2],
+                  2 * n[:, 1] * n[:, 2]], 1)
+    h = g * np.array([1, 1, 1, 0.5, 0.5, 0.5])
+    q = deviatoric_modes(n) ** 2
+    wd0, wv0 = 3 * omega / s["m"], 7.5 * omega / s["m"]
+    t_d, t_v = np.array([1, 1, 1, 0, 0, 0.0]), np.array([2 / 3, 2 / 3, 2 / 3, 2, 2, 2.0])
+    if model == "pals-maxent":
+        wd = wd0 * maxent_moments(b, wd0 * b.r ** 2 * b.bw, h, t_d)
+        wv = wv0 * maxent_moments(b, wv0 * b.r ** 2 * b.bw, q, t_v)
+    else:
+        if model == "pals-odd":
+            cubic = np.stack([n[:, a] * n[:, c] * n[:, d] for a in range(3) for c in range(a, 3)
+                              for d in range(c, 3)], 1) * (b.r / DELTA)[:, None]
+            wd = wd0 * solve_moments(b, wd0 * b.r ** 2 * b.bw, np.concatenate([g, cubic], 1),
+                                     np.concatenate([h, cubic], 1), np.concatenate([t_d, np.zeros(10)]))
+        else:
+            wd = wd0 * solve_moments(b, wd0 * b.r ** 2 * b.bw, g, h, t_d)
+        wv = lps[1] if model == "pals-dil" else wv0 * solve_moments(b, wv0 * b.r ** 2 * b.bw, q, q, t_v)
+    a = args.alpha
+    return a * wd + (1 - a) * lps[0], a * wv + (1 - a) * lps[1]
+
+
+def deviatoric_modes(n):
+    third = 1.0 / 3.0
+    return np.stack([n[:, 0] ** 2 - third, n[:, 1] ** 2 - third, n[:, 2] ** 2 - third, 2 * n[:, 0] * n[:, 1],
+                     2 * n[:, 0] * n[:, 2], 2 * n[:, 1] * n[:, 2]], 1)
+
+
+def stiffness(b, model, args):
+    """The stiffness and the material's (E, nu)."""
+    if model.startswith("pmb"):
+        E, nu = 72e9, 0.25
+        s = interior_sums()
+        c = 18 * (E / (3 * (1 - 2 * nu))) / s["bond_sum"]
+        G = np.ones(b.nb)
+        if model == "pmb-axis":
+            shape = None
+            if args.parallel_q:
+                m1 = b.per_particle(b.bw[:, None] * b.xi, 3)
+                size = np.linalg.norm(m1, axis=1)
+                normal = m1 / np.maximum(size, 1e-30)[:, None]
+                weight = np.minimum(size / size.max(), 1.0)
+                cos_i = np.sum(b.nv * normal[b.bi], 1) ** 2 * weight[b.bi]
+                cos_j = np.sum(b.nv * normal[b.bj], 1) ** 2 * weight[b.bj]
+                shape = (1 - 0.5 * (cos_i + cos_j)) ** args.parallel_q
+            G = axis_factors(b, b.r * b.bw, s["axial4"], 4, args.rounds or 3, shape)
+        return (b.B.T @ sp.diags(c * G * b.bw * b.vol[b.bi] / (2 * b.r)) @ b.B).tocsr(), E, nu
+    E, nu = 70e9, 0.3
+    K, mu = E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu))
+    wd, wv = state_weights(b, model, args)
+    theta = sp.csr_matrix((wd * b.r * b.bw, (b.bi, np.arange(b.nb))), (b.n, b.nb))
+    dev = sp.identity(b.nb) - sp.csr_matrix((b.r / 3, (np.arange(b.nb), b.bi)), (b.nb, b.n)) @ theta
+    M = theta.T @ sp.diags(K * b.vol) @ theta + dev.T @ sp.diags(2 * mu * wv * b.bw * b.vol[b.bi]) @ dev
+    return (b.B.T @ M @ b.B).tocsr(), E, nu
+
+
+def solve(H, fixed, u_fixed, load=None):
+    free = ~fixed
+    u = np.where(fixed, u_fixed, 0.0)
+    rhs = -(H[free][:, fixed] @ u[fixed]) + (0 if load is None else load[free])
+    u[free] = spl.spsolve(H[free][:, free].tocsc(), rhs)
+    return u
+
+
+def fit(x, y):
+    return np.polyfit(x, y, 1)[0]
+
+
+def bar(args, bending=False):
+    n, grip = args.n, 3
+    nx = 4 * n + 2 * grip
+    b = Body(nx, n, n, (-0.5 * nx * LAMBDA, -0.5 * n * LAMBDA, -0.5 * n * LAMBDA))
+    H, E, nu = stiffness(b, args.model, args)
+    in_grip = (b.idx[:, 0] < grip) | (b.idx[:, 0] >= nx - grip)
+    fixed = np.repeat(in_grip, 3)
+    x, z = b.pos[:, 0], b.pos[:, 2]
+    u0 = np.zeros(3 * b.n)
+    if bending:
+        u0[0::3], u0[2::3] = 1e-4 * x * z, -0.5e-4 * x * x
+    else:
+        u0[0::3] = 1e-4 * x
+    u = solve(H, fixed, u0)
+    f = H @ u
+    right, left = b.idx[:, 0] >= nx - grip, b.idx[:, 0] < grip
+    gauge = np.abs(x) < 0.5 * n * LAMBDA
+    W = n * LAMBDA
+    if bending:
+        moment = 0.5 * (np.sum(f[0::3][right] * z[right]) - np.sum(f[0::3][left] * z[left]))
+        cols = np.stack([x[gauge] * z[gauge], x[gauge], z[gauge], np.ones(gauge.sum())], 1)
+        curvature = np.linalg.lstsq(cols, u[0::3][gauge], rcond=None)[0][0]
+        print(f"bending {args.model} n={n}: EI / (E W^4/12) = {moment / curvature / (E * W ** 4 / 12):.4f}")
+        return
+    stress = 0.5 * (f[0::3][right].sum() - f[0::3][left].sum()) / (W * W)
+    axial = fit(x[gauge], u[0::3][gauge])
+    lateral = 0.5 * (fit(b.pos[gauge, 1], u[1::3][gauge]) + fit(z[gauge], u[2::3][gauge]))
+    modulus = stress / axial
+    print(f"bar {args.model} n={n}: E {modulus / 1e9:.2f} GPa, elongation error {(E / modulus - 1) * 100:+.2f}%, "
+          f"nu {-lateral / axial:.4f}")
+
+
+def cantilever(args):
+    n, clamp = args.n, 3
+    nl = args.length_over_height * n
+    h = n * LAMBDA
+    b = Body(nl + clamp, n, n, (-clamp * LAMBDA, -0.5 * h, -0.5 * h))
+    H, E, nu = stiffness(b, args.model, args)
+    fixed = np.repeat(b.idx[:, 0] < clamp, 3)
+    load = np.zeros(3 * b.n)
+    load[1::3] = -b.vol  # a body force of 1 per unit volume along -y
+    u = solve(H, fixed, np.zeros(3 * b.n), load)
+    w = -u[1::3][b.idx[:, 0] == nl + clamp - 1].mean()
+    L, A, inertia = nl * LAMBDA, h * h, h ** 4 / 12
+    kappa, x = 10 * (1 + nu) / (12 + 11 * nu), L - 0.5 * LAMBDA
+    ref = A * (x ** 4 - 4 * L * x ** 3 + 6 * L * L * x * x) / (24 * E * inertia) + \
+        A * (L * x - 0.5 * x * x) / (kappa * E / (2 * (1 + nu)) * A)
+    print(f"cantilever {args.model} n={n} L/h={args.length_over_height}: tip {w:.4e} against Timoshenko's {ref:.4e}: "
+          f"{(w / ref - 1) * 100:+.1f}%")
+
+
+def uniform(args):
+    b = Body(4 * args.n + 6, args.n, args.n, (0, 0, 0))  # the bar's body, grips included
+    H, E, nu = stiffness(b, args.model, args)
+    K, mu = E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu))
+    for name, eps in [("uniaxial x", np.diag([1.0, 0, 0])), ("shear xy", np.array([[0, .5, 0], [.5, 0, 0], [0, 0, 0]])),
+                      ("mixed", np.array([[1, .5, .2], [.5, -.3, .1], [.2, .1, .4]]))]:
+        eps = 1e-4 * eps
+        u = (b.pos @ eps.T).ravel()
+        dev = eps - np.trace(eps) / 3 * np.eye(3)
+        exact = b.n * LAMBDA ** 3 * (0.5 * K * np.trace(eps) ** 2 + mu * np.sum(dev * dev))
+        print(f"uniform {args.model} {name}: energy over the exact {0.5 * u @ (H @ u) / exact:.6f}")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("problem", choices=["bar", "bending", "cantilever", "uniform"])
+    p.add_argument("--n", type=int, default=8, help="particles across")
+    p.add_argument("--model", default="lps", choices=["lps", "lps-axis", "lps-axis-dev", "pals", "pals-maxent",
+                                                       "pals-odd", "pals-dil", "pmb", "pmb-axis"])
+    p.add_argument("--rounds", type=int, default=0, help="the per-axis factors' rounds (0: the engine's)")
+    p.add_argument("--alpha", type=float, default=1.0, help="pals models: A pals + (1 - A) lps")
+    p.add_argument("--parallel-q", type=float, default=0.0, help="pmb-axis: the factor on bonds parallel to the surface")
+    p.add_argument("--length-over-height", type=int, default=5, help="cantilever: L / h")
+    args = p.parse_args()
+    {"bar": bar, "bending": lambda a: bar(a, True), "cantilever": cantilever, "uniform": uniform}[args.problem](args)
+
+
+if __name__ == "__main__":
+    main()
