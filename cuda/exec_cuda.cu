@@ -118,8 +118,9 @@ cudaEvent_t CudaExec::take_event() {
   return e;
 }
 
-cudaEvent_t CudaExec::begin_timing() {
+cudaEvent_t CudaExec::begin_timing(const char* name) {
   if (!stats_) return nullptr;
+  if (stats_->entry(name).launches++ % kTimedLaunchStride != 0) return nullptr;
   cudaEvent_t e = take_event();
   cuda_check(cudaEventRecord(e, stream_), "cudaEventRecord");
   return e;
@@ -127,7 +128,7 @@ cudaEvent_t CudaExec::begin_timing() {
 
 void CudaExec::end_timing(const char* name, cudaEvent_t start) {
   last_name_ = name;
-  if (!stats_) return;
+  if (!start) return;
   cudaEvent_t stop = take_event();
   cuda_check(cudaEventRecord(stop, stream_), "cudaEventRecord");
   pending_.push_back({name, start, stop});
@@ -144,12 +145,13 @@ void CudaExec::flush_stats() {
     float ms = 0;
     cuda_check(cudaEventElapsedTime(&ms, p.start, p.stop), "cudaEventElapsedTime");
     KernelStat& s = stats_->entry(p.name);
-    s.seconds += 1e-3 * ms;
-    ++s.launches;
+    s.timed_seconds += 1e-3 * ms;
+    ++s.timed_launches;
     free_events_.push_back(p.start);
     free_events_.push_back(p.stop);
   }
   pending_.clear();
+  if (stats_) stats_->estimate_from_timed();
   // (A span still open, when a flush falls between begin_side and end_side, is kept.)
   const bool open = !side_spans_.empty() && !side_spans_.back().stop;
   for (size_t k = 0; k + (open ? 1 : 0) < side_spans_.size(); ++k) {
@@ -180,7 +182,7 @@ void CudaExec::sort_by_key(const char* name, const uint32_t* key_in, const int32
   size_t temp_bytes = 0;
   cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, key_in, key_out, val_in, val_out, n, 0, bits);
   void* temp = scratch(0, temp_bytes);
-  cudaEvent_t start = begin_timing();
+  cudaEvent_t start = begin_timing(name);
   cuda_check(cub::DeviceRadixSort::SortPairs(temp, temp_bytes, key_in, key_out, val_in, val_out, n, 0, bits),
              name);
   end_timing(name, start);

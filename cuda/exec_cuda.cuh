@@ -1,5 +1,6 @@
-// CUDA backend: parallel_for launches one thread per item on a grid; every launch is timed
-// with CUDA events and resolved in flush_stats(). Sorting, scans and reductions use CUB.
+// CUDA backend: parallel_for launches one thread per item on a grid; one launch in
+// kTimedLaunchStride of each kernel is timed with CUDA events, resolved in flush_stats(). Sorting,
+// scans and reductions use CUB.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -12,6 +13,7 @@
 
 #include "cuda/kernel_stats.h"
 #include "cuda/pd_common.h"
+#include "cuda/team.h"
 
 namespace pd {
 
@@ -47,6 +49,20 @@ __global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks)
   if (i < n) f(first + i);
 }
 
+// Teams of kThreads lanes (team.h), item first + t for team t: f(first + t, team). Teams never
+// straddle a warp, and a team is wholly in or out of range.
+template <int kThreads, int kMinBlocks, class F>
+__global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks > 0 ? kMinBlocks : 1)
+    parallel_for_team_kernel(int64_t first, int64_t n, F f) {
+  const int64_t thread = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const int64_t t = thread / kThreads;
+  if (t >= n) return;
+  const int32_t lane = int32_t(threadIdx.x % kThreads);
+  const uint32_t team_mask = (kThreads == 32 ? ~0u : (1u << kThreads) - 1u)
+                             << ((threadIdx.x & 31u) & ~uint32_t(kThreads - 1));
+  f(first + t, Team<kThreads>{lane, team_mask});
+}
+
 template <class T, class F>
 __global__ void transform_kernel(int64_t n, F f, T* out) {
   const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -76,7 +92,7 @@ class CudaExec {
     } else {
       if (s && s->registers < 0) describe(s, reinterpret_cast<const void*>(&parallel_for_kernel<F>));
     }
-    cudaEvent_t start = begin_timing();
+    cudaEvent_t start = begin_timing(name);
     if constexpr (kMinBlocks > 0)
       parallel_for_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(n, f);
     else
@@ -92,11 +108,27 @@ class CudaExec {
     if (first == 0) return parallel_for<kMinBlocks>(name, n, f);
     if (n <= 0) return;
     const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
-    cudaEvent_t start = begin_timing();
+    cudaEvent_t start = begin_timing(name);
     if constexpr (kMinBlocks > 0)
       parallel_for_from_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
     else
       parallel_for_from_kernel<<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
+    cuda_check(cudaGetLastError(), name);
+    end_timing(name, start);
+  }
+
+  // f(i, team) for i in [first, first + n), each i run by a team of kThreads > 1 threads
+  // (team.h; the CPU backend has one thread per item, and launches of Team<1> use parallel_for).
+  template <int kThreads, int kMinBlocks = 0, class F>
+  void parallel_for_team(const char* name, int64_t first, int64_t n, F f) {
+    static_assert(kThreads > 1);
+    if (n <= 0) return;
+    KernelStat* s = stats_ ? &stats_->entry(name) : nullptr;
+    if (s && s->registers < 0)
+      describe(s, reinterpret_cast<const void*>(&parallel_for_team_kernel<kThreads, kMinBlocks, F>));
+    const int64_t blocks = (n * kThreads + kBlockSize - 1) / kBlockSize;
+    cudaEvent_t start = begin_timing(name);
+    parallel_for_team_kernel<kThreads, kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
     cuda_check(cudaGetLastError(), name);
     end_timing(name, start);
   }
@@ -106,7 +138,7 @@ class CudaExec {
     if (n <= 0) return T{};
     T* values = static_cast<T*>(scratch(0, sizeof(T) * size_t(n)));
     const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
-    cudaEvent_t start = begin_timing();
+    cudaEvent_t start = begin_timing(name);
     transform_kernel<T><<<unsigned(blocks), kBlockSize>>>(n, f, values);
     cuda_check(cudaGetLastError(), name);
     T* total = static_cast<T*>(scratch(1, sizeof(T)));
@@ -161,7 +193,7 @@ class CudaExec {
     cudaEvent_t start, stop;
   };
   void describe(KernelStat* s, const void* kernel);
-  cudaEvent_t begin_timing();
+  cudaEvent_t begin_timing(const char* name);  // counts the launch; an event where it is timed
   void end_timing(const char* name, cudaEvent_t start);
   cudaEvent_t take_event();
   void* scratch(int slot, size_t bytes);

@@ -4,6 +4,7 @@
 
 #include <initializer_list>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "cuda/features.h"
@@ -70,35 +71,65 @@ void launch_listed_apart(KernelFeatures f, ParticleRange r, ParticleRange listed
   if (listed_ids.count > 0) launch(f, listed_ids);
 }
 
+// A kernel over range r, one thread per particle (kThreads = 1) or a team of kThreads per particle
+// (team.h, GPU only): body(i, team) for each particle i of r.
+template <int kThreads, int kMinBlocks = 0, class Exec, class Body>
+void launch_over_range(Exec& ex, const char* name, ParticleRange r, const BondsView& b, const Body& body) {
+  if constexpr (kThreads == 1) {
+    ex.template parallel_for_from<kMinBlocks>(name, r.first, r.count, [=] PD_HD(int64_t t) {
+      const int32_t i = range_particle(r, t, b);
+      if (i >= 0) body(i, Team<1>{});
+    });
+  } else {
+    ex.template parallel_for_team<kThreads, kMinBlocks>(name, r.first, r.count,
+                                                        [=] PD_HD(int64_t t, const Team<kThreads>& team) {
+                                                          const int32_t i = range_particle(r, t, b);
+                                                          if (i >= 0) body(i, team);
+                                                        });
+  }
+}
+
+// Calls f(std::integral_constant<int, k>) for the launch's threads per particle k (1, or 32 on
+// the GPU: team.h), so each count is its own instantiation.
+template <class Exec, class F>
+void with_bond_threads(int threads, F&& f) {
+  if constexpr (Exec::kDevice)
+    if (threads == 32) return f(std::integral_constant<int, 32>{});
+  f(std::integral_constant<int, 1>{});
+}
+
 // Kernel 1.
-template <bool kStateBased, bool kAnisotropic, int kLattice, bool kPlastic, class Exec>
+template <bool kStateBased, bool kAnisotropic, int kLattice, bool kPlastic, int kThreads, class Exec>
 void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r) {
   static const std::string name = kernel_variant("pd/init", {{"state", kStateBased},
                                                              {"aniso", kAnisotropic},
                                                              {"lattice", kLattice == kLatticeOffsets},
                                                              {"lattice-listed", kLattice == kLatticeListed},
-                                                             {"plastic", kPlastic}});
-  ex.parallel_for_from(name.c_str(), r.first, r.count, [=] PD_HD(int64_t t) {
-    const int32_t i = range_particle(r, t, b);
-    if (i >= 0) init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(i, p, b, mt);
+                                                             {"plastic", kPlastic},
+                                                             {"team32", kThreads == 32}});
+  launch_over_range<kThreads>(ex, name.c_str(), r, b, [=] PD_HD(int32_t i, const Team<kThreads>& team) {
+    init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(i, p, b, mt, team);
   });
 }
 
 // `listed_ids`: on a partitioned rank with lattice families, the particles of r whose stencil is
-// `listed` (launch_listed_apart).
+// `listed` (launch_listed_apart). `threads`: per particle in the bond loops (team.h).
 template <class Exec>
 void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f, ParticleRange r,
-                 ParticleRange listed_ids = {}) {
-  if (!f.state_based) return launch_init_variant<false, false, kNoLattice, false>(ex, p, b, mt, r);
-  launch_listed_apart(f, r, listed_ids, [&](const KernelFeatures& g, ParticleRange q) {
-    static_bools(
-        [&](auto anisotropic, auto lattice, auto listed, auto plastic) {
-          constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
-          if constexpr (kLattice || !kListed)  // (listed partners only with lattice families)
-            launch_init_variant<true, decltype(anisotropic)::value, lattice_mode(kLattice, kListed),
-                                decltype(plastic)::value>(ex, p, b, mt, q);
-        },
-        g.anisotropic, g.lattice, g.lattice && g.lattice_listed, g.plastic);
+                 ParticleRange listed_ids = {}, int threads = 1) {
+  if (!f.state_based) return launch_init_variant<false, false, kNoLattice, false, 1>(ex, p, b, mt, r);
+  with_bond_threads<Exec>(threads, [&](auto team) {
+    constexpr int kThreads = decltype(team)::value;
+    launch_listed_apart(f, r, listed_ids, [&](const KernelFeatures& g, ParticleRange q) {
+      static_bools(
+          [&](auto anisotropic, auto lattice, auto listed, auto plastic) {
+            constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
+            if constexpr (kLattice || !kListed)  // (listed partners only with lattice families)
+              launch_init_variant<true, decltype(anisotropic)::value, lattice_mode(kLattice, kListed),
+                                  decltype(plastic)::value, kThreads>(ex, p, b, mt, q);
+          },
+          g.anisotropic, g.lattice, g.lattice && g.lattice_listed, g.plastic);
+    });
   });
 }
 
@@ -165,21 +196,21 @@ void launch_collisions(Exec& ex, ParticlesView p, ContactView c, MaterialTable m
 // other force kernels add to it) and raises `broke` where a bond broke.
 // kSurface: bond-based materials with the surface correction (springforces.h).
 template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kScreened,
-          bool kSurface>
+          bool kSurface, int kThreads>
 PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const BondsView& b,
-                                    const MaterialTable& mt, int32_t* broke) {
+                                    const MaterialTable& mt, int32_t* broke, const Team<kThreads>& team) {
   if constexpr (kStateBased && kScreened)
-    screened_state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt, broke);
+    screened_state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt, broke, team);
   else if constexpr (kStateBased)
-    state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt, broke);
+    state_forces<kPlastic, kAnisotropic, kWeak, kLattice>(i, p, b, mt, broke, team);
   else if constexpr (kScreened)
-    screened_spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke);
+    screened_spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke, team);
   else
-    spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke);
+    spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke, team);
 }
 
 template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kScreened,
-          bool kSurface, class Exec>
+          bool kSurface, int kThreads, class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r,
                                  int32_t* broke) {
   // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
@@ -195,40 +226,44 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
                                          {"lattice", kLattice == kLatticeOffsets},
                                          {"lattice-listed", kLattice == kLatticeListed},
                                          {"screened", kScreened},
-                                         {"surface", kSurface}});
-  ex.template parallel_for_from<kMinBlocks>(name.c_str(), r.first, r.count, [=] PD_HD(int64_t t) {
-    const int32_t i = range_particle(r, t, b);
-    if (i >= 0)
-      springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened, kSurface>(i, p, b,
-                                                                                                   mt, broke);
-  });
+                                         {"surface", kSurface},
+                                         {"team32", kThreads == 32}});
+  launch_over_range<kThreads, kMinBlocks>(
+      ex, name.c_str(), r, b, [=] PD_HD(int32_t i, const Team<kThreads>& team) {
+        springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened, kSurface>(
+            i, p, b, mt, broke, team);
+      });
 }
 
 // `listed_ids`: on a partitioned rank with lattice families, the particles of r whose stencil is
-// `listed` (launch_listed_apart).
+// `listed` (launch_listed_apart). `threads`: per particle in the bond loops (team.h).
 template <class Exec>
 void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, KernelFeatures f,
-                         ParticleRange r, ParticleRange listed_ids, bool screened, int32_t* broke) {
-  launch_listed_apart(f, r, listed_ids, [&](const KernelFeatures& g, ParticleRange q) {
-    static_bools(
-        [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto listed,
-            auto screen, auto surface) {
-          constexpr bool kState = decltype(state_based)::value;
-          constexpr bool kPlastic = kState && decltype(plastic)::value;
-          constexpr bool kAniso = kState && decltype(anisotropic)::value;
-          constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
-          constexpr bool kSurface = decltype(surface)::value;
-          // Plasticity and anisotropy exist only for state-based materials, the surface correction
-          // only for bond-based ones, listed partners only with lattice families: no copies for the
-          // combinations that cannot occur.
-          if constexpr ((kState || (!decltype(plastic)::value && !decltype(anisotropic)::value)) &&
-                        !(kState && kSurface) && (kLattice || !kListed))
-            launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
-                                        lattice_mode(kLattice, kListed), decltype(screen)::value, kSurface>(
-                ex, p, b, mt, q, broke);
-        },
-        g.state_based, g.state_based && g.plastic, g.state_based && g.anisotropic, g.weak_bonds, g.lattice,
-        g.lattice && g.lattice_listed, screened, g.surface);
+                         ParticleRange r, ParticleRange listed_ids, bool screened, int32_t* broke,
+                         int threads = 1) {
+  with_bond_threads<Exec>(threads, [&](auto team) {
+    constexpr int kThreads = decltype(team)::value;
+    launch_listed_apart(f, r, listed_ids, [&](const KernelFeatures& g, ParticleRange q) {
+      static_bools(
+          [&](auto state_based, auto plastic, auto anisotropic, auto weak, auto lattice, auto listed,
+              auto screen, auto surface) {
+            constexpr bool kState = decltype(state_based)::value;
+            constexpr bool kPlastic = kState && decltype(plastic)::value;
+            constexpr bool kAniso = kState && decltype(anisotropic)::value;
+            constexpr bool kLattice = decltype(lattice)::value, kListed = decltype(listed)::value;
+            constexpr bool kSurface = decltype(surface)::value;
+            // Plasticity and anisotropy exist only for state-based materials, the surface correction
+            // only for bond-based ones, listed partners only with lattice families: no copies for the
+            // combinations that cannot occur.
+            if constexpr ((kState || (!decltype(plastic)::value && !decltype(anisotropic)::value)) &&
+                          !(kState && kSurface) && (kLattice || !kListed))
+              launch_springforces_variant<kState, kPlastic, kAniso, decltype(weak)::value,
+                                          lattice_mode(kLattice, kListed), decltype(screen)::value, kSurface,
+                                          kThreads>(ex, p, b, mt, q, broke);
+          },
+          g.state_based, g.state_based && g.plastic, g.state_based && g.anisotropic, g.weak_bonds, g.lattice,
+          g.lattice && g.lattice_listed, screened, g.surface);
+    });
   });
 }
 

@@ -42,7 +42,8 @@ class EngineImpl final : public Engine {
         step_params_(in.step),
         motion_(in.motion),
         contact_(in.contact),
-        screen_(in.screen) {
+        screen_(in.screen),
+        bond_threads_(bond_threads_for(int64_t(in.particles.size()), requested_bond_threads(in))) {
     features_ = features_of(materials_, contact_);
     colliders_host_ = in.colliders;
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");
@@ -373,7 +374,7 @@ class EngineImpl final : public Engine {
     // (state-based), and what `springforces` reads of a partner (strain limit, dilatation,
     // damage) after it, each while the interior particles' part runs.
     const auto init = [&](ParticleRange r) {
-      launch_init(exec_, p, b, materials_, features_, r, listed_in(r));
+      launch_init(exec_, p, b, materials_, features_, r, listed_in(r), bond_threads_);
     };
     if (features_.state_based)
       with_halo(init, state_.disp);
@@ -426,7 +427,7 @@ class EngineImpl final : public Engine {
         screen_ == BondScreen::kAlways || (screen_ == BondScreen::kAuto && breaking_hold_ == 0);
     const int parity = int(force_passes_ % kBrokeFlags);
     launch_springforces(exec_, p, b, materials_, features_, r, listed_in(r), screened,
-                        exec_.flag(kFlagBroke + parity));
+                        exec_.flag(kFlagBroke + parity), bond_threads_);
     pass_screened_ = screened;
   }
 
@@ -479,6 +480,7 @@ class EngineImpl final : public Engine {
   std::vector<std::vector<Vec3>> probes_;  // the meshes' probe points (body_contact.h)
   bool contact_ = false;
   BondScreen screen_ = BondScreen::kAuto;
+  int bond_threads_ = 1;  // per particle in the GPU's bond loops (cuda/team.h)
   int64_t force_passes_ = 0, screened_passes_ = 0;
   int breaking_hold_ = 0;       // passes left to run with the breaking pass
   bool pass_screened_ = false;  // the form of the pass being queued

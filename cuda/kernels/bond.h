@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "cuda/features.h"
+#include "cuda/team.h"
 #include "cuda/views.h"
 
 namespace pd {
@@ -105,19 +106,21 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geomet
 // Explicit families: the next bond's partner index is loaded before this bond is visited: a
 // visit may break its own slot, which keeps the compiler from hoisting the next load over it,
 // and without the early load every bond waits for two dependent loads in turn (index, then the
-// partner's records). Measured on the H100 (bench/NOTES.md): +10-17% on springforces.
-template <class Visit>
+// partner's records). Measured on the H100 (bench/NOTES.md): +10-17% on springforces. A team's
+// lane visits bonds lane, lane + kThreads, ... and returns the bonds it found intact.
+template <int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
-                                                 Visit& visit) {
+                                                 const Team<kThreads>& team, Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   const int32_t count = b.count[i];
   int32_t holding = 0;
-  int32_t next = count > 0 ? b.neighbor[b.slot(i, 0)] : 0;
+  const int32_t first = team.lane();
+  int32_t next = first < count ? b.neighbor[b.slot(i, first)] : 0;
   PD_BOND_LOOP
-  for (int32_t k = 0; k < count; ++k) {
+  for (int32_t k = first; k < count; k += kThreads) {
     const int64_t slot = b.slot(i, k);
     const int32_t j = next;
-    if (k + 1 < count) next = b.neighbor[b.slot(i, k + 1)];
+    if (k + kThreads < count) next = b.neighbor[b.slot(i, k + kThreads)];
     if (!bond_intact(j)) continue;
     if (visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j])))
       ++holding;
@@ -162,10 +165,15 @@ PD_HD inline int32_t bit_count(uint32_t x) {
 // slot is its position among the present entries, counted where a visitor uses it (breaking,
 // weakened and plastic bonds), so the loop itself tests one bit per entry; the bonds still
 // intact are counted from the bits after each word. kUnroll: the entry loop unrolled that many
-// times, chosen per kernel as measured (bench/NOTES.md; 2 is what the compiler picks alone).
-template <int kLattice, int kUnroll, class Visit>
+// times, chosen per kernel as measured (bench/NOTES.md; 2 is what the compiler picks alone). A
+// team's lane visits entries lane, lane + kThreads, ... of each word and counts the intact bonds
+// among those.
+template <int kLattice, int kUnroll, int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
-                                                  const BondsView& b, Visit& visit) {
+                                                  const BondsView& b, const Team<kThreads>& team,
+                                                  Visit& visit) {
+  constexpr int kEntries = 32 / kThreads;                                                 // per lane and word
+  [[maybe_unused]] constexpr int kEntryUnroll = kUnroll < kEntries ? kUnroll : kEntries;  // (GPU pragma)
   const LatticeView& l = b.lattice;
   const Stencil st = l.stencils[stencil];
   const ArrayView<const StencilEntry> entries = l.entries.sub(st.first, st.size);
@@ -179,8 +187,9 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
     uint32_t intact = l.intact[word];
     const uint32_t weak = l.weak ? l.weak[word] : 0u;
     // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
-    PD_UNROLL(kUnroll)
-    for (int32_t q = 0; q < 32; ++q) {
+    PD_UNROLL(kEntryUnroll)
+    for (int32_t r = 0; r < kEntries; ++r) {
+      const int32_t q = r * kThreads + team.lane();
       if (!(intact >> q & 1u)) continue;
       const StencilEntry& e = entries[w0 + q];
       const int64_t slot = first_slot + int64_t(k0 + bit_count(present & ((1u << q) - 1u))) * kSliceWidth;
@@ -192,11 +201,11 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
       if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u, w0 + q))) {
         b.neighbor[slot] = ~j;
         intact &= ~(1u << q);
-        l.intact[word] = intact;  // rare: stored at once, nothing kept for later
+        store_intact_word<kThreads>(&l.intact[word], intact, q);  // rare: stored at once
       }
     }
     k0 += bit_count(present);
-    holding += bit_count(intact);
+    holding += bit_count(intact & team.own_bits());
   }
   return holding;
 }
@@ -204,14 +213,20 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
 // Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order, and
 // returns the bonds still intact after the visits. kLattice (LatticeMode, features.h): how
 // lattice families are walked (kNoLattice: every family is read from its list, and the lattice
-// loop is not compiled in); kUnroll as for_each_intact_lattice_bond.
+// loop is not compiled in); kUnroll as for_each_intact_lattice_bond. With a team (team.h), each
+// lane visits its share of the bonds and the count returned is the whole team's.
+template <int kLattice = kLatticeListed, int kUnroll = 2, int kThreads = 1, class Visit>
+PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
+                                          const Team<kThreads>& team, Visit&& visit) {
+  const int32_t stencil = kLattice != kNoLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
+  if (kLattice != kNoLattice && stencil >= 0)
+    return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll>(i, stencil, p, b, team, visit));
+  return team.sum(for_each_intact_listed_bond(i, p, b, team, visit));
+}
 template <int kLattice = kLatticeListed, int kUnroll = 2, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                           Visit&& visit) {
-  const int32_t stencil = kLattice != kNoLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
-  if (kLattice != kNoLattice && stencil >= 0)
-    return for_each_intact_lattice_bond<kLattice, kUnroll>(i, stencil, p, b, visit);
-  return for_each_intact_listed_bond(i, p, b, visit);
+  return for_each_intact_bond<kLattice, kUnroll>(i, p, b, Team<1>{}, visit);
 }
 
 }  // namespace pd

@@ -10,6 +10,7 @@
 
 #include <cmath>
 
+#include "cuda/team.h"
 #include "cuda/views.h"
 
 namespace pd {
@@ -46,13 +47,36 @@ template <bool kWeak>
 constexpr bool kRaiseInBranch = !kWeak;
 
 // The results of a force pass for particle i: its force, least stretch and intact bonds; raises
-// `broke` (where not null) where the particle has fewer intact bonds than the last pass left.
+// `broke` (where not null) where the particle has fewer intact bonds than the last pass left. A
+// team's leader writes the team's sums.
+template <int kThreads = 1>
 PD_HD inline void write_bond_forces(int32_t i, const ParticlesView& p, Vec3 force, real smin, int32_t intact,
-                                    int32_t* broke) {
+                                    int32_t* broke, const Team<kThreads>& team = {}) {
+  if (!team.leader()) return;
   if (broke && intact < p.intact[i]) raise_flag(broke);
   p.force[i] = force;
   p.strain_min[i] = intact > 0 ? smin : real(0);
   p.intact[i] = intact;
 }
+
+// The energy a force pass's broken bonds released, added to the particle's ledger: bond by bond by
+// one thread per particle (the order of the sums as before teams), or summed per lane and added
+// once by a team's leader (settle, which every lane calls).
+template <int kThreads>
+struct ReleasedEnergy {
+  double lane_sum = 0;
+  PD_HD void add(const ParticlesView& p, int32_t i, double energy) {
+    if constexpr (kThreads == 1)
+      p.ledger[i].released += energy;
+    else
+      lane_sum += energy;
+  }
+  PD_HD void settle(const ParticlesView& p, int32_t i, const Team<kThreads>& team) const {
+    if constexpr (kThreads > 1) {
+      const double total = team.sum(lane_sum);
+      if (team.leader() && total != 0) p.ledger[i].released += total;
+    }
+  }
+};
 
 }  // namespace pd

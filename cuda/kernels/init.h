@@ -26,14 +26,18 @@ PD_HD inline real damaged_strain_limit(real limit, int32_t i, ParticlesView p, B
   return limit * (real(1) + m.damage_alpha * damage);
 }
 
-template <bool kStateBased, bool kAnisotropic, int kLattice = kLatticeListed, bool kPlastic = false>
-PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+// A team (team.h) sums theta_i over its lanes; its leader writes.
+template <bool kStateBased, bool kAnisotropic, int kLattice = kLatticeListed, bool kPlastic = false,
+          int kThreads = 1>
+PD_HD inline void init_particle(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                                const Team<kThreads>& team = {}) {
   const Material& m = mt.m[p.material[i]];
   const real limit = effective_strain_limit(p.strain_limit0[i], m.compression_alpha, p.strain_min[i]);
-  p.disp[i].w = kStateBased ? limit : damaged_strain_limit(limit, i, p, b, m);
+  if (team.leader()) p.disp[i].w = kStateBased ? limit : damaged_strain_limit(limit, i, p, b, m);
   if constexpr (kStateBased) {
     const int32_t count = b.count[i];
-    const DilatationPass d = dilatation<kAnisotropic, kLattice, kPlastic>(i, p, b, m);
+    const DilatationPass d = dilatation<kAnisotropic, kLattice, kPlastic>(i, p, b, m, team);
+    if (!team.leader()) return;
     Vec4 s = p.state[i];
     s.x = d.theta;
     s.z = count > 0 ? real(1) - real(p.intact[i]) / real(count) : real(0);

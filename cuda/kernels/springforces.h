@@ -41,20 +41,22 @@ template <bool kWeak>
 constexpr int kSpringUnroll = kWeak ? 8 : 2;
 
 // The breaking pass: the forces, and the bonds that break now removed. Raises `broke` when one does.
-template <bool kWeak, int kLattice = kLatticeListed, bool kSurface = false>
+// A team (team.h) sums its lanes' shares; its leader writes.
+template <bool kWeak, int kLattice = kLatticeListed, bool kSurface = false, int kThreads = 1>
 PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
-                                int32_t* broke) {
+                                int32_t* broke, const Team<kThreads>& team = {}) {
   const Material& m = mt.m[p.material[i]];
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};  // sum over the intact bonds of s beta V_j y/|y| (c V_i applied once at the end)
   real smin = real(INFINITY);
+  ReleasedEnergy<kThreads> released;
   const uint16_t* row = surface_row_of<kSurface>(b, i);
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
-      i, p, b, [&](int64_t slot, int32_t, const auto& g) {
+      i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         const real weight = surface_bond_weight<kSurface>(g.weight(m), b, slot, g, row);
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
-          p.ledger[i].released += double(pmb_bond_energy(s, g.r0, vol_i, weight, m));
+          released.add(p, i, double(pmb_bond_energy(s, g.r0, vol_i, weight, m)));
           if (kRaiseInBranch<kWeak>) raise_flag(broke);
           return false;  // broken: for_each_intact_bond records it
         }
@@ -62,8 +64,9 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
         f += (s * weight * g.inv_r) * g.y;
         return true;
       });
-  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact,
-                    kRaiseInBranch<kWeak> ? nullptr : broke);
+  released.settle(p, i, team);
+  write_bond_forces(i, p, (m.micromodulus * vol_i) * team.sum(f), team.min(smin), intact,
+                    kRaiseInBranch<kWeak> ? nullptr : broke, team);
 }
 
 // The screened pass (bond_screen.h): the same sums with no breaking path, and after the loop
@@ -71,9 +74,9 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
 // tau_j)); where it holds, the breaking pass runs for the particle from the start and its results
 // are kept. The sums are the breaking pass's expressions in its order, so where no bond breaks
 // both passes give the same bits.
-template <bool kWeak, int kLattice = kLatticeListed, bool kSurface = false>
+template <bool kWeak, int kLattice = kLatticeListed, bool kSurface = false, int kThreads = 1>
 PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
-                                         int32_t* broke) {
+                                         int32_t* broke, const Team<kThreads>& team = {}) {
   const Material& m = mt.m[p.material[i]];
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
   Vec3 f{0, 0, 0};
@@ -81,14 +84,15 @@ PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b
   real nearest = -real(INFINITY);  // the largest s - w tau_i (s alone without weakened bonds)
   const uint16_t* row = surface_row_of<kSurface>(b, i);
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
-      i, p, b, [&](int64_t slot, int32_t, const auto& g) {
+      i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         nearest = max_of(nearest, kWeak ? s - bond_strength<kWeak>(b, slot, g) * tau_i : s);
         smin = min_of(s, smin);
         f += (s * surface_bond_weight<kSurface>(g.weight(m), b, slot, g, row) * g.inv_r) * g.y;
       });
-  if (may_break<kWeak>(nearest, tau_i)) return spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke);
-  write_bond_forces(i, p, (m.micromodulus * vol_i) * f, smin, intact, nullptr);
+  if (may_break<kWeak>(team.max(nearest), tau_i))
+    return spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke, team);
+  write_bond_forces(i, p, (m.micromodulus * vol_i) * team.sum(f), team.min(smin), intact, nullptr, team);
 }
 
 }  // namespace pd

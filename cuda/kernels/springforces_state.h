@@ -17,10 +17,12 @@ namespace pd {
 // One pass over the bonds of particle i. kBreaking: the breaking pass (bonds past Chen's
 // criterion removed); else the screened pass (bond_screen.h), which returns false where a break
 // is not ruled out, having written nothing but the plastic history. kProject: move both ends'
-// e^p onto the yield surface (a breaking pass after a screened one reads them moved).
-template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kBreaking, bool kProject>
+// e^p onto the yield surface (a breaking pass after a screened one reads them moved). A team
+// (team.h) sums its lanes' shares and decides on the team's sums; its leader writes.
+template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kBreaking, bool kProject,
+          int kThreads>
 PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
-                                   int32_t* broke) {
+                                   int32_t* broke, const Team<kThreads>& team) {
   const Material& m = mt.m[p.material[i]];  // both ends share it: bonds stay inside a body
   const Vec4 state_i = p.state[i];
   const real theta_i = state_i.x, inv_mw_i = state_i.y, phi_i = state_i.z;
@@ -32,11 +34,12 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
   Vec3 f{0, 0, 0};
   real smin = real(INFINITY);
   real nearest = -real(INFINITY);  // screened pass: the largest own-end margin (bond_screen.h)
+  ReleasedEnergy<kThreads> released;
   const uint16_t* row = surface_row_of(b, i);
   // The entry loop unrolled 8 times: +3% (elastic) to +8% (plastic) against the compiler's 2
   // (bench/NOTES.md).
   const int32_t intact =
-      for_each_intact_bond<kLattice, 8>(i, p, b, [&](int64_t slot, int32_t j, const auto& g) {
+      for_each_intact_bond<kLattice, 8>(i, p, b, team, [&](int64_t slot, int32_t j, const auto& g) {
         const Vec4 state_j = p.state[j];
         real ep_ij = kPlastic ? b.plastic[slot] : real(0);
         real ep_ji = kPlastic ? b.plastic_mirror[slot] : real(0);
@@ -57,8 +60,9 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
                   ? g.e - ep_ij > w * limit_i && g.e - ep_ji > w * chen_extension_limit(tau_j, state_j.z, m)
                   : s > max_of(tau_i, tau_j) * w;
           if (breaks) {
-            p.ledger[i].released +=
-                double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m, surface_bond_at(b, slot)));
+            released.add(
+                p, i,
+                double(lps_bond_energy(g, theta_i, inv_mw_i, ep_ij, vol_i, m, surface_bond_at(b, slot))));
             if (kRaiseInBranch<kWeak>) raise_flag(broke);
             return false;  // broken: for_each_intact_bond records it
           }
@@ -73,23 +77,25 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
         f += (t * g.weight(m) * g.inv_r) * g.y;
         return true;
       });
-  if (!kBreaking && may_break<kWeak>(nearest, own_limit)) return false;
-  write_bond_forces(i, p, vol_i * f, smin, intact, kBreaking && !kRaiseInBranch<kWeak> ? broke : nullptr);
+  if (!kBreaking && may_break<kWeak>(team.max(nearest), own_limit)) return false;
+  if constexpr (kBreaking) released.settle(p, i, team);
+  write_bond_forces(i, p, vol_i * team.sum(f), team.min(smin), intact,
+                    kBreaking && !kRaiseInBranch<kWeak> ? broke : nullptr, team);
   return true;
 }
 
 // The breaking pass, and the screened pass with the breaking pass where it cannot rule a break out.
-template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeListed>
+template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeListed, int kThreads = 1>
 PD_HD inline void state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
-                               int32_t* broke) {
-  state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, true, true>(i, p, b, mt, broke);
+                               int32_t* broke, const Team<kThreads>& team = {}) {
+  state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, true, true>(i, p, b, mt, broke, team);
 }
 
-template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeListed>
+template <bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice = kLatticeListed, int kThreads = 1>
 PD_HD inline void screened_state_forces(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
-                                        int32_t* broke) {
-  if (!state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, false, true>(i, p, b, mt, broke))
-    state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, true, false>(i, p, b, mt, broke);
+                                        int32_t* broke, const Team<kThreads>& team = {}) {
+  if (!state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, false, true>(i, p, b, mt, broke, team))
+    state_force_pass<kPlastic, kAnisotropic, kWeak, kLattice, true, false>(i, p, b, mt, broke, team);
 }
 
 }  // namespace pd

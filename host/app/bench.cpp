@@ -11,6 +11,7 @@
 
 #include "cuda/engine/engine.h"
 #include "cuda/engine/material.h"
+#include "cuda/kernel_stats.h"
 #include "host/app/backend_choice.h"
 #include "host/app/kernel_report.h"
 #include "host/app/provenance.h"
@@ -133,6 +134,10 @@ int bench_command(const BenchOptions& opt) {
     input.screen = opt.screen == "off" ? BondScreen::kOff : BondScreen::kAlways;
     workload += "_screen_" + opt.screen;
   }
+  if (opt.bond_threads > 0) {
+    input.bond_threads = opt.bond_threads;
+    workload += "_threads" + std::to_string(opt.bond_threads);
+  }
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
   const auto engine_start = std::chrono::steady_clock::now();
   auto engine = make_engine(backend, input);
@@ -195,6 +200,9 @@ int bench_command(const BenchOptions& opt) {
                 kSliceWidth);
   std::printf("\n");
   print_kernel_table(std::cout, rows);
+  if (backend == Backend::kCuda)
+    std::printf("timing     each kernel's time from one launch in %lld, timed with CUDA events\n",
+                (long long)kTimedLaunchStride);
   std::printf("screened   springforces ran without the breaking path in %lld of the %lld steps\n",
               (long long)screened, (long long)opt.steps);
   std::printf("wall       %.3f s for %lld steps: %.3e bond-updates/s end to end\n", wall,

@@ -1,6 +1,7 @@
 // The screened force passes on the GPU (cuda/kernels/bond_screen.h): runs screened in every
 // pass, in none, or as the engine chooses give the same bits, as on the CPU
-// (tests/cuda/test_bond_screen.cpp). Skipped where no GPU answers.
+// (tests/cuda/test_bond_screen.cpp), with one thread per particle (teams: test_team.cpp). Skipped
+// where no GPU answers.
 #include <gtest/gtest.h>
 
 #include "tests/support/fixtures.h"
@@ -12,7 +13,11 @@ namespace {
 
 constexpr double kLambda = 1e-3;
 
-const testing::EngineFactory kGpu = [](const SimulationInput& in) { return make_cuda_engine(in); };
+const testing::EngineFactory kGpu = [](const SimulationInput& in) {
+  SimulationInput one_thread = in;
+  one_thread.bond_threads = 1;
+  return make_cuda_engine(one_thread);
+};
 
 TEST(GpuBondScreen, BondBasedRunsTheSameInEveryMode) {
   REQUIRE_GPU();

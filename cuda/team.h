@@ -1,0 +1,111 @@
+// Teams of threads per particle: a small scene's bond loops split over several threads. With one
+// thread per particle a scene of a few thousand particles runs a few blocks, each thread walking
+// its ~120 bonds in turn (bench/NOTES.md: 3,840 particles take 0.05 ms per force kernel on an
+// H100, whatever the launch's shape). A team of kThreads lanes of one warp (a power of two, at
+// most 32) walks one particle's bonds together, lane l taking bonds l, l + kThreads, ..., and adds
+// its partial sums to its team-mates' in a fixed tree of shuffles: every lane ends with the same
+// bits, so the decisions after the loop (the screened pass's test) agree, and a run is
+// deterministic. Team<1> is the one thread per particle of every other launch: no lanes, no
+// shuffles, the same code and bits as before teams existed. Teams run on the GPU only
+// (CudaExec::parallel_for_team); the CPU backend runs Team<1>.
+#pragma once
+
+#include "cuda/pd_common.h"
+#include "cuda/vec3.h"
+
+namespace pd {
+
+template <int kThreads>
+struct Team {
+  static_assert(kThreads > 1 && kThreads <= 32 && (kThreads & (kThreads - 1)) == 0,
+                "a team is 2, 4, 8, 16 or 32 lanes of one warp");
+  static constexpr int kSize = kThreads;
+  int32_t lane_index;  // 0 .. kThreads - 1
+  uint32_t mask;       // the team's lanes within its warp
+
+  PD_HD int32_t lane() const { return lane_index; }
+  PD_HD bool leader() const { return lane_index == 0; }
+  // Entries q of a 32-bit word this lane visits: q = lane + k kThreads.
+  PD_HD uint32_t own_bits() const { return kEveryTeamBit << lane_index; }
+
+  PD_HD float sum(float v) const {
+    return butterfly(v, [](float a, float b) { return a + b; });
+  }
+  PD_HD double sum(double v) const {
+    return butterfly(v, [](double a, double b) { return a + b; });
+  }
+  PD_HD int32_t sum(int32_t v) const {
+    return butterfly(v, [](int32_t a, int32_t b) { return a + b; });
+  }
+  PD_HD Vec3 sum(Vec3 v) const { return {sum(v.x), sum(v.y), sum(v.z)}; }
+  PD_HD real min(real v) const {
+    return butterfly(v, [](real a, real b) { return min_of(a, b); });
+  }
+  PD_HD real max(real v) const {
+    return butterfly(v, [](real a, real b) { return max_of(a, b); });
+  }
+
+ private:
+  // Bit 0 of every group of kThreads bits.
+  static constexpr uint32_t every_team_bit() {
+    uint32_t bits = 0;
+    for (int q = 0; q < 32; q += kThreads) bits |= 1u << q;
+    return bits;
+  }
+  static constexpr uint32_t kEveryTeamBit = every_team_bit();
+
+  // log2(kThreads) rounds of exchange with the lane `offset` away: each lane ends with op over all
+  // lanes' values, combined in the same tree. op commutes (float addition; min_of and max_of, which
+  // on the GPU ignore a NaN), so the two lanes of an exchange agree, and every lane ends equal.
+  template <class T, class Op>
+  PD_HD T butterfly(T v, Op op) const {
+#if defined(__CUDA_ARCH__)
+    for (int offset = kThreads / 2; offset > 0; offset /= 2)
+      v = op(v, __shfl_xor_sync(mask, v, offset, kThreads));
+#endif
+    return v;  // (host code never runs a team: CpuExec launches Team<1>)
+  }
+};
+
+// One thread per particle.
+template <>
+struct Team<1> {
+  static constexpr int kSize = 1;
+  PD_HD static constexpr int32_t lane() { return 0; }
+  PD_HD static constexpr bool leader() { return true; }
+  PD_HD static constexpr uint32_t own_bits() { return ~0u; }
+  template <class T>
+  PD_HD static T sum(T v) {
+    return v;
+  }
+  PD_HD static real min(real v) { return v; }
+  PD_HD static real max(real v) { return v; }
+};
+
+// Clears bit q of a lattice particle's intact word after a bond broke, the word's other bits as the
+// lane read them (`intact`, bit q already cleared): one thread stores the word, a team's lanes
+// (each clearing only the bits it visits) clear their bit atomically.
+template <int kThreads>
+PD_HD inline void store_intact_word(uint32_t* word, uint32_t intact, [[maybe_unused]] int32_t q) {
+  if constexpr (kThreads == 1) {
+    *word = intact;
+  } else {
+#if defined(__CUDA_ARCH__)
+    atomicAnd(word, ~(1u << q));
+#endif
+  }
+}
+
+// The lanes per particle a run uses: a warp's 32 for scenes below kTeamParticles, where one thread
+// per particle leaves most of the GPU idle, one otherwise. Measured on an H100 (bench/NOTES.md),
+// step time with 32 against 1: 3,840 particles 0.39x, 20k 0.87x, 51k 1.03x, 64k 1.38x, 131k 2.0x
+// (the mesh-filled vase of 149k: 0.96x, of 577k: 1.96x). `requested` > 0 forces a count. A
+// function of the whole run's particle count only, so every rank of a partitioned run sums a
+// particle's bonds in the same order as one rank.
+constexpr int64_t kTeamParticles = 32768;
+inline int bond_threads_for(int64_t particles, int requested) {
+  if (requested > 0) return requested;
+  return particles < kTeamParticles ? 32 : 1;
+}
+
+}  // namespace pd

@@ -1,0 +1,128 @@
+// Teams of threads per particle on the GPU (cuda/team.h): 32 threads summing one particle's bonds
+// add the same terms as one thread in another order, so a run with teams follows the run with one
+// thread per particle within float round-off and breaks the same bonds; two runs with teams are
+// bit-identical. Skipped where no GPU answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <utility>
+
+#include "tests/support/fixtures.h"
+#include "tests/support/require_gpu.h"
+#include "tests/support/screen_runs.h"
+
+namespace pd {
+namespace {
+
+constexpr double kLambda = 1e-3;
+
+std::set<std::pair<int32_t, int32_t>> broken_bonds_of(Engine& e) {
+  BondLists lists;
+  e.read_bonds(lists);
+  const BondsView v = lists.view();
+  std::set<std::pair<int32_t, int32_t>> broken;
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k)
+      if (!bond_intact(v.neighbor[v.slot(i, k)])) broken.insert({i, bond_partner(v.neighbor[v.slot(i, k)])});
+  return broken;
+}
+
+double released_energy(Engine& e) {
+  EngineSnapshot s;
+  e.save(s);
+  double sum = 0;
+  for (const Ledger& l : s.ledger) sum += l.released;
+  return sum;
+}
+
+// `in` run `steps` steps with one thread per particle and twice with teams of 32.
+void expect_teams_follow_one_thread(SimulationInput in, int64_t steps) {
+  in.bond_threads = 1;
+  auto single = make_cuda_engine(in);
+  single->advance(steps);
+  in.bond_threads = 32;
+  auto team = make_cuda_engine(in), again = make_cuda_engine(in);
+  team->advance(steps);
+  again->advance(steps);
+  ParticleState a, b, c;
+  single->read_state(a);
+  team->read_state(b);
+  again->read_state(c);
+  // The displacement after the halves flew apart: float round-off (~1e-7 per step) grown over the
+  // steps, as between the CPU and the GPU (test_equivalence.cpp), far below the 1e-3 allowed there.
+  double num = 0, den = 0;
+  for (size_t i = 0; i < a.disp.size(); ++i) {
+    num += length_squared(b.disp[i] - a.disp[i]);
+    den += length_squared(a.disp[i]);
+  }
+  const double rel = std::sqrt(num / den);
+  const auto broken_single = broken_bonds_of(*single), broken_team = broken_bonds_of(*team);
+  size_t common = 0;
+  for (const auto& bond : broken_single) common += broken_team.count(bond);
+  const double jaccard = double(common) / double(broken_single.size() + broken_team.size() - common);
+  const double released_single = released_energy(*single), released_team = released_energy(*team);
+  std::printf(
+      "[ teams ] %zu particles, %lld steps: displacement rel L2 %.3e, broken %zu / %zu, Jaccard %.5f, "
+      "released %.6e / %.6e J\n",
+      a.disp.size(), (long long)steps, rel, broken_single.size(), broken_team.size(), jaccard,
+      released_single, released_team);
+  ASSERT_GT(broken_single.size(), 100u) << "the bar must break";
+  EXPECT_LT(rel, 1e-4);
+  EXPECT_GT(jaccard, 0.98);
+  EXPECT_NEAR(released_team, released_single, 1e-3 * released_single);
+  EXPECT_TRUE(testing::same_bits(b.disp, c.disp)) << "two runs with teams";
+  EXPECT_TRUE(testing::same_bits(b.force, c.force)) << "two runs with teams";
+  EXPECT_EQ(broken_team, broken_bonds_of(*again));
+}
+
+TEST(GpuTeam, BondBasedLatticeFamilies) {
+  REQUIRE_GPU();
+  expect_teams_follow_one_thread(
+      testing::pulled_apart(testing::lattice_block(32, 16, 16, kLambda, 2e-4), 32, kLambda, 2), 200);
+}
+
+TEST(GpuTeam, BondBasedListedFamiliesOnJitteredParticles) {
+  REQUIRE_GPU();
+  // Jittered: no lattice families, every partner read from its list.
+  expect_teams_follow_one_thread(
+      testing::pulled_apart(testing::lattice_block(32, 16, 16, kLambda, 2e-4, 0.2), 32, kLambda, 2), 200);
+}
+
+TEST(GpuTeam, WeakenedBonds) {
+  REQUIRE_GPU();
+  auto in = testing::pulled_apart(testing::lattice_block(32, 16, 16, kLambda, 4e-4), 32, kLambda, 2);
+  testing::weaken_plane(in, 16 * kLambda, 0.5);
+  expect_teams_follow_one_thread(in, 200);
+}
+
+TEST(GpuTeam, StateBasedChenCriterionAndStretch) {
+  REQUIRE_GPU();
+  auto in = testing::pulled_apart(testing::state_block(32, 16, 16, kLambda, 2e-4, false), 32, kLambda, 2);
+  expect_teams_follow_one_thread(in, 200);
+  in.materials.m[0].chen_fracture = 0;
+  expect_teams_follow_one_thread(in, 200);
+}
+
+TEST(GpuTeam, StateBasedPlasticListed) {
+  REQUIRE_GPU();
+  auto in = testing::pulled_apart(testing::state_block(32, 16, 16, kLambda, 2e-4, true), 32, kLambda, 2);
+  in.lattice_families = false;
+  expect_teams_follow_one_thread(in, 200);
+}
+
+// The screened and breaking passes give the same bits with teams too (cuda/kernels/bond_screen.h).
+TEST(GpuTeam, ScreenModesAgree) {
+  REQUIRE_GPU();
+  const testing::EngineFactory gpu = [](const SimulationInput& in) { return make_cuda_engine(in); };
+  auto bond = testing::pulled_apart(testing::lattice_block(32, 16, 16, kLambda, 2e-4), 32, kLambda, 2);
+  auto plastic = testing::pulled_apart(testing::state_block(32, 16, 16, kLambda, 2e-4, true), 32, kLambda, 2);
+  testing::weaken_plane(plastic, 16 * kLambda, 0.5);
+  for (SimulationInput* in : {&bond, &plastic}) {
+    in->bond_threads = 32;
+    testing::expect_screen_modes_agree(gpu, *in, 200);
+  }
+}
+
+}  // namespace
+}  // namespace pd
