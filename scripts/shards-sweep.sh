@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Shards, not grit (issue 31): the gallery's breaking scenes at their full size, each with a sweep of
 # the material's damage_alpha (the strain limit times 1 + alpha * damage), and what the breakage
-# leaves at the last frame: the share of the mass in single particles (dust), the heaviest piece's
+# leaves at the last frame: the share of the mass in single particles (dust) and of it in free
+# particles (no bond left; "-" where the run's log has no such column), the heaviest piece's
 # share, the pieces in all and those of at least 8 particles, and the broken bonds. A still of the
 # last frame per run (damage colours: the crack pattern) goes to $OUT/shards-sweep/stills.
 # A benchmark of the look, not a test; on a GPU (or a patient CPU).
@@ -39,12 +40,13 @@ for sweep in "${SWEEPS[@]}"; do
     fi
     secs=$((SECONDS - t0))
     # fragments.csv: frame,step,time,fragments,singles,single_mass_share,largest_mass_share,
-    # largest_particles, then pieces per size bin 1, 2-3, 4-7, 8-15, ...
+    # largest_particles, then pieces per size bin 1, 2-3, 4-7, 8-15, ... (24 bins), free_mass_share
     last=$(tail -n 1 "$dir/fragments.csv")
     broken=$(grep -o 'broken [0-9.]*%' "$dir.log" | tail -n 1)
     rows+=("$(awk -F, -v n="$name" -v a="$alpha" -v s="$secs" -v b="${broken#broken }" '{
-      big = 0; for (i = 12; i <= NF; ++i) big += $i
-      printf "%-13s %6s %6d %9.1f%% %9.1f%% %8d %8d %8s %6ds", n, a, $1, 100 * $6, 100 * $7, $4, big, b, s }' <<<"$last")")
+      big = 0; for (i = 12; i <= 32; ++i) big += $i
+      free = NF >= 33 && $33 != "" ? sprintf("%.1f%%", 100 * $33) : "-"
+      printf "%-13s %6s %6d %9.1f%% %9s %9.1f%% %8d %8d %8s %6ds", n, a, $1, 100 * $6, free, 100 * $7, $4, big, b, s }' <<<"$last")")
     frame=$(cut -d, -f1 <<<"$last")
     "$bin" render "$dir" --frames "$frame" --width 960 --height 540 --spp 4 --out "$dir/still" >"$dir.render.log" 2>&1 &&
       cp "$dir/still/frame_$(printf %05d "$frame").png" "$OUT/stills/$name-a$alpha.png"
@@ -53,6 +55,6 @@ done
 {
   echo "shards-sweep: $("$bin" --version 2>/dev/null | head -n 1), $(date -u +%Y-%m-%d), scale ${SCALE:-1}"
   nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -n 1
-  printf '%-13s %6s %6s %10s %10s %8s %8s %8s %7s\n' scene alpha frame singles largest pieces "pieces>=8" broken run
+  printf '%-13s %6s %6s %10s %9s %10s %8s %8s %8s %7s\n' scene alpha frame singles free largest pieces "pieces>=8" broken run
   printf '%s\n' "${rows[@]}"
 } | tee "$OUT/table.txt"

@@ -116,7 +116,7 @@ void ComponentFinder::find(const BondLists& bonds, Components& out) {
   group_members(out, count);
 }
 
-ComponentStats component_stats(const Components& c, const std::vector<real>& mass) {
+ComponentStats component_stats(const Components& c, const std::vector<real>& mass, const BondLists* bonds) {
   ComponentStats s;
   s.count = c.count();
   for (size_t k = 0; k < c.count(); ++k) {
@@ -133,6 +133,15 @@ ComponentStats component_stats(const Components& c, const std::vector<real>& mas
     s.mass += m;
     if (size == 1) s.single_mass += m;
     s.largest_mass = std::max(s.largest_mass, m);
+  }
+  if (bonds && !mass.empty()) {
+    const BondsView b = bonds->view();
+    s.free_counted = true;
+    for (int32_t i = 0; i < b.n; ++i) {
+      bool held = false;
+      for (int32_t k = 0; k < b.count[i] && !held; ++k) held = bond_intact(b.neighbor[b.slot(i, k)]);
+      if (!held) s.free_mass += double(mass[size_t(i)]);
+    }
   }
   return s;
 }
@@ -152,6 +161,10 @@ std::string format_component_stats(const ComponentStats& s) {
     char share[48];
     std::snprintf(share, sizeof share, " singles %.1f%% of the mass", 100 * s.single_mass / s.mass);
     out += share;
+    if (s.free_counted) {
+      std::snprintf(share, sizeof share, " (free %.1f%%)", 100 * s.free_mass / s.mass);
+      out += share;
+    }
   }
   return out;
 }

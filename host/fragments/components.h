@@ -60,19 +60,26 @@ class ComponentFinder {
 
 // Component count, sizes and masses for the frame log and fragments.csv: histogram[b] counts the
 // components of 2^b .. 2^(b+1)-1 particles; singles are the components of one particle (dust).
+// A single may still hold by a bond to a particle it shares no face with (a diagonal bond), and
+// then moves with it; free particles have no intact bond at all and fly on their own.
 struct ComponentStats {
   size_t count = 0;
   int32_t largest = 0;  // particles in the largest component
   std::vector<int64_t> histogram;
   int64_t singles = 0;
   double mass = 0, single_mass = 0, largest_mass = 0;  // [kg]: all, in singles, of the heaviest
+  bool free_counted = false;                           // free_mass known (bonds given)
+  double free_mass = 0;                                // [kg] in particles without an intact bond
 };
 
-// The statistics of `c`, with each particle's `mass` (empty: masses not counted, all 0).
-ComponentStats component_stats(const Components& c, const std::vector<real>& mass = {});
+// The statistics of `c`, with each particle's `mass` (empty: masses not counted, all 0) and, where
+// `bonds` is given, the mass of the free particles.
+ComponentStats component_stats(const Components& c, const std::vector<real>& mass = {},
+                               const BondLists* bonds = nullptr);
 
 // One log field, e.g. "fragments 37 (1:21 2-3:9 4-7:4 65536-131071:1)", with the mass in singles
-// when masses were counted, e.g. "... singles 0.8% of the mass".
+// when masses were counted, e.g. "... singles 0.8% of the mass", and in free particles when they
+// were counted, "... singles 0.8% of the mass (free 0.5%)".
 std::string format_component_stats(const ComponentStats& s);
 
 }  // namespace pd

@@ -15,7 +15,7 @@ std::string header() {
           : lo == hi                ? ""
                                     : "_" + std::to_string(hi));
   }
-  return h + "\n";
+  return h + ",free_mass_share\n";
 }
 
 }  // namespace
@@ -35,7 +35,31 @@ void FragmentLog::add(int64_t frame, int64_t step, double time, const ComponentS
       n += s.histogram[k];  // (the last bin takes every larger one)
     row += "," + std::to_string(n);
   }
+  if (s.free_counted) {
+    std::snprintf(line, sizeof line, ",%.6g", s.free_mass / total);
+    row += line;
+  } else {
+    row += ",";
+  }
   log_.add(row + "\n");
+}
+
+void FragmentLog::restore(std::string text) {
+  // A checkpoint's text from before free_mass_share: its header and rows get the column, empty.
+  const std::string now = header();
+  const size_t end = text.find('\n');
+  if (end != std::string::npos && text.compare(0, end + 1, now) != 0 &&
+      now.compare(0, end, text, 0, end) == 0 && now.size() > end + 1) {
+    std::string upgraded = now;
+    for (size_t at = end + 1; at < text.size();) {
+      const size_t eol = text.find('\n', at);
+      const size_t stop = eol == std::string::npos ? text.size() : eol;
+      upgraded += text.substr(at, stop - at) + ",\n";
+      at = stop + 1;
+    }
+    text = std::move(upgraded);
+  }
+  log_.restore(std::move(text));
 }
 
 }  // namespace pd

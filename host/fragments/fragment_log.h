@@ -6,7 +6,10 @@
 //   largest_mass_share          mass of the heaviest piece / total mass
 //   largest_particles           particles of the largest piece
 //   n_1, n_2_3, n_4_7, ...      pieces of 2^b to 2^(b+1)-1 particles (the last bin open-ended)
-// Rewritten atomically after every frame; a resumed run continues from its checkpoint's text.
+//   free_mass_share             mass in particles without an intact bond / total mass (the singles
+//                               less those still held by a bond across an edge or corner)
+// Rewritten atomically after every frame; a resumed run continues from its checkpoint's text (a
+// text from before the last column gets the column, empty in its rows).
 #pragma once
 
 #include <cstdint>
@@ -26,7 +29,7 @@ class FragmentLog {
   void add(int64_t frame, int64_t step, double time, const ComponentStats& s);
   const std::string& text() const { return log_.text(); }
   // Continues a resumed run's log from its checkpointed text (rewritten at the next add).
-  void restore(std::string text) { log_.restore(std::move(text)); }
+  void restore(std::string text);
 
  private:
   CsvLog log_;

@@ -48,7 +48,7 @@ ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
     write_crack_obj(options_.dir + "/" + crack_mesh_file_name(f.frame, "obj"), crack_surface_, comment);
     write_crack_ply(options_.dir + "/" + crack_mesh_file_name(f.frame, "ply"), crack_surface_, comment);
   }
-  return component_stats(components_, mass_);
+  return component_stats(components_, mass_, &bonds);
 }
 
 void FragmentOutput::write_meshes(const std::string& name) const {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "host/fragments/fragment_log.h"
 #include "tests/support/temp_dir.h"
 
 namespace pd {
@@ -39,12 +40,12 @@ TEST_F(DemoScene, BreaksIntoPiecesThatFlyApart) {
                               out + " > " + path("log") + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << testing::read_all(path("log"));
   // fragments.csv: frame, step, time, fragments, singles, single_mass_share, largest_mass_share,
-  // largest_particles, then the pieces per size: 1, 2-3, 4-7, 8-15, ...
+  // largest_particles, then the pieces per size: 1, 2-3, 4-7, 8-15, ..., then free_mass_share.
   const std::vector<std::string> row = last_row(out + "/fragments.csv");
-  ASSERT_GT(row.size(), 12u);
+  ASSERT_EQ(row.size(), 9u + kFragmentLogBins);
   EXPECT_EQ(row[0], "24");
   int pieces_of_8 = 0;
-  for (size_t k = 11; k < row.size(); ++k) pieces_of_8 += std::stoi(row[k]);
+  for (size_t k = 11; k < 8 + kFragmentLogBins; ++k) pieces_of_8 += std::stoi(row[k]);
   EXPECT_GE(pieces_of_8, 8) << "pieces of 8 particles or more, the pane included";
   EXPECT_LT(std::stod(row[6]), 0.97) << "the pane keeps less than 97% of the mass";
   // The ball's centre (colliders_00024.csv: frame, time, collider, shape, law, size x y z, centre

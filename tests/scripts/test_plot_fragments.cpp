@@ -15,6 +15,19 @@ class PlotFragmentsScript : public testing::TempDirTest {};
 
 TEST_F(PlotFragmentsScript, PlotsARunsFragmentStatistics) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot on PATH";
+  // A log with the free particles' column.
+  const std::string with_free = path("with_free");
+  std::filesystem::create_directories(with_free);
+  std::ofstream(with_free + "/fragments.csv")
+      << "frame,step,time,fragments,singles,single_mass_share,largest_mass_share,largest_particles,n_1,"
+         "free_mass_share\n"
+      << "0,0,0,1,0,0,1,400,0,0\n"
+      << "1,100,0.001,12,5,0.0125,0.61,244,5,0.01\n";
+  const std::string plot_free =
+      std::string(PERIFRAC_SOURCE_DIR "/scripts/plot-fragments.sh ") + with_free + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(plot_free.c_str()), 0) << plot_free;
+  EXPECT_GT(std::filesystem::file_size(with_free + "/fragments.png"), 10000u);
+  // An older log without it.
   const std::string run = path("run");
   std::filesystem::create_directories(run);
   std::ofstream(run + "/fragments.csv")

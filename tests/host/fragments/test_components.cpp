@@ -270,5 +270,25 @@ TEST(Components, StatsAndLogLine) {
   EXPECT_EQ(format_component_stats(m), "fragments 6 (1:2 2-3:2 4-7:1 8-15:1) singles 1.4% of the mass");
 }
 
+// Singles against free particles: 2 shares no face with 1 but still holds by their bond (a
+// diagonal one), a single that moves with its neighbour; 3 has lost its only bond, a single and free.
+TEST(Components, FreeParticlesAreTheSinglesWithoutAnIntactBond) {
+  BondLists bonds = bond_lists({{1}, {0, 2}, {1, 3}, {2}});
+  ComponentFinder finder(adjacency_from_pairs(4, {{0, 1}, {2, 3}}), bonds);
+  break_bond(bonds, 2, 3);
+  break_bond(bonds, 3, 2);  // (both ends, as the engine breaks a bond)
+  Components c;
+  finder.find(bonds, c);
+  EXPECT_EQ(c.id, (std::vector<int32_t>{0, 0, 2, 3}));
+  const std::vector<real> mass = {1, 2, 3, 4};
+  const ComponentStats s = component_stats(c, mass, &bonds);
+  EXPECT_EQ(s.singles, 2);
+  EXPECT_DOUBLE_EQ(s.single_mass, 7);
+  EXPECT_TRUE(s.free_counted);
+  EXPECT_DOUBLE_EQ(s.free_mass, 4);
+  EXPECT_EQ(format_component_stats(s), "fragments 3 (1:2 2-3:1) singles 70.0% of the mass (free 40.0%)");
+  EXPECT_FALSE(component_stats(c, mass).free_counted);
+}
+
 }  // namespace
 }  // namespace pd

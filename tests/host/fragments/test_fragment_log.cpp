@@ -1,5 +1,6 @@
 // fragments.csv (host/fragments/fragment_log.h): one row per frame with the piece count, the
-// singles and their mass share, the heaviest piece and the size histogram, its last bin open.
+// singles and their mass share, the heaviest piece, the size histogram (its last bin open) and the
+// free particles' mass share.
 #include "host/fragments/fragment_log.h"
 
 #include <gtest/gtest.h>
@@ -43,16 +44,19 @@ TEST_F(FragmentLogTest, RowsHoldCountsSharesAndTheHistogram) {
   s.mass = 10;
   s.single_mass = 2;
   s.largest_mass = 4;
+  s.free_counted = true;
+  s.free_mass = 1;
   FragmentLog log(path("fragments.csv"));
   log.add(3, 300, 0.25, s);
   const std::string text = read_all(path("fragments.csv"));
   EXPECT_EQ(text, log.text());
   const std::vector<std::string> head = fields(text, 0), row = fields(text, 1);
-  ASSERT_EQ(head.size(), 8u + kFragmentLogBins);
+  ASSERT_EQ(head.size(), 9u + kFragmentLogBins);
   ASSERT_EQ(row.size(), head.size());
   EXPECT_EQ(head[8], "n_1");
   EXPECT_EQ(head[9], "n_2_3");
-  EXPECT_EQ(head.back(), "n_8388608_up");
+  EXPECT_EQ(head[7 + kFragmentLogBins], "n_8388608_up");
+  EXPECT_EQ(head.back(), "free_mass_share");
   EXPECT_EQ(row[0], "3");
   EXPECT_EQ(row[3], "5");
   EXPECT_EQ(row[4], "2");
@@ -61,7 +65,8 @@ TEST_F(FragmentLogTest, RowsHoldCountsSharesAndTheHistogram) {
   EXPECT_EQ(row[8], "2");
   EXPECT_EQ(row[9], "1");
   EXPECT_EQ(row[10], "1");
-  EXPECT_EQ(row.back(), "1");  // the 2^25 piece, in the open bin
+  EXPECT_EQ(row[7 + kFragmentLogBins], "1");  // the 2^25 piece, in the open bin
+  EXPECT_EQ(row.back(), "0.1");               // 1 of 10 kg without an intact bond
 }
 
 TEST_F(FragmentLogTest, ARestoredLogGoesOn) {
@@ -75,6 +80,32 @@ TEST_F(FragmentLogTest, ARestoredLogGoesOn) {
   resumed.add(1, 10, 0.5, s);
   EXPECT_EQ(fields(read_all(path("fragments.csv")), 2)[0], "1");
   EXPECT_EQ(fields(read_all(path("fragments.csv")), 1)[0], "0");
+}
+
+// A checkpoint written before the free particles' column: its header and rows get the column
+// (empty in the old rows), and the run goes on with it.
+TEST_F(FragmentLogTest, AnOlderCheckpointsLogGetsTheFreeColumn) {
+  FragmentLog now(path("now.csv"));
+  const std::string header = now.text();
+  const std::string old_header = header.substr(0, header.rfind(",free_mass_share")) + "\n";
+  std::string row = "0,0,0,1,0,0,1,8";
+  for (int b = 0; b < kFragmentLogBins; ++b) row += b == 3 ? ",1" : ",0";
+  FragmentLog resumed(path("fragments.csv"));
+  resumed.restore(old_header + row + "\n");
+  ComponentStats s;
+  s.count = 1;
+  s.histogram = {0, 0, 0, 1};
+  s.mass = 2;
+  s.largest_mass = 2;
+  s.largest = 8;
+  s.free_counted = true;
+  resumed.add(1, 10, 0.5, s);
+  const std::string text = read_all(path("fragments.csv"));
+  EXPECT_EQ(text.substr(0, header.size()), header);
+  EXPECT_EQ(fields(text, 1).size(), fields(text, 0).size() - 1);  // (an empty last cell)
+  EXPECT_EQ(text.substr(header.size(), row.size() + 2), row + ",\n");
+  EXPECT_EQ(fields(text, 2).size(), fields(text, 0).size());
+  EXPECT_EQ(fields(text, 2).back(), "0");
 }
 
 }  // namespace

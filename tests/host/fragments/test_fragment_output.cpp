@@ -64,7 +64,7 @@ TEST_F(FragmentOutputTest, CutBlockWritesTwoFragments) {
   // Frame 0: one fragment at rest.
   FrameData f0 = frame(in, 0, 0);
   EXPECT_EQ(format_component_stats(out.process(f0, bonds)),
-            "fragments 1 (64-127:1) singles 0.0% of the mass");
+            "fragments 1 (64-127:1) singles 0.0% of the mass (free 0.0%)");
   EXPECT_EQ(f0.component, std::vector<int32_t>(f0.size(), 0));
   // The crack mesh (its adjacency derived from the families, in their order): nothing split.
   EXPECT_EQ(out.embedded_mesh().vertex_count(), out.embedded_mesh().original_vertex_count());
@@ -74,7 +74,7 @@ TEST_F(FragmentOutputTest, CutBlockWritesTwoFragments) {
   cut(bonds);
   FrameData f1 = frame(in, 1, 0.3);
   const ComponentStats split = out.process(f1, bonds);
-  EXPECT_EQ(format_component_stats(split), "fragments 2 (32-63:2) singles 0.0% of the mass");
+  EXPECT_EQ(format_component_stats(split), "fragments 2 (32-63:2) singles 0.0% of the mass (free 0.0%)");
   EXPECT_EQ(split.singles, 0);
   EXPECT_NEAR(split.largest_mass / split.mass, 0.5, 1e-6);  // two equal halves
   for (size_t i = 0; i < f1.size(); ++i) EXPECT_EQ(f1.component[i], i % kNx < 4 ? 0 : 4);
