@@ -3,28 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <set>
 
 #include "cuda/engine/engine.h"
 #include "cuda/kernels/family.h"
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
+#include "tests/support/broken_bonds.h"
 #include "tests/support/fixtures.h"
 #include "tests/support/require_gpu.h"
 
 namespace pd {
 namespace {
-
-std::set<std::pair<int32_t, int32_t>> broken_set(Engine& e) {
-  BondLists b;
-  e.read_bonds(b);
-  const BondsView v = b.view();
-  std::set<std::pair<int32_t, int32_t>> s;
-  for (int32_t i = 0; i < v.n; ++i)
-    for (int32_t k = 0; k < v.count[i]; ++k)
-      if (!bond_intact(v.neighbor[v.slot(i, k)])) s.insert({i, bond_partner(v.neighbor[v.slot(i, k)])});
-  return s;
-}
 
 double relative_l2(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   double num = 0, den = 0;
@@ -67,10 +56,8 @@ TEST(GpuEquivalence, GlassPlateSmallScale) {
   cpu->read_state(a);
   gpu->read_state(b);
   const double rel = relative_l2(b.disp, a.disp);
-  const auto ba = broken_set(*cpu), bb = broken_set(*gpu);
-  size_t common = 0;
-  for (const auto& p : ba) common += bb.count(p);
-  const double jaccard = double(common) / double(ba.size() + bb.size() - common);
+  const auto ba = testing::broken_bond_set(*cpu), bb = testing::broken_bond_set(*gpu);
+  const double jaccard = testing::jaccard(ba, bb);
   RecordProperty("displacement_rel_l2", std::to_string(rel));
   RecordProperty("broken_jaccard", std::to_string(jaccard));
   std::printf(
@@ -105,10 +92,8 @@ TEST(GpuEquivalence, StateBasedPlasticBarPulledApart) {
     gpu->advance(800);
     gpu->read_state(*s);
     if (s == &b) {
-      const auto ba = broken_set(*cpu), bb = broken_set(*gpu);
-      size_t common = 0;
-      for (const auto& p : ba) common += bb.count(p);
-      const double jaccard = double(common) / double(ba.size() + bb.size() - common);
+      const auto ba = testing::broken_bond_set(*cpu), bb = testing::broken_bond_set(*gpu);
+      const double jaccard = testing::jaccard(ba, bb);
       std::printf(
           "[ equivalence ] state-based plastic bar, %zu particles, 800 steps: displacement rel L2 %.3e, "
           "broken bonds cpu %zu gpu %zu, Jaccard %.5f\n",

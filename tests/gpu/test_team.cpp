@@ -5,9 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <set>
-#include <utility>
 
+#include "tests/support/broken_bonds.h"
 #include "tests/support/fixtures.h"
 #include "tests/support/require_gpu.h"
 #include "tests/support/screen_runs.h"
@@ -16,17 +15,6 @@ namespace pd {
 namespace {
 
 constexpr double kLambda = 1e-3;
-
-std::set<std::pair<int32_t, int32_t>> broken_bonds_of(Engine& e) {
-  BondLists lists;
-  e.read_bonds(lists);
-  const BondsView v = lists.view();
-  std::set<std::pair<int32_t, int32_t>> broken;
-  for (int32_t i = 0; i < v.n; ++i)
-    for (int32_t k = 0; k < v.count[i]; ++k)
-      if (!bond_intact(v.neighbor[v.slot(i, k)])) broken.insert({i, bond_partner(v.neighbor[v.slot(i, k)])});
-  return broken;
-}
 
 double released_energy(Engine& e) {
   EngineSnapshot s;
@@ -57,10 +45,8 @@ void expect_teams_follow_one_thread(SimulationInput in, int64_t steps) {
     den += length_squared(a.disp[i]);
   }
   const double rel = std::sqrt(num / den);
-  const auto broken_single = broken_bonds_of(*single), broken_team = broken_bonds_of(*team);
-  size_t common = 0;
-  for (const auto& bond : broken_single) common += broken_team.count(bond);
-  const double jaccard = double(common) / double(broken_single.size() + broken_team.size() - common);
+  const auto broken_single = testing::broken_bond_set(*single), broken_team = testing::broken_bond_set(*team);
+  const double jaccard = testing::jaccard(broken_single, broken_team);
   const double released_single = released_energy(*single), released_team = released_energy(*team);
   std::printf(
       "[ teams ] %zu particles, %lld steps: displacement rel L2 %.3e, broken %zu / %zu, Jaccard %.5f, "
@@ -73,7 +59,7 @@ void expect_teams_follow_one_thread(SimulationInput in, int64_t steps) {
   EXPECT_NEAR(released_team, released_single, 1e-3 * released_single);
   EXPECT_TRUE(testing::same_bits(b.disp, c.disp)) << "two runs with teams";
   EXPECT_TRUE(testing::same_bits(b.force, c.force)) << "two runs with teams";
-  EXPECT_EQ(broken_team, broken_bonds_of(*again));
+  EXPECT_EQ(broken_team, testing::broken_bond_set(*again));
 }
 
 TEST(GpuTeam, BondBasedLatticeFamilies) {
