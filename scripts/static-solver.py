@@ -24,6 +24,11 @@ Models:
   pmb, pmb-axis   bond-based, without and with the default correction (--rounds, default 3;
                   --parallel-q Q puts the factor's increase on bonds parallel to the surface)
 --alpha A blends a pals model's weights with the LPS's: A pals + (1 - A) lps.
+--ghosts: any model with a fictitious layer of 3 particles outside every face, whose
+displacements are extrapolated linearly along the face's normal from the two outermost layers
+(edges and corners: along each normal in turn); the ghosts complete the real particles' families
+and carry no energy of their own, and their stiffness is carried back onto the real particles
+they are extrapolated from (T^T H T).
 Needs numpy and scipy (Debian: python3-numpy python3-scipy).
 """
 import argparse
@@ -171,8 +176,9 @@ def deviatoric_modes(n):
                      2 * n[:, 0] * n[:, 2], 2 * n[:, 1] * n[:, 2]], 1)
 
 
-def stiffness(b, model, args):
-    """The stiffness and the material's (E, nu)."""
+def stiffness(b, model, args, owners=None):
+    """The stiffness and the material's (E, nu); `owners`: the particles whose energy counts (all)."""
+    own = np.ones(b.n) if owners is None else owners.astype(float)
     if model.startswith("pmb"):
         E, nu = 72e9, 0.25
         s = interior_sums()
@@ -189,14 +195,49 @@ def stiffness(b, model, args):
                 cos_j = np.sum(b.nv * normal[b.bj], 1) ** 2 * weight[b.bj]
                 shape = (1 - 0.5 * (cos_i + cos_j)) ** args.parallel_q
             G = axis_factors(b, b.r * b.bw, s["axial4"], 4, args.rounds or 3, shape)
-        return (b.B.T @ sp.diags(c * G * b.bw * b.vol[b.bi] / (2 * b.r)) @ b.B).tocsr(), E, nu
+        return (b.B.T @ sp.diags(own[b.bi] * c * G * b.bw * b.vol[b.bi] / (2 * b.r)) @ b.B).tocsr(), E, nu
     E, nu = 70e9, 0.3
     K, mu = E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu))
     wd, wv = state_weights(b, model, args)
     theta = sp.csr_matrix((wd * b.r * b.bw, (b.bi, np.arange(b.nb))), (b.n, b.nb))
     dev = sp.identity(b.nb) - sp.csr_matrix((b.r / 3, (np.arange(b.nb), b.bi)), (b.nb, b.n)) @ theta
-    M = theta.T @ sp.diags(K * b.vol) @ theta + dev.T @ sp.diags(2 * mu * wv * b.bw * b.vol[b.bi]) @ dev
+    M = theta.T @ sp.diags(own * K * b.vol) @ theta + dev.T @ sp.diags(own[b.bi] * 2 * mu * wv * b.bw * b.vol[b.bi]) @ dev
     return (b.B.T @ M @ b.B).tocsr(), E, nu
+
+
+def ghost_stiffness(dims, origin, model, args, g=3):
+    """The stiffness over the real particles of an nx x ny x nz box with a ghost layer (--ghosts)."""
+    dims = np.asarray(dims)
+    ext = Body(*(dims + 2 * g), np.asarray(origin, float) - g * LAMBDA)
+    real = np.all((ext.idx >= g) & (ext.idx < dims + g), 1)
+    H, E, nu = stiffness(ext, model, args, real)
+
+    def weights(j, n):  # (source layer, weight) along one axis: the line through the two outer layers
+        if j < g:
+            return [(0, 1.0 - (j - g)), (1, float(j - g))]
+        if j >= g + n:
+            d = j - (g + n - 1)
+            return [(n - 1, 1.0 + d), (n - 2, -float(d))]
+        return [(j - g, 1.0)]
+
+    rows, cols, vals = [], [], []
+    for e, (i, j, k) in enumerate(ext.idx):
+        for a, wa in weights(i, dims[0]):
+            for c, wc in weights(j, dims[1]):
+                for d, wd in weights(k, dims[2]):
+                    src = (a * dims[1] + c) * dims[2] + d
+                    rows += [3 * e, 3 * e + 1, 3 * e + 2]
+                    cols += [3 * src, 3 * src + 1, 3 * src + 2]
+                    vals += [wa * wc * wd] * 3
+    T = sp.csr_matrix((vals, (rows, cols)), (3 * ext.n, 3 * int(np.prod(dims))))
+    return (T.T @ H @ T).tocsr(), E, nu
+
+
+def body_stiffness(b, dims, origin, args):
+    """The model's stiffness of body b (an nx x ny x nz box at `origin`), with ghosts if asked."""
+    if args.ghosts:
+        return ghost_stiffness(dims, origin, args.model, args)
+    return stiffness(b, args.model, args)
 
 
 def solve(H, fixed, u_fixed, load=None):
@@ -214,8 +255,9 @@ def fit(x, y):
 def bar(args, bending=False):
     n, grip = args.n, 3
     nx = 4 * n + 2 * grip
-    b = Body(nx, n, n, (-0.5 * nx * LAMBDA, -0.5 * n * LAMBDA, -0.5 * n * LAMBDA))
-    H, E, nu = stiffness(b, args.model, args)
+    origin = (-0.5 * nx * LAMBDA, -0.5 * n * LAMBDA, -0.5 * n * LAMBDA)
+    b = Body(nx, n, n, origin)
+    H, E, nu = body_stiffness(b, (nx, n, n), origin, args)
     in_grip = (b.idx[:, 0] < grip) | (b.idx[:, 0] >= nx - grip)
     fixed = np.repeat(in_grip, 3)
     x, z = b.pos[:, 0], b.pos[:, 2]
@@ -247,8 +289,9 @@ def cantilever(args):
     n, clamp = args.n, 3
     nl = args.length_over_height * n
     h = n * LAMBDA
-    b = Body(nl + clamp, n, n, (-clamp * LAMBDA, -0.5 * h, -0.5 * h))
-    H, E, nu = stiffness(b, args.model, args)
+    origin = (-clamp * LAMBDA, -0.5 * h, -0.5 * h)
+    b = Body(nl + clamp, n, n, origin)
+    H, E, nu = body_stiffness(b, (nl + clamp, n, n), origin, args)
     fixed = np.repeat(b.idx[:, 0] < clamp, 3)
     load = np.zeros(3 * b.n)
     load[1::3] = -b.vol  # a body force of 1 per unit volume along -y
@@ -264,7 +307,7 @@ def cantilever(args):
 
 def uniform(args):
     b = Body(4 * args.n + 6, args.n, args.n, (0, 0, 0))  # the bar's body, grips included
-    H, E, nu = stiffness(b, args.model, args)
+    H, E, nu = body_stiffness(b, (4 * args.n + 6, args.n, args.n), (0, 0, 0), args)
     K, mu = E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu))
     for name, eps in [("uniaxial x", np.diag([1.0, 0, 0])), ("shear xy", np.array([[0, .5, 0], [.5, 0, 0], [0, 0, 0]])),
                       ("mixed", np.array([[1, .5, .2], [.5, -.3, .1], [.2, .1, .4]]))]:
@@ -285,6 +328,7 @@ def main():
     p.add_argument("--alpha", type=float, default=1.0, help="pals models: A pals + (1 - A) lps")
     p.add_argument("--parallel-q", type=float, default=0.0, help="pmb-axis: the factor on bonds parallel to the surface")
     p.add_argument("--length-over-height", type=int, default=5, help="cantilever: L / h")
+    p.add_argument("--ghosts", action="store_true", help="a fictitious layer outside every face (see above)")
     args = p.parse_args()
     {"bar": bar, "bending": lambda a: bar(a, True), "cantilever": cantilever, "uniform": uniform}[args.problem](args)
 
