@@ -89,13 +89,44 @@ void launch_over_range(Exec& ex, const char* name, ParticleRange r, const BondsV
   }
 }
 
-// Calls f(std::integral_constant<int, k>) for the launch's threads per particle k (1, or 32 on
-// the GPU: team.h), so each count is its own instantiation.
+// Calls f(std::integral_constant<int, k>) for the launch's threads per particle k (1, or on the
+// GPU one of the team sizes of team.h), so each count is its own instantiation.
 template <class Exec, class F>
 void with_bond_threads(int threads, F&& f) {
-  if constexpr (Exec::kDevice)
-    if (threads == 32) return f(std::integral_constant<int, 32>{});
+  if constexpr (Exec::kDevice) {
+    switch (threads) {
+      case 32:
+        return f(std::integral_constant<int, 32>{});
+      case 16:
+        return f(std::integral_constant<int, 16>{});
+      case 8:
+        return f(std::integral_constant<int, 8>{});
+      case 4:
+        return f(std::integral_constant<int, 4>{});
+      case 2:
+        return f(std::integral_constant<int, 2>{});
+      default:
+        break;
+    }
+  }
   f(std::integral_constant<int, 1>{});
+}
+
+// The kernel-name flag of a team of kThreads lanes ("team8"); one thread has none.
+template <int kThreads>
+constexpr const char* team_flag() {
+  switch (kThreads) {
+    case 32:
+      return "team32";
+    case 16:
+      return "team16";
+    case 8:
+      return "team8";
+    case 4:
+      return "team4";
+    default:
+      return "team2";
+  }
 }
 
 // Kernel 1.
@@ -106,7 +137,7 @@ void launch_init_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable m
                                                              {"lattice", kLattice == kLatticeOffsets},
                                                              {"lattice-listed", kLattice == kLatticeListed},
                                                              {"plastic", kPlastic},
-                                                             {"team32", kThreads == 32}});
+                                                             {team_flag<kThreads>(), kThreads > 1}});
   launch_over_range<kThreads>(ex, name.c_str(), r, b, [=] PD_HD(int32_t i, const Team<kThreads>& team) {
     init_particle<kStateBased, kAnisotropic, kLattice, kPlastic>(i, p, b, mt, team);
   });
@@ -227,7 +258,7 @@ void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, Materia
                                          {"lattice-listed", kLattice == kLatticeListed},
                                          {"screened", kScreened},
                                          {"surface", kSurface},
-                                         {"team32", kThreads == 32}});
+                                         {team_flag<kThreads>(), kThreads > 1}});
   launch_over_range<kThreads, kMinBlocks>(
       ex, name.c_str(), r, b, [=] PD_HD(int32_t i, const Team<kThreads>& team) {
         springforces_body<kStateBased, kPlastic, kAnisotropic, kWeak, kLattice, kScreened, kSurface>(

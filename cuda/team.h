@@ -96,16 +96,32 @@ PD_HD inline void store_intact_word(uint32_t* word, uint32_t intact, [[maybe_unu
   }
 }
 
-// The lanes per particle a run uses: a warp's 32 for scenes below kTeamParticles, where one thread
-// per particle leaves most of the GPU idle, one otherwise. Measured on an H100 (bench/NOTES.md),
-// step time with 32 against 1: 3,840 particles 0.39x, 20k 0.87x, 51k 1.03x, 64k 1.38x, 131k 2.0x
-// (the mesh-filled vase of 149k: 0.96x, of 577k: 1.96x). `requested` > 0 forces a count. A
-// function of the whole run's particle count only, so every rank of a partitioned run sums a
-// particle's bonds in the same order as one rank.
-constexpr int64_t kTeamParticles = 32768;
-inline int bond_threads_for(int64_t particles, int requested) {
+// The team sizes a launch may take (with_bond_threads, cuda/launch.h).
+constexpr bool valid_bond_threads(int threads) {
+  return threads == 1 || threads == 2 || threads == 4 || threads == 8 || threads == 16 || threads == 32;
+}
+
+// The lanes per particle a run uses, from a sweep of sizes 1 to 32 on an H100 (bench/NOTES.md,
+// "Team sizes by scene"). Regular (box-grid) families gain while one thread per particle leaves
+// the GPU idle: the best size keeps particles x lanes near kTeamThreads (3,840 particles: 32,
+// 20k: 8, 51k and 64k: 4), and from 2 lanes down one thread wins (131k: 1 beats 2 by 10%).
+// Explicit (mesh-filled) families spread from tens to hundreds of bonds, so a warp of single
+// threads waits on its longest family; lanes share it out at any size measured: 8 up to
+// kTeamListedEight (the 149k vase 1.78x), 4 above (the 577k vase 1.10x, the 494k torus of
+// Voronoi cells 1.05x). `listed`: most of the run's particles have explicit families.
+// `requested` > 0 forces a count. A function of the whole run only (bond_threads.h).
+constexpr int64_t kTeamThreads = int64_t(1) << 18;
+constexpr int64_t kTeamListedEight = int64_t(1) << 18;
+constexpr int bond_threads_for(int64_t particles, bool listed, int requested) {
   if (requested > 0) return requested;
-  return particles < kTeamParticles ? 32 : 1;
+  int threads = 1;
+  while (threads < 32 && particles * 2 * threads <= kTeamThreads) threads *= 2;
+  if (threads < 4) threads = 1;
+  if (listed) {
+    const int mesh = particles < kTeamListedEight ? 8 : 4;
+    if (threads < mesh) threads = mesh;
+  }
+  return threads;
 }
 
 }  // namespace pd

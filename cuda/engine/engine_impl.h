@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cuda/engine/bond_threads.h"
 #include "cuda/engine/collider_grid.h"
 #include "cuda/engine/collider_reactions.h"
 #include "cuda/engine/contact_lists.h"
@@ -43,7 +44,7 @@ class EngineImpl final : public Engine {
         motion_(in.motion),
         contact_(in.contact),
         screen_(in.screen),
-        bond_threads_(bond_threads_for(int64_t(in.particles.size()), requested_bond_threads(in))) {
+        bond_threads_(bond_threads_of(in)) {
     features_ = features_of(materials_, contact_);
     colliders_host_ = in.colliders;
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");

@@ -275,6 +275,15 @@ int64_t LatticeFamilies::listed_particles() const {
                        [&](int16_t s) { return s >= 0 && stencils[size_t(s)].listed; });
 }
 
+int64_t box_grid_particles(const ParticleSet& ps) {
+  int64_t count = 0;
+  for (const auto& [first, end] : contiguous_bodies(ps)) {
+    BoxGrid g;
+    if (find_box_grid(ps, first, end, g)) count += end - first;
+  }
+  return count;
+}
+
 LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds) {
   LatticeFamilies lf;
   lf.stencil.assign(ps.size(), -1);

@@ -29,6 +29,10 @@ struct LatticeFamilies {
 // wider than the stencil along x and y), get a stencil; the others keep explicit families.
 LatticeFamilies lattice_families(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds);
 
+// The particles of `ps` in bodies laid out as box grids (as lattice_families finds them, before
+// its checks of the families): a function of the particles only, the same on every rank.
+int64_t box_grid_particles(const ParticleSet& ps);
+
 // What a partitioned rank's lattice tables need of the other ranks (cuda/parallel/): whether
 // every rank's families of a body fit a stencil, and the union of the index offsets they use.
 struct StencilReduce {

@@ -1,9 +1,6 @@
 #include "cuda/engine/particle_set.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <stdexcept>
-#include <string>
 
 #include "cuda/kernels/family.h"
 
@@ -40,18 +37,6 @@ double longest_bond_bound(const ParticleSet& ps, const MaterialTable& mt) {
   for (int m = 0; m < mt.count; ++m) radius = std::max(radius, double(mt.m[m].family_radius()));
   for (const Vec3& x : ps.rest) extent = std::max(extent, largest_coordinate(x));
   return radius * (1.0 + 1e-4) + 2 * kPositionSlack * extent;
-}
-
-int requested_bond_threads(const SimulationInput& in) {
-  if (in.bond_threads > 0) return in.bond_threads;
-  const char* v = std::getenv("PERIFRAC_BOND_THREADS");
-  if (!v || !*v) return 0;
-  const std::string s = v;
-  if (s != "0" && s != "1" && s != "32")
-    throw std::invalid_argument(
-        "environment PERIFRAC_BOND_THREADS='" + s +
-        "': allowed are 1, 32 (threads per particle) and 0 (chosen from the particle count)");
-  return std::atoi(v);
 }
 
 }  // namespace pd

@@ -49,14 +49,9 @@ struct SimulationInput {
   bool contact = false;                            // launch `collection` and `collisions`
   bool lattice_families = true;  // box-grid bodies find partners by offset (lattice_families.h)
   BondScreen screen = BondScreen::kAuto;
-  // Threads per particle in the GPU's bond loops (cuda/team.h): 1 or 32; 0 chooses from the
-  // particle count (bond_threads_for). The CPU backend runs one.
+  // Threads per particle in the GPU's bond loops (cuda/team.h): 1, 2, 4, 8, 16 or 32; 0 chooses
+  // from the scene (bond_threads.h). The CPU backend runs one.
   int bond_threads = 0;
 };
-
-// The threads per particle a run of `in` asks for: in.bond_threads where set, else the
-// environment's PERIFRAC_BOND_THREADS (1 or 32: e.g. 1 to reproduce a run's bits from before
-// teams), else 0 (chosen from the particle count). std::invalid_argument names a bad value.
-int requested_bond_threads(const SimulationInput& in);
 
 }  // namespace pd

@@ -146,7 +146,7 @@ class PartitionedEngine final : public Engine {
     local_input.lattice_families = false;
     local_input.screen = in.screen;
     // Chosen from the whole run's particles, so each rank sums a particle's bonds as one rank does.
-    local_input.bond_threads = bond_threads_for(int64_t(in.particles.size()), requested_bond_threads(in));
+    local_input.bond_threads = bond_threads_of(in);
     if (local_input.particles.size() == 0)
       throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
                                std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");

@@ -18,7 +18,7 @@ struct BenchOptions {
   bool contact = false;                // lattice: launch collection + collisions
   bool explicit_families = false;      // box-grid bodies read partner indices as other bodies do
   std::string screen = "auto";         // springforces: auto | off | always (cuda/kernels/bond_screen.h)
-  int bond_threads = 0;                // threads per particle in the GPU's bond loops: 0 (auto), 1, 32
+  int bond_threads = 0;                // threads per particle in the GPU's bond loops: 0 (auto), 1 .. 32
   std::string model = "bond_based";    // lattice material: bond_based | state_based | plastic
   std::string backend = "auto";
   int64_t steps = 200;

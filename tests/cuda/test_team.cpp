@@ -1,12 +1,9 @@
-// Teams of threads per particle (cuda/team.h): which scenes get them, how a run asks for a count,
-// which entries a lane visits, and that the CPU backend, which runs one thread per particle,
-// gives the same bits whatever a run asks for. The teams' sums on the GPU: tests/gpu/test_team.cpp.
+// Teams of threads per particle (cuda/team.h): which scenes get them, which entries a lane visits,
+// and that the CPU backend, which runs one thread per particle, gives the same bits whatever a run
+// asks for. The teams' sums on the GPU: tests/gpu/test_team.cpp.
 #include "cuda/team.h"
 
 #include <gtest/gtest.h>
-
-#include <cstdlib>
-#include <stdexcept>
 
 #include "tests/support/fixtures.h"
 #include "tests/support/screen_runs.h"
@@ -14,31 +11,31 @@
 namespace pd {
 namespace {
 
-TEST(Team, ScenesBelowTheThresholdGetAWarpPerParticle) {
-  EXPECT_EQ(bond_threads_for(3840, 0), 32);
-  EXPECT_EQ(bond_threads_for(kTeamParticles - 1, 0), 32);
-  EXPECT_EQ(bond_threads_for(kTeamParticles, 0), 1);
-  EXPECT_EQ(bond_threads_for(3840, 1), 1);
-  EXPECT_EQ(bond_threads_for(1000000, 32), 32);
+TEST(Team, RegularFamiliesGetLanesWhileOneThreadPerParticleLeavesTheGpuIdle) {
+  // particles x lanes kept near kTeamThreads, and no team of 2 (one thread is faster there).
+  EXPECT_EQ(bond_threads_for(3840, false, 0), 32);
+  EXPECT_EQ(bond_threads_for(20196, false, 0), 8);
+  EXPECT_EQ(bond_threads_for(51200, false, 0), 4);
+  EXPECT_EQ(bond_threads_for(kTeamThreads / 4, false, 0), 4);
+  EXPECT_EQ(bond_threads_for(kTeamThreads / 4 + 1, false, 0), 1);
+  EXPECT_EQ(bond_threads_for(131072, false, 0), 1);
+  EXPECT_EQ(bond_threads_for(16000000, false, 0), 1);
 }
 
-TEST(Team, ARunAsksThroughItsInputOrTheEnvironment) {
-  SimulationInput in;
-  EXPECT_EQ(requested_bond_threads(in), 0);
-  setenv("PERIFRAC_BOND_THREADS", "1", 1);
-  EXPECT_EQ(requested_bond_threads(in), 1);
-  in.bond_threads = 32;
-  EXPECT_EQ(requested_bond_threads(in), 32);  // the input's own count wins
-  in.bond_threads = 0;
-  setenv("PERIFRAC_BOND_THREADS", "8", 1);
-  try {
-    requested_bond_threads(in);
-    ADD_FAILURE() << "8 threads accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("PERIFRAC_BOND_THREADS='8'"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("allowed are 1, 32"), std::string::npos) << e.what();
-  }
-  unsetenv("PERIFRAC_BOND_THREADS");
+TEST(Team, ExplicitFamiliesAlwaysShareTheirBondsOut) {
+  EXPECT_EQ(bond_threads_for(3840, true, 0), 32);
+  EXPECT_EQ(bond_threads_for(51200, true, 0), 8);
+  EXPECT_EQ(bond_threads_for(149118, true, 0), 8);
+  EXPECT_EQ(bond_threads_for(kTeamListedEight, true, 0), 4);
+  EXPECT_EQ(bond_threads_for(577199, true, 0), 4);
+  EXPECT_EQ(bond_threads_for(16000000, true, 0), 4);
+}
+
+TEST(Team, ARequestWins) {
+  EXPECT_EQ(bond_threads_for(3840, false, 1), 1);
+  EXPECT_EQ(bond_threads_for(1000000, true, 32), 32);
+  for (int t : {1, 2, 4, 8, 16, 32}) EXPECT_TRUE(valid_bond_threads(t)) << t;
+  for (int t : {0, 3, 7, 64}) EXPECT_FALSE(valid_bond_threads(t)) << t;
 }
 
 TEST(Team, ALaneVisitsEveryEntryATeamWidthApart) {

@@ -1,4 +1,4 @@
-// Teams of threads per particle on the GPU (cuda/team.h): 32 threads summing one particle's bonds
+// Teams of threads per particle on the GPU (cuda/team.h): a team summing one particle's bonds
 // add the same terms as one thread in another order, so a run with teams follows the run with one
 // thread per particle within float round-off and breaks the same bonds; two runs with teams are
 // bit-identical. Skipped where no GPU answers.
@@ -24,42 +24,50 @@ double released_energy(Engine& e) {
   return sum;
 }
 
-// `in` run `steps` steps with one thread per particle and twice with teams of 32.
+// `in` run `steps` steps with one thread per particle and twice with teams of each size a run
+// may take (2 to 32 lanes).
 void expect_teams_follow_one_thread(SimulationInput in, int64_t steps) {
   in.bond_threads = 1;
   auto single = make_cuda_engine(in);
   single->advance(steps);
-  in.bond_threads = 32;
-  auto team = make_cuda_engine(in), again = make_cuda_engine(in);
-  team->advance(steps);
-  again->advance(steps);
-  ParticleState a, b, c;
+  ParticleState a;
   single->read_state(a);
-  team->read_state(b);
-  again->read_state(c);
-  // The displacement after the halves flew apart: float round-off (~1e-7 per step) grown over the
-  // steps, as between the CPU and the GPU (test_equivalence.cpp), far below the 1e-3 allowed there.
-  double num = 0, den = 0;
-  for (size_t i = 0; i < a.disp.size(); ++i) {
-    num += length_squared(b.disp[i] - a.disp[i]);
-    den += length_squared(a.disp[i]);
-  }
-  const double rel = std::sqrt(num / den);
-  const auto broken_single = testing::broken_bond_set(*single), broken_team = testing::broken_bond_set(*team);
-  const double jaccard = testing::jaccard(broken_single, broken_team);
-  const double released_single = released_energy(*single), released_team = released_energy(*team);
-  std::printf(
-      "[ teams ] %zu particles, %lld steps: displacement rel L2 %.3e, broken %zu / %zu, Jaccard %.5f, "
-      "released %.6e / %.6e J\n",
-      a.disp.size(), (long long)steps, rel, broken_single.size(), broken_team.size(), jaccard,
-      released_single, released_team);
+  const auto broken_single = testing::broken_bond_set(*single);
+  const double released_single = released_energy(*single);
   ASSERT_GT(broken_single.size(), 100u) << "the bar must break";
-  EXPECT_LT(rel, 1e-4);
-  EXPECT_GT(jaccard, 0.98);
-  EXPECT_NEAR(released_team, released_single, 1e-3 * released_single);
-  EXPECT_TRUE(testing::same_bits(b.disp, c.disp)) << "two runs with teams";
-  EXPECT_TRUE(testing::same_bits(b.force, c.force)) << "two runs with teams";
-  EXPECT_EQ(broken_team, testing::broken_bond_set(*again));
+  for (int threads : {2, 4, 8, 16, 32}) {
+    SCOPED_TRACE(threads);
+    in.bond_threads = threads;
+    auto team = make_cuda_engine(in), again = make_cuda_engine(in);
+    team->advance(steps);
+    again->advance(steps);
+    ParticleState b, c;
+    team->read_state(b);
+    again->read_state(c);
+    // The displacement after the halves flew apart: float round-off (~1e-7 per step) grown over
+    // the steps, as between the CPU and the GPU (test_equivalence.cpp), far below the 1e-3 allowed
+    // there.
+    double num = 0, den = 0;
+    for (size_t i = 0; i < a.disp.size(); ++i) {
+      num += length_squared(b.disp[i] - a.disp[i]);
+      den += length_squared(a.disp[i]);
+    }
+    const double rel = std::sqrt(num / den);
+    const auto broken_team = testing::broken_bond_set(*team);
+    const double jaccard = testing::jaccard(broken_single, broken_team);
+    const double released_team = released_energy(*team);
+    std::printf(
+        "[ teams of %2d ] %zu particles, %lld steps: displacement rel L2 %.3e, broken %zu / %zu, "
+        "Jaccard %.5f, released %.6e / %.6e J\n",
+        threads, a.disp.size(), (long long)steps, rel, broken_single.size(), broken_team.size(), jaccard,
+        released_single, released_team);
+    EXPECT_LT(rel, 1e-4);
+    EXPECT_GT(jaccard, 0.98);
+    EXPECT_NEAR(released_team, released_single, 1e-3 * released_single);
+    EXPECT_TRUE(testing::same_bits(b.disp, c.disp)) << "two runs with teams";
+    EXPECT_TRUE(testing::same_bits(b.force, c.force)) << "two runs with teams";
+    EXPECT_EQ(broken_team, testing::broken_bond_set(*again));
+  }
 }
 
 TEST(GpuTeam, BondBasedLatticeFamilies) {
@@ -104,10 +112,12 @@ TEST(GpuTeam, ScreenModesAgree) {
   auto bond = testing::pulled_apart(testing::lattice_block(32, 16, 16, kLambda, 2e-4), 32, kLambda, 2);
   auto plastic = testing::pulled_apart(testing::state_block(32, 16, 16, kLambda, 2e-4, true), 32, kLambda, 2);
   testing::weaken_plane(plastic, 16 * kLambda, 0.5);
-  for (SimulationInput* in : {&bond, &plastic}) {
-    in->bond_threads = 32;
-    testing::expect_screen_modes_agree(gpu, *in, 200);
-  }
+  for (SimulationInput* in : {&bond, &plastic})
+    for (int threads : {4, 8, 32}) {
+      SCOPED_TRACE(threads);
+      in->bond_threads = threads;
+      testing::expect_screen_modes_agree(gpu, *in, 200);
+    }
 }
 
 }  // namespace

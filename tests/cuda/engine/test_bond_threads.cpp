@@ -1,0 +1,61 @@
+// The threads per particle a run uses (cuda/engine/bond_threads.h): how a run asks for a count,
+// and the choice from the whole run's particles (regular box grids against explicit families).
+#include "cuda/engine/bond_threads.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "cuda/team.h"
+#include "tests/support/fixtures.h"
+
+namespace pd {
+namespace {
+
+constexpr double kLambda = 1e-3;
+
+TEST(BondThreads, ARunAsksThroughItsInputOrTheEnvironment) {
+  SimulationInput in;
+  EXPECT_EQ(requested_bond_threads(in), 0);
+  setenv("PERIFRAC_BOND_THREADS", "8", 1);
+  EXPECT_EQ(requested_bond_threads(in), 8);
+  in.bond_threads = 32;
+  EXPECT_EQ(requested_bond_threads(in), 32);  // the input's own count wins
+  in.bond_threads = 0;
+  for (const char* bad : {"7", "64", "x", "-1", "008"}) {
+    setenv("PERIFRAC_BOND_THREADS", bad, 1);
+    try {
+      requested_bond_threads(in);
+      ADD_FAILURE() << bad << " threads accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("PERIFRAC_BOND_THREADS='" + std::string(bad) + "'"),
+                std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("allowed are 1, 2, 4, 8, 16, 32"), std::string::npos) << e.what();
+    }
+  }
+  unsetenv("PERIFRAC_BOND_THREADS");
+}
+
+TEST(BondThreads, ChosenFromTheParticleCountAndTheFamilies) {
+  // 24 x 24 x 24 = 13,824 particles: a box grid gets 16 lanes, the same particles jittered (no
+  // longer a grid: explicit families) too; 48 x 32 x 32 = 49,152: 4 on the grid, 8 jittered.
+  SimulationInput grid;
+  grid.particles = testing::lattice_block(24, 24, 24, kLambda, 1e-4).particles;
+  EXPECT_EQ(bond_threads_of(grid), 16);
+  grid.particles = testing::lattice_block(48, 32, 32, kLambda, 1e-4).particles;
+  EXPECT_EQ(bond_threads_of(grid), 4);
+  SimulationInput jittered;
+  jittered.particles = testing::lattice_block(48, 32, 32, kLambda, 1e-4, 0.2).particles;
+  EXPECT_EQ(bond_threads_of(jittered), 8);
+  // A run that asks for explicit families everywhere counts as explicit.
+  grid.lattice_families = false;
+  EXPECT_EQ(bond_threads_of(grid), 8);
+  grid.bond_threads = 1;
+  EXPECT_EQ(bond_threads_of(grid), 1);
+}
+
+}  // namespace
+}  // namespace pd
