@@ -27,7 +27,9 @@ int bond_threads_of(const SimulationInput& in) {
   const int requested = requested_bond_threads(in);
   if (requested > 0) return requested;
   const int64_t n = int64_t(in.particles.size());
-  const int64_t regular = in.lattice_families ? box_grid_particles(in.particles) : 0;
+  // Box grids count as regular with explicit families too (--explicit-families): their families
+  // are as even as the lattice's, and one thread per particle beats 4 lanes there by 10-14% at 1M.
+  const int64_t regular = box_grid_particles(in.particles);
   return bond_threads_for(n, 2 * (n - regular) > n, 0);
 }
 

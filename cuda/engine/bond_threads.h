@@ -13,7 +13,8 @@ namespace pd {
 int requested_bond_threads(const SimulationInput& in);
 
 // The threads per particle the run of `in` uses: the request, else bond_threads_for from its
-// particle count and whether most of its particles have explicit (mesh-filled) families.
+// particle count and whether most of its particles are mesh-filled (not in box-grid bodies, whose
+// families are even whether read by lattice offset or from explicit lists).
 int bond_threads_of(const SimulationInput& in);
 
 }  // namespace pd

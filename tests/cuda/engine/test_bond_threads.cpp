@@ -50,9 +50,10 @@ TEST(BondThreads, ChosenFromTheParticleCountAndTheFamilies) {
   SimulationInput jittered;
   jittered.particles = testing::lattice_block(48, 32, 32, kLambda, 1e-4, 0.2).particles;
   EXPECT_EQ(bond_threads_of(jittered), 8);
-  // A run that asks for explicit families everywhere counts as explicit.
+  // A box grid run with explicit families (--explicit-families) stays regular: its families are
+  // as even as the lattice's.
   grid.lattice_families = false;
-  EXPECT_EQ(bond_threads_of(grid), 8);
+  EXPECT_EQ(bond_threads_of(grid), 4);
   grid.bond_threads = 1;
   EXPECT_EQ(bond_threads_of(grid), 1);
 }
