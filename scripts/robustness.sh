@@ -161,6 +161,8 @@ case_ "command line" "PERIFRAC_BOND_THREADS=7" 2 "PERIFRAC_BOND_THREADS='7'" env
 case_ "command line" "an argument with a line break" 2 "^error: .*\?" "$BIN" "${P[@]}" s.toml $'--out\nx' extra
 sed 's/^steps_per_frame = 20/dt = 5e-324\nsteps_per_frame = 20/' s.toml >tiny-dt.toml
 case_ "command line" "dt = 5e-324" 2 "simulation.dt" "$BIN" "${P[@]}" tiny-dt.toml --out o2
+scene shards.toml '[[shards]]\nsize = 1e-7\n'
+case_ "command line" "[[shards]] cells far smaller than the particles" 2 "shards\[0\]\.size" "$BIN" "${P[@]}" shards.toml --out o5
 
 # Scene smells
 scene anchor.toml '[[anchors]]\nbox_min = [1, 1, 1]\nbox_max = [2, 2, 2]\n'

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Shards, not grit (issue 31): the gallery's breaking scenes at their full size, each with a sweep of
-# the material's damage_alpha (the strain limit times 1 + alpha * damage), and what the breakage
+# the material's damage_alpha (the strain limit times 1 + alpha * damage), or with KNOB=shards of
+# [[shards]] cells (SIZE:HOLD pairs, "none" for the scene as it is), and what the breakage
 # leaves at the last frame: the share of the mass in single particles (dust) and of it in free
 # particles (no bond left; "-" where the run's log has no such column), the heaviest piece's
 # share, the pieces in all and those of at least 8 particles, and the broken bonds. A still of the
@@ -8,6 +9,8 @@
 # A benchmark of the look, not a test; on a GPU (or a patient CPU).
 #   scripts/shards-sweep.sh [BINARY] [SCENES]     SCENES: glass_plate vase elastic_drop (default all)
 #   SCALE=0.1 FRAMES=3 scripts/shards-sweep.sh build/cpu/perifrac elastic_drop   (a quick look)
+#   KNOB=shards SWEEP_glass_plate="none 0.01:10" scripts/shards-sweep.sh   (cells of 1 cm, hold 10)
+# The glass plate also gets a face-on still with damage colours (its crack pattern).
 # Prints a table; writes $OUT/shards-sweep/table.txt.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -21,19 +24,38 @@ mkdir -p "$OUT/stills"
 
 # name | scene | material | alphas (the first is the scene's own); SWEEP_<name> replaces a list
 # (e.g. SWEEP_vase="1 1.5 2")
-SWEEPS=(
-  "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-0 2 5 10}"
-  "vase|vase_drop|clay|${SWEEP_vase:-0 3 6}"
-  "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-0.5 2 5}"
-)
+knob=${KNOB:-alpha}
+[[ $knob == alpha || $knob == shards ]] || { echo "shards-sweep: KNOB must be alpha or shards" >&2; exit 2; }
+if [[ $knob == alpha ]]; then
+  SWEEPS=(
+    "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-0 2 5 10}"
+    "vase|vase_drop|clay|${SWEEP_vase:-0 3 6}"
+    "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-0.5 2 5}"
+  )
+else
+  SWEEPS=(
+    "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-none 0.01:10 0.02:10}"
+    "vase|vase_drop|clay|${SWEEP_vase:-none 0.02:10 0.03:10}"
+    "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-none 0.03:10 0.05:10}"
+  )
+fi
+# The setting of one sweep value.
+knob_args() {
+  if [[ $knob == alpha ]]; then
+    echo "--set materials.$1.damage_alpha=$2"
+  elif [[ $2 != none ]]; then
+    echo "--set shards[0].size=${2%%:*} --set shards[0].hold=${2##*:}"
+  fi
+}
 rows=()
 for sweep in "${SWEEPS[@]}"; do
   IFS='|' read -r name scene material alphas <<<"$sweep"
   [[ " $only " == *" $name "* ]] || continue
   for alpha in $alphas; do
-    dir="$OUT/$name-a$alpha"
+    dir="$OUT/$name-${knob:0:1}${alpha//:/h}"
     t0=$SECONDS
-    if ! "$bin" run --overwrite "scenes/$scene.toml" --set "materials.$material.damage_alpha=$alpha" \
+    # shellcheck disable=SC2046  # the settings split into their words
+    if ! "$bin" run --overwrite "scenes/$scene.toml" $(knob_args "$material" "$alpha") \
       "${size[@]}" --out "$dir" >"$dir.log" 2>&1; then
       rows+=("$(printf '%-13s %6s  run failed: %s' "$name" "$alpha" "$(tail -n 1 "$dir.log")")")
       continue
@@ -49,12 +71,16 @@ for sweep in "${SWEEPS[@]}"; do
       printf "%-13s %6s %6d %9.1f%% %9s %9.1f%% %8d %8d %8s %6ds", n, a, $1, 100 * $6, free, 100 * $7, $4, big, b, s }' <<<"$last")")
     frame=$(cut -d, -f1 <<<"$last")
     "$bin" render "$dir" --frames "$frame" --width 960 --height 540 --spp 4 --out "$dir/still" >"$dir.render.log" 2>&1 &&
-      cp "$dir/still/frame_$(printf %05d "$frame").png" "$OUT/stills/$name-a$alpha.png"
+      cp "$dir/still/frame_$(printf %05d "$frame").png" "$OUT/stills/$(basename "$dir").png"
+    [[ $name == glass_plate ]] &&
+      "$bin" render "$dir" --frames "$frame" --width 540 --height 540 --spp 4 --eye 0,0,0.55 --look-at 0,0,0 \
+        --material opaque --damage-colors --out "$dir/face" >>"$dir.render.log" 2>&1 &&
+      cp "$dir/face/frame_$(printf %05d "$frame").png" "$OUT/stills/$(basename "$dir")-face.png"
   done
 done
 {
   echo "shards-sweep: $("$bin" --version 2>/dev/null | head -n 1), $(date -u +%Y-%m-%d), scale ${SCALE:-1}"
   nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -n 1
-  printf '%-13s %6s %6s %10s %9s %10s %8s %8s %8s %7s\n' scene alpha frame singles free largest pieces "pieces>=8" broken run
+  printf '%-13s %6s %6s %10s %9s %10s %8s %8s %8s %7s\n' scene "$knob" frame singles free largest pieces "pieces>=8" broken run
   printf '%s\n' "${rows[@]}"
 } | tee "$OUT/table.txt"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace pd {
 
@@ -86,39 +87,48 @@ bool segment_crosses_triangle(const P3& p, const P3& q, const CutTriangle& t) {
 
 BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<Vec3>& rest,
                         const std::vector<int32_t>& body, double longest, BondLists& bonds,
-                        std::vector<uint8_t>& strength) {
+                        std::vector<uint8_t>& strength, const std::vector<int32_t>& shard,
+                        const std::vector<uint8_t>& shard_strength) {
   BondCutCounts report;
   strength.clear();
-  if (cuts.empty() || !(longest > 0)) return report;
+  const bool shards = !shard.empty();
+  if ((cuts.empty() || !(longest > 0)) && !shards) return report;
   const BondsView b = bonds.view();
   const int32_t n = b.n;
 
   // The grid's cell: the longest bond, so every bond starts in a cell that lists what it crosses.
-  const CutTester tester(cuts, longest);
+  const std::unique_ptr<CutTester> tester =
+      cuts.empty() || !(longest > 0) ? nullptr : std::make_unique<CutTester>(cuts, longest);
 
-  // Per slot: the strength of the weakest triangle the bond crosses (1 for none); then each
-  // family is compacted past its removed bonds, in order.
+  // Per slot: the strength of the weakest triangle the bond crosses (1 for none) or, between two
+  // shards, the shards' strength; then each family is compacted past its removed bonds, in order.
   std::vector<uint8_t> level(bonds.neighbor.size(), uint8_t(kStrengthLevels));
   int64_t removed = 0, weakened = 0;
 #pragma omp parallel for reduction(+ : removed, weakened) schedule(dynamic, 256)
   for (int32_t i = 0; i < n; ++i) {
-    if (tester.clear(rest[size_t(i)])) continue;
+    const bool near_cut = tester && !tester->clear(rest[size_t(i)]);
+    const bool in_shard = shards && shard[size_t(i)] >= 0;
+    if (!near_cut && !in_shard) continue;
     int32_t kept = 0;
     for (int32_t k = 0; k < b.count[i]; ++k) {
       const int64_t slot = b.slot(i, k);
       const int32_t j = bond_partner(b.neighbor[slot]);
-      const double weakest = tester.strength(i, rest[size_t(i)], j, rest[size_t(j)], body[size_t(i)]);
+      double weakest =
+          near_cut ? tester->strength(i, rest[size_t(i)], j, rest[size_t(j)], body[size_t(i)]) : 1;
       if (weakest <= 0) {
         ++removed;
         continue;
       }
-      const int64_t to = b.slot(i, kept++);
-      b.neighbor[to] = b.neighbor[slot];
-      level[size_t(to)] =
+      uint8_t q =
           weakest < 1
               ? uint8_t(std::clamp(std::lround(weakest * kStrengthLevels), 1L, long(kStrengthLevels) - 1))
               : uint8_t(kStrengthLevels);
-      weakened += weakest < 1;
+      if (in_shard && shard[size_t(j)] >= 0 && shard[size_t(j)] != shard[size_t(i)])
+        q = std::min({q, shard_strength[size_t(i)], shard_strength[size_t(j)]});
+      const int64_t to = b.slot(i, kept++);
+      b.neighbor[to] = b.neighbor[slot];
+      level[size_t(to)] = q;
+      weakened += q < kStrengthLevels;
     }
     bonds.count[size_t(i)] = kept;
   }

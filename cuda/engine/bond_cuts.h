@@ -20,13 +20,16 @@ constexpr int kStrengthLevels = 255;
 // Removes (and compacts away) the bonds of `bonds` that cross a strength-0 triangle, and writes
 // per slot the smallest strength of the triangles each remaining bond crosses, quantised to
 // 1..255 (255 for bonds that cross none). `strength` is left empty when no bond is weakened.
+// Shards (`shard`, `shard_strength`: ParticleSet's, or empty): a bond between particles of two
+// different cells (both >= 0) is weakened to the smaller of its ends' shard strengths too.
 // A bond crosses a triangle when its open rest segment meets the closed triangle; the test runs
 // on the segment from the lower particle index to the higher, so both stored directions of a
 // bond get the same answer. `rest` and `body` are the particles' rest positions and bodies; no
 // bond is longer than `longest` (longest_bond_bound).
 BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<Vec3>& rest,
                         const std::vector<int32_t>& body, double longest, BondLists& bonds,
-                        std::vector<uint8_t>& strength);
+                        std::vector<uint8_t>& strength, const std::vector<int32_t>& shard = {},
+                        const std::vector<uint8_t>& shard_strength = {});
 
 // True when the open segment p -> q meets the closed triangle (Moller-Trumbore, double).
 bool segment_crosses_triangle(const std::array<double, 3>& p, const std::array<double, 3>& q,

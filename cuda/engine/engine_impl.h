@@ -80,7 +80,7 @@ class EngineImpl final : public Engine {
       have_host_bonds = true;
       return host_bonds;
     };
-    if (!in.cuts.empty()) {
+    if (!in.cuts.empty() || !in.particles.shard.empty()) {
       features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_, host_bonds);
       have_host_bonds = true;
       if (features_.surface_factors) launch_surface_bond_factors(exec_, particles(), bonds(), materials_);

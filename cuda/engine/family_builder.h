@@ -148,8 +148,9 @@ bool apply_cuts(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned, co
                 FamilyStats& family, BondLists& lists) {
   download_bonds(s, lists);
   std::vector<uint8_t> strength;
-  family.cuts = cut_bonds(in.cuts, in.particles.rest, in.particles.body,
-                          longest_bond_bound(in.particles, in.materials), lists, strength);
+  family.cuts =
+      cut_bonds(in.cuts, in.particles.rest, in.particles.body, longest_bond_bound(in.particles, in.materials),
+                lists, strength, in.particles.shard, in.particles.shard_strength);
   s.neighbor.upload(lists.neighbor);
   s.count.upload(lists.count);
   s.intact.upload(lists.count);

@@ -20,6 +20,10 @@ struct ParticleSet {
   std::vector<int32_t> body;        // bodies are bonded internally only
   std::vector<uint8_t> flags;       // ParticleFlag bits
   std::vector<uint8_t> anchor;      // anchor group of anchored particles (SimulationInput::motion)
+  // Shards (bond_cuts.h): the cell each particle lies in (-1: none) and the strength, in 1/255,
+  // of a bond from it to another cell. Both empty in scenes without shards.
+  std::vector<int32_t> shard;
+  std::vector<uint8_t> shard_strength;
 
   size_t size() const { return rest.size(); }
   void reserve(size_t n);

@@ -207,6 +207,10 @@ ParticleSet local_particles(const ParticleSet& all, const RankLayout& layout) {
     const size_t i = size_t(g);
     ps.add(all.rest[i], all.velocity[i], all.volume[i], all.mass[i], all.strain_limit0[i], all.material[i],
            all.body[i], all.flags[i], anchors ? all.anchor[i] : uint8_t(0));
+    if (!all.shard.empty()) {
+      ps.shard.push_back(all.shard[i]);
+      ps.shard_strength.push_back(all.shard_strength[i]);
+    }
   }
   return ps;
 }

@@ -230,6 +230,13 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
   if (!setup.input.cuts.empty())
     std::printf("cracks     %zu triangles: %lld bonds removed, %lld weakened (per direction)\n",
                 setup.input.cuts.size(), (long long)fam.cuts.removed, (long long)fam.cuts.weakened);
+  if (setup.shards.cells > 0)
+    std::printf("shards     %lld cells of %lld particles (%.1f per cell); bonds between cells weakened%s\n",
+                (long long)setup.shards.cells, (long long)setup.shards.particles,
+                double(setup.shards.particles) / double(setup.shards.cells),
+                setup.input.cuts.empty()
+                    ? (" (" + std::to_string(fam.cuts.weakened) + " per direction)").c_str()
+                    : "");
   const double family_dt = engine.critical_time_step();
   std::printf("stability  dt_c from the families %.4g s (continuum estimate %.4g s): dt = %.2f of it\n",
               family_dt, setup.critical_dt, setup.dt / family_dt);

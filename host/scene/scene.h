@@ -184,6 +184,17 @@ struct SceneRegion {
   double strain_limit_factor = 1;            // > 0
 };
 
+// Shards: a body breaks along the faces of Voronoi cells about `size` across (seeds on a grid of
+// that spacing, each moved within its cell by `jitter`), and holds inside them: every strain
+// limit of the body is multiplied by `hold`, and a bond between two cells keeps the limit it had
+// (strength 1 / hold). The smallest piece is then a cell, not a particle (issue 31's dust).
+struct SceneShards {
+  double size = 0;    // cell spacing [m], > 0
+  double hold = 3;    // in (1, 255]
+  double jitter = 1;  // in [0, 1]: 0 a cubic grid of cells, 1 seeds anywhere in their grid cell
+  std::string body;   // only this body; empty: every body
+};
+
 struct Scene {
   std::string path;         // file it was read from
   std::string description;  // one line
@@ -212,6 +223,7 @@ struct Scene {
   std::vector<SceneCollider> colliders;      // [[colliders]], at most kMaxColliders
   std::vector<SceneCrack> cracks;            // [[cracks]]
   std::vector<SceneRegion> regions;          // [[regions]]
+  std::vector<SceneShards> shards;           // [[shards]]
 
   // [output]
   bool write_vtk = true;

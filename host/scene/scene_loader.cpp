@@ -475,7 +475,7 @@ class TableReader {
 // ---- Sections ----------------------------------------------------------------------------------
 
 const Keys kTopKeys = {"description", "simulation", "world",  "contact", "materials", "bodies", "anchors",
-                       "projectiles", "colliders",  "cracks", "regions", "output",    "render"};
+                       "projectiles", "colliders",  "cracks", "regions", "shards",    "output", "render"};
 const Keys kSimulationKeys = {"dt", "steps_per_frame", "frames", "seed"};
 const Keys kWorldKeys = {"gravity", "floor", "floor_height", "restitution"};
 const Keys kContactKeys = {"enabled", "stiffness"};
@@ -567,6 +567,7 @@ const Keys kRegionKeys = {"shape",
 const Keys kRegionShapes = {"box", "sphere", "mesh"};
 const Keys kRegionShapeKeys[] = {
     {"box_min", "box_max"}, {"center", "radius"}, {"mesh", "scale", "translate"}};
+const Keys kShardKeys = {"size", "hold", "jitter", "body"};
 const Keys kOutputKeys = {"vtk", "binary"};
 const Keys kRenderKeys = {"eye",      "look_at", "vfov",        "width", "height",        "spp",
                           "material", "ior",     "environment", "every", "damage_colors", "bodies"};
@@ -1083,6 +1084,16 @@ SceneRegion parse_region(const TableReader& r, const std::vector<SceneBody>& bod
   return g;
 }
 
+SceneShards parse_shards(const TableReader& r, const std::vector<SceneBody>& bodies) {
+  SceneShards g;
+  r.number("size", g.size, greater_than(0), Presence::required);
+  r.number("hold", g.hold, in_closed(1, 255));
+  if (g.hold == 1) r.fail("hold", "1 holds the cells no better than their faces", "a number in (1, 255]");
+  r.number("jitter", g.jitter, in_closed(0, 1));
+  parse_body_name(r, g.body, bodies);
+  return g;
+}
+
 // [render]: what `perifrac run` renders as it goes. It reads the binary frames, so output.binary
 // must stay on.
 SceneRender parse_render(const TableReader& r, const std::string& file, bool write_binary) {
@@ -1208,6 +1219,17 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     scene.cracks.push_back(parse_crack(r, scene.bodies, path));
   for (const TableReader& r : top.table_array("regions", kRegionKeys))
     scene.regions.push_back(parse_region(r, scene.bodies, path));
+  // [[shards]]: at most one table per body.
+  for (const TableReader& r : top.table_array("shards", kShardKeys)) {
+    const SceneShards g = parse_shards(r, scene.bodies);
+    for (const SceneShards& e : scene.shards)
+      if (e.body.empty() || g.body.empty() || e.body == g.body)
+        r.fail("body",
+               g.body.empty() ? "every body, but an earlier [[shards]] names one already"
+                              : "'" + g.body + "' has an earlier [[shards]] already",
+               "one [[shards]] per body (a table without `body` is for every body)");
+    scene.shards.push_back(g);
+  }
 
   // [output]
   const TableReader output = top.table("output", kOutputKeys);
@@ -1229,8 +1251,9 @@ Scene parse_root(const toml::table& root, const std::string& path) {
 
 // ---- Overrides ---------------------------------------------------------------------------------
 
-// Applies one "KEY=VALUE" override to the document: tables on the way are created, array
-// elements must exist; the value replaces what the file had.
+// Applies one "KEY=VALUE" override to the document: tables on the way are created, an index one
+// past the end of an array of tables (or 0 where there is none) adds an empty table to it, other
+// array elements must exist; the value replaces what the file had.
 void apply_override(toml::table& root, const std::string& setting, const std::string& file) {
   const std::string allowed =
       "KEY=VALUE, KEY a dotted path (materials.glass.density, bodies[0].spacing), "
@@ -1260,7 +1283,13 @@ void apply_override(toml::table& root, const std::string& setting, const std::st
       t->insert_or_assign(name, *value_doc.get("value"));
       return true;
     }
-    if (!t->get(name)) t->insert(name, toml::table{});
+    const bool indexed = i < key.size() && key[i] == '[';
+    if (!t->get(name)) {
+      if (indexed)
+        t->insert(name, toml::array{});
+      else
+        t->insert(name, toml::table{});
+    }
     here = t->get(name);
     return false;
   };
@@ -1279,8 +1308,13 @@ void apply_override(toml::table& root, const std::string& setting, const std::st
       if (digits.size() > 9) fail("[" + digits + "] is past the end of any list");
       toml::array* a = here->as_array();
       const size_t index = std::stoul(digits);
-      if (!a || index >= a->size()) fail("'" + name + "' has no element " + digits);
       i = close + 1;
+      // One past the end of an array of tables (or of an empty array) adds a table, when a key
+      // inside it follows: shards[0].size = 0.01 where the file has no [[shards]].
+      const bool tables =
+          a && std::all_of(a->begin(), a->end(), [](const toml::node& n) { return n.is_table(); });
+      if (a && index == a->size() && tables && i < key.size() && key[i] == '.') a->push_back(toml::table{});
+      if (!a || index >= a->size()) fail("'" + name + "' has no element " + digits);
       if (i >= key.size()) {
         a->replace(a->begin() + long(index), *value_doc.get("value"));
         return;

@@ -11,6 +11,7 @@
 #include "host/geometry/particle_geometry.h"
 #include "host/geometry/tri_mesh.h"
 #include "host/scene/scene.h"
+#include "host/scene/scene_shards.h"
 
 namespace pd {
 
@@ -55,6 +56,7 @@ struct SetupResult {
   EmbeddedTets embedded;  // the tet meshes of the tet and shell bodies (Chen sec. 5.2), tets as particles
   std::vector<VoronoiBody> voronoi;      // the Voronoi bodies
   std::vector<TriMesh> collider_meshes;  // per collider: a mesh collider's surface in its frame, else empty
+  ShardReport shards;                    // [[shards]]: cells made (scene_shards.h)
 };
 
 // The [materials.NAME] table of `name` (checked by the scene loader to exist).

@@ -1,5 +1,5 @@
-// Pre-cracks and weakened surfaces: the segment-triangle test, the bonds the engine removes or
-// weakens at set-up, and that weakened bonds break first.
+// Pre-cracks, weakened surfaces and shards: the segment-triangle test, the bonds the engine
+// removes or weakens at set-up, and that weakened bonds break first.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,6 +115,120 @@ TEST(BondCuts, WeakenedPlaneBreaksFirstBondBased) {
 
 TEST(BondCuts, WeakenedPlaneBreaksFirstStateBased) {
   expect_weak_plane_breaks_first(state_block(12, 4, 4, 1e-3, 1e-3, false), 5.5e-3);
+}
+
+// Shards: cells of 3 x 3 x 3 particles (along x shifted by one, so x = 5.5 lambda, the middle of a
+// 12-particle bar, lies inside cell 2's particles 5, 6, 7), bonds between cells at strength
+// `strength` / 255, strain limits raised by its inverse.
+void make_cubic_shards(SimulationInput& in, int nx, int ny, double lambda, uint8_t strength) {
+  auto& ps = in.particles;
+  ps.shard.resize(ps.size());
+  ps.shard_strength.assign(ps.size(), strength);
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const long cx = (std::lround(ps.rest[i].x / lambda) + 1) / 3, cy = std::lround(ps.rest[i].y / lambda) / 3,
+               cz = std::lround(ps.rest[i].z / lambda) / 3;
+    ps.shard[i] = int32_t((cz * ((ny + 2) / 3) + cy) * ((nx + 3) / 3) + cx);
+    ps.strain_limit0[i] *= real(255.0 / strength);
+  }
+}
+
+TEST(BondCuts, ShardsWeakenExactlyTheBondsBetweenCells) {
+  const double lambda = 1e-3;
+  auto in = lattice_block(9, 6, 6, lambda);
+  make_cubic_shards(in, 9, 6, lambda, 85);
+  // The same bonds through cut_bonds directly: the slots' strengths.
+  auto e = make_cpu_engine(in);
+  BondLists lists;
+  e->read_bonds(lists);
+  std::vector<uint8_t> strength;
+  const BondCutCounts counts = cut_bonds({}, in.particles.rest, in.particles.body, 0, lists, strength,
+                                         in.particles.shard, in.particles.shard_strength);
+  ASSERT_EQ(strength.size(), lists.neighbor.size());
+  const BondsView v = lists.view();
+  int64_t between = 0;
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int64_t slot = v.slot(i, k);
+      const int32_t j = bond_partner(v.neighbor[slot]);
+      const bool across = in.particles.shard[size_t(i)] != in.particles.shard[size_t(j)];
+      between += across;
+      EXPECT_EQ(strength[size_t(slot)], across ? 85 : 255) << i << "-" << j;
+    }
+  EXPECT_GT(between, 0);
+  EXPECT_EQ(counts.weakened, between);
+  EXPECT_EQ(counts.removed, 0);
+  EXPECT_EQ(e->family_stats().cuts.weakened, between);  // the engine applied the same
+}
+
+TEST(BondCuts, ShardsAndATriangleTakeTheWeaker) {
+  const double lambda = 1e-3;
+  auto in = lattice_block(9, 6, 6, lambda);
+  make_cubic_shards(in, 9, 6, lambda, 85);
+  // A plane at x = 4.5 lambda (inside the second column of cells) at strength 0.2.
+  auto e = make_cpu_engine(in);
+  BondLists lists;
+  e->read_bonds(lists);
+  std::vector<uint8_t> strength;
+  cut_bonds(plane_x(4.5e-3, 0.2), in.particles.rest, in.particles.body, 4e-3, lists, strength,
+            in.particles.shard, in.particles.shard_strength);
+  const BondsView v = lists.view();
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int64_t slot = v.slot(i, k);
+      const int32_t j = bond_partner(v.neighbor[slot]);
+      const bool across = in.particles.shard[size_t(i)] != in.particles.shard[size_t(j)];
+      const bool crosses =
+          (in.particles.rest[size_t(i)].x < 4.5e-3) != (in.particles.rest[size_t(j)].x < 4.5e-3);
+      EXPECT_EQ(strength[size_t(slot)], crosses ? 51 : (across ? 85 : 255)) << i << "-" << j;
+    }
+}
+
+// Pulled apart at its middle, which lies inside a cell, a bar of shards whose cells hold 5 times
+// the material's limit breaks only between cells: every bond broken joins two cells, from both
+// ends (without shards it parts at the middle).
+void expect_shards_break_between_cells(SimulationInput in) {
+  const double lambda = 1e-3;
+  in = testing::pulled_apart(std::move(in), 12, lambda, 1);
+  make_cubic_shards(in, 12, 6, lambda, 51);
+  auto e = make_cpu_engine(in);
+  e->advance(300);
+  BondLists b;
+  e->read_bonds(b);
+  const BondsView v = b.view();
+  int64_t broken = 0;
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int32_t nb = v.neighbor[v.slot(i, k)];
+      if (bond_intact(nb)) continue;
+      ++broken;
+      EXPECT_NE(in.particles.shard[size_t(i)], in.particles.shard[size_t(bond_partner(nb))]) << i;
+    }
+  EXPECT_GT(broken, 100);
+  EXPECT_EQ(broken % 2, 0);
+  // The same bar without shards breaks bonds inside the cells.
+  SimulationInput plain = in;
+  plain.particles.shard.clear();
+  plain.particles.shard_strength.clear();
+  for (size_t i = 0; i < plain.particles.size(); ++i) plain.particles.strain_limit0[i] *= real(51.0 / 255);
+  auto p = make_cpu_engine(plain);
+  p->advance(300);
+  p->read_bonds(b);
+  int64_t inside = 0;
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < b.view().count[i]; ++k) {
+      const int32_t nb = b.neighbor[size_t(b.view().slot(i, k))];
+      inside +=
+          !bond_intact(nb) && in.particles.shard[size_t(i)] == in.particles.shard[size_t(bond_partner(nb))];
+    }
+  EXPECT_GT(inside, 0);
+}
+
+TEST(BondCuts, ShardsBreakBetweenCellsBondBased) {
+  expect_shards_break_between_cells(lattice_block(12, 6, 6, 1e-3, 2e-4));
+}
+
+TEST(BondCuts, ShardsBreakBetweenCellsStateBased) {
+  expect_shards_break_between_cells(state_block(12, 6, 6, 1e-3, 2e-4, false));
 }
 
 }  // namespace

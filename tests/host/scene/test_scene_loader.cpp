@@ -447,6 +447,29 @@ TEST(SceneLoader, OverridesApplyBeforeValidation) {
   EXPECT_EQ(s.bodies[0].velocity[2], 3);
 }
 
+TEST(SceneLoader, OverridesAddATableOnePastTheEnd) {
+  // A scene without [[shards]] gets its first; one with bodies gets a second body.
+  const Scene s = parse_scene(kMinimal, kFile, {"shards[0].size=0.01", "shards[0].hold=5"});
+  ASSERT_EQ(s.shards.size(), 1u);
+  EXPECT_EQ(s.shards[0].size, 0.01);
+  EXPECT_EQ(s.shards[0].hold, 5);
+  try {
+    parse_scene(kMinimal, kFile, {"bodies[1].spacing=0.01"});
+    ADD_FAILURE() << "a body without its required keys accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies[1]"), std::string::npos) << e.what();
+  }
+  // Past that, or an element replaced by a value, is still refused.
+  for (const char* bad : {"shards[1].size=0.01", "shards[0]=1"}) {
+    try {
+      parse_scene(kMinimal, kFile, {bad});
+      ADD_FAILURE() << bad;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("has no element"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(SceneLoader, TimeStepTooSmallForTheClock) {
   // 5e-324 (a denormal) would leave the simulated time at 0 however many steps run.
   expect_error("[simulation]\ndt = 5e-324\n" + kMinimal, "simulation.dt", "1e-15");

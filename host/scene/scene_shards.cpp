@@ -1,0 +1,116 @@
+#include "host/scene/scene_shards.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "host/geometry/random.h"
+
+namespace pd {
+
+namespace {
+
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
+
+int64_t ShardSeeds::nearest(const std::array<double, 3>& x) const {
+  std::array<int64_t, 3> c{};
+  for (int a = 0; a < 3; ++a)
+    c[size_t(a)] = std::clamp(int64_t(std::floor((x[size_t(a)] - origin[size_t(a)]) / size)), int64_t(0),
+                              n[size_t(a)] - 1);
+  int64_t best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (int64_t k = std::max<int64_t>(c[2] - 2, 0); k <= std::min(c[2] + 2, n[2] - 1); ++k)
+    for (int64_t j = std::max<int64_t>(c[1] - 2, 0); j <= std::min(c[1] + 2, n[1] - 1); ++j)
+      for (int64_t i = std::max<int64_t>(c[0] - 2, 0); i <= std::min(c[0] + 2, n[0] - 1); ++i) {
+        const int64_t id = (k * n[1] + j) * n[0] + i;
+        const auto& s = seed[size_t(id)];
+        const double d2 =
+            (x[0] - s[0]) * (x[0] - s[0]) + (x[1] - s[1]) * (x[1] - s[1]) + (x[2] - s[2]) * (x[2] - s[2]);
+        if (d2 < best_d2 || (d2 == best_d2 && id < best)) {
+          best = id;
+          best_d2 = d2;
+        }
+      }
+  return best;
+}
+
+ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double size,
+                       double jitter, uint64_t seed) {
+  ShardSeeds s;
+  s.size = size;
+  s.origin = lo;
+  for (int a = 0; a < 3; ++a)
+    s.n[size_t(a)] = std::max<int64_t>(1, int64_t(std::ceil((hi[size_t(a)] - lo[size_t(a)]) / size)));
+  Random rng(seed);
+  s.seed.reserve(size_t(s.n[0] * s.n[1] * s.n[2]));
+  for (int64_t k = 0; k < s.n[2]; ++k)
+    for (int64_t j = 0; j < s.n[1]; ++j)
+      for (int64_t i = 0; i < s.n[0]; ++i) {
+        const int64_t c[3] = {i, j, k};
+        std::array<double, 3> p{};
+        for (int a = 0; a < 3; ++a)
+          p[size_t(a)] = lo[size_t(a)] + (double(c[a]) + 0.5 + jitter * (rng.uniform() - 0.5)) * size;
+        s.seed.push_back(p);
+      }
+  return s;
+}
+
+ShardReport assign_shards(const Scene& scene, ParticleSet& ps) {
+  ShardReport report;
+  ps.shard.clear();
+  ps.shard_strength.clear();
+  if (scene.shards.empty()) return report;
+  ps.shard.assign(ps.size(), -1);
+  ps.shard_strength.assign(ps.size(), uint8_t(255));
+  for (size_t t = 0; t < scene.shards.size(); ++t) {
+    const SceneShards& g = scene.shards[t];
+    const uint8_t strength = uint8_t(std::clamp(std::lround(255.0 / g.hold), 1L, 254L));
+    for (size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (!g.body.empty() && scene.bodies[b].name != g.body) continue;
+      // The body's particles and their rest bounding box.
+      std::vector<size_t> mine;
+      std::array<double, 3> lo{}, hi{};
+      lo.fill(std::numeric_limits<double>::infinity());
+      hi.fill(-std::numeric_limits<double>::infinity());
+      for (size_t i = 0; i < ps.size(); ++i) {
+        if (ps.body[i] != int32_t(b)) continue;
+        mine.push_back(i);
+        const double x[3] = {ps.rest[i].x, ps.rest[i].y, ps.rest[i].z};
+        for (int a = 0; a < 3; ++a) {
+          lo[size_t(a)] = std::min(lo[size_t(a)], x[a]);
+          hi[size_t(a)] = std::max(hi[size_t(a)], x[a]);
+        }
+      }
+      if (mine.empty()) continue;
+      double cells = 1;
+      for (int a = 0; a < 3; ++a) cells *= std::max(1.0, std::ceil((hi[size_t(a)] - lo[size_t(a)]) / g.size));
+      if (cells > double(kMaxShardCells))
+        throw SceneError(scene.path, "shards[" + std::to_string(t) + "].size",
+                         format_number(g.size) + " m cuts body '" + scene.bodies[b].name + "' into " +
+                             std::to_string(int64_t(cells)) + " cells; allowed: at most " +
+                             std::to_string(kMaxShardCells) + " (a larger size)");
+      const ShardSeeds seeds = shard_seeds(lo, hi, g.size, g.jitter, scene.seed * 7919u + t * 104729u + b);
+      // Each particle's cell, numbered over all bodies in the order first met; empty cells get none.
+      std::vector<int32_t> number(seeds.seed.size(), -1);
+      for (size_t i : mine) {
+        const int64_t s = seeds.nearest({ps.rest[i].x, ps.rest[i].y, ps.rest[i].z});
+        if (number[size_t(s)] < 0) number[size_t(s)] = int32_t(report.cells++);
+        ps.shard[i] = number[size_t(s)];
+        ps.shard_strength[i] = strength;
+        ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * g.hold);
+      }
+      report.particles += int64_t(mine.size());
+    }
+  }
+  return report;
+}
+
+}  // namespace pd

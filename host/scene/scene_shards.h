@@ -1,0 +1,41 @@
+// Shards ([[shards]], issue 31): which Voronoi cell each particle of a body lies in, so that the
+// engine weakens the bonds between cells (cuda/engine/bond_cuts.h) and the body breaks into
+// pieces of cells, never of single particles.
+#pragma once
+
+#include <cstdint>
+
+#include "cuda/engine/particle_set.h"
+#include "host/scene/scene.h"
+
+namespace pd {
+
+// The cells' seeds of one body: a grid of spacing `size` over the body's rest bounding box, each
+// seed moved from its grid cell's centre by jitter x size x U(-1/2, 1/2) per axis.
+struct ShardSeeds {
+  double size = 0;
+  std::array<double, 3> origin{};
+  std::array<int64_t, 3> n{};
+  std::vector<std::array<double, 3>> seed;  // x fastest
+  // The seed nearest to x (the lower index on a tie): searched over the grid cells within 2 of
+  // x's, which hold it (a seed stays in its grid cell, and every point of a cell is within
+  // sqrt(3) size of its seed, nearer than any seed 2 cells away).
+  int64_t nearest(const std::array<double, 3>& x) const;
+};
+
+ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double size,
+                       double jitter, uint64_t seed);
+
+struct ShardReport {
+  int64_t cells = 0;      // cells holding at least one particle
+  int64_t particles = 0;  // particles in cells
+};
+
+// Fills ps.shard and ps.shard_strength for the bodies of scene.shards (body indices as in
+// scene.bodies) and multiplies their particles' strain limits by `hold`; leaves both empty when
+// the scene has none. Cells are numbered over all bodies. Throws SceneError when a body would
+// need more than kMaxShardCells cells.
+constexpr int64_t kMaxShardCells = int64_t(1) << 26;
+ShardReport assign_shards(const Scene& scene, ParticleSet& ps);
+
+}  // namespace pd

@@ -1,0 +1,169 @@
+// Shards ([[shards]], host/scene/scene_shards.h): the seeds' grid and nearest-seed search, the
+// cells, strengths and strain limits setup_scene gives a body, and the loader's messages.
+#include "host/scene/scene_shards.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <string>
+
+#include "host/geometry/random.h"
+#include "host/scene/scene_setup.h"
+
+namespace pd {
+namespace {
+
+const std::string kTwoPlates = R"(
+[simulation]
+seed = 5
+[materials.glass]
+density = 2440
+bulk_modulus = 4e10
+strain_limit = 1e-3
+strain_limit_scatter = 0
+[[bodies]]
+name = "plate"
+size = [0.02, 0.01, 0.004]
+spacing = 0.001
+material = "glass"
+[[bodies]]
+name = "other"
+center = [0.0, 0.05, 0.0]
+size = [0.01, 0.01, 0.004]
+spacing = 0.001
+material = "glass"
+)";
+
+TEST(SceneShards, NearestIsTheNearestSeedOfAll) {
+  const ShardSeeds s = shard_seeds({0, 0, 0}, {0.1, 0.05, 0.02}, 0.01, 1.0, 3);
+  EXPECT_EQ(s.n[0], 10);
+  EXPECT_EQ(s.n[1], 5);
+  EXPECT_EQ(s.n[2], 2);
+  Random rng(11);
+  for (int t = 0; t < 2000; ++t) {
+    const std::array<double, 3> x = {0.1 * rng.uniform(), 0.05 * rng.uniform(), 0.02 * rng.uniform()};
+    int64_t brute = 0;
+    double best = 1e300;
+    for (size_t k = 0; k < s.seed.size(); ++k) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a)
+        d2 += (x[size_t(a)] - s.seed[k][size_t(a)]) * (x[size_t(a)] - s.seed[k][size_t(a)]);
+      if (d2 < best) {
+        best = d2;
+        brute = int64_t(k);
+      }
+    }
+    ASSERT_EQ(s.nearest(x), brute) << t;
+  }
+}
+
+TEST(SceneShards, NoJitterIsACubicGrid) {
+  const ShardSeeds s = shard_seeds({0, 0, 0}, {0.03, 0.02, 0.01}, 0.01, 0.0, 3);
+  ASSERT_EQ(s.seed.size(), 6u);
+  EXPECT_DOUBLE_EQ(s.seed[0][0], 0.005);
+  EXPECT_DOUBLE_EQ(s.seed[5][0], 0.025);
+  EXPECT_DOUBLE_EQ(s.seed[5][1], 0.015);
+  EXPECT_EQ(s.nearest({0.012, 0.001, 0.002}), 1);
+}
+
+TEST(SceneShards, SetupGivesTheNamedBodyCellsStrengthsAndLimits) {
+  const SetupResult r = setup_scene(parse_scene(kTwoPlates + R"(
+[[shards]]
+size = 0.005
+hold = 4
+body = "plate"
+)",
+                                                "scene.toml"),
+                                    SetupOptions(1.0));
+  const ParticleSet& ps = r.input.particles;
+  ASSERT_EQ(ps.shard.size(), ps.size());
+  ASSERT_EQ(ps.shard_strength.size(), ps.size());
+  std::map<int32_t, int> per_cell;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    if (ps.body[i] == 0) {
+      EXPECT_GE(ps.shard[i], 0);
+      EXPECT_EQ(ps.shard_strength[i], 64);  // 255 / 4, rounded
+      EXPECT_NEAR(ps.strain_limit0[i], 4e-3, 1e-9);
+      ++per_cell[ps.shard[i]];
+    } else {
+      EXPECT_EQ(ps.shard[i], -1);
+      EXPECT_NEAR(ps.strain_limit0[i], 1e-3, 1e-9);
+    }
+  }
+  // A 20 x 10 x 4 mm plate in cells of 5 mm: 4 x 2 x 1 grid cells, every one holding particles.
+  EXPECT_EQ(r.shards.cells, 8);
+  EXPECT_EQ(int64_t(per_cell.size()), r.shards.cells);
+  EXPECT_EQ(r.shards.particles, 20 * 10 * 4);
+  // The same scene again: the same cells (the seeds come from simulation.seed).
+  const SetupResult again = setup_scene(parse_scene(kTwoPlates + R"(
+[[shards]]
+size = 0.005
+hold = 4
+body = "plate"
+)",
+                                                    "scene.toml"),
+                                        SetupOptions(1.0));
+  EXPECT_EQ(again.input.particles.shard, ps.shard);
+}
+
+TEST(SceneShards, ATableWithoutBodyCoversEveryBodyWithCellsOfTheirOwn) {
+  const SetupResult r =
+      setup_scene(parse_scene(kTwoPlates + "[[shards]]\nsize = 0.005\n", "scene.toml"), SetupOptions(1.0));
+  const ParticleSet& ps = r.input.particles;
+  std::set<int32_t> cells[2];
+  for (size_t i = 0; i < ps.size(); ++i) {
+    ASSERT_GE(ps.shard[i], 0);
+    EXPECT_EQ(ps.shard_strength[i], 85);  // hold 3 by default
+    cells[ps.body[i]].insert(ps.shard[i]);
+  }
+  for (int32_t c : cells[1]) EXPECT_EQ(cells[0].count(c), 0u) << "a cell shared by two bodies";
+  EXPECT_EQ(r.shards.cells, int64_t(cells[0].size() + cells[1].size()));
+}
+
+TEST(SceneShards, NoTableNoFields) {
+  const SetupResult r = setup_scene(parse_scene(kTwoPlates, "scene.toml"), SetupOptions(1.0));
+  EXPECT_TRUE(r.input.particles.shard.empty());
+  EXPECT_TRUE(r.input.particles.shard_strength.empty());
+  EXPECT_EQ(r.shards.cells, 0);
+}
+
+void expect_scene_error(const std::string& extra, const std::string& key, const std::string& allowed) {
+  try {
+    parse_scene(kTwoPlates + extra, "scene.toml");
+    ADD_FAILURE() << "accepted: " << extra;
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("scene.toml"), std::string::npos) << what;
+    EXPECT_NE(what.find(key), std::string::npos) << what;
+    EXPECT_NE(what.find(allowed), std::string::npos) << what;
+  }
+}
+
+TEST(SceneShards, BadTablesAreNamed) {
+  expect_scene_error("[[shards]]\nhold = 3\n", "shards[0].size", "required");
+  expect_scene_error("[[shards]]\nsize = 0\n", "shards[0].size", "> 0");
+  expect_scene_error("[[shards]]\nsize = 0.01\nhold = 1\n", "shards[0].hold", "(1, 255]");
+  expect_scene_error("[[shards]]\nsize = 0.01\nhold = 300\n", "shards[0].hold", "255");
+  expect_scene_error("[[shards]]\nsize = 0.01\njitter = 2\n", "shards[0].jitter", "[0, 1]");
+  expect_scene_error("[[shards]]\nsize = 0.01\nbody = \"vase\"\n", "shards[0].body", "plate");
+  expect_scene_error("[[shards]]\nsize = 0.01\nbody = \"plate\"\n[[shards]]\nsize = 0.02\nbody = \"plate\"\n",
+                     "shards[1].body", "one [[shards]] per body");
+  expect_scene_error("[[shards]]\nsize = 0.01\n[[shards]]\nsize = 0.02\nbody = \"other\"\n", "shards[1].body",
+                     "one [[shards]] per body");
+  expect_scene_error("[[shards]]\nsize = 0.01\nhole = 3\n", "hole", "hold");
+}
+
+TEST(SceneShards, TooManyCellsIsAClearError) {
+  try {
+    setup_scene(parse_scene(kTwoPlates + "[[shards]]\nsize = 1e-6\n", "scene.toml"), SetupOptions(1.0));
+    ADD_FAILURE() << "accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("shards[0].size"), std::string::npos) << what;
+    EXPECT_NE(what.find("a larger size"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace pd
