@@ -70,6 +70,19 @@ for f in frame_00003.pfr energy.csv fragments_00003.pfg; do
 done
 [ $ball_same -eq 1 ] && echo "mpi-equivalence: colliders on 2 ranks: identical to one rank"
 
+# Shards (Voronoi cells weakening the bonds between them) on 3 ranks: every rank weakens the bonds
+# of its particles as one rank does.
+shards="scenes/glass_plate_projectile.toml --scale 0.02 --steps-per-frame 800 --frames 3 --backend $backend"
+shard_cells=(--set "shards[0].size=0.03" --set "shards[0].hold=5")
+"$bin" run --overwrite $shards "${shard_cells[@]}" --out "$out/shards1" >"$out/shards1.log" 2>&1
+mpirun -np 3 "$bin" run --overwrite $shards "${shard_cells[@]}" --out "$out/shards3" >"$out/shards3.log" 2>&1
+shards_same=1
+for f in frame_00003.pfr energy.csv fragments_00003.pfg fragments.csv; do
+  cmp -s "$out/shards1/$f" "$out/shards3/$f" || { echo "mpi-equivalence: shards: $f differs on 3 ranks" >&2; shards_same=0; status=1; }
+done
+grep -q '^shards ' "$out/shards1.log" || { echo "mpi-equivalence: shards: the run made no cells" >&2; shards_same=0; status=1; }
+[ $shards_same -eq 1 ] && echo "mpi-equivalence: shards on 3 ranks: identical to one rank ($(grep -o 'broken [0-9.]*%' "$out/shards1.log" | tail -n 1))"
+
 # A free collider (the iron ball pushed back by the wall) on 2 ranks, checkpointed after frame 1
 # and resumed: its reaction is summed over the ranks in another order than one rank sums it, so the
 # run is held to `perifrac compare`'s tolerances, not to the bits.
