@@ -72,7 +72,10 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps) {
   ps.shard_strength.assign(ps.size(), uint8_t(255));
   for (size_t t = 0; t < scene.shards.size(); ++t) {
     const SceneShards& g = scene.shards[t];
+    // The bonds between cells keep their limit exactly: the strength is a byte k / 255, and the
+    // limits inside are raised by 255 / k, the nearest such factor to `hold`.
     const uint8_t strength = uint8_t(std::clamp(std::lround(255.0 / g.hold), 1L, 254L));
+    const double hold = 255.0 / double(strength);
     for (size_t b = 0; b < scene.bodies.size(); ++b) {
       if (!g.body.empty() && scene.bodies[b].name != g.body) continue;
       // The body's particles and their rest bounding box.
@@ -105,7 +108,7 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps) {
         if (number[size_t(s)] < 0) number[size_t(s)] = int32_t(report.cells++);
         ps.shard[i] = number[size_t(s)];
         ps.shard_strength[i] = strength;
-        ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * g.hold);
+        ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * hold);
       }
       report.particles += int64_t(mine.size());
     }

@@ -32,7 +32,9 @@ struct ShardReport {
 };
 
 // Fills ps.shard and ps.shard_strength for the bodies of scene.shards (body indices as in
-// scene.bodies) and multiplies their particles' strain limits by `hold`; leaves both empty when
+// scene.bodies) and multiplies their particles' strain limits by `hold` (as 255 / k for the
+// integer k nearest 255 / hold, so that k / 255 gives a bond between cells exactly the limit it
+// had: hold 3 is 3, hold 10 is 9.81); leaves both empty when
 // the scene has none. Cells are numbered over all bodies. Throws SceneError when a body would
 // need more than kMaxShardCells cells.
 constexpr int64_t kMaxShardCells = int64_t(1) << 26;

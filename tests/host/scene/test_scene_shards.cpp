@@ -84,7 +84,8 @@ body = "plate"
     if (ps.body[i] == 0) {
       EXPECT_GE(ps.shard[i], 0);
       EXPECT_EQ(ps.shard_strength[i], 64);  // 255 / 4, rounded
-      EXPECT_NEAR(ps.strain_limit0[i], 4e-3, 1e-9);
+      // Raised by 255 / 64, so that a bond between cells (64 / 255 of it) keeps exactly 1e-3.
+      EXPECT_NEAR(ps.strain_limit0[i], 255.0 / 64 * 1e-3, 1e-9);
       ++per_cell[ps.shard[i]];
     } else {
       EXPECT_EQ(ps.shard[i], -1);
