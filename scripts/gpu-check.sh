@@ -18,10 +18,15 @@ rows=()
 # step NAME COMMAND...: runs the command with its output in $OUT/NAME.log, records pass/fail and time
 # (also in $OUT/rows/NAME). With GPU_CHECK_RESUME=1 a step that passed in an earlier call on the
 # same machine and $OUT keeps its row and is not run again: a check cut off by a time limit goes
-# on where it stopped.
+# on where it stopped. GPU_CHECK_SKIP="NAME ..." leaves those steps out, listed as skipped.
 mkdir -p "$OUT/rows"
 step() {
   local name=$1; shift
+  if [[ " ${GPU_CHECK_SKIP:-} " == *" $name "* ]]; then
+    rows+=("$(printf '%-22s %-5s' "$name" skip)  (GPU_CHECK_SKIP)")
+    echo "== $name: skipped"
+    return
+  fi
   if [[ "${GPU_CHECK_RESUME:-0}" == 1 && -f "$OUT/rows/$name" ]] && grep -q "^$name  *pass " "$OUT/rows/$name"; then
     rows+=("$(cat "$OUT/rows/$name") (earlier call)")
     echo "== $name: pass (earlier call)"
