@@ -28,7 +28,9 @@ Models:
 displacements are extrapolated linearly along the face's normal from the two outermost layers
 (edges and corners: along each normal in turn); the ghosts complete the real particles' families
 and carry no energy of their own, and their stiffness is carried back onto the real particles
-they are extrapolated from (T^T H T).
+they are extrapolated from (T^T H T). --ghosts fit: no layer; each particle completes its own
+family with ghosts displaced by the linear field least-squares fitted to its real family (what
+an engine can do for any particle arrangement).
 Needs numpy and scipy (Debian: python3-numpy python3-scipy).
 """
 import argparse
@@ -178,6 +180,12 @@ def deviatoric_modes(n):
 
 def stiffness(b, model, args, owners=None):
     """The stiffness and the material's (E, nu); `owners`: the particles whose energy counts (all)."""
+    M, E, nu = bond_space(b, model, args, owners)
+    return (b.B.T @ M @ b.B).tocsr(), E, nu
+
+
+def bond_space(b, model, args, owners=None):
+    """The energy's matrix over b's bond extensions (1/2 e^T M e) and the material's (E, nu)."""
     own = np.ones(b.n) if owners is None else owners.astype(float)
     if model.startswith("pmb"):
         E, nu = 72e9, 0.25
@@ -195,14 +203,14 @@ def stiffness(b, model, args, owners=None):
                 cos_j = np.sum(b.nv * normal[b.bj], 1) ** 2 * weight[b.bj]
                 shape = (1 - 0.5 * (cos_i + cos_j)) ** args.parallel_q
             G = axis_factors(b, b.r * b.bw, s["axial4"], 4, args.rounds or 3, shape)
-        return (b.B.T @ sp.diags(own[b.bi] * c * G * b.bw * b.vol[b.bi] / (2 * b.r)) @ b.B).tocsr(), E, nu
+        return sp.diags(own[b.bi] * c * G * b.bw * b.vol[b.bi] / (2 * b.r)).tocsr(), E, nu
     E, nu = 70e9, 0.3
     K, mu = E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu))
     wd, wv = state_weights(b, model, args)
     theta = sp.csr_matrix((wd * b.r * b.bw, (b.bi, np.arange(b.nb))), (b.n, b.nb))
     dev = sp.identity(b.nb) - sp.csr_matrix((b.r / 3, (np.arange(b.nb), b.bi)), (b.nb, b.n)) @ theta
     M = theta.T @ sp.diags(own * K * b.vol) @ theta + dev.T @ sp.diags(own[b.bi] * 2 * mu * wv * b.bw * b.vol[b.bi]) @ dev
-    return (b.B.T @ M @ b.B).tocsr(), E, nu
+    return M.tocsr(), E, nu
 
 
 def ghost_stiffness(dims, origin, model, args, g=3):
@@ -233,10 +241,65 @@ def ghost_stiffness(dims, origin, model, args, g=3):
     return (T.T @ H @ T).tocsr(), E, nu
 
 
+def fit_ghost_stiffness(dims, origin, model, args, g=3):
+    """--ghosts fit: each real particle's missing bonds (those of the interior's family that end
+    outside the box) are completed with ghosts of its own, displaced by the linear field fitted to
+    its real family (u_g = u_i + G_i xi, G_i = sum_j w_j (u_j - u_i) xi_ij^T K_i^-1, K_i = sum_j
+    w_j xi_ij xi_ij^T, w = omega beta V): needs no faces, so it serves tets and Voronoi cells too.
+    The ghosts own no energy; the real particles' energy over real and ghost bonds is the
+    extended body's with the ghost bonds' extensions taken through G_i."""
+    dims = np.asarray(dims)
+    ext = Body(*(dims + 2 * g), np.asarray(origin, float) - g * LAMBDA)
+    real = np.all((ext.idx >= g) & (ext.idx < dims + g), 1)
+    M, E, nu = bond_space(ext, model, args, real)
+    real_index = np.full(ext.n, -1)
+    real_index[real] = np.arange(real.sum())
+    n_real = int(real.sum())
+    # The real family of each real particle: its bonds within the box.
+    b = Body(*dims, origin)
+    w = (DELTA / b.r) ** args.fit_power * b.bw
+    rows, cols, vals = [], [], []
+    inner = real[ext.bi] & real[ext.bj]
+    k = np.nonzero(inner)[0]
+    for c in range(3):  # real bonds: n . (u_j - u_i)
+        rows += [k, k]
+        cols += [3 * real_index[ext.bj[k]] + c, 3 * real_index[ext.bi[k]] + c]
+        vals += [ext.nv[k, c], -ext.nv[k, c]]
+    to_ghost = real[ext.bi] & ~real[ext.bj]
+    order = np.argsort(b.bi, kind="stable")
+    start = np.searchsorted(b.bi[order], np.arange(n_real + 1))
+    ghost_rows = np.nonzero(to_ghost)[0]
+    owner = real_index[ext.bi[ghost_rows]]
+    for i in np.unique(owner):
+        mine = order[start[i]:start[i + 1]]  # i's real bonds in b
+        xi, wj, j = b.xi[mine], w[mine], b.bj[mine]
+        basis = xi if args.fit_order == 1 else np.concatenate(
+            [xi, np.stack([xi[:, a] * xi[:, c] for a in range(3) for c in range(a, 3)], 1)], 1)
+        Ainv = np.linalg.inv((basis * wj[:, None]).T @ basis)
+        rr = ghost_rows[owner == i]
+        # (ghost bonds, real bonds): w_j xi_o^T [A^-1 p(xi_ij)]_(linear part): the gradient at i;
+        # order 3: the whole quadratic field continued, w_j p(xi_o)^T A^-1 p(xi_ij)
+        xo = ext.xi[rr]
+        if args.fit_order == 3:
+            po = np.concatenate([xo, np.stack([xo[:, a] * xo[:, c] for a in range(3) for c in range(a, 3)], 1)], 1)
+            coef = po @ (Ainv @ (basis * wj[:, None]).T)
+        else:
+            coef = xo @ (Ainv @ (basis * wj[:, None]).T)[:3]
+        for c in range(3):
+            a = coef * ext.nv[rr, c][:, None]
+            rows += [np.repeat(rr, len(j)), rr]
+            cols += [np.tile(3 * j + c, len(rr)), np.full(len(rr), 3 * i + c)]
+            vals += [a.ravel(), -a.sum(1)]
+    Bfit = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), (ext.nb, 3 * n_real))
+    return (Bfit.T @ M @ Bfit).tocsr(), E, nu
+
+
 def body_stiffness(b, dims, origin, args):
     """The model's stiffness of body b (an nx x ny x nz box at `origin`), with ghosts if asked."""
-    if args.ghosts:
+    if args.ghosts == "layer":
         return ghost_stiffness(dims, origin, args.model, args)
+    if args.ghosts == "fit":
+        return fit_ghost_stiffness(dims, origin, args.model, args)
     return stiffness(b, args.model, args)
 
 
@@ -327,8 +390,15 @@ def main():
     p.add_argument("--rounds", type=int, default=0, help="the per-axis factors' rounds (0: the engine's)")
     p.add_argument("--alpha", type=float, default=1.0, help="pals models: A pals + (1 - A) lps")
     p.add_argument("--parallel-q", type=float, default=0.0, help="pmb-axis: the factor on bonds parallel to the surface")
+    p.add_argument("--fit-power", type=float, default=1.0,
+                   help="--ghosts fit: the fit's weights beta V (delta / |xi|)^P (1: the influence function)")
+    p.add_argument("--fit-order", type=int, default=1, choices=[1, 2, 3],
+                   help="--ghosts fit: 2 fits quadratic terms too and extrapolates with the gradient at the "
+                        "particle; 3 continues the whole quadratic field")
     p.add_argument("--length-over-height", type=int, default=5, help="cantilever: L / h")
-    p.add_argument("--ghosts", action="store_true", help="a fictitious layer outside every face (see above)")
+    p.add_argument("--ghosts", nargs="?", const="layer", choices=["layer", "fit"],
+                   help="layer: a fictitious layer outside every face; fit: each particle's own ghosts on "
+                        "its family's fitted linear field (see above)")
     args = p.parse_args()
     {"bar": bar, "bending": lambda a: bar(a, True), "cantilever": cantilever, "uniform": uniform}[args.problem](args)
 
