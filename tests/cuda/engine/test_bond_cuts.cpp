@@ -132,55 +132,54 @@ void make_cubic_shards(SimulationInput& in, int nx, int ny, double lambda, uint8
   }
 }
 
+// The strength cut_bonds gives each slot of the engine's families of `in` (shards and `cuts`),
+// passed to check(i, j, strength) per bond; returns the counts.
+template <class Check>
+BondCutCounts check_slot_strengths(const SimulationInput& in, const std::vector<CutTriangle>& cuts,
+                                   double longest, Check check) {
+  BondLists lists;
+  make_cpu_engine(in)->read_bonds(lists);
+  std::vector<uint8_t> strength;
+  const BondCutCounts counts = cut_bonds(cuts, in.particles.rest, in.particles.body, longest, lists, strength,
+                                         in.particles.shard, in.particles.shard_strength);
+  EXPECT_EQ(strength.size(), lists.neighbor.size());
+  const BondsView v = lists.view();
+  for (int32_t i = 0; i < v.n; ++i)
+    for (int32_t k = 0; k < v.count[i]; ++k) {
+      const int64_t slot = v.slot(i, k);
+      check(i, bond_partner(v.neighbor[slot]), strength.empty() ? 255 : strength[size_t(slot)]);
+    }
+  return counts;
+}
+
 TEST(BondCuts, ShardsWeakenExactlyTheBondsBetweenCells) {
   const double lambda = 1e-3;
   auto in = lattice_block(9, 6, 6, lambda);
   make_cubic_shards(in, 9, 6, lambda, 85);
-  // The same bonds through cut_bonds directly: the slots' strengths.
-  auto e = make_cpu_engine(in);
-  BondLists lists;
-  e->read_bonds(lists);
-  std::vector<uint8_t> strength;
-  const BondCutCounts counts = cut_bonds({}, in.particles.rest, in.particles.body, 0, lists, strength,
-                                         in.particles.shard, in.particles.shard_strength);
-  ASSERT_EQ(strength.size(), lists.neighbor.size());
-  const BondsView v = lists.view();
+  const auto& shard = in.particles.shard;
   int64_t between = 0;
-  for (int32_t i = 0; i < v.n; ++i)
-    for (int32_t k = 0; k < v.count[i]; ++k) {
-      const int64_t slot = v.slot(i, k);
-      const int32_t j = bond_partner(v.neighbor[slot]);
-      const bool across = in.particles.shard[size_t(i)] != in.particles.shard[size_t(j)];
-      between += across;
-      EXPECT_EQ(strength[size_t(slot)], across ? 85 : 255) << i << "-" << j;
-    }
+  const BondCutCounts counts = check_slot_strengths(in, {}, 0, [&](int32_t i, int32_t j, int strength) {
+    const bool across = shard[size_t(i)] != shard[size_t(j)];
+    between += across;
+    EXPECT_EQ(strength, across ? 85 : 255) << i << "-" << j;
+  });
   EXPECT_GT(between, 0);
   EXPECT_EQ(counts.weakened, between);
   EXPECT_EQ(counts.removed, 0);
-  EXPECT_EQ(e->family_stats().cuts.weakened, between);  // the engine applied the same
+  EXPECT_EQ(make_cpu_engine(in)->family_stats().cuts.weakened, between);  // the engine applied the same
 }
 
 TEST(BondCuts, ShardsAndATriangleTakeTheWeaker) {
   const double lambda = 1e-3;
   auto in = lattice_block(9, 6, 6, lambda);
   make_cubic_shards(in, 9, 6, lambda, 85);
-  // A plane at x = 4.5 lambda (inside the second column of cells) at strength 0.2.
-  auto e = make_cpu_engine(in);
-  BondLists lists;
-  e->read_bonds(lists);
-  std::vector<uint8_t> strength;
-  cut_bonds(plane_x(4.5e-3, 0.2), in.particles.rest, in.particles.body, 4e-3, lists, strength,
-            in.particles.shard, in.particles.shard_strength);
-  const BondsView v = lists.view();
-  for (int32_t i = 0; i < v.n; ++i)
-    for (int32_t k = 0; k < v.count[i]; ++k) {
-      const int64_t slot = v.slot(i, k);
-      const int32_t j = bond_partner(v.neighbor[slot]);
-      const bool across = in.particles.shard[size_t(i)] != in.particles.shard[size_t(j)];
-      const bool crosses =
-          (in.particles.rest[size_t(i)].x < 4.5e-3) != (in.particles.rest[size_t(j)].x < 4.5e-3);
-      EXPECT_EQ(strength[size_t(slot)], crosses ? 51 : (across ? 85 : 255)) << i << "-" << j;
-    }
+  // A plane at x = 4.5 lambda (inside the second column of cells) at strength 0.2 (51 / 255).
+  const auto& ps = in.particles;
+  check_slot_strengths(in, plane_x(4.5e-3, 0.2), 4e-3, [&](int32_t i, int32_t j, int strength) {
+    const bool across = ps.shard[size_t(i)] != ps.shard[size_t(j)];
+    const bool crosses = (ps.rest[size_t(i)].x < 4.5e-3) != (ps.rest[size_t(j)].x < 4.5e-3);
+    EXPECT_EQ(strength, crosses ? 51 : (across ? 85 : 255)) << i << "-" << j;
+  });
 }
 
 // Pulled apart at its middle, which lies inside a cell, a bar of shards whose cells hold 5 times

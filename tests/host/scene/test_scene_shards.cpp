@@ -68,14 +68,12 @@ TEST(SceneShards, NoJitterIsACubicGrid) {
 }
 
 TEST(SceneShards, SetupGivesTheNamedBodyCellsStrengthsAndLimits) {
-  const SetupResult r = setup_scene(parse_scene(kTwoPlates + R"(
-[[shards]]
-size = 0.005
-hold = 4
-body = "plate"
-)",
-                                                "scene.toml"),
-                                    SetupOptions(1.0));
+  const auto setup = [] {
+    return setup_scene(
+        parse_scene(kTwoPlates + "[[shards]]\nsize = 0.005\nhold = 4\nbody = \"plate\"\n", "scene.toml"),
+        SetupOptions(1.0));
+  };
+  const SetupResult r = setup();
   const ParticleSet& ps = r.input.particles;
   ASSERT_EQ(ps.shard.size(), ps.size());
   ASSERT_EQ(ps.shard_strength.size(), ps.size());
@@ -97,14 +95,7 @@ body = "plate"
   EXPECT_EQ(int64_t(per_cell.size()), r.shards.cells);
   EXPECT_EQ(r.shards.particles, 20 * 10 * 4);
   // The same scene again: the same cells (the seeds come from simulation.seed).
-  const SetupResult again = setup_scene(parse_scene(kTwoPlates + R"(
-[[shards]]
-size = 0.005
-hold = 4
-body = "plate"
-)",
-                                                    "scene.toml"),
-                                        SetupOptions(1.0));
+  const SetupResult again = setup();
   EXPECT_EQ(again.input.particles.shard, ps.shard);
 }
 
