@@ -227,9 +227,11 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
       (long long)fam.bonds, fam.min, fam.mean, fam.max,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count(),
       double(engine.memory_bytes()) / (1 << 20));
+  // (The bonds a crack and the shards both weaken count once, in the cracks' line when both exist.)
   if (!setup.input.cuts.empty())
-    std::printf("cracks     %zu triangles: %lld bonds removed, %lld weakened (per direction)\n",
-                setup.input.cuts.size(), (long long)fam.cuts.removed, (long long)fam.cuts.weakened);
+    std::printf("cracks     %zu triangles: %lld bonds removed, %lld weakened (per direction%s)\n",
+                setup.input.cuts.size(), (long long)fam.cuts.removed, (long long)fam.cuts.weakened,
+                setup.shards.cells > 0 ? ", with the shards'" : "");
   if (setup.shards.cells > 0)
     std::printf("shards     %lld cells of %lld particles (%.1f per cell); bonds between cells weakened%s\n",
                 (long long)setup.shards.cells, (long long)setup.shards.particles,
