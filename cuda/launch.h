@@ -103,8 +103,6 @@ void with_bond_threads(int threads, F&& f) {
         return f(std::integral_constant<int, 8>{});
       case 4:
         return f(std::integral_constant<int, 4>{});
-      case 2:
-        return f(std::integral_constant<int, 2>{});
       default:
         break;
     }
@@ -122,10 +120,8 @@ constexpr const char* team_flag() {
       return "team16";
     case 8:
       return "team8";
-    case 4:
-      return "team4";
     default:
-      return "team2";
+      return "team4";
   }
 }
 

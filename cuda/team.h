@@ -96,9 +96,12 @@ PD_HD inline void store_intact_word(uint32_t* word, uint32_t intact, [[maybe_unu
   }
 }
 
-// The team sizes a launch may take (with_bond_threads, cuda/launch.h).
+// The team sizes a launch may take (with_bond_threads, cuda/launch.h). No team of 2: the rule
+// below never takes it (one thread was as fast or faster in every scene swept but the torus,
+// where it was 0.5% behind 4 lanes), and each size is one more instantiation of every bond kernel
+// to compile.
 constexpr bool valid_bond_threads(int threads) {
-  return threads == 1 || threads == 2 || threads == 4 || threads == 8 || threads == 16 || threads == 32;
+  return threads == 1 || threads == 4 || threads == 8 || threads == 16 || threads == 32;
 }
 
 // The lanes per particle a run uses, from a sweep of sizes 1 to 32 on an H100 (bench/NOTES.md,

@@ -19,7 +19,7 @@ int requested_bond_threads(const SimulationInput& in) {
   if (threads != 0 && !valid_bond_threads(threads))
     throw std::invalid_argument(
         "environment PERIFRAC_BOND_THREADS='" + s +
-        "': allowed are 1, 2, 4, 8, 16, 32 (threads per particle) and 0 (chosen from the scene)");
+        "': allowed are 1, 4, 8, 16, 32 (threads per particle) and 0 (chosen from the scene)");
   return threads;
 }
 

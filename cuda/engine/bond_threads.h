@@ -8,7 +8,7 @@
 namespace pd {
 
 // The threads per particle a run of `in` asks for: in.bond_threads where set, else the
-// environment's PERIFRAC_BOND_THREADS (1, 2, 4, 8, 16 or 32: e.g. 1 to reproduce a run's bits
+// environment's PERIFRAC_BOND_THREADS (1, 4, 8, 16 or 32: e.g. 1 to reproduce a run's bits
 // from before teams), else 0 (chosen from the scene). std::invalid_argument names a bad value.
 int requested_bond_threads(const SimulationInput& in);
 

@@ -53,7 +53,7 @@ struct SimulationInput {
   bool contact = false;                            // launch `collection` and `collisions`
   bool lattice_families = true;  // box-grid bodies find partners by offset (lattice_families.h)
   BondScreen screen = BondScreen::kAuto;
-  // Threads per particle in the GPU's bond loops (cuda/team.h): 1, 2, 4, 8, 16 or 32; 0 chooses
+  // Threads per particle in the GPU's bond loops (cuda/team.h): 1, 4, 8, 16 or 32; 0 chooses
   // from the scene (bond_threads.h). The CPU backend runs one.
   int bond_threads = 0;
 };

@@ -82,9 +82,9 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
                   "(off), or in every step (always)")
       ->check(CLI::IsMember({"auto", "off", "always"}));
   cmd->add_option("--bond-threads", bench->bond_threads,
-                  "threads per particle in the GPU's bond loops: 1, 2, 4, 8, 16, 32, or 0 to "
+                  "threads per particle in the GPU's bond loops: 1, 4, 8, 16, 32, or 0 to "
                   "choose from the scene (cuda/team.h)")
-      ->check(CLI::IsMember({0, 1, 2, 4, 8, 16, 32}));
+      ->check(CLI::IsMember({0, 1, 4, 8, 16, 32}));
   cmd->add_option("--model", bench->model,
                   "lattice material: bond_based | state_based | plastic | anisotropic")
       ->check(CLI::IsMember({"bond_based", "state_based", "plastic", "anisotropic"}));
