@@ -340,7 +340,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     if (geometry.kind == ElementKind::voronoi) result.voronoi.push_back({base, std::move(geometry)});
   }
 
-  result.shards = assign_shards(scene, ps);
+  result.shards = assign_shards(scene, ps, in.materials);
   remove_cut_pairs(in.cuts, ps, adjacency_pairs);
   result.adjacency = adjacency_from_pairs(ps.size(), std::move(adjacency_pairs));
 

@@ -63,7 +63,7 @@ ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double,
   return s;
 }
 
-ShardReport assign_shards(const Scene& scene, ParticleSet& ps) {
+ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& materials) {
   ShardReport report;
   ps.shard.clear();
   ps.shard_strength.clear();
@@ -111,6 +111,7 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps) {
         ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * hold);
       }
       report.particles += int64_t(mine.size());
+      materials.m[ps.material[mine.front()]].compression_alpha *= real(hold);
     }
   }
   return report;

@@ -34,10 +34,12 @@ struct ShardReport {
 // Fills ps.shard and ps.shard_strength for the bodies of scene.shards (body indices as in
 // scene.bodies) and multiplies their particles' strain limits by `hold` (as 255 / k for the
 // integer k nearest 255 / hold, so that k / 255 gives a bond between cells exactly the limit it
-// had: hold 3 is 3, hold 10 is 9.81); leaves both empty when
+// had: hold 3 is 3, hold 10 is 9.81), and their material's compression strengthening (Levine
+// eq. 5's alpha, one material table entry per body) by the same, so that a face's limit
+// w max(tau'_i, tau'_j) is the material's under compression too; leaves both empty when
 // the scene has none. Cells are numbered over all bodies. Throws SceneError when a body would
 // need more than kMaxShardCells cells.
 constexpr int64_t kMaxShardCells = int64_t(1) << 26;
-ShardReport assign_shards(const Scene& scene, ParticleSet& ps);
+ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& materials);
 
 }  // namespace pd

@@ -22,6 +22,7 @@ density = 2440
 bulk_modulus = 4e10
 strain_limit = 1e-3
 strain_limit_scatter = 0
+compression_alpha = 0.25
 [[bodies]]
 name = "plate"
 size = [0.02, 0.01, 0.004]
@@ -90,6 +91,9 @@ TEST(SceneShards, SetupGivesTheNamedBodyCellsStrengthsAndLimits) {
       EXPECT_NEAR(ps.strain_limit0[i], 1e-3, 1e-9);
     }
   }
+  // The plate's compression strengthening raised as its limits (its own material table entry).
+  EXPECT_NEAR(r.input.materials.m[ps.material[0]].compression_alpha, 255.0 / 64 * 0.25, 1e-6);
+  EXPECT_NEAR(r.input.materials.m[ps.material.back()].compression_alpha, 0.25, 1e-7);
   // A 20 x 10 x 4 mm plate in cells of 5 mm: 4 x 2 x 1 grid cells, every one holding particles.
   EXPECT_EQ(r.shards.cells, 8);
   EXPECT_EQ(int64_t(per_cell.size()), r.shards.cells);
