@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "cuda/engine/bond_cuts.h"
+#include "tests/support/broken_bonds.h"
 #include "tests/support/fixtures.h"
 
 namespace pd {
@@ -95,18 +96,9 @@ void expect_weak_plane_breaks_first(SimulationInput in, double cut) {
   EXPECT_GT(e->family_stats().cuts.weakened, 0);
   while (e->broken_bonds() == 0 && e->step() < 20000) e->advance(20);
   ASSERT_GT(e->broken_bonds(), 0);
-  BondLists b;
-  e->read_bonds(b);
-  const BondsView v = b.view();
-  int64_t broken = 0;
-  for (int32_t i = 0; i < v.n; ++i)
-    for (int32_t k = 0; k < v.count[i]; ++k) {
-      const int32_t nb = v.neighbor[v.slot(i, k)];
-      if (bond_intact(nb)) continue;
-      ++broken;
-      EXPECT_NE(ps.rest[size_t(i)].x < cut, ps.rest[size_t(bond_partner(nb))].x < cut) << i;
-    }
-  EXPECT_EQ(broken % 2, 0);
+  const auto broken = testing::broken_bond_set(*e);
+  for (const auto& [i, j] : broken) EXPECT_NE(ps.rest[size_t(i)].x < cut, ps.rest[size_t(j)].x < cut) << i;
+  EXPECT_EQ(broken.size() % 2, 0u);
 }
 
 TEST(BondCuts, WeakenedPlaneBreaksFirstBondBased) {
@@ -189,21 +181,13 @@ void expect_shards_break_between_cells(SimulationInput in) {
   const double lambda = 1e-3;
   in = testing::pulled_apart(std::move(in), 12, lambda, 1);
   make_cubic_shards(in, 12, 6, lambda, 51);
+  const auto& shard = in.particles.shard;
   auto e = make_cpu_engine(in);
   e->advance(300);
-  BondLists b;
-  e->read_bonds(b);
-  const BondsView v = b.view();
-  int64_t broken = 0;
-  for (int32_t i = 0; i < v.n; ++i)
-    for (int32_t k = 0; k < v.count[i]; ++k) {
-      const int32_t nb = v.neighbor[v.slot(i, k)];
-      if (bond_intact(nb)) continue;
-      ++broken;
-      EXPECT_NE(in.particles.shard[size_t(i)], in.particles.shard[size_t(bond_partner(nb))]) << i;
-    }
-  EXPECT_GT(broken, 100);
-  EXPECT_EQ(broken % 2, 0);
+  const auto broken = testing::broken_bond_set(*e);
+  for (const auto& [i, j] : broken) EXPECT_NE(shard[size_t(i)], shard[size_t(j)]) << i;
+  EXPECT_GT(broken.size(), 100u);
+  EXPECT_EQ(broken.size() % 2, 0u);
   // The same bar without shards breaks bonds inside the cells.
   SimulationInput plain = in;
   plain.particles.shard.clear();
@@ -211,14 +195,8 @@ void expect_shards_break_between_cells(SimulationInput in) {
   for (size_t i = 0; i < plain.particles.size(); ++i) plain.particles.strain_limit0[i] *= real(51.0 / 255);
   auto p = make_cpu_engine(plain);
   p->advance(300);
-  p->read_bonds(b);
   int64_t inside = 0;
-  for (int32_t i = 0; i < v.n; ++i)
-    for (int32_t k = 0; k < b.view().count[i]; ++k) {
-      const int32_t nb = b.neighbor[size_t(b.view().slot(i, k))];
-      inside +=
-          !bond_intact(nb) && in.particles.shard[size_t(i)] == in.particles.shard[size_t(bond_partner(nb))];
-    }
+  for (const auto& [i, j] : testing::broken_bond_set(*p)) inside += shard[size_t(i)] == shard[size_t(j)];
   EXPECT_GT(inside, 0);
 }
 
