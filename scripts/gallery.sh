@@ -7,7 +7,9 @@
 #                      [--list] [--encode]
 #
 # --encode runs nothing: it makes the clips of frames rendered earlier by --clips (DIR/NAME/render/,
-# copied from a GPU machine without ffmpeg, say) and adds them to the index.
+# copied from a GPU machine without ffmpeg, say), turns PNG stills in --docs into JPEG, and adds
+# both to the index. Stills are 1280x720 (GALLERY_WIDTH, GALLERY_HEIGHT), clips 480x270; with
+# ffmpeg present the stills are kept as JPEG (a tenth of the PNG's size).
 #
 # On a GPU (--backend cuda, or auto with one) the scenes run at full size, sweeps of the two
 # 600k-particle scenes at a quarter; on the CPU every entry runs at its scene's CPU preview scale
@@ -51,9 +53,12 @@ ENTRIES=(
   "glass_pressed|chen_glass_wall_pressed|Chen Fig. 15|-|1|0.05|50|50"
   "elastic_drop|chen_elastic_drop|Chen Fig. 16|-|1|0.1|60|60|--eye 0.9,0.6,1.4 --look-at 0.1,0.05,0"
   "thin_sheet|chen_thin_sheet_tear|Chen Fig. 17|-|1|0.1|60|50"
+  "glass_plate_shards|glass_plate_projectile|Levine Fig. 2 with [[shards]] (issue 31)|shards[0].size=0.02;shards[0].hold=10|1|0.05|40|24"
+  "vase_shards|vase_drop|Levine Fig. 1 with [[shards]] (issue 31)|shards[0].size=0.02;shards[0].hold=10|1|0.02|150|120"
+  "elastic_drop_shards|chen_elastic_drop|Chen Fig. 16 with [[shards]] (issue 31)|shards[0].size=0.05;shards[0].hold=10|1|0.1|60|60|--eye 0.9,0.6,1.4 --look-at 0.1,0.05,0"
 )
 
-usage() { sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 BACKEND=auto ONLY="" CLIPS=0 ENCODE=0 OUT=out/gallery DOCS=docs/gallery
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -75,7 +80,8 @@ if [[ $BACKEND == auto ]]; then
   "$BIN" info 2>/dev/null | grep -q '^cuda *available' && BACKEND=cuda
 fi
 mkdir -p "$OUT" "$DOCS"
-WIDTH=480 HEIGHT=270 SPP=4
+WIDTH=${GALLERY_WIDTH:-1280} HEIGHT=${GALLERY_HEIGHT:-720} SPP=8
+CLIP_WIDTH=480 CLIP_HEIGHT=270 CLIP_SPP=4
 
 # The index: rows of this run, and of entries not run this time as the index had them.
 write_index() {
@@ -95,7 +101,7 @@ write_index() {
       echo "Every shipped scene and the papers' parameter sweeps, made by \`scripts/gallery.sh\` on"
       echo "$(date -u +%Y-%m-%d) (last run: backend $BACKEND, git ${PERIFRAC_GIT_REV:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)})."
       echo "Time per step: all kernels of a step, from the run's kernel table. Stills are ${WIDTH}x${HEIGHT},"
-      echo "$SPP samples per pixel, rendered by \`perifrac render\` on the same backend."
+      echo "$SPP samples per pixel, rendered by \`perifrac render\` on the same backend (clips ${CLIP_WIDTH}x${CLIP_HEIGHT})."
       echo
     fi
     echo "| entry | figure | scene and overrides | particles | bonds | ms per step | device | still |"
@@ -105,6 +111,7 @@ write_index() {
       [[ -n ${rows[$name]+x} ]] || continue
       line=${rows[$name]% |}
       line=${line% \[clip\]($name.mp4)}
+      [[ -f $DOCS/$name.jpg ]] && line=${line//"($name.png)"/"($name.jpg)"}
       [[ -f $DOCS/$name.mp4 ]] && line+=" [clip]($name.mp4)"
       echo "$line |"
     done
@@ -115,6 +122,12 @@ write_index() {
     fi
   } >"$DOCS/README.md.tmp"
   mv "$DOCS/README.md.tmp" "$DOCS/README.md"
+}
+
+# The still of entry $1 as JPEG where ffmpeg is present (the PNG removed), else left as PNG.
+compress_still() {
+  command -v ffmpeg >/dev/null && [[ -f $DOCS/$1.png ]] || return 0
+  ffmpeg -loglevel error -y -i "$DOCS/$1.png" -q:v 3 "$DOCS/$1.jpg" && rm -f "$DOCS/$1.png"
 }
 
 # The clip of entry $1 from its rendered frames, where ffmpeg is present.
@@ -134,7 +147,9 @@ declare -A rows
 if [[ $ENCODE == 1 ]]; then
   for entry in "${ENTRIES[@]}"; do
     name=${entry%%|*}
-    selected "$name" && [[ -f $OUT/$name/render/frame_00000.png ]] || continue
+    selected "$name" || continue
+    compress_still "$name"
+    [[ -f $OUT/$name/render/frame_00000.png ]] || continue
     echo "== $name: clip from $OUT/$name/render/"
     make_clip "$name"
   done
@@ -164,9 +179,11 @@ for entry in "${ENTRIES[@]}"; do
   # The still: the chosen frame alone, rendered on the same backend.
   "$BIN" render "$OUT/$name" --frames "$still" --backend "$BACKEND" --out "$OUT/$name.still" "${cam[@]}" --width $WIDTH \
     --height $HEIGHT --spp $SPP >"$OUT/$name.render.log" 2>&1
+  rm -f "$DOCS/$name.jpg"
   cp "$OUT/$name.still/frame_$(printf '%05d' "$still").png" "$DOCS/$name.png"
+  compress_still "$name"
   if [[ $CLIPS == 1 ]]; then
-    "$BIN" render "$OUT/$name" --backend "$BACKEND" "${cam[@]}" --width $WIDTH --height $HEIGHT --spp $SPP \
+    "$BIN" render "$OUT/$name" --backend "$BACKEND" "${cam[@]}" --width $CLIP_WIDTH --height $CLIP_HEIGHT --spp $CLIP_SPP \
       >>"$OUT/$name.render.log" 2>&1
     make_clip "$name"
   fi

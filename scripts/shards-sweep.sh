@@ -10,7 +10,10 @@
 #   scripts/shards-sweep.sh [BINARY] [SCENES]     SCENES: glass_plate vase elastic_drop (default all)
 #   SCALE=0.1 FRAMES=3 scripts/shards-sweep.sh build/cpu/perifrac elastic_drop   (a quick look)
 #   KNOB=shards SWEEP_glass_plate="none 0.01:10" scripts/shards-sweep.sh   (cells of 1 cm, hold 10)
-# The glass plate also gets a face-on still with damage colours (its crack pattern).
+#   KNOB=shards SWEEP_glass_plate="0.01:10:0.05" ...   (cells only within 5 cm of the impact point)
+# The glass plate also gets a face-on still with damage colours (its crack pattern). Each run's
+# singles are counted by rest distance from the scene's impact point (scripts/singles-where.py,
+# $OUT/shards-sweep/NAME.where.txt) where python3 is present.
 # Prints a table; writes $OUT/shards-sweep/table.txt.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -22,40 +25,44 @@ OUT=${OUT:-out}/shards-sweep
 mkdir -p "$OUT/stills"
 [[ -x $bin ]] || { echo "shards-sweep: no perifrac binary at '$bin'" >&2; exit 2; }
 
-# name | scene | material | alphas (the first is the scene's own); SWEEP_<name> replaces a list
-# (e.g. SWEEP_vase="1 1.5 2")
+# name | scene | material | alphas (the first is the scene's own) | impact point (a zone's centre);
+# SWEEP_<name> replaces a list (e.g. SWEEP_vase="1 1.5 2")
 knob=${KNOB:-alpha}
 [[ $knob == alpha || $knob == shards ]] || { echo "shards-sweep: KNOB must be alpha or shards" >&2; exit 2; }
 if [[ $knob == alpha ]]; then
   SWEEPS=(
-    "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-0 2 5 10}"
-    "vase|vase_drop|clay|${SWEEP_vase:-0 3 6}"
-    "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-0.5 2 5}"
+    "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-0 2 5 10}|0,0,0"
+    "vase|vase_drop|clay|${SWEEP_vase:-0 3 6}|0,-0.16,0"
+    "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-0.5 2 5}|0,-0.1,0"
   )
 else
   SWEEPS=(
-    "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-none 0.01:10 0.02:10}"
-    "vase|vase_drop|clay|${SWEEP_vase:-none 0.02:10 0.03:10}"
-    "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-none 0.03:10 0.05:10}"
+    "glass_plate|glass_plate_projectile|glass|${SWEEP_glass_plate:-none 0.01:10 0.02:10}|0,0,0"
+    "vase|vase_drop|clay|${SWEEP_vase:-none 0.02:10 0.03:10}|0,-0.16,0"
+    "elastic_drop|chen_elastic_drop|jelly|${SWEEP_elastic_drop:-none 0.03:10 0.05:10}|0,-0.1,0"
   )
 fi
-# The setting of one sweep value.
+# The setting of one sweep value: MATERIAL VALUE IMPACT_POINT.
 knob_args() {
   if [[ $knob == alpha ]]; then
     echo "--set materials.$1.damage_alpha=$2"
   elif [[ $2 != none ]]; then
-    echo "--set shards[0].size=${2%%:*} --set shards[0].hold=${2##*:}"
+    local size hold radius
+    IFS=: read -r size hold radius <<<"$2"
+    echo "--set shards[0].size=$size --set shards[0].hold=$hold"
+    [[ -n $radius ]] && echo "--set shards[0].radius=$radius --set shards[0].center=[$3]"
   fi
 }
 rows=()
 for sweep in "${SWEEPS[@]}"; do
-  IFS='|' read -r name scene material alphas <<<"$sweep"
+  IFS='|' read -r name scene material alphas impact <<<"$sweep"
   [[ " $only " == *" $name "* ]] || continue
   for alpha in $alphas; do
-    dir="$OUT/$name-${knob:0:1}${alpha//:/h}"
+    tag=${alpha/:/h}
+    dir="$OUT/$name-${knob:0:1}${tag/:/r}"
     t0=$SECONDS
     # shellcheck disable=SC2046  # the settings split into their words
-    if ! "$bin" run --overwrite "scenes/$scene.toml" $(knob_args "$material" "$alpha") \
+    if ! "$bin" run --overwrite "scenes/$scene.toml" $(knob_args "$material" "$alpha" "$impact") \
       "${size[@]}" --out "$dir" >"$dir.log" 2>&1; then
       rows+=("$(printf '%-13s %6s  run failed: %s' "$name" "$alpha" "$(tail -n 1 "$dir.log")")")
       continue
@@ -70,6 +77,8 @@ for sweep in "${SWEEPS[@]}"; do
       free = NF >= 33 && $33 != "" ? sprintf("%.1f%%", 100 * $33) : "-"
       printf "%-13s %6s %6d %9.1f%% %9s %9.1f%% %8d %8d %8s %6ds", n, a, $1, 100 * $6, free, 100 * $7, $4, big, b, s }' <<<"$last")")
     frame=$(cut -d, -f1 <<<"$last")
+    command -v python3 >/dev/null &&
+      python3 scripts/singles-where.py "$dir" --center "$impact" --band 0.02 --bands 12 >"$OUT/$(basename "$dir").where.txt"
     "$bin" render "$dir" --frames "$frame" --width 960 --height 540 --spp 4 --out "$dir/still" >"$dir.render.log" 2>&1 &&
       cp "$dir/still/frame_$(printf %05d "$frame").png" "$OUT/stills/$(basename "$dir").png"
     [[ $name == glass_plate ]] &&

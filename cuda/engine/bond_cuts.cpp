@@ -107,8 +107,7 @@ BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<
 #pragma omp parallel for reduction(+ : removed, weakened) schedule(dynamic, 256)
   for (int32_t i = 0; i < n; ++i) {
     const bool near_cut = tester && !tester->clear(rest[size_t(i)]);
-    const bool in_shard = shards && shard[size_t(i)] >= 0;
-    if (!near_cut && !in_shard) continue;
+    if (!near_cut && !shards) continue;
     int32_t kept = 0;
     for (int32_t k = 0; k < b.count[i]; ++k) {
       const int64_t slot = b.slot(i, k);
@@ -123,7 +122,9 @@ BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<
           weakest < 1
               ? uint8_t(std::clamp(std::lround(weakest * kStrengthLevels), 1L, long(kStrengthLevels) - 1))
               : uint8_t(kStrengthLevels);
-      if (in_shard && shard[size_t(j)] >= 0 && shard[size_t(j)] != shard[size_t(i)])
+      // A face between two cells, or between a cell and a particle in none (a zone's edge; a
+      // particle in none has strength 255).
+      if (shards && shard[size_t(j)] != shard[size_t(i)])
         q = std::min({q, shard_strength[size_t(i)], shard_strength[size_t(j)]});
       const int64_t to = b.slot(i, kept++);
       b.neighbor[to] = b.neighbor[slot];

@@ -21,7 +21,8 @@ constexpr int kStrengthLevels = 255;
 // per slot the smallest strength of the triangles each remaining bond crosses, quantised to
 // 1..255 (255 for bonds that cross none). `strength` is left empty when no bond is weakened.
 // Shards (`shard`, `shard_strength`: ParticleSet's, or empty): a bond between particles of two
-// different cells (both >= 0) is weakened to the smaller of its ends' shard strengths too.
+// different cells, or between a particle in a cell and one in none (-1, strength 255: a zone's
+// edge), is weakened to the smaller of its ends' shard strengths too.
 // A bond crosses a triangle when its open rest segment meets the closed triangle; the test runs
 // on the segment from the lower particle index to the higher, so both stored directions of a
 // bond get the same answer. `rest` and `body` are the particles' rest positions and bodies; no

@@ -188,11 +188,16 @@ struct SceneRegion {
 // that spacing, each moved within its cell by `jitter`), and holds inside them: every strain
 // limit of the body is multiplied by `hold`, and a bond between two cells keeps the limit it had
 // (strength 1 / hold). The smallest piece is then a cell, not a particle (issue 31's dust).
+// With `radius`, only the particles within it of `center` (rest positions) are cut into cells,
+// and the zone's edge is a face too: where a blow crushes, pieces of cells instead of grit, and
+// elsewhere the cracks the material makes.
 struct SceneShards {
-  double size = 0;    // cell spacing [m], > 0
-  double hold = 3;    // in (1, 255]
-  double jitter = 1;  // in [0, 1]: 0 a cubic grid of cells, 1 seeds anywhere in their grid cell
-  std::string body;   // only this body; empty: every body
+  double size = 0;           // cell spacing [m], > 0
+  double hold = 3;           // in (1, 255]
+  double jitter = 1;         // in [0, 1]: 0 a cubic grid of cells, 1 seeds anywhere in their grid cell
+  std::string body;          // only this body; empty: every body
+  Vec3d center{0, 0, 0};     // the zone's centre [m] (with radius)
+  std::optional<double> radius;  // the zone's radius [m], > 0; none: the whole body
 };
 
 struct Scene {

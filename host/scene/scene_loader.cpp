@@ -567,7 +567,7 @@ const Keys kRegionKeys = {"shape",
 const Keys kRegionShapes = {"box", "sphere", "mesh"};
 const Keys kRegionShapeKeys[] = {
     {"box_min", "box_max"}, {"center", "radius"}, {"mesh", "scale", "translate"}};
-const Keys kShardKeys = {"size", "hold", "jitter", "body"};
+const Keys kShardKeys = {"size", "hold", "jitter", "body", "center", "radius"};
 const Keys kOutputKeys = {"vtk", "binary"};
 const Keys kRenderKeys = {"eye",      "look_at", "vfov",        "width", "height",        "spp",
                           "material", "ior",     "environment", "every", "damage_colors", "bodies"};
@@ -1091,6 +1091,13 @@ SceneShards parse_shards(const TableReader& r, const std::vector<SceneBody>& bod
   if (g.hold == 1) r.fail("hold", "1 holds the cells no better than their faces", "a number in (1, 255]");
   r.number("jitter", g.jitter, in_closed(0, 1));
   parse_body_name(r, g.body, bodies);
+  double radius = 0;
+  if (r.number("radius", radius, greater_than(0))) {
+    g.radius = radius;
+    r.vec3("center", g.center, Presence::required);
+  } else if (r.has("center")) {
+    r.fail("center", "is given without radius", "center together with radius > 0 (a zone), or neither");
+  }
   return g;
 }
 

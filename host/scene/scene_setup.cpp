@@ -341,6 +341,13 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   }
 
   result.shards = assign_shards(scene, ps, in.materials);
+  for (const auto& [body_material, zone_material] : result.shards.zone_materials) {
+    // A zone's copy of its body's material entry: the same constants, its own compression
+    // strengthening.
+    result.materials.resize(std::max(result.materials.size(), size_t(zone_material) + 1));
+    result.materials[zone_material] = result.materials[body_material];
+    result.materials[zone_material].body += " (shards zone)";
+  }
   remove_cut_pairs(in.cuts, ps, adjacency_pairs);
   result.adjacency = adjacency_from_pairs(ps.size(), std::move(adjacency_pairs));
 

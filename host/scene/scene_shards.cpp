@@ -72,19 +72,28 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
   ps.shard_strength.assign(ps.size(), uint8_t(255));
   for (size_t t = 0; t < scene.shards.size(); ++t) {
     const SceneShards& g = scene.shards[t];
+    const std::string key = "shards[" + std::to_string(t) + "]";
     // The bonds between cells keep their limit exactly: the strength is a byte k / 255, and the
     // limits inside are raised by 255 / k, the nearest such factor to `hold`.
     const uint8_t strength = uint8_t(std::clamp(std::lround(255.0 / g.hold), 1L, 254L));
     const double hold = 255.0 / double(strength);
+    auto in_zone = [&](size_t i) {
+      if (!g.radius) return true;
+      const double d[3] = {ps.rest[i].x - g.center[0], ps.rest[i].y - g.center[1], ps.rest[i].z - g.center[2]};
+      return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= *g.radius * *g.radius;
+    };
     for (size_t b = 0; b < scene.bodies.size(); ++b) {
       if (!g.body.empty() && scene.bodies[b].name != g.body) continue;
-      // The body's particles and their rest bounding box.
+      // The body's particles in the zone and their rest bounding box.
       std::vector<size_t> mine;
+      size_t in_body = 0;
       std::array<double, 3> lo{}, hi{};
       lo.fill(std::numeric_limits<double>::infinity());
       hi.fill(-std::numeric_limits<double>::infinity());
       for (size_t i = 0; i < ps.size(); ++i) {
         if (ps.body[i] != int32_t(b)) continue;
+        ++in_body;
+        if (!in_zone(i)) continue;
         mine.push_back(i);
         const double x[3] = {ps.rest[i].x, ps.rest[i].y, ps.rest[i].z};
         for (int a = 0; a < 3; ++a) {
@@ -96,10 +105,26 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
       double cells = 1;
       for (int a = 0; a < 3; ++a) cells *= std::max(1.0, std::ceil((hi[size_t(a)] - lo[size_t(a)]) / g.size));
       if (cells > double(kMaxShardCells))
-        throw SceneError(scene.path, "shards[" + std::to_string(t) + "].size",
+        throw SceneError(scene.path, key + ".size",
                          format_number(g.size) + " m cuts body '" + scene.bodies[b].name + "' into " +
                              std::to_string(int64_t(cells)) + " cells; allowed: at most " +
                              std::to_string(kMaxShardCells) + " (a larger size)");
+      // The compression strengthening is the material's (one table entry per body): raised in
+      // place where the whole body is in cells, else on a copy the zone's particles take.
+      const uint16_t material = ps.material[mine.front()];
+      uint16_t zone_material = material;
+      if (mine.size() < in_body) {
+        if (materials.count >= kMaxMaterials)
+          throw SceneError(scene.path, key + ".radius",
+                           "the zone of body '" + scene.bodies[b].name +
+                               "' needs a material table entry of its own, and the scene has " +
+                               std::to_string(kMaxMaterials) + " already (allowed: at most " +
+                               std::to_string(kMaxMaterials) + " bodies and zones together)");
+        zone_material = uint16_t(materials.count++);
+        materials.m[zone_material] = materials.m[material];
+        report.zone_materials.push_back({material, zone_material});
+      }
+      materials.m[zone_material].compression_alpha *= real(hold);
       const ShardSeeds seeds = shard_seeds(lo, hi, g.size, g.jitter, scene.seed * 7919u + t * 104729u + b);
       // Each particle's cell, numbered over all bodies in the order first met; empty cells get none.
       std::vector<int32_t> number(seeds.seed.size(), -1);
@@ -109,9 +134,9 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
         ps.shard[i] = number[size_t(s)];
         ps.shard_strength[i] = strength;
         ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * hold);
+        ps.material[i] = zone_material;
       }
       report.particles += int64_t(mine.size());
-      materials.m[ps.material[mine.front()]].compression_alpha *= real(hold);
     }
   }
   return report;

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "cuda/engine/particle_set.h"
 #include "host/scene/scene.h"
@@ -29,6 +31,8 @@ ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double,
 struct ShardReport {
   int64_t cells = 0;      // cells holding at least one particle
   int64_t particles = 0;  // particles in cells
+  // Zones that hold part of a body: (the body's material table entry, the zone's copy of it).
+  std::vector<std::pair<uint16_t, uint16_t>> zone_materials;
 };
 
 // Fills ps.shard and ps.shard_strength for the bodies of scene.shards (body indices as in
@@ -37,8 +41,11 @@ struct ShardReport {
 // had: hold 3 is 3, hold 10 is 9.81), and their material's compression strengthening (Levine
 // eq. 5's alpha, one material table entry per body) by the same, so that a face's limit
 // w max(tau'_i, tau'_j) is the material's under compression too; leaves both empty when
-// the scene has none. Cells are numbered over all bodies. Throws SceneError when a body would
-// need more than kMaxShardCells cells.
+// the scene has none. With a zone (`radius`), only the body's particles within it get cells;
+// they take a copy of the body's material entry (ShardReport::zone_materials), whose compression
+// strengthening is raised, and the bonds across the zone's edge are faces (cut_bonds). Cells are
+// numbered over all bodies. Throws SceneError when a body would need more than kMaxShardCells
+// cells, or a zone a material entry beyond kMaxMaterials.
 constexpr int64_t kMaxShardCells = int64_t(1) << 26;
 ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& materials);
 
