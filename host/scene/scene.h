@@ -192,11 +192,11 @@ struct SceneRegion {
 // and the zone's edge is a face too: where a blow crushes, pieces of cells instead of grit, and
 // elsewhere the cracks the material makes.
 struct SceneShards {
-  double size = 0;           // cell spacing [m], > 0
-  double hold = 3;           // in (1, 255]
-  double jitter = 1;         // in [0, 1]: 0 a cubic grid of cells, 1 seeds anywhere in their grid cell
-  std::string body;          // only this body; empty: every body
-  Vec3d center{0, 0, 0};     // the zone's centre [m] (with radius)
+  double size = 0;               // cell spacing [m], > 0
+  double hold = 3;               // in (1, 255]
+  double jitter = 1;             // in [0, 1]: 0 a cubic grid of cells, 1 seeds anywhere in their grid cell
+  std::string body;              // only this body; empty: every body
+  Vec3d center{0, 0, 0};         // the zone's centre [m] (with radius)
   std::optional<double> radius;  // the zone's radius [m], > 0; none: the whole body
 };
 

@@ -79,7 +79,8 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
     const double hold = 255.0 / double(strength);
     auto in_zone = [&](size_t i) {
       if (!g.radius) return true;
-      const double d[3] = {ps.rest[i].x - g.center[0], ps.rest[i].y - g.center[1], ps.rest[i].z - g.center[2]};
+      const double d[3] = {ps.rest[i].x - g.center[0], ps.rest[i].y - g.center[1],
+                           ps.rest[i].z - g.center[2]};
       return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= *g.radius * *g.radius;
     };
     for (size_t b = 0; b < scene.bodies.size(); ++b) {

@@ -161,6 +161,29 @@ TEST(BondCuts, ShardsWeakenExactlyTheBondsBetweenCells) {
   EXPECT_EQ(make_cpu_engine(in)->family_stats().cuts.weakened, between);  // the engine applied the same
 }
 
+// A zone of cells over part of a body: the bonds from a cell to a particle in none (-1, strength
+// 255) are faces too, from both ends; bonds between particles in none keep their strength.
+TEST(BondCuts, ShardsZoneEdgeIsAFace) {
+  const double lambda = 1e-3;
+  auto in = lattice_block(9, 6, 6, lambda);
+  make_cubic_shards(in, 9, 6, lambda, 85);
+  auto& ps = in.particles;
+  for (size_t i = 0; i < ps.size(); ++i)
+    if (ps.rest[i].x > 4.5e-3) {
+      ps.shard[i] = -1;
+      ps.shard_strength[i] = 255;
+    }
+  int64_t edge = 0, outside = 0;
+  check_slot_strengths(in, {}, 0, [&](int32_t i, int32_t j, int strength) {
+    const int32_t a = ps.shard[size_t(i)], b = ps.shard[size_t(j)];
+    edge += (a < 0) != (b < 0);
+    outside += a < 0 && b < 0;
+    EXPECT_EQ(strength, a != b ? 85 : 255) << i << "-" << j;
+  });
+  EXPECT_GT(edge, 0);
+  EXPECT_GT(outside, 0);
+}
+
 TEST(BondCuts, ShardsAndATriangleTakeTheWeaker) {
   const double lambda = 1e-3;
   auto in = lattice_block(9, 6, 6, lambda);

@@ -117,6 +117,54 @@ TEST(SceneShards, ATableWithoutBodyCoversEveryBodyWithCellsOfTheirOwn) {
   EXPECT_EQ(r.shards.cells, int64_t(cells[0].size() + cells[1].size()));
 }
 
+// A zone: only the plate's particles within 4 mm of its centre get cells, on a copy of the
+// plate's material entry with its compression strengthening raised; the rest keep the material.
+TEST(SceneShards, AZoneHoldsOnlyTheParticlesWithinItsRadius) {
+  const SetupResult r = setup_scene(
+      parse_scene(kTwoPlates + "[[shards]]\nsize = 0.002\nhold = 4\nbody = \"plate\"\nradius = 0.004\n"
+                               "center = [0.0, 0.0, 0.0]\n",
+                  "scene.toml"),
+      SetupOptions(1.0));
+  const ParticleSet& ps = r.input.particles;
+  ASSERT_EQ(r.input.materials.count, 3);  // plate, other, the plate's zone
+  ASSERT_EQ(r.materials.size(), 3u);
+  EXPECT_EQ(r.materials[2].body, "plate (shards zone)");
+  ASSERT_EQ(r.shards.zone_materials.size(), 1u);
+  EXPECT_EQ(r.shards.zone_materials[0], (std::pair<uint16_t, uint16_t>(0, 2)));
+  int64_t inside = 0, outside = 0;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const double r2 = double(ps.rest[i].x) * ps.rest[i].x + double(ps.rest[i].y) * ps.rest[i].y +
+                      double(ps.rest[i].z) * ps.rest[i].z;
+    if (ps.body[i] == 0 && r2 <= 0.004 * 0.004) {
+      ++inside;
+      EXPECT_GE(ps.shard[i], 0);
+      EXPECT_EQ(ps.shard_strength[i], 64);
+      EXPECT_EQ(ps.material[i], 2);
+      EXPECT_NEAR(ps.strain_limit0[i], 255.0 / 64 * 1e-3, 1e-9);
+    } else {
+      outside += ps.body[i] == 0;
+      EXPECT_EQ(ps.shard[i], -1);
+      EXPECT_EQ(ps.shard_strength[i], 255);
+      EXPECT_EQ(ps.material[i], ps.body[i]);
+      EXPECT_NEAR(ps.strain_limit0[i], 1e-3, 1e-9);
+    }
+  }
+  EXPECT_GT(inside, 100);
+  EXPECT_GT(outside, 400);
+  EXPECT_EQ(r.shards.particles, inside);
+  EXPECT_NEAR(r.input.materials.m[2].compression_alpha, 255.0 / 64 * 0.25, 1e-6);
+  EXPECT_NEAR(r.input.materials.m[0].compression_alpha, 0.25, 1e-7);
+  EXPECT_EQ(r.input.materials.m[2].bulk_modulus, r.input.materials.m[0].bulk_modulus);
+  // A zone over the whole body needs no copy: the body's entry is raised in place.
+  const SetupResult whole = setup_scene(
+      parse_scene(kTwoPlates + "[[shards]]\nsize = 0.002\nhold = 4\nbody = \"plate\"\nradius = 1\n"
+                               "center = [0.0, 0.0, 0.0]\n",
+                  "scene.toml"),
+      SetupOptions(1.0));
+  EXPECT_EQ(whole.input.materials.count, 2);
+  EXPECT_TRUE(whole.shards.zone_materials.empty());
+}
+
 TEST(SceneShards, NoTableNoFields) {
   const SetupResult r = setup_scene(parse_scene(kTwoPlates, "scene.toml"), SetupOptions(1.0));
   EXPECT_TRUE(r.input.particles.shard.empty());
@@ -148,6 +196,9 @@ TEST(SceneShards, BadTablesAreNamed) {
   expect_scene_error("[[shards]]\nsize = 0.01\n[[shards]]\nsize = 0.02\nbody = \"other\"\n", "shards[1].body",
                      "one [[shards]] per body");
   expect_scene_error("[[shards]]\nsize = 0.01\nhole = 3\n", "hole", "hold");
+  expect_scene_error("[[shards]]\nsize = 0.01\nradius = 0\n", "shards[0].radius", "> 0");
+  expect_scene_error("[[shards]]\nsize = 0.01\nradius = 0.01\n", "shards[0].center", "required");
+  expect_scene_error("[[shards]]\nsize = 0.01\ncenter = [0, 0, 0]\n", "shards[0].center", "with radius");
 }
 
 TEST(SceneShards, TooManyCellsIsAClearError) {
@@ -158,6 +209,23 @@ TEST(SceneShards, TooManyCellsIsAClearError) {
     const std::string what = e.what();
     EXPECT_NE(what.find("shards[0].size"), std::string::npos) << what;
     EXPECT_NE(what.find("a larger size"), std::string::npos) << what;
+  }
+}
+
+// More zones than the material table holds: one clear message naming the zone's radius.
+TEST(SceneShards, ZonesBeyondTheMaterialTableAreAClearError) {
+  std::string scene = kTwoPlates;
+  for (int b = 2; b < kMaxMaterials; ++b)
+    scene += "[[bodies]]\nname = \"b" + std::to_string(b) + "\"\ncenter = [0.0, " + std::to_string(0.05 * b) +
+             ", 0.0]\nsize = [0.004, 0.004, 0.004]\nspacing = 0.001\nmaterial = \"glass\"\n";
+  scene += "[[shards]]\nsize = 0.002\nbody = \"plate\"\nradius = 0.004\ncenter = [0.0, 0.0, 0.0]\n";
+  try {
+    setup_scene(parse_scene(scene, "scene.toml"), SetupOptions(1.0));
+    ADD_FAILURE() << "accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("shards[0].radius"), std::string::npos) << what;
+    EXPECT_NE(what.find("at most 16 bodies and zones"), std::string::npos) << what;
   }
 }
 
