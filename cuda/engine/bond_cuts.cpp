@@ -88,7 +88,7 @@ bool segment_crosses_triangle(const P3& p, const P3& q, const CutTriangle& t) {
 BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<Vec3>& rest,
                         const std::vector<int32_t>& body, double longest, BondLists& bonds,
                         std::vector<uint8_t>& strength, const std::vector<int32_t>& shard,
-                        const std::vector<uint8_t>& shard_strength) {
+                        const std::vector<uint8_t>& shard_strength, const std::vector<uint64_t>& faces) {
   BondCutCounts report;
   strength.clear();
   const bool shards = !shard.empty();
@@ -123,8 +123,9 @@ BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<
               ? uint8_t(std::clamp(std::lround(weakest * kStrengthLevels), 1L, long(kStrengthLevels) - 1))
               : uint8_t(kStrengthLevels);
       // A face between two cells, or between a cell and a particle in none (a zone's edge; a
-      // particle in none has strength 255).
-      if (shards && shard[size_t(j)] != shard[size_t(i)])
+      // particle in none has strength 255), or a listed one (a pattern's).
+      if (shards && (shard[size_t(j)] != shard[size_t(i)] ||
+                     (!faces.empty() && std::binary_search(faces.begin(), faces.end(), bond_key(i, j)))))
         q = std::min({q, shard_strength[size_t(i)], shard_strength[size_t(j)]});
       const int64_t to = b.slot(i, kept++);
       b.neighbor[to] = b.neighbor[slot];

@@ -22,7 +22,8 @@ constexpr int kStrengthLevels = 255;
 // 1..255 (255 for bonds that cross none). `strength` is left empty when no bond is weakened.
 // Shards (`shard`, `shard_strength`: ParticleSet's, or empty): a bond between particles of two
 // different cells, or between a particle in a cell and one in none (-1, strength 255: a zone's
-// edge), is weakened to the smaller of its ends' shard strengths too.
+// edge), is weakened to the smaller of its ends' shard strengths too; so is a bond listed in
+// `faces` (bond_key pairs in ascending order; only with shards).
 // A bond crosses a triangle when its open rest segment meets the closed triangle; the test runs
 // on the segment from the lower particle index to the higher, so both stored directions of a
 // bond get the same answer. `rest` and `body` are the particles' rest positions and bodies; no
@@ -30,7 +31,13 @@ constexpr int kStrengthLevels = 255;
 BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<Vec3>& rest,
                         const std::vector<int32_t>& body, double longest, BondLists& bonds,
                         std::vector<uint8_t>& strength, const std::vector<int32_t>& shard = {},
-                        const std::vector<uint8_t>& shard_strength = {});
+                        const std::vector<uint8_t>& shard_strength = {},
+                        const std::vector<uint64_t>& faces = {});
+
+// One key per bond, the same from both ends: the lower particle index in the high 32 bits.
+inline uint64_t bond_key(int32_t i, int32_t j) {
+  return i < j ? uint64_t(uint32_t(i)) << 32 | uint32_t(j) : uint64_t(uint32_t(j)) << 32 | uint32_t(i);
+}
 
 // True when the open segment p -> q meets the closed triangle (Moller-Trumbore, double).
 bool segment_crosses_triangle(const std::array<double, 3>& p, const std::array<double, 3>& q,

@@ -150,7 +150,7 @@ bool apply_cuts(DeviceMemory<Exec>& mem, EngineState<Exec>& s, int32_t owned, co
   std::vector<uint8_t> strength;
   family.cuts =
       cut_bonds(in.cuts, in.particles.rest, in.particles.body, longest_bond_bound(in.particles, in.materials),
-                lists, strength, in.particles.shard, in.particles.shard_strength);
+                lists, strength, in.particles.shard, in.particles.shard_strength, in.face_bonds);
   s.neighbor.upload(lists.neighbor);
   s.count.upload(lists.count);
   s.intact.upload(lists.count);

@@ -50,7 +50,10 @@ struct SimulationInput {
   std::vector<float> collider_grids;  // the mesh colliders' distance grids (Collider::grid_offset)
   std::vector<std::vector<Vec3>> collider_probes;  // per collider: a mesh's probe points (body_contact.h)
   std::vector<CutTriangle> cuts;                   // pre-cracks and weakened surfaces (bond_cuts.h)
-  bool contact = false;                            // launch `collection` and `collisions`
+  // Bonds weakened to their ends' shard strength, as bond_key pairs in ascending order (a
+  // [[shards]] pattern: the cracks of an earlier run, bond_cuts.h); empty in most scenes.
+  std::vector<uint64_t> face_bonds;
+  bool contact = false;          // launch `collection` and `collisions`
   bool lattice_families = true;  // box-grid bodies find partners by offset (lattice_families.h)
   BondScreen screen = BondScreen::kAuto;
   // Threads per particle in the GPU's bond loops (cuda/team.h): 1, 4, 8, 16 or 32; 0 chooses

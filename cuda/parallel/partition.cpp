@@ -6,6 +6,8 @@
 #include <numeric>
 #include <utility>
 
+#include "cuda/engine/bond_cuts.h"
+
 namespace pd {
 
 namespace {
@@ -197,6 +199,20 @@ RankLayout rank_layout(const Partition& p, int rank) {
   for (size_t k = 0; k < ghosts.size(); ++k)
     l.recv[size_t(p.owner[size_t(ghosts[k])])].push_back(l.owned + int32_t(k));
   return l;
+}
+
+std::vector<uint64_t> local_face_bonds(const std::vector<uint64_t>& faces, const RankLayout& layout,
+                                       size_t global_particles) {
+  std::vector<uint64_t> local;
+  if (faces.empty()) return local;
+  std::vector<int32_t> local_of(global_particles, -1);
+  for (size_t l = 0; l < layout.global.size(); ++l) local_of[size_t(layout.global[l])] = int32_t(l);
+  for (const uint64_t key : faces) {
+    const int32_t a = local_of[size_t(key >> 32)], b = local_of[size_t(key & 0xffffffffu)];
+    if (a >= 0 && b >= 0) local.push_back(bond_key(a, b));
+  }
+  std::sort(local.begin(), local.end());
+  return local;
 }
 
 ParticleSet local_particles(const ParticleSet& all, const RankLayout& layout) {

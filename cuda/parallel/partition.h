@@ -47,6 +47,11 @@ RankLayout rank_layout(const Partition& partition, int rank);
 // The particles of a layout, in its local order.
 ParticleSet local_particles(const ParticleSet& all, const RankLayout& layout);
 
+// The listed bonds (bond_key pairs of global indices, ascending: SimulationInput::face_bonds)
+// whose two ends the layout holds, as keys of local indices, ascending.
+std::vector<uint64_t> local_face_bonds(const std::vector<uint64_t>& faces, const RankLayout& layout,
+                                       size_t global_particles);
+
 // Particles, estimated bonds and ghosts per rank, and the imbalance (largest / mean estimated
 // bonds), for the start-up report.
 struct PartitionBalance {

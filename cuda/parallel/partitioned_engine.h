@@ -142,6 +142,7 @@ class PartitionedEngine final : public Engine {
     local_input.collider_grids = in.collider_grids;
     local_input.collider_probes = in.collider_probes;
     local_input.cuts = in.cuts;
+    local_input.face_bonds = local_face_bonds(in.face_bonds, layout_, in.particles.size());
     local_input.contact = in.contact;
     local_input.lattice_families = false;
     local_input.screen = in.screen;

@@ -16,6 +16,7 @@
 #include "host/app/kernel_report.h"
 #include "host/app/provenance.h"
 #include "host/app/run.h"
+#include "host/app/shards_pattern.h"
 #include "host/app/time_step_check.h"
 #include "host/io/atomic_file.h"
 #include "host/scene/scene_setup.h"
@@ -115,7 +116,7 @@ int bench_command(const BenchOptions& opt) {
   Scene scene;
   if (!opt.scene.empty()) {
     scene = load_scene(opt.scene, opt.overrides);
-    const SetupResult setup = setup_scene(scene, setup_options_for(scene, opt.scale, backend));
+    const SetupResult setup = set_up_scene(scene, opt.scale, backend);
     // A scene scaled past its time step would time a blow-up: refused as `perifrac run` does.
     check_time_step(scene, setup, opt.allow_unstable_dt);
     input = setup.input;

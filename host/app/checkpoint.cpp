@@ -181,6 +181,7 @@ uint64_t setup_fingerprint(const SimulationInput& in) {
   h = hash_array(ps.anchor, h);
   h = hash_array(ps.velocity, h);
   if (!ps.shard.empty()) h = hash_array(ps.shard_strength, hash_array(ps.shard, h));  // [[shards]]
+  if (!in.face_bonds.empty()) h = hash_array(in.face_bonds, h);                       // a pattern's
   // Cut triangles field by field (the struct has padding).
   std::vector<double> cuts;
   for (const CutTriangle& t : in.cuts) {

@@ -28,6 +28,7 @@
 #include "host/app/kernel_report.h"
 #include "host/app/live_render.h"
 #include "host/app/run_folder.h"
+#include "host/app/shards_pattern.h"
 #include "host/app/time_step_check.h"
 #include "host/fragments/fragment_log.h"
 #include "host/fragments/fragment_output.h"
@@ -204,7 +205,7 @@ Simulation set_up_simulation(const RunOptions& opt, const std::optional<RunCheck
   if (opt.steps_per_frame >= 1) scene.steps_per_frame = opt.steps_per_frame;
   std::string note;
   sim.backend = choose_backend(opt.backend, &note);
-  sim.setup = setup_scene(scene, setup_options_for(scene, opt.scale, sim.backend));
+  sim.setup = set_up_scene(scene, opt.scale, sim.backend);
   print_setup(scene, sim.setup, opt);
   check_time_step(scene, sim.setup, opt.allow_unstable_dt);
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
@@ -232,6 +233,11 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
     std::printf("cracks     %zu triangles: %lld bonds removed, %lld weakened (per direction%s)\n",
                 setup.input.cuts.size(), (long long)fam.cuts.removed, (long long)fam.cuts.weakened,
                 setup.shards.cells > 0 ? ", with the shards'" : "");
+  if (setup.pattern.bodies > 0)
+    std::printf(
+        "shards     pattern: %lld broken bonds of the earlier run kept as faces (per bond); its dust, "
+        "%lld particles, in %lld cells\n",
+        (long long)setup.pattern.faces, (long long)setup.pattern.dust, (long long)setup.pattern.cells);
   if (setup.shards.cells > 0)
     std::printf("shards     %lld cells of %lld particles (%.1f per cell); bonds between cells weakened%s\n",
                 (long long)setup.shards.cells, (long long)setup.shards.particles,

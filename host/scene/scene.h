@@ -198,6 +198,10 @@ struct SceneShards {
   std::string body;              // only this body; empty: every body
   Vec3d center{0, 0, 0};         // the zone's centre [m] (with radius)
   std::optional<double> radius;  // the zone's radius [m], > 0; none: the whole body
+  // A pattern: instead of cells, the faces are the bonds broken in a finished run of the same
+  // scene (its output folder's checkpoint), and `size` groups that run's dust into cells
+  // (host/app/shards_pattern.h applies it; assign_shards leaves such a table alone).
+  std::string pattern, pattern_path;  // as written; resolved against the scene file's folder
 };
 
 struct Scene {

@@ -567,7 +567,7 @@ const Keys kRegionKeys = {"shape",
 const Keys kRegionShapes = {"box", "sphere", "mesh"};
 const Keys kRegionShapeKeys[] = {
     {"box_min", "box_max"}, {"center", "radius"}, {"mesh", "scale", "translate"}};
-const Keys kShardKeys = {"size", "hold", "jitter", "body", "center", "radius"};
+const Keys kShardKeys = {"size", "hold", "jitter", "body", "center", "radius", "pattern"};
 const Keys kOutputKeys = {"vtk", "binary"};
 const Keys kRenderKeys = {"eye",      "look_at", "vfov",        "width", "height",        "spp",
                           "material", "ior",     "environment", "every", "damage_colors", "bodies"};
@@ -1084,13 +1084,20 @@ SceneRegion parse_region(const TableReader& r, const std::vector<SceneBody>& bod
   return g;
 }
 
-SceneShards parse_shards(const TableReader& r, const std::vector<SceneBody>& bodies) {
+SceneShards parse_shards(const TableReader& r, const std::vector<SceneBody>& bodies,
+                         const std::string& file) {
   SceneShards g;
   r.number("size", g.size, greater_than(0), Presence::required);
   r.number("hold", g.hold, in_closed(1, 255));
   if (g.hold == 1) r.fail("hold", "1 holds the cells no better than their faces", "a number in (1, 255]");
   r.number("jitter", g.jitter, in_closed(0, 1));
   parse_body_name(r, g.body, bodies);
+  if (r.string("pattern", g.pattern)) {
+    if (g.pattern.empty()) r.fail("pattern", "the path is empty", "the output folder of a finished run");
+    g.pattern_path = resolve_path(file, g.pattern);
+    if (r.has("radius") || r.has("center"))
+      r.fail("pattern", "is given with a zone (radius, center)", "a pattern over the whole body, or a zone");
+  }
   double radius = 0;
   if (r.number("radius", radius, greater_than(0))) {
     g.radius = radius;
@@ -1228,7 +1235,7 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     scene.regions.push_back(parse_region(r, scene.bodies, path));
   // [[shards]]: at most one table per body.
   for (const TableReader& r : top.table_array("shards", kShardKeys)) {
-    const SceneShards g = parse_shards(r, scene.bodies);
+    const SceneShards g = parse_shards(r, scene.bodies, path);
     for (const SceneShards& e : scene.shards)
       if (e.body.empty() || g.body.empty() || e.body == g.body)
         r.fail("body",

@@ -57,6 +57,7 @@ struct SetupResult {
   std::vector<VoronoiBody> voronoi;      // the Voronoi bodies
   std::vector<TriMesh> collider_meshes;  // per collider: a mesh collider's surface in its frame, else empty
   ShardReport shards;                    // [[shards]]: cells made (scene_shards.h)
+  ShardsPatternReport pattern;           // [[shards]] patterns, once applied (host/app/shards_pattern.h)
 };
 
 // The [materials.NAME] table of `name` (checked by the scene loader to exist).

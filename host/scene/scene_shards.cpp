@@ -72,6 +72,7 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
   ps.shard_strength.assign(ps.size(), uint8_t(255));
   for (size_t t = 0; t < scene.shards.size(); ++t) {
     const SceneShards& g = scene.shards[t];
+    if (!g.pattern.empty()) continue;  // host/app/shards_pattern.h
     const std::string key = "shards[" + std::to_string(t) + "]";
     // The bonds between cells keep their limit exactly: the strength is a byte k / 255, and the
     // limits inside are raised by 255 / k, the nearest such factor to `hold`.
@@ -139,6 +140,10 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
       }
       report.particles += int64_t(mine.size());
     }
+  }
+  if (report.particles == 0) {  // only patterns, or cells that hold no particle: the fields stay empty
+    ps.shard.clear();
+    ps.shard_strength.clear();
   }
   return report;
 }

@@ -25,6 +25,17 @@ struct ShardSeeds {
   int64_t nearest(const std::array<double, 3>& x) const;
 };
 
+// What the [[shards]] patterns made (host/app/shards_pattern.h).
+struct ShardsPatternReport {
+  int64_t faces = 0;   // bonds weakened: the first run's broken bonds, less those inside a dust cell
+  int64_t dust = 0;    // particles of the first run's pieces under kPatternPieceParticles
+  int64_t cells = 0;   // the cells the dust was grouped into
+  int64_t bodies = 0;  // bodies with a pattern
+};
+
+// A piece of a pattern's run with fewer particles than this is dust, grouped into cells of `size`.
+constexpr int64_t kPatternPieceParticles = 8;
+
 ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double size,
                        double jitter, uint64_t seed);
 
@@ -44,8 +55,10 @@ struct ShardReport {
 // the scene has none. With a zone (`radius`), only the body's particles within it get cells;
 // they take a copy of the body's material entry (ShardReport::zone_materials), whose compression
 // strengthening is raised, and the bonds across the zone's edge are faces (cut_bonds). Cells are
-// numbered over all bodies. Throws SceneError when a body would need more than kMaxShardCells
-// cells, or a zone a material entry beyond kMaxMaterials.
+// numbered over all bodies. Tables with a `pattern` are left to apply_shards_pattern
+// (host/app/shards_pattern.h); where no particle gets a cell both fields stay empty. Throws
+// SceneError when a body would need more than kMaxShardCells cells, or a zone a material entry
+// beyond kMaxMaterials.
 constexpr int64_t kMaxShardCells = int64_t(1) << 26;
 ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& materials);
 

@@ -1,0 +1,160 @@
+#include "host/app/shards_pattern.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "cuda/engine/bond_cuts.h"
+#include "cuda/engine/engine.h"
+#include "host/app/checkpoint.h"
+#include "host/fragments/components.h"
+#include "host/io/atomic_file.h"
+#include "host/scene/scene_shards.h"
+
+namespace pd {
+
+namespace {
+
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+// The bonds of the checkpointed run in `c`, restored on the CPU over the particles of `input`.
+BondLists first_run_bonds(const SimulationInput& input, const RunCheckpoint& c) {
+  SimulationInput first = input;
+  if (c.explicit_families) first.lattice_families = false;
+  const std::unique_ptr<Engine> engine = make_engine(Backend::kCpu, first);
+  engine->restore(c.engine);
+  BondLists bonds;
+  engine->read_bonds(bonds);
+  return bonds;
+}
+
+}  // namespace
+
+void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) {
+  ShardsPatternReport& report = setup.pattern;
+  report = {};
+  SimulationInput& in = setup.input;
+  ParticleSet& ps = in.particles;
+  // Checked against the particles as the scene makes them, before any pattern changes them.
+  const uint64_t fingerprint = setup_fingerprint(in);
+  std::vector<uint64_t> faces;
+  for (size_t t = 0; t < scene.shards.size(); ++t) {
+    const SceneShards& g = scene.shards[t];
+    if (g.pattern.empty()) continue;
+    const std::string key = "shards[" + std::to_string(t) + "].pattern";
+    const std::string where = "the run in '" + g.pattern + "'";
+    RunCheckpoint c;
+    try {
+      c = read_checkpoint(g.pattern_path + "/" + kCheckpointFileName);
+    } catch (const IoError& e) {
+      throw SceneError(scene.path, key,
+                       std::string(e.what()) +
+                           " (allowed: the output folder of a run of this scene that wrote a checkpoint: "
+                           "perifrac run --checkpoint-every N)");
+    }
+    if (c.scale != scale)
+      throw SceneError(scene.path, key,
+                       where + " was made at --scale " + format_number(c.scale) + ", this one at " +
+                           format_number(scale) + " (allowed: the same scene at the same scale)");
+    if (c.setup_hash != fingerprint)
+      throw SceneError(scene.path, key,
+                       where +
+                           " was made from other particles or strain limits (another scene, seed, mesh "
+                           "or --set; allowed: a run of this scene whose particles this one shares)");
+    const BondLists bonds = first_run_bonds(in, c);
+    const BondsView v = bonds.view();
+
+    // The first run's pieces, as its fragments.csv counts them (adjacent elements joined by
+    // intact bonds, host/fragments/components.h).
+    Components pieces;
+    ComponentFinder(setup.adjacency, bonds).find(bonds, pieces);
+
+    const uint8_t strength = uint8_t(std::clamp(std::lround(255.0 / g.hold), 1L, 254L));
+    const double hold = 255.0 / double(strength);
+    if (ps.shard.empty()) {
+      ps.shard.assign(ps.size(), -1);
+      ps.shard_strength.assign(ps.size(), uint8_t(255));
+    }
+    std::vector<int64_t> dust_cell(ps.size(), -1);
+    std::vector<bool> in_table(ps.size(), false);
+    for (size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (!g.body.empty() && scene.bodies[b].name != g.body) continue;
+      // The body's dust and its rest bounding box, for the dust's cells.
+      std::vector<size_t> dust;
+      std::array<double, 3> lo{}, hi{};
+      lo.fill(std::numeric_limits<double>::infinity());
+      hi.fill(-std::numeric_limits<double>::infinity());
+      int material = -1;
+      for (size_t i = 0; i < ps.size(); ++i) {
+        if (ps.body[i] != int32_t(b)) continue;
+        material = ps.material[i];
+        in_table[i] = true;
+        ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * hold);
+        ps.shard_strength[i] = strength;
+        if (pieces.size(size_t(pieces.index[i])) >= kPatternPieceParticles) continue;
+        dust.push_back(i);
+        const double x[3] = {ps.rest[i].x, ps.rest[i].y, ps.rest[i].z};
+        for (int a = 0; a < 3; ++a) {
+          lo[size_t(a)] = std::min(lo[size_t(a)], x[a]);
+          hi[size_t(a)] = std::max(hi[size_t(a)], x[a]);
+        }
+      }
+      if (material < 0) continue;
+      ++report.bodies;
+      in.materials.m[material].compression_alpha *= real(hold);  // one table entry per body
+      if (dust.empty()) continue;
+      double cells = 1;
+      for (int a = 0; a < 3; ++a) cells *= std::max(1.0, std::ceil((hi[size_t(a)] - lo[size_t(a)]) / g.size));
+      if (cells > double(kMaxShardCells))
+        throw SceneError(scene.path, "shards[" + std::to_string(t) + "].size",
+                         format_number(g.size) + " m cuts the dust of body '" + scene.bodies[b].name +
+                             "' into " + std::to_string(int64_t(cells)) + " cells; allowed: at most " +
+                             std::to_string(kMaxShardCells) + " (a larger size)");
+      const ShardSeeds seeds = shard_seeds(lo, hi, g.size, g.jitter, scene.seed * 7919u + t * 104729u + b);
+      std::vector<int64_t> number(seeds.seed.size(), -1);
+      for (size_t i : dust) {
+        const int64_t s = seeds.nearest({ps.rest[i].x, ps.rest[i].y, ps.rest[i].z});
+        if (number[size_t(s)] < 0) number[size_t(s)] = report.cells++;
+        dust_cell[i] = number[size_t(s)];
+      }
+      report.dust += int64_t(dust.size());
+    }
+    // The faces: every bond the first run broke (in either direction) within these bodies, but
+    // for those joining two particles of one dust cell.
+    for (int32_t i = 0; i < v.n; ++i) {
+      if (!in_table[size_t(i)]) continue;
+      for (int32_t k = 0; k < v.count[i]; ++k) {
+        const int32_t nb = v.neighbor[v.slot(i, k)];
+        if (bond_intact(nb)) continue;
+        const int32_t j = bond_partner(nb);
+        if (dust_cell[size_t(i)] >= 0 && dust_cell[size_t(i)] == dust_cell[size_t(j)]) continue;
+        faces.push_back(bond_key(i, j));
+      }
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  report.faces = int64_t(faces.size());
+  if (!faces.empty() || report.bodies > 0) {
+    std::vector<uint64_t> merged;
+    std::merge(in.face_bonds.begin(), in.face_bonds.end(), faces.begin(), faces.end(),
+               std::back_inserter(merged));
+    merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
+    in.face_bonds = std::move(merged);
+  }
+}
+
+SetupResult set_up_scene(const Scene& scene, double scale, Backend backend) {
+  SetupResult setup = setup_scene(scene, setup_options_for(scene, scale, backend));
+  apply_shards_pattern(scene, setup, scale);
+  return setup;
+}
+
+}  // namespace pd
