@@ -163,6 +163,8 @@ sed 's/^steps_per_frame = 20/dt = 5e-324\nsteps_per_frame = 20/' s.toml >tiny-dt
 case_ "command line" "dt = 5e-324" 2 "simulation.dt" "$BIN" "${P[@]}" tiny-dt.toml --out o2
 scene shards.toml '[[shards]]\nsize = 1e-7\n'
 case_ "command line" "[[shards]] cells far smaller than the particles" 2 "shards\[0\]\.size" "$BIN" "${P[@]}" shards.toml --out o5
+scene pattern.toml '[[shards]]\nsize = 0.01\npattern = "no-such-run"\n'
+case_ "command line" "[[shards]] pattern: a folder without a checkpoint" 2 "shards\[0\]\.pattern" "$BIN" "${P[@]}" pattern.toml --out o6
 
 # Scene smells
 scene anchor.toml '[[anchors]]\nbox_min = [1, 1, 1]\nbox_max = [2, 2, 2]\n'

@@ -106,13 +106,6 @@ FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<in
   return f;
 }
 
-// A number as a user wrote it (%g).
-std::string format_number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
 // The scene of checkpoint `c` in folder `dir`: at its absolute path, else where it lies relative to
 // the folder (the scene and the run moved together); the scene's hash checks it either way.
 std::string checkpoint_scene(const RunCheckpoint& c, const std::string& dir) {

@@ -1,9 +1,8 @@
 #include "host/app/shards_pattern.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <limits>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,18 +17,12 @@ namespace pd {
 
 namespace {
 
-std::string format_number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
 // The bonds of the checkpointed run in `c`, restored on the CPU over the particles of `input`.
 BondLists first_run_bonds(const SimulationInput& input, const RunCheckpoint& c) {
   SimulationInput first = input;
   if (c.explicit_families) first.lattice_families = false;
   const std::unique_ptr<Engine> engine = make_engine(Backend::kCpu, first);
-  engine->restore(c.engine);
+  engine->restore(c.engine);  // std::invalid_argument for other sizes
   BondLists bonds;
   engine->read_bonds(bonds);
   return bonds;
@@ -68,7 +61,12 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
                        where +
                            " was made from other particles or strain limits (another scene, seed, mesh "
                            "or --set; allowed: a run of this scene whose particles this one shares)");
-    const BondLists bonds = first_run_bonds(in, c);
+    BondLists bonds;
+    try {
+      bonds = first_run_bonds(in, c);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene.path, key, where + " does not fit this scene's families: " + e.what());
+    }
     const BondsView v = bonds.view();
 
     // The first run's pieces, as its fragments.csv counts them (adjacent elements joined by
@@ -76,7 +74,7 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
     Components pieces;
     ComponentFinder(setup.adjacency, bonds).find(bonds, pieces);
 
-    const uint8_t strength = uint8_t(std::clamp(std::lround(255.0 / g.hold), 1L, 254L));
+    const uint8_t strength = shard_strength_byte(g.hold);
     const double hold = 255.0 / double(strength);
     if (ps.shard.empty()) {
       ps.shard.assign(ps.size(), -1);
@@ -86,11 +84,8 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
     std::vector<bool> in_table(ps.size(), false);
     for (size_t b = 0; b < scene.bodies.size(); ++b) {
       if (!g.body.empty() && scene.bodies[b].name != g.body) continue;
-      // The body's dust and its rest bounding box, for the dust's cells.
+      // The body's dust, for the dust's cells.
       std::vector<size_t> dust;
-      std::array<double, 3> lo{}, hi{};
-      lo.fill(std::numeric_limits<double>::infinity());
-      hi.fill(-std::numeric_limits<double>::infinity());
       int material = -1;
       for (size_t i = 0; i < ps.size(); ++i) {
         if (ps.body[i] != int32_t(b)) continue;
@@ -98,32 +93,14 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
         in_table[i] = true;
         ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * hold);
         ps.shard_strength[i] = strength;
-        if (pieces.size(size_t(pieces.index[i])) >= kPatternPieceParticles) continue;
-        dust.push_back(i);
-        const double x[3] = {ps.rest[i].x, ps.rest[i].y, ps.rest[i].z};
-        for (int a = 0; a < 3; ++a) {
-          lo[size_t(a)] = std::min(lo[size_t(a)], x[a]);
-          hi[size_t(a)] = std::max(hi[size_t(a)], x[a]);
-        }
+        if (pieces.size(size_t(pieces.index[i])) < kPatternPieceParticles) dust.push_back(i);
       }
       if (material < 0) continue;
       ++report.bodies;
       in.materials.m[material].compression_alpha *= real(hold);  // one table entry per body
       if (dust.empty()) continue;
-      double cells = 1;
-      for (int a = 0; a < 3; ++a) cells *= std::max(1.0, std::ceil((hi[size_t(a)] - lo[size_t(a)]) / g.size));
-      if (cells > double(kMaxShardCells))
-        throw SceneError(scene.path, "shards[" + std::to_string(t) + "].size",
-                         format_number(g.size) + " m cuts the dust of body '" + scene.bodies[b].name +
-                             "' into " + std::to_string(int64_t(cells)) + " cells; allowed: at most " +
-                             std::to_string(kMaxShardCells) + " (a larger size)");
-      const ShardSeeds seeds = shard_seeds(lo, hi, g.size, g.jitter, scene.seed * 7919u + t * 104729u + b);
-      std::vector<int64_t> number(seeds.seed.size(), -1);
-      for (size_t i : dust) {
-        const int64_t s = seeds.nearest({ps.rest[i].x, ps.rest[i].y, ps.rest[i].z});
-        if (number[size_t(s)] < 0) number[size_t(s)] = report.cells++;
-        dust_cell[i] = number[size_t(s)];
-      }
+      const std::vector<int64_t> cell = number_cells(scene, t, b, ps, dust, report.cells);
+      for (size_t m = 0; m < dust.size(); ++m) dust_cell[dust[m]] = cell[m];
       report.dust += int64_t(dust.size());
     }
     // The faces: every bond the first run broke (in either direction) within these bodies, but

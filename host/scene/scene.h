@@ -28,6 +28,9 @@ class SceneError : public std::runtime_error {
   std::string file_, key_;
 };
 
+// A number as a user wrote it (%g), for messages.
+std::string format_number(double v);
+
 // Bounds of a run's length (scene keys and command-line options alike): a billion frames of a
 // billion steps keeps the step counter far from overflowing.
 inline constexpr int64_t kMaxFrames = 1000000000;

@@ -35,6 +35,12 @@
 namespace pd {
 
 // A syntax error passes "<file>:<line>:<column>" as `file` and an empty key.
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
 SceneError::SceneError(std::string file, std::string key, const std::string& message)
     : std::runtime_error(file + (key.empty() ? "" : ": " + key) + ": " + message),
       file_(std::move(file)),

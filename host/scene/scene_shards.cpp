@@ -10,16 +10,6 @@
 
 namespace pd {
 
-namespace {
-
-std::string format_number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
-}  // namespace
-
 int64_t ShardSeeds::nearest(const std::array<double, 3>& x) const {
   std::array<int64_t, 3> c{};
   for (int a = 0; a < 3; ++a)
@@ -63,6 +53,41 @@ ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double,
   return s;
 }
 
+uint8_t shard_strength_byte(double hold) {
+  return uint8_t(std::clamp(std::lround(255.0 / hold), 1L, 254L));
+}
+
+std::vector<int64_t> number_cells(const Scene& scene, size_t table, size_t body, const ParticleSet& ps,
+                                  const std::vector<size_t>& members, int64_t& next) {
+  const SceneShards& g = scene.shards[table];
+  std::array<double, 3> lo{}, hi{};
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (size_t i : members) {
+    const double x[3] = {ps.rest[i].x, ps.rest[i].y, ps.rest[i].z};
+    for (int a = 0; a < 3; ++a) {
+      lo[size_t(a)] = std::min(lo[size_t(a)], x[a]);
+      hi[size_t(a)] = std::max(hi[size_t(a)], x[a]);
+    }
+  }
+  double cells = 1;
+  for (int a = 0; a < 3; ++a) cells *= std::max(1.0, std::ceil((hi[size_t(a)] - lo[size_t(a)]) / g.size));
+  if (cells > double(kMaxShardCells))
+    throw SceneError(scene.path, "shards[" + std::to_string(table) + "].size",
+                     format_number(g.size) + " m cuts body '" + scene.bodies[body].name + "' into " +
+                         std::to_string(int64_t(cells)) + " cells; allowed: at most " +
+                         std::to_string(kMaxShardCells) + " (a larger size)");
+  const ShardSeeds seeds = shard_seeds(lo, hi, g.size, g.jitter, scene.seed * 7919u + table * 104729u + body);
+  std::vector<int64_t> number(seeds.seed.size(), -1), cell;
+  cell.reserve(members.size());
+  for (size_t i : members) {
+    const int64_t s = seeds.nearest({ps.rest[i].x, ps.rest[i].y, ps.rest[i].z});
+    if (number[size_t(s)] < 0) number[size_t(s)] = next++;
+    cell.push_back(number[size_t(s)]);
+  }
+  return cell;
+}
+
 ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& materials) {
   ShardReport report;
   ps.shard.clear();
@@ -76,7 +101,7 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
     const std::string key = "shards[" + std::to_string(t) + "]";
     // The bonds between cells keep their limit exactly: the strength is a byte k / 255, and the
     // limits inside are raised by 255 / k, the nearest such factor to `hold`.
-    const uint8_t strength = uint8_t(std::clamp(std::lround(255.0 / g.hold), 1L, 254L));
+    const uint8_t strength = shard_strength_byte(g.hold);
     const double hold = 255.0 / double(strength);
     auto in_zone = [&](size_t i) {
       if (!g.radius) return true;
@@ -86,31 +111,16 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
     };
     for (size_t b = 0; b < scene.bodies.size(); ++b) {
       if (!g.body.empty() && scene.bodies[b].name != g.body) continue;
-      // The body's particles in the zone and their rest bounding box.
+      // The body's particles in the zone.
       std::vector<size_t> mine;
       size_t in_body = 0;
-      std::array<double, 3> lo{}, hi{};
-      lo.fill(std::numeric_limits<double>::infinity());
-      hi.fill(-std::numeric_limits<double>::infinity());
       for (size_t i = 0; i < ps.size(); ++i) {
         if (ps.body[i] != int32_t(b)) continue;
         ++in_body;
-        if (!in_zone(i)) continue;
-        mine.push_back(i);
-        const double x[3] = {ps.rest[i].x, ps.rest[i].y, ps.rest[i].z};
-        for (int a = 0; a < 3; ++a) {
-          lo[size_t(a)] = std::min(lo[size_t(a)], x[a]);
-          hi[size_t(a)] = std::max(hi[size_t(a)], x[a]);
-        }
+        if (in_zone(i)) mine.push_back(i);
       }
       if (mine.empty()) continue;
-      double cells = 1;
-      for (int a = 0; a < 3; ++a) cells *= std::max(1.0, std::ceil((hi[size_t(a)] - lo[size_t(a)]) / g.size));
-      if (cells > double(kMaxShardCells))
-        throw SceneError(scene.path, key + ".size",
-                         format_number(g.size) + " m cuts body '" + scene.bodies[b].name + "' into " +
-                             std::to_string(int64_t(cells)) + " cells; allowed: at most " +
-                             std::to_string(kMaxShardCells) + " (a larger size)");
+      const std::vector<int64_t> cell = number_cells(scene, t, b, ps, mine, report.cells);
       // The compression strengthening is the material's (one table entry per body): raised in
       // place where the whole body is in cells, else on a copy the zone's particles take.
       const uint16_t material = ps.material[mine.front()];
@@ -127,13 +137,9 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
         report.zone_materials.push_back({material, zone_material});
       }
       materials.m[zone_material].compression_alpha *= real(hold);
-      const ShardSeeds seeds = shard_seeds(lo, hi, g.size, g.jitter, scene.seed * 7919u + t * 104729u + b);
-      // Each particle's cell, numbered over all bodies in the order first met; empty cells get none.
-      std::vector<int32_t> number(seeds.seed.size(), -1);
-      for (size_t i : mine) {
-        const int64_t s = seeds.nearest({ps.rest[i].x, ps.rest[i].y, ps.rest[i].z});
-        if (number[size_t(s)] < 0) number[size_t(s)] = int32_t(report.cells++);
-        ps.shard[i] = number[size_t(s)];
+      for (size_t m = 0; m < mine.size(); ++m) {
+        const size_t i = mine[m];
+        ps.shard[i] = int32_t(cell[m]);
         ps.shard_strength[i] = strength;
         ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * hold);
         ps.material[i] = zone_material;

@@ -39,6 +39,17 @@ constexpr int64_t kPatternPieceParticles = 8;
 ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double size,
                        double jitter, uint64_t seed);
 
+// The byte k nearest 255 / hold (1..254): a face keeps k / 255 of limits raised by 255 / k.
+uint8_t shard_strength_byte(double hold);
+
+// The cells of table `table` (its size and jitter; seeds over the members' rest bounding box,
+// drawn from simulation.seed, the table and `body`) of the particles `members` of that body:
+// per member its cell, numbered from `next` on in the order first met (cells holding no member
+// get no number; `next` advances). Throws SceneError naming shards[table].size when the box
+// would need more than kMaxShardCells cells.
+std::vector<int64_t> number_cells(const Scene& scene, size_t table, size_t body, const ParticleSet& ps,
+                                  const std::vector<size_t>& members, int64_t& next);
+
 struct ShardReport {
   int64_t cells = 0;      // cells holding at least one particle
   int64_t particles = 0;  // particles in cells
