@@ -119,13 +119,7 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   report.faces = int64_t(faces.size());
-  if (!faces.empty() || report.bodies > 0) {
-    std::vector<uint64_t> merged;
-    std::merge(in.face_bonds.begin(), in.face_bonds.end(), faces.begin(), faces.end(),
-               std::back_inserter(merged));
-    merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
-    in.face_bonds = std::move(merged);
-  }
+  in.face_bonds = std::move(faces);  // the patterns are all that list faces
 }
 
 SetupResult set_up_scene(const Scene& scene, double scale, Backend backend) {
