@@ -116,7 +116,7 @@ int bench_command(const BenchOptions& opt) {
   Scene scene;
   if (!opt.scene.empty()) {
     scene = load_scene(opt.scene, opt.overrides);
-    const SetupResult setup = set_up_scene(scene, opt.scale, backend);
+    const SetupResult setup = setup_scene_with_patterns(scene, opt.scale, backend);
     // A scene scaled past its time step would time a blow-up: refused as `perifrac run` does.
     check_time_step(scene, setup, opt.allow_unstable_dt);
     input = setup.input;

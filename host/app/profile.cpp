@@ -207,7 +207,7 @@ int profile_command(const ProfileOptions& opt) {
   Scene scene = load_scene(opt.scene);
   std::string note;
   const Backend backend = choose_backend(opt.backend, &note);
-  const SetupResult setup = set_up_scene(scene, opt.scale, backend);
+  const SetupResult setup = setup_scene_with_patterns(scene, opt.scale, backend);
   int64_t steps = 0;
   const auto ranges = profile_ranges(opt, scene.frames * scene.steps_per_frame, &steps);
   const int64_t chunk = opt.timeline > 0 ? opt.timeline : std::max<int64_t>(1, steps / 100);

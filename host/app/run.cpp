@@ -198,7 +198,7 @@ Simulation set_up_simulation(const RunOptions& opt, const std::optional<RunCheck
   if (opt.steps_per_frame >= 1) scene.steps_per_frame = opt.steps_per_frame;
   std::string note;
   sim.backend = choose_backend(opt.backend, &note);
-  sim.setup = set_up_scene(scene, opt.scale, sim.backend);
+  sim.setup = setup_scene_with_patterns(scene, opt.scale, sim.backend);
   print_setup(scene, sim.setup, opt);
   check_time_step(scene, sim.setup, opt.allow_unstable_dt);
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());

@@ -122,7 +122,7 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
   in.face_bonds = std::move(faces);  // the patterns are all that list faces
 }
 
-SetupResult set_up_scene(const Scene& scene, double scale, Backend backend) {
+SetupResult setup_scene_with_patterns(const Scene& scene, double scale, Backend backend) {
   SetupResult setup = setup_scene(scene, setup_options_for(scene, scale, backend));
   apply_shards_pattern(scene, setup, scale);
   return setup;

@@ -47,7 +47,7 @@ class ShardsPattern : public testing::TempDirTest {
   // Runs the plate (no pattern) and writes its checkpoint to first/; returns its bonds.
   BondLists first_run(double scale = 1.0) {
     const Scene scene = parse_scene(kPlate, path("scene.toml"));
-    const SetupResult setup = set_up_scene(scene, scale, Backend::kCpu);
+    const SetupResult setup = setup_scene_with_patterns(scene, scale, Backend::kCpu);
     const auto engine = make_engine(Backend::kCpu, setup.input);
     engine->advance(kSteps);
     RunCheckpoint c;
@@ -76,8 +76,8 @@ class ShardsPattern : public testing::TempDirTest {
 TEST_F(ShardsPattern, FacesAreTheFirstRunsBrokenBondsAndTheRestHolds) {
   const BondLists first = first_run();
   const Scene plain_scene = parse_scene(kPlate, path("scene.toml"));
-  const SetupResult plain = set_up_scene(plain_scene, 1.0, Backend::kCpu);
-  const SetupResult second = set_up_scene(second_scene(), 1.0, Backend::kCpu);
+  const SetupResult plain = setup_scene_with_patterns(plain_scene, 1.0, Backend::kCpu);
+  const SetupResult second = setup_scene_with_patterns(second_scene(), 1.0, Backend::kCpu);
   const ParticleSet& ps = second.input.particles;
   const BondsView v = first.view();
   std::set<uint64_t> broken;
@@ -133,7 +133,7 @@ TEST_F(ShardsPattern, FacesAreTheFirstRunsBrokenBondsAndTheRestHolds) {
 // most faces open again.
 TEST_F(ShardsPattern, SecondRunBreaksAlongTheFirstRunsCracks) {
   first_run();
-  const SetupResult second = set_up_scene(second_scene(), 1.0, Backend::kCpu);
+  const SetupResult second = setup_scene_with_patterns(second_scene(), 1.0, Backend::kCpu);
   const auto engine = make_engine(Backend::kCpu, second.input);
   engine->advance(kSteps);
   BondLists bonds;
@@ -165,12 +165,13 @@ void expect_pattern_error(const std::function<void()>& f, const std::string& par
 }
 
 TEST_F(ShardsPattern, AFolderWithoutACheckpointIsNamed) {
-  expect_pattern_error([&] { set_up_scene(second_scene(), 1.0, Backend::kCpu); }, "--checkpoint-every");
+  expect_pattern_error([&] { setup_scene_with_patterns(second_scene(), 1.0, Backend::kCpu); },
+                       "--checkpoint-every");
 }
 
 TEST_F(ShardsPattern, AnotherScaleIsRefused) {
   first_run(1.0);
-  expect_pattern_error([&] { set_up_scene(second_scene(), 0.5, Backend::kCpu); }, "--scale");
+  expect_pattern_error([&] { setup_scene_with_patterns(second_scene(), 0.5, Backend::kCpu); }, "--scale");
 }
 
 TEST_F(ShardsPattern, AnotherSceneIsRefused) {
@@ -181,7 +182,7 @@ TEST_F(ShardsPattern, AnotherSceneIsRefused) {
                       "[[regions]]\nshape = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 0.01\n"
                       "strain_limit_factor = 2\n",
                   path("scene.toml"));
-  expect_pattern_error([&] { set_up_scene(other, 1.0, Backend::kCpu); }, "other particles");
+  expect_pattern_error([&] { setup_scene_with_patterns(other, 1.0, Backend::kCpu); }, "other particles");
 }
 
 TEST_F(ShardsPattern, TheLoaderRefusesAPatternWithAZone) {
