@@ -83,6 +83,19 @@ done
 grep -q '^shards ' "$out/shards1.log" || { echo "mpi-equivalence: shards: the run made no cells" >&2; shards_same=0; status=1; }
 [ $shards_same -eq 1 ] && echo "mpi-equivalence: shards on 3 ranks: identical to one rank ($(grep -o 'broken [0-9.]*%' "$out/shards1.log" | tail -n 1))"
 
+# A shards pattern (the bonds a first run broke are the faces) on 3 ranks: every rank takes the
+# faces of its particles at its own indices.
+"$bin" run --overwrite $shards --checkpoint-every 3 --out "$out/first" >"$out/first.log" 2>&1
+pattern=(--set "shards[0].size=0.03" --set "shards[0].hold=5" --set "shards[0].pattern=\"$(cd "$out" && pwd)/first\"")
+"$bin" run --overwrite $shards "${pattern[@]}" --out "$out/pattern1" >"$out/pattern1.log" 2>&1
+mpirun -np 3 "$bin" run --overwrite $shards "${pattern[@]}" --out "$out/pattern3" >"$out/pattern3.log" 2>&1
+pattern_same=1
+for f in frame_00003.pfr energy.csv fragments_00003.pfg fragments.csv; do
+  cmp -s "$out/pattern1/$f" "$out/pattern3/$f" || { echo "mpi-equivalence: pattern: $f differs on 3 ranks" >&2; pattern_same=0; status=1; }
+done
+grep -q '^shards     pattern' "$out/pattern1.log" || { echo "mpi-equivalence: pattern: not applied" >&2; pattern_same=0; status=1; }
+[ $pattern_same -eq 1 ] && echo "mpi-equivalence: shards pattern on 3 ranks: identical to one rank ($(grep -o 'broken [0-9.]*%' "$out/pattern1.log" | tail -n 1))"
+
 # A free collider (the iron ball pushed back by the wall) on 2 ranks, checkpointed after frame 1
 # and resumed: its reaction is summed over the ranks in another order than one rank sums it, so the
 # run is held to `perifrac compare`'s tolerances, not to the bits.

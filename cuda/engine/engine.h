@@ -141,6 +141,10 @@ class Engine {
 };
 
 std::unique_ptr<Engine> make_cpu_engine(const SimulationInput& in);
+// A CPU engine of the whole input in this process alone, also under mpirun (where
+// make_cpu_engine would be a partitioned run's): each rank may build one for itself, e.g. to read
+// an earlier run's checkpoint (host/app/shards_pattern.h).
+std::unique_ptr<Engine> make_local_cpu_engine(const SimulationInput& in);
 // Throws std::runtime_error when CUDA is not compiled in or no device is usable.
 std::unique_ptr<Engine> make_cuda_engine(const SimulationInput& in);
 std::unique_ptr<Engine> make_engine(Backend b, const SimulationInput& in);

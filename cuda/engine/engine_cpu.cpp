@@ -25,6 +25,10 @@ std::string cpu_description() {
 
 std::unique_ptr<Engine> make_cpu_engine(const SimulationInput& in) {
   if (auto world = world_comm()) return make_partitioned_engine<CpuExec>(in, world, cpu_description());
+  return make_local_cpu_engine(in);
+}
+
+std::unique_ptr<Engine> make_local_cpu_engine(const SimulationInput& in) {
   return std::make_unique<EngineImpl<CpuExec>>(in, cpu_description());
 }
 

@@ -17,11 +17,12 @@ namespace pd {
 
 namespace {
 
-// The bonds of the checkpointed run in `c`, restored on the CPU over the particles of `input`.
+// The bonds of the checkpointed run in `c`, restored on the CPU over the particles of `input`
+// (on each rank of a run over MPI by itself: every rank sets up the same input).
 BondLists first_run_bonds(const SimulationInput& input, const RunCheckpoint& c) {
   SimulationInput first = input;
   if (c.explicit_families) first.lattice_families = false;
-  const std::unique_ptr<Engine> engine = make_engine(Backend::kCpu, first);
+  const std::unique_ptr<Engine> engine = make_local_cpu_engine(first);
   engine->restore(c.engine);  // std::invalid_argument for other sizes
   BondLists bonds;
   engine->read_bonds(bonds);
