@@ -70,31 +70,28 @@ for f in frame_00003.pfr energy.csv fragments_00003.pfg; do
 done
 [ $ball_same -eq 1 ] && echo "mpi-equivalence: colliders on 2 ranks: identical to one rank"
 
-# Shards (Voronoi cells weakening the bonds between them) on 3 ranks: every rank weakens the bonds
-# of its particles as one rank does.
+# Shards on 3 ranks against one rank: NAME WHAT LOG_LINE SETTINGS...: both runs of the plate with
+# SETTINGS, their last frame's files compared, and LOG_LINE (a regex) required in the one-rank log.
 shards="scenes/glass_plate_projectile.toml --scale 0.02 --steps-per-frame 800 --frames 3 --backend $backend"
-shard_cells=(--set "shards[0].size=0.03" --set "shards[0].hold=5")
-"$bin" run --overwrite $shards "${shard_cells[@]}" --out "$out/shards1" >"$out/shards1.log" 2>&1
-mpirun -np 3 "$bin" run --overwrite $shards "${shard_cells[@]}" --out "$out/shards3" >"$out/shards3.log" 2>&1
-shards_same=1
-for f in frame_00003.pfr energy.csv fragments_00003.pfg fragments.csv; do
-  cmp -s "$out/shards1/$f" "$out/shards3/$f" || { echo "mpi-equivalence: shards: $f differs on 3 ranks" >&2; shards_same=0; status=1; }
-done
-grep -q '^shards ' "$out/shards1.log" || { echo "mpi-equivalence: shards: the run made no cells" >&2; shards_same=0; status=1; }
-[ $shards_same -eq 1 ] && echo "mpi-equivalence: shards on 3 ranks: identical to one rank ($(grep -o 'broken [0-9.]*%' "$out/shards1.log" | tail -n 1))"
-
-# A shards pattern (the bonds a first run broke are the faces) on 3 ranks: every rank takes the
-# faces of its particles at its own indices.
+shards_on_ranks() {
+  local name=$1 what=$2 line=$3 same=1 f
+  shift 3
+  "$bin" run --overwrite $shards "$@" --out "$out/${name}1" >"$out/${name}1.log" 2>&1
+  mpirun -np 3 "$bin" run --overwrite $shards "$@" --out "$out/${name}3" >"$out/${name}3.log" 2>&1
+  for f in frame_00003.pfr energy.csv fragments_00003.pfg fragments.csv; do
+    cmp -s "$out/${name}1/$f" "$out/${name}3/$f" || { echo "mpi-equivalence: $what: $f differs on 3 ranks" >&2; same=0; status=1; }
+  done
+  grep -q "$line" "$out/${name}1.log" || { echo "mpi-equivalence: $what: not applied" >&2; same=0; status=1; }
+  [ $same -eq 1 ] && echo "mpi-equivalence: $what on 3 ranks: identical to one rank ($(grep -o 'broken [0-9.]*%' "$out/${name}1.log" | tail -n 1))"
+}
+# Voronoi cells weakening the bonds between them: every rank weakens the bonds of its particles
+# as one rank does.
+shards_on_ranks shards shards '^shards ' --set "shards[0].size=0.03" --set "shards[0].hold=5"
+# A pattern (the bonds a first run broke are the faces): every rank takes the faces of its
+# particles at its own indices.
 "$bin" run --overwrite $shards --checkpoint-every 3 --out "$out/first" >"$out/first.log" 2>&1
-pattern=(--set "shards[0].size=0.03" --set "shards[0].hold=5" --set "shards[0].pattern=\"$(cd "$out" && pwd)/first\"")
-"$bin" run --overwrite $shards "${pattern[@]}" --out "$out/pattern1" >"$out/pattern1.log" 2>&1
-mpirun -np 3 "$bin" run --overwrite $shards "${pattern[@]}" --out "$out/pattern3" >"$out/pattern3.log" 2>&1
-pattern_same=1
-for f in frame_00003.pfr energy.csv fragments_00003.pfg fragments.csv; do
-  cmp -s "$out/pattern1/$f" "$out/pattern3/$f" || { echo "mpi-equivalence: pattern: $f differs on 3 ranks" >&2; pattern_same=0; status=1; }
-done
-grep -q '^shards     pattern' "$out/pattern1.log" || { echo "mpi-equivalence: pattern: not applied" >&2; pattern_same=0; status=1; }
-[ $pattern_same -eq 1 ] && echo "mpi-equivalence: shards pattern on 3 ranks: identical to one rank ($(grep -o 'broken [0-9.]*%' "$out/pattern1.log" | tail -n 1))"
+shards_on_ranks pattern "shards pattern" '^shards     pattern' --set "shards[0].size=0.03" --set "shards[0].hold=5" \
+  --set "shards[0].pattern=\"$(cd "$out" && pwd)/first\""
 
 # A free collider (the iron ball pushed back by the wall) on 2 ranks, checkpointed after frame 1
 # and resumed: its reaction is summed over the ranks in another order than one rank sums it, so the
