@@ -7,6 +7,8 @@
 # damage colours) go to $OUT/shards-pattern/NAME/. A benchmark of the look, not a test.
 #   scripts/shards-pattern.sh SCENE SIZE [BINARY]      e.g. glass_plate_projectile 0.01
 #   HOLD=10 SCALE=1 FRAMES=N EXTRA="--eye 0.9,0.6,1.4 --look-at 0.1,0.05,0" (still camera)
+#   DUST_HOLD="2 3": one second run per value (shards[0].dust_hold; folders p2-dhVALUE), after the
+#   one without it; REUSE=1 keeps a first run already in the folder.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 scene=${1:?scene name (scenes/NAME.toml)} size=${2:?dust cell size [m]} bin=${3:-build/cuda/perifrac}
@@ -16,14 +18,22 @@ frames=${FRAMES:-$(sed -n 's/^frames *= *\([0-9]*\).*/\1/p' "scenes/$scene.toml"
 dir=${OUT:-out}/shards-pattern/$scene
 mkdir -p "$dir"
 common=(--overwrite --scale "${SCALE:-1}" --frames "$frames" --set output.vtk=false)
-"$bin" run "scenes/$scene.toml" "${common[@]}" --checkpoint-every "$frames" --out "$dir/p1" >"$dir/p1.log" 2>&1 ||
-  { echo "shards-pattern: the first run failed: $(tail -n 1 "$dir/p1.log")" >&2; exit 1; }
-"$bin" run "scenes/$scene.toml" "${common[@]}" --set "shards[0].size=$size" --set "shards[0].hold=${HOLD:-10}" \
-  --set "shards[0].pattern=\"$(cd "$dir/p1" && pwd)\"" --out "$dir/p2" >"$dir/p2.log" 2>&1 ||
-  { echo "shards-pattern: the second run failed: $(tail -n 1 "$dir/p2.log")" >&2; exit 1; }
+if [[ ${REUSE:-0} != 1 || ! -f $dir/p1/checkpoint.pck ]]; then
+  "$bin" run "scenes/$scene.toml" "${common[@]}" --checkpoint-every "$frames" --out "$dir/p1" >"$dir/p1.log" 2>&1 ||
+    { echo "shards-pattern: the first run failed: $(tail -n 1 "$dir/p1.log")" >&2; exit 1; }
+fi
+second=(p2)
+for dh in ${DUST_HOLD:-}; do second+=("p2-dh$dh"); done
+for p in "${second[@]}"; do
+  dust=()
+  [[ $p == p2-dh* ]] && dust=(--set "shards[0].dust_hold=${p#p2-dh}")
+  "$bin" run "scenes/$scene.toml" "${common[@]}" --set "shards[0].size=$size" --set "shards[0].hold=${HOLD:-10}" \
+    "${dust[@]}" --set "shards[0].pattern=\"$(cd "$dir/p1" && pwd)\"" --out "$dir/$p" >"$dir/$p.log" 2>&1 ||
+    { echo "shards-pattern: the second run $p failed: $(tail -n 1 "$dir/$p.log")" >&2; exit 1; }
+done
 last=$(printf %05d "$frames")
 read -ra camera <<<"${EXTRA:-}"
-for p in p1 p2; do
+for p in p1 "${second[@]}"; do
   grep -h '^shards' "$dir/$p.log"
   awk -F, -v p="$p" -v b="$(grep -o 'broken [0-9.]*%' "$dir/$p.log" | tail -n 1)" '{
     big = 0; for (i = 12; i <= 32; ++i) big += $i

@@ -229,8 +229,9 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
   if (setup.pattern.bodies > 0)
     std::printf(
         "shards     pattern: %lld broken bonds of the earlier run kept as faces (per bond); its dust, "
-        "%lld particles, in %lld cells\n",
-        (long long)setup.pattern.faces, (long long)setup.pattern.dust, (long long)setup.pattern.cells);
+        "%lld particles, in %lld cells%s\n",
+        (long long)setup.pattern.faces, (long long)setup.pattern.dust, (long long)setup.pattern.cells,
+        setup.pattern.dust_materials.empty() ? "" : " of their own hold");
   if (setup.shards.cells > 0)
     std::printf("shards     %lld cells of %lld particles (%.1f per cell); bonds between cells weakened%s\n",
                 (long long)setup.shards.cells, (long long)setup.shards.particles,

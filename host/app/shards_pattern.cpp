@@ -77,6 +77,9 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
 
     const uint8_t strength = shard_strength_byte(g.hold);
     const double hold = 255.0 / double(strength);
+    // The dust's cells hold by their own factor where dust_hold is given.
+    const uint8_t dust_strength = g.dust_hold ? shard_strength_byte(*g.dust_hold) : strength;
+    const double dust_hold = 255.0 / double(dust_strength);
     if (ps.shard.empty()) {
       ps.shard.assign(ps.size(), -1);
       ps.shard_strength.assign(ps.size(), uint8_t(255));
@@ -92,14 +95,34 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
         if (ps.body[i] != int32_t(b)) continue;
         material = ps.material[i];
         in_table[i] = true;
-        ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * hold);
-        ps.shard_strength[i] = strength;
-        if (pieces.size(size_t(pieces.index[i])) < kPatternPieceParticles) dust.push_back(i);
+        if (pieces.size(size_t(pieces.index[i])) < kPatternPieceParticles) {
+          dust.push_back(i);
+        } else {
+          ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * hold);
+          ps.shard_strength[i] = strength;
+        }
       }
       if (material < 0) continue;
       ++report.bodies;
       in.materials.m[material].compression_alpha *= real(hold);  // one table entry per body
       if (dust.empty()) continue;
+      // The dust holds by dust_hold: a face between dust and the rest keeps the material's limit
+      // (the smaller strength of its ends times the larger raised limit), and where dust_hold
+      // differs from hold the dust takes a copy of the material entry for its own compression
+      // strengthening.
+      uint16_t dust_material = uint16_t(material);
+      if (dust_strength != strength) {
+        dust_material = copy_material_entry(scene, "shards[" + std::to_string(t) + "].dust_hold",
+                                            "the dust of body '" + scene.bodies[b].name + "'", in.materials,
+                                            uint16_t(material));
+        in.materials.m[dust_material].compression_alpha *= real(dust_hold / hold);
+        report.dust_materials.push_back({uint16_t(material), dust_material});
+      }
+      for (size_t i : dust) {
+        ps.strain_limit0[i] = real(double(ps.strain_limit0[i]) * dust_hold);
+        ps.shard_strength[i] = dust_strength;
+        ps.material[i] = dust_material;
+      }
       const std::vector<int64_t> cell = number_cells(scene, t, b, ps, dust, report.cells);
       for (size_t m = 0; m < dust.size(); ++m) dust_cell[dust[m]] = cell[m];
       report.dust += int64_t(dust.size());
@@ -126,6 +149,8 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
 SetupResult setup_scene_with_patterns(const Scene& scene, double scale, Backend backend) {
   SetupResult setup = setup_scene(scene, setup_options_for(scene, scale, backend));
   apply_shards_pattern(scene, setup, scale);
+  for (const auto& [body_material, dust_material] : setup.pattern.dust_materials)
+    copy_material_summary(setup.materials, body_material, dust_material, " (shards dust)");
   return setup;
 }
 

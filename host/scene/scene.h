@@ -205,6 +205,8 @@ struct SceneShards {
   // scene (its output folder's checkpoint), and `size` groups that run's dust into cells
   // (host/app/shards_pattern.h applies it; assign_shards leaves such a table alone).
   std::string pattern, pattern_path;  // as written; resolved against the scene file's folder
+  // With a pattern: how much the dust's cells hold inside, in (1, 255]; none: `hold`.
+  std::optional<double> dust_hold;
 };
 
 struct Scene {

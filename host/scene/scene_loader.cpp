@@ -573,7 +573,7 @@ const Keys kRegionKeys = {"shape",
 const Keys kRegionShapes = {"box", "sphere", "mesh"};
 const Keys kRegionShapeKeys[] = {
     {"box_min", "box_max"}, {"center", "radius"}, {"mesh", "scale", "translate"}};
-const Keys kShardKeys = {"size", "hold", "jitter", "body", "center", "radius", "pattern"};
+const Keys kShardKeys = {"size", "hold", "jitter", "body", "center", "radius", "pattern", "dust_hold"};
 const Keys kOutputKeys = {"vtk", "binary"};
 const Keys kRenderKeys = {"eye",      "look_at", "vfov",        "width", "height",        "spp",
                           "material", "ior",     "environment", "every", "damage_colors", "bodies"};
@@ -1103,6 +1103,11 @@ SceneShards parse_shards(const TableReader& r, const std::vector<SceneBody>& bod
     g.pattern_path = resolve_path(file, g.pattern);
     if (r.has("radius") || r.has("center"))
       r.fail("pattern", "is given with a zone (radius, center)", "a pattern over the whole body, or a zone");
+    double dust_hold = 0;
+    if (r.number("dust_hold", dust_hold, in_closed(1, 255))) g.dust_hold = dust_hold;
+  } else if (r.has("dust_hold")) {
+    r.fail("dust_hold", "is given without pattern",
+           "dust_hold together with pattern (the pattern's dust cells)");
   }
   double radius = 0;
   if (r.number("radius", radius, greater_than(0))) {

@@ -341,13 +341,8 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   }
 
   result.shards = assign_shards(scene, ps, in.materials);
-  for (const auto& [body_material, zone_material] : result.shards.zone_materials) {
-    // A zone's copy of its body's material entry: the same constants, its own compression
-    // strengthening.
-    result.materials.resize(std::max(result.materials.size(), size_t(zone_material) + 1));
-    result.materials[zone_material] = result.materials[body_material];
-    result.materials[zone_material].body += " (shards zone)";
-  }
+  for (const auto& [body_material, zone_material] : result.shards.zone_materials)
+    copy_material_summary(result.materials, body_material, zone_material, " (shards zone)");
   remove_cut_pairs(in.cuts, ps, adjacency_pairs);
   result.adjacency = adjacency_from_pairs(ps.size(), std::move(adjacency_pairs));
 
@@ -381,6 +376,13 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   }
   in.contact = scene.contact;
   return result;
+}
+
+void copy_material_summary(std::vector<MaterialSummary>& materials, uint16_t from, uint16_t to,
+                           const std::string& suffix) {
+  materials.resize(std::max(materials.size(), size_t(to) + 1));
+  materials[to] = materials[from];
+  materials[to].body += suffix;
 }
 
 SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend) {

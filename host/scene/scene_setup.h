@@ -80,6 +80,11 @@ bool body_solid_is_sheet(const SceneBody& body);
 // and shell bodies (a tet is about twice the spacing on a side).
 double body_solid_edge(const SceneBody& body, double spacing);
 
+// Entry `to` of `materials` becomes a copy of entry `from`, its body named with `suffix` added: the
+// summary of a material table entry copied for part of a body (copy_material_entry).
+void copy_material_summary(std::vector<MaterialSummary>& materials, uint16_t from, uint16_t to,
+                           const std::string& suffix);
+
 // Options for a run on `backend`: the particle budget (memory_budget.h) follows from the
 // machine's free memory, the largest horizon and whether a material is plastic.
 SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend);

@@ -53,6 +53,18 @@ ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double,
   return s;
 }
 
+uint16_t copy_material_entry(const Scene& scene, const std::string& key, const std::string& part,
+                             MaterialTable& materials, uint16_t material) {
+  if (materials.count >= kMaxMaterials)
+    throw SceneError(scene.path, key,
+                     part + " needs a material table entry of its own, and the scene has " +
+                         std::to_string(kMaxMaterials) + " already (allowed: at most " +
+                         std::to_string(kMaxMaterials) + " bodies, shards zones and dust holds together)");
+  const uint16_t copy = uint16_t(materials.count++);
+  materials.m[copy] = materials.m[material];
+  return copy;
+}
+
 uint8_t shard_strength_byte(double hold) {
   return uint8_t(std::clamp(std::lround(255.0 / hold), 1L, 254L));
 }
@@ -126,14 +138,8 @@ ShardReport assign_shards(const Scene& scene, ParticleSet& ps, MaterialTable& ma
       const uint16_t material = ps.material[mine.front()];
       uint16_t zone_material = material;
       if (mine.size() < in_body) {
-        if (materials.count >= kMaxMaterials)
-          throw SceneError(scene.path, key + ".radius",
-                           "the zone of body '" + scene.bodies[b].name +
-                               "' needs a material table entry of its own, and the scene has " +
-                               std::to_string(kMaxMaterials) + " already (allowed: at most " +
-                               std::to_string(kMaxMaterials) + " bodies and zones together)");
-        zone_material = uint16_t(materials.count++);
-        materials.m[zone_material] = materials.m[material];
+        zone_material = copy_material_entry(
+            scene, key + ".radius", "the zone of body '" + scene.bodies[b].name + "'", materials, material);
         report.zone_materials.push_back({material, zone_material});
       }
       materials.m[zone_material].compression_alpha *= real(hold);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,8 @@ struct ShardsPatternReport {
   int64_t dust = 0;    // particles of the first run's pieces under kPatternPieceParticles
   int64_t cells = 0;   // the cells the dust was grouped into
   int64_t bodies = 0;  // bodies with a pattern
+  // Dust that holds by its own dust_hold: (the body's material table entry, the dust's copy of it).
+  std::vector<std::pair<uint16_t, uint16_t>> dust_materials;
 };
 
 // A piece of a pattern's run with fewer particles than this is dust, grouped into cells of `size`.
@@ -38,6 +41,12 @@ constexpr int64_t kPatternPieceParticles = 8;
 
 ShardSeeds shard_seeds(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double size,
                        double jitter, uint64_t seed);
+
+// A copy of material table entry `material` (its index), for `part` of a body whose shards hold
+// apart from the rest of it (a zone, a pattern's dust): its compression strengthening is then
+// raised on its own. Throws SceneError naming `key` when the table holds kMaxMaterials already.
+uint16_t copy_material_entry(const Scene& scene, const std::string& key, const std::string& part,
+                             MaterialTable& materials, uint16_t material);
 
 // The byte k nearest 255 / hold (1..254): a face keeps k / 255 of limits raised by 255 / k.
 uint8_t shard_strength_byte(double hold);

@@ -153,6 +153,73 @@ TEST_F(ShardsPattern, SecondRunBreaksAlongTheFirstRunsCracks) {
   EXPECT_GE(double(on_faces), 0.8 * 2 * double(faces.size()));
 }
 
+// dust_hold: the dust's cells hold by their own factor, on a copy of the material entry whose
+// compression strengthening is raised by it; the rest of the body keeps `hold`.
+TEST_F(ShardsPattern, DustHoldsByItsOwnFactor) {
+  first_run();
+  const SetupResult plain =
+      setup_scene_with_patterns(parse_scene(kPlate, path("scene.toml")), 1.0, Backend::kCpu);
+  const SetupResult ten = setup_scene_with_patterns(second_scene(), 1.0, Backend::kCpu);
+  const SetupResult two =
+      setup_scene_with_patterns(second_scene("size = 0.004\nhold = 10\ndust_hold = 2\n"), 1.0, Backend::kCpu);
+  const ParticleSet& ps = two.input.particles;
+  ASSERT_EQ(ps.shard_strength.size(), ps.size());
+  EXPECT_EQ(two.pattern.dust, ten.pattern.dust);
+  EXPECT_EQ(two.input.face_bonds, ten.input.face_bonds);  // the same faces: the same cells
+  ASSERT_EQ(two.pattern.dust_materials.size(), 1u);
+  EXPECT_EQ(two.pattern.dust_materials[0], (std::pair<uint16_t, uint16_t>(0, 1)));
+  ASSERT_EQ(two.input.materials.count, 2);
+  EXPECT_NEAR(two.input.materials.m[0].compression_alpha, 0.25 * 255 / 26, 1e-5);
+  EXPECT_NEAR(two.input.materials.m[1].compression_alpha, 0.25 * 255 / 128, 1e-5);
+  ASSERT_EQ(two.materials.size(), 2u);
+  EXPECT_EQ(two.materials[1].body, "plate (shards dust)");
+  int64_t dust = 0;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const bool is_dust = ps.material[i] == 1;
+    dust += is_dust;
+    EXPECT_EQ(ps.shard_strength[i], is_dust ? 128 : 26) << i;
+    EXPECT_NEAR(ps.strain_limit0[i], plain.input.particles.strain_limit0[i] * 255.0 / (is_dust ? 128 : 26),
+                1e-9);
+  }
+  EXPECT_EQ(dust, two.pattern.dust);
+
+  // Weaker dust cells give way more: more bonds inside the dust's cells (not faces) break.
+  auto inside_breaks = [&](const SetupResult& s) {
+    const auto engine = make_engine(Backend::kCpu, s.input);
+    engine->advance(kSteps);
+    BondLists bonds;
+    engine->read_bonds(bonds);
+    const std::set<uint64_t> faces(s.input.face_bonds.begin(), s.input.face_bonds.end());
+    const BondsView v = bonds.view();
+    int64_t n = 0;
+    for (int32_t i = 0; i < v.n; ++i)
+      for (int32_t k = 0; k < v.count[i]; ++k) {
+        const int32_t nb = v.neighbor[v.slot(i, k)];
+        n += !bond_intact(nb) && s.input.particles.material[size_t(i)] == 1 &&
+             s.input.particles.material[size_t(bond_partner(nb))] == 1 &&
+             !faces.count(bond_key(i, bond_partner(nb)));
+      }
+    return n;
+  };
+  // (`ten` has no dust entry: its dust is told by the same particles as `two`'s.)
+  SetupResult ten_marked = ten;
+  for (size_t i = 0; i < ps.size(); ++i) ten_marked.input.particles.material[i] = ps.material[i];
+  ten_marked.input.materials = two.input.materials;
+  ten_marked.input.materials.m[1] = ten.input.materials.m[0];
+  const int64_t at_two = inside_breaks(two), at_ten = inside_breaks(ten_marked);
+  EXPECT_GT(at_two, at_ten) << "dust_hold 2: " << at_two << ", 10: " << at_ten;
+}
+
+TEST_F(ShardsPattern, TheLoaderRefusesDustHoldWithoutAPattern) {
+  try {
+    parse_scene(kPlate + "[[shards]]\nsize = 0.004\ndust_hold = 2\n", path("scene.toml"));
+    ADD_FAILURE() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("shards[0].dust_hold"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("together with pattern"), std::string::npos) << e.what();
+  }
+}
+
 void expect_pattern_error(const std::function<void()>& f, const std::string& part) {
   try {
     f();

@@ -225,7 +225,7 @@ TEST(SceneShards, ZonesBeyondTheMaterialTableAreAClearError) {
   } catch (const SceneError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("shards[0].radius"), std::string::npos) << what;
-    EXPECT_NE(what.find("at most 16 bodies and zones"), std::string::npos) << what;
+    EXPECT_NE(what.find("at most 16 bodies, shards zones and dust holds"), std::string::npos) << what;
   }
 }
 
