@@ -366,11 +366,14 @@ int render_frames(const RenderOptions& cli) {
     const FrameRenderReport r = renderer.render(frames[k]);
     ray_seconds += r.render_seconds;
     rays += r.rays;
+    const std::string mesh =
+        o.surface == "mesh" ? ", " + std::to_string(r.triangles) + " mesh triangles" : "";
     std::printf(
-        "frame %zu/%zu  kd-tree %.2f s (%lld nodes, depth %d, %lld hidden)  render %.3f s  %.2f Mrays/s  "
+        "frame %zu/%zu  kd-tree %.2f s (%lld nodes, depth %d, %lld hidden%s)  render %.3f s  %.2f Mrays/s  "
         "%s\n",
         k + 1, frames.size(), r.tree.build_seconds, (long long)r.tree.nodes, r.tree.depth,
-        (long long)r.hidden, r.render_seconds, 1e-6 * double(r.rays) / r.render_seconds, r.png.c_str());
+        (long long)r.hidden, mesh.c_str(), r.render_seconds, 1e-6 * double(r.rays) / r.render_seconds,
+        r.png.c_str());
     std::fflush(stdout);
   }
   std::printf("rendered   %zu frames, %.2f Mrays/s overall\n", frames.size(),

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "host/geometry/shapes.h"
+#include "render/shading.h"
 
 namespace pd {
 namespace {

@@ -231,7 +231,7 @@ TEST_F(RenderFramesTest, SurfaceMeshDrawsTheCoveredBodiesFromTheirMesh) {
   o.movie = false;
   o.damage_colors = true;
   // From the front, looking along -z at the block's middle: body 0 (x < 0.025) on the left half.
-  o.eye = Vec3{real(0.025), real(0.065), real(0.3)};
+  o.eye = Vec3{real(0.025), real(0.065), real(0.15)};
   o.look_at = Vec3{real(0.025), real(0.065), real(0.02)};
   o.out = path("elements");
   ASSERT_EQ(render_frames(o), 0);
@@ -251,8 +251,7 @@ TEST_F(RenderFramesTest, SurfaceMeshDrawsTheCoveredBodiesFromTheirMesh) {
   CrackSurface lifted = body0_surface(read_frame_file(path("frame_00000.pfr")), lambda);
   for (Vec3d& v : lifted.vertices) v[1] += 2 * lambda;
   write_crack_ply(path("crack_mesh_00000.ply"), lifted, "test");
-  o.frames = {0};
-  o.out = path("lifted");
+  o.out = path("lifted");  // all frames: the last one sets the floor
   ASSERT_EQ(render_frames(o), 0);
   const Png base = read_png(path("elements/frame_00000.png")),
             moved = read_png(path("lifted/frame_00000.png"));
