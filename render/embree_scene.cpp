@@ -53,7 +53,7 @@ EmbreeScene::EmbreeScene(const PrimitiveSet& prims) {
     else if (p.kind[i] == kPrimTet)
       add_tet(vertex, index, p.tet_vertex.sub(4 * int64_t(s), 4).data());
     else
-      throw std::invalid_argument("Embree scene: trimtopes are not triangulated");
+      throw std::invalid_argument("Embree scene: trimtopes and mesh triangles are not triangulated");
   }
   triangles_ = index.size() / 3;
 

@@ -23,6 +23,8 @@ PrimitivesView primitives_view(int32_t n, const Arrays& a) {
                    view_of(a.ocube_center),
                    view_of(a.ocube_half),
                    view_of(a.ocube_axis),
+                   view_of(a.tri_vertex),
+                   view_of(a.tri_normal),
                    {}};
   v.trim = {view_of(a.trim_site),         view_of(a.trim_plane_start), view_of(a.trim_plane_normal),
             view_of(a.trim_plane_offset), view_of(a.trim_tri_start),   view_of(a.trim_tri_vertex),
@@ -48,6 +50,8 @@ struct PrimitiveSet {
   std::vector<Vec3> ocube_center;
   std::vector<real> ocube_half;
   std::vector<Vec3> ocube_axis;  // 3 per oriented cube
+  std::vector<Vec3> tri_vertex;  // 3 per triangle
+  std::vector<Vec3> tri_normal;  // 3 per triangle: the vertices' unit shading normals
 
   int32_t size() const { return int32_t(kind.size()); }
 
@@ -98,6 +102,22 @@ struct PrimitiveSet {
     trim_tri_start.push_back(int32_t(trim_tri_vertex.size() / 3));
     trim_box.push_back(box);
     return size() - 1;
+  }
+
+  // A triangle a, b, c (counter-clockwise seen from outside the material) with unit shading
+  // normals na, nb, nc at its vertices.
+  int32_t add_triangle(Vec3 a, Vec3 b, Vec3 c, Vec3 na, Vec3 nb, Vec3 nc) {
+    kind.push_back(kPrimTriangle);
+    slot.push_back(int32_t(tri_vertex.size() / 3));
+    tri_vertex.insert(tri_vertex.end(), {a, b, c});
+    tri_normal.insert(tri_normal.end(), {na, nb, nc});
+    return size() - 1;
+  }
+  // A flat triangle: its geometric normal at every vertex.
+  int32_t add_triangle(Vec3 a, Vec3 b, Vec3 c) {
+    const Vec3 v[3] = {a, b, c};
+    const Vec3 n = triangle_normal(v);
+    return add_triangle(a, b, c, n, n, n);
   }
 
   // A view of the host arrays (host-side tests and the kd-tree build).

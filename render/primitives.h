@@ -1,6 +1,8 @@
 // The raytracer's solid primitives, one per particle: axis-aligned cubes, oriented cubes (a cube
 // turned by its fragment's rotation), tetrahedra and trimtopes (Voronoi cells trimmed by the
-// object's surface, trimtope.h).
+// object's surface, trimtope.h); and triangles, pieces of a closed surface drawn in place of the
+// elements it covers (the crack mesh, host/app/mesh_surface.h). A triangle has no solid of its own:
+// counter-clockwise seen from outside, its geometric normal points out of the material.
 // Storage is structure-of-arrays (PrimitivesView: plain pointers passed by value to kernels);
 // primitive i is of kind[i] and its data is entry slot[i] of that kind's arrays.
 //
@@ -16,7 +18,13 @@
 
 namespace pd {
 
-enum PrimKind : uint8_t { kPrimCube = 0, kPrimTet = 1, kPrimTrimtope = 2, kPrimOrientedCube = 3 };
+enum PrimKind : uint8_t {
+  kPrimCube = 0,
+  kPrimTet = 1,
+  kPrimTrimtope = 2,
+  kPrimOrientedCube = 3,
+  kPrimTriangle = 4
+};
 
 // A tetrahedron's face plane: dot(n, x) = w, n unnormalised and outward.
 struct alignas(4 * sizeof(real)) TetPlane {
@@ -35,6 +43,8 @@ struct PrimitivesView {
   ArrayView<const Vec3> ocube_center;
   ArrayView<const real> ocube_half;
   ArrayView<const Vec3> ocube_axis;  // 3 consecutive unit axes per oriented cube (orthonormal)
+  ArrayView<const Vec3> tri_vertex;  // 3 consecutive vertices per triangle (counter-clockwise from outside)
+  ArrayView<const Vec3> tri_normal;  // 3 consecutive unit shading normals per triangle, one per vertex
   TrimtopesView trim;
 };
 
@@ -176,10 +186,97 @@ PD_HD inline bool intersect_tet(const Ray& r, const TetPlane* plane, SurfaceHit*
   return true;
 }
 
+// The line's crossing of triangle v[0..2], watertight (Woop, Benthin and Wald 2013, "Watertight
+// ray/triangle intersection"): the triangle is sheared into the frame where the ray runs along +z,
+// and the 2D edge functions of the crossing decide inside or out. Two triangles sharing an edge
+// compute its edge function from the same two vertices, the one the exact negation of the other,
+// so a ray through the edge hits at least one of them. On a hit: the line parameter *t (any sign)
+// and the barycentric weights b[0..2] of the vertices.
+PD_HD inline bool line_triangle(const Ray& r, const Vec3* v, real* t, real* b) {
+  // The axis of the direction's largest component becomes z; x and y follow cyclically, swapped
+  // when d points down that axis so that the winding is kept.
+  const real ax = std::fabs(r.d.x), ay = std::fabs(r.d.y), az = std::fabs(r.d.z);
+  const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  if (axis_of(r.d, kz) < 0) {
+    const int swap = kx;
+    kx = ky;
+    ky = swap;
+  }
+  const real dz = axis_of(r.d, kz);
+  const real sx = axis_of(r.d, kx) / dz, sy = axis_of(r.d, ky) / dz, sz = real(1) / dz;
+  // The vertices relative to the origin, sheared.
+  real x[3], y[3], z[3];
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 a = v[k] - r.o;
+    z[k] = axis_of(a, kz);
+    x[k] = axis_of(a, kx) - sx * z[k];
+    y[k] = axis_of(a, ky) - sy * z[k];
+  }
+  // Edge functions: u of the edge opposite vertex 0, and so on.
+  const real u = x[2] * y[1] - y[2] * x[1];
+  const real w1 = x[0] * y[2] - y[0] * x[2];
+  const real w2 = x[1] * y[0] - y[1] * x[0];
+  if ((u < 0 || w1 < 0 || w2 < 0) && (u > 0 || w1 > 0 || w2 > 0)) return false;
+  const real det = u + w1 + w2;
+  if (det == 0) return false;
+  const real inv = real(1) / det;
+  *t = (u * z[0] + w1 * z[1] + w2 * z[2]) * sz * inv;
+  b[0] = u * inv;
+  b[1] = w1 * inv;
+  b[2] = w2 * inv;
+  return true;
+}
+
+// The unit geometric normal of triangle v[0..2]: out of the material for a counter-clockwise one.
+PD_HD inline Vec3 triangle_normal(const Vec3* v) {
+  return normalize(cross(v[1] - v[0], v[2] - v[0]));
+}
+
+// The shading normal at barycentric weights b of a triangle of geometric normal ng and vertex
+// normals n[0..2], seen along d: the interpolated vertex normals, mirrored through the triangle's
+// plane when they point to the other side of it, and the geometric normal itself where the smooth
+// one would face the ray from the other side than the triangle does (grazing rays at silhouettes;
+// the renderer decides entry or exit by that side).
+PD_HD inline Vec3 triangle_shading_normal(Vec3 ng, const Vec3* n, const real* b, Vec3 d) {
+  Vec3 s = b[0] * n[0] + b[1] * n[1] + b[2] * n[2];
+  const real len = length(s);
+  if (!(len > 0)) return ng;
+  s = (real(1) / len) * s;
+  const real side = dot(s, ng);
+  if (side < 0) s = s - (2 * side) * ng;
+  return (dot(s, d) > 0) == (dot(ng, d) > 0) ? s : ng;
+}
+
+// Triangle v[0..2] with vertex normals n[0..2]: the crossing in (tmin, tmax] with the smooth
+// outward normal (entry or exit alike: the surface is crossed once).
+PD_HD inline bool intersect_triangle(const Ray& r, const Vec3* v, const Vec3* n, SurfaceHit* hit) {
+  real t, b[3];
+  if (!line_triangle(r, v, &t, b) || !(t > r.tmin) || !(t <= r.tmax)) return false;
+  hit->t = t;
+  hit->normal = triangle_shading_normal(triangle_normal(v), n, b, r.d);
+  return true;
+}
+
+// Bounds of triangle v[0..2], widened by a millionth of the coordinates' size so that round-off
+// in the sheared test cannot put a hit outside the box the kd-tree holds it in.
+PD_HD inline Box triangle_bounds(const Vec3* v) {
+  const Vec3 lo = vmin(v[0], vmin(v[1], v[2])), hi = vmax(v[0], vmax(v[1], v[2]));
+  const real size =
+      rmax(rmax(std::fabs(lo.x), std::fabs(hi.x)),
+           rmax(rmax(std::fabs(lo.y), std::fabs(hi.y)), rmax(std::fabs(lo.z), std::fabs(hi.z))));
+  const real pad = real(1e-6) * size;
+  const Vec3 w{pad, pad, pad};
+  return {lo - w, hi + w};
+}
+
 PD_HD inline bool intersect_primitive(const PrimitivesView& p, int32_t i, const Ray& r, SurfaceHit* hit) {
   const int32_t s = p.slot[i];
   if (p.kind[i] == kPrimCube) return intersect_cube(r, p.cube_center[s], p.cube_half[s], hit);
   if (p.kind[i] == kPrimTrimtope) return intersect_trimtope(p.trim, s, r, hit);
+  if (p.kind[i] == kPrimTriangle)
+    return intersect_triangle(r, p.tri_vertex.sub(3 * int64_t(s), 3).data(),
+                              p.tri_normal.sub(3 * int64_t(s), 3).data(), hit);
   if (p.kind[i] == kPrimOrientedCube)
     return intersect_oriented_cube(r, p.ocube_center[s], p.ocube_half[s],
                                    p.ocube_axis.sub(3 * int64_t(s), 3).data(), hit);
@@ -194,6 +291,7 @@ PD_HD inline Box primitive_bounds(const PrimitivesView& p, int32_t i) {
     return {{c.x - h, c.y - h, c.z - h}, {c.x + h, c.y + h, c.z + h}};
   }
   if (p.kind[i] == kPrimTrimtope) return p.trim.box[s];
+  if (p.kind[i] == kPrimTriangle) return triangle_bounds(p.tri_vertex.sub(3 * int64_t(s), 3).data());
   if (p.kind[i] == kPrimOrientedCube)
     return oriented_cube_bounds(p.ocube_center[s], p.ocube_half[s],
                                 p.ocube_axis.sub(3 * int64_t(s), 3).data());
@@ -204,9 +302,11 @@ PD_HD inline Box primitive_bounds(const PrimitivesView& p, int32_t i) {
 // For a ray whose point at r.tmin lies inside primitive i: where it leaves the primitive's solid,
 // with the outward unit normal there (dot(normal, d) >= 0). Used to walk through a connected
 // collection of touching elements (union_walk.h). False when the ray's line misses the
-// primitive or leaves it at or before tmin.
+// primitive or leaves it at or before tmin, and for a triangle, which has no solid (a ray inside
+// a closed triangle surface leaves it at the surface's next crossing, union_walk.h).
 PD_HD inline bool primitive_exit(const PrimitivesView& p, int32_t i, const Ray& r, SurfaceHit* hit) {
   const int32_t s = p.slot[i];
+  if (p.kind[i] == kPrimTriangle) return false;
   if (p.kind[i] == kPrimTrimtope) return exit_trimtope(p.trim, s, r, hit);
   real t0, t1;
   Vec3 n;
@@ -238,9 +338,10 @@ PD_HD inline bool primitive_exit(const PrimitivesView& p, int32_t i, const Ray& 
   return true;
 }
 
-// Is the point x strictly inside primitive i's solid?
+// Is the point x strictly inside primitive i's solid? Never for a triangle, which has none.
 PD_HD inline bool primitive_contains(const PrimitivesView& p, int32_t i, Vec3 x) {
   const int32_t s = p.slot[i];
+  if (p.kind[i] == kPrimTriangle) return false;
   if (p.kind[i] == kPrimCube) {
     const Vec3 c = p.cube_center[s];
     const real h = p.cube_half[s];

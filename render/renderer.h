@@ -24,7 +24,7 @@ struct RenderScene {
   std::vector<uint8_t> material;  // SurfaceMaterial per primitive; empty: all opaque
   real join_gap =
       0;        // elements closer than this touch (union_walk.h): kJoinGapFraction of the median element
-  KdTree tree;  // over the primitives that are not hidden
+  KdTree tree;  // over the primitives that are neither hidden nor left out
   int64_t hidden = 0;                 // tetrahedra left out of the tree (hidden_tets.h)
   std::vector<Collider> colliders;    // drawn at their pose, planes excepted (collider_hit.h)
   std::vector<float> collider_grids;  // the mesh colliders' distance grids (Collider::grid_offset)
@@ -38,11 +38,15 @@ enum class HiddenElements { kCull, kKeep };
 // The union tolerance as a fraction of the median element's smallest box side.
 constexpr real kJoinGapFraction = real(0.005);
 
-// Builds the kd-tree and the union tolerance; throws std::invalid_argument unless there is one
-// albedo per primitive and no material or one per primitive.
+// Builds the kd-tree and the union tolerance (from the elements; from the triangles only where
+// there are no elements); throws std::invalid_argument unless there is one albedo per primitive,
+// no material or one per primitive, and no `left_out` or one flag per primitive. Primitives whose
+// `left_out` flag is 1 stay in the set (indices unchanged) but not in the kd-tree: no ray meets
+// them (elements drawn by a surface mesh instead).
 RenderScene make_render_scene(PrimitiveSet prims, std::vector<Vec3> albedo,
                               std::vector<uint8_t> material = {}, const KdBuildOptions& options = {},
-                              HiddenElements elements = HiddenElements::kCull);
+                              HiddenElements elements = HiddenElements::kCull,
+                              const std::vector<uint8_t>& left_out = {});
 
 struct RenderSettings {
   int width = 1280, height = 720;

@@ -171,6 +171,8 @@ struct DevicePrimitives {
   DeviceArray<Vec3, Exec> ocube_center;
   DeviceArray<real, Exec> ocube_half;
   DeviceArray<Vec3, Exec> ocube_axis;
+  DeviceArray<Vec3, Exec> tri_vertex;
+  DeviceArray<Vec3, Exec> tri_normal;
 };
 
 template <class Exec>
@@ -266,7 +268,9 @@ class RendererImpl final : public Renderer {
             upload(ps.trim_box),
             upload(ps.ocube_center),
             upload(ps.ocube_half),
-            upload(ps.ocube_axis)};
+            upload(ps.ocube_axis),
+            upload(ps.tri_vertex),
+            upload(ps.tri_normal)};
   }
 
   KernelStats stats_;

@@ -8,10 +8,15 @@
 // "Just beyond": `gap` past the face, measured along its normal (touching faces agree to float
 // round-off; strained bodies open gaps of a fraction of a percent of the element size, which
 // `gap` should cover, while real cracks are wider).
+//
+// A triangle is a piece of a closed surface (the crack mesh) with no solid of its own: a ray that
+// entered through one leaves at the surface's next crossing, the nearest triangle beyond the
+// entry, wherever it lies; the elements are not walked.
 #pragma once
 
 #include "render/kdtree.h"
 #include "render/primitives.h"
+#include "render/traverse.h"
 
 namespace pd {
 
@@ -61,8 +66,40 @@ struct UnionExit {
 
 constexpr int32_t kMaxUnionSteps = 4096;  // elements crossed by one ray at most
 
+// The leaf visit of surface_exit: the nearest of the leaf's triangle hits (ties: smaller id).
+struct IntersectLeafTriangles {
+  const KdTreeView& tree;
+  const PrimitivesView& prims;
+  const Ray& ray;
+  PD_HD void operator()(KdNode leaf, Hit* best) const {
+    for (uint32_t k = 0; k < leaf.prim_count(); ++k) {
+      const int32_t id = int32_t(tree.prim_index[leaf.first_prim + k]);
+      if (prims.kind[id] != kPrimTriangle) continue;
+      Ray r = ray;
+      if (best->prim >= 0) r.tmax = best->t;
+      SurfaceHit h;
+      if (!intersect_primitive(prims, id, r, &h)) continue;
+      if (best->prim < 0 || h.t < best->t || (h.t == best->t && id < best->prim)) *best = {id, h.t, h.normal};
+    }
+  }
+};
+
+// Where a ray inside a closed triangle surface (entered at r.o, r.tmin past the entry) leaves it:
+// the nearest triangle crossing beyond r.tmin, its normal turned along the ray.
+PD_HD inline UnionExit surface_exit(const KdTreeView& tree, const PrimitivesView& prims, const Ray& r) {
+  UnionExit out;
+  const Hit h = walk_short_stack<kRenderStackSize>(tree, r, IntersectLeafTriangles{tree, prims, r});
+  if (h.prim < 0) return out;
+  out.last = h.prim;
+  out.t = h.t;
+  out.normal = dot(h.normal, r.d) < 0 ? -h.normal : h.normal;
+  out.elements = 1;
+  return out;
+}
+
 PD_HD inline UnionExit union_exit(const KdTreeView& tree, const PrimitivesView& prims, const Ray& r,
                                   int32_t first, real gap) {
+  if (prims.kind[first] == kPrimTriangle) return surface_exit(tree, prims, r);
   UnionExit out;
   SurfaceHit h;
   if (!primitive_exit(prims, first, r, &h)) return out;

@@ -11,6 +11,7 @@
 #include "host/app/checkpoint.h"
 #include "host/app/run.h"
 #include "host/app/run_folder.h"
+#include "host/fragments/crack_mesh_file.h"
 #include "host/fragments/tet_file.h"
 #include "host/fragments/trimtope_file.h"
 #include "host/geometry/collider_mesh.h"
@@ -80,6 +81,8 @@ RenderOptions render_options_from_scene(const Scene& scene, const std::string& d
   o.ior = real(r.ior);
   o.environment = r.environment == "sky" ? "sky" : r.environment_path;
   o.damage_colors = r.damage_colors;
+  o.surface = r.surface;
+  o.smooth_cracks = int(r.smooth_cracks);
   // Body looks by body id (the body's index in the scene).
   o.body_looks.resize(scene.bodies.size());
   for (const SceneBodyLook& l : r.bodies)
@@ -101,6 +104,9 @@ void check_render_options(const RenderOptions& o) {
   if (o.material != "opaque" && o.material != "glass")
     bad("material '" + o.material + "' (allowed: opaque, glass)");
   if (!(o.ior >= 1) || !(o.ior <= 4)) bad("ior must be in [1, 4]");
+  if (o.surface != "elements" && o.surface != "mesh")
+    bad("surface '" + o.surface + "' (allowed: elements, mesh)");
+  if (o.smooth_cracks < 0 || o.smooth_cracks > 100) bad("--smooth-cracks must be in [0, 100]");
   if (o.environment.empty()) bad("environment is empty (allowed: sky, or the path of a Radiance .hdr file)");
   // A file that is there must be a bounded one (a missing one is the loader's to report).
   std::string why;
@@ -164,6 +170,8 @@ std::string RunRenderer::scene_summary() const {
       break;
     }
   if (options_.damage_colors) looks += ", damage colours";
+  if (options_.surface == "mesh")
+    looks += ", crack mesh surfaces (" + std::to_string(options_.smooth_cracks) + " smoothing passes)";
   char buf[320];
   std::snprintf(buf, sizeof buf, "%zu cubes, %zu tetrahedra, %zu trimtopes (%s), %s",
                 rest_.size() - n_trim - n_tets, n_tets, n_trim, looks.c_str(),
@@ -182,13 +190,17 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
   const RunLooks looks{options_.body_looks, options_.material == "glass", options_.damage_colors};
   frame_primitives(rest_, frame, &prims, &albedo, trimtopes_ ? &*trimtopes_ : nullptr,
                    fragments ? &*fragments : nullptr, tets_ ? &*tets_ : nullptr, looks);
-  // A surface per particle where any is glass (none: all opaque).
+  // A surface per particle, then per crack mesh triangle, where any is glass (none: all opaque).
   std::vector<uint8_t> material(albedo.size());
-  bool any_glass = false;
-  for (size_t i = 0; i < material.size(); ++i)
-    any_glass |= (material[i] = looks.of(frame.body[i]).surface) == kMaterialGlass;
-  if (!any_glass) material.clear();
-  RenderScene scene = make_render_scene(std::move(prims), std::move(albedo), std::move(material));
+  for (size_t i = 0; i < material.size(); ++i) material[i] = looks.of(frame.body[i]).surface;
+  std::vector<uint8_t> left_out;
+  int64_t triangles = 0;
+  if (options_.surface == "mesh")
+    triangles = add_crack_mesh(frame.frame, frame.body, &prims, &albedo, &material, &left_out);
+  if (std::find(material.begin(), material.end(), uint8_t(kMaterialGlass)) == material.end())
+    material.clear();
+  RenderScene scene = make_render_scene(std::move(prims), std::move(albedo), std::move(material), {},
+                                        HiddenElements::kCull, left_out);
   const fs::path colliders_path = fs::path(options_.dir) / colliders_file_name(frame.frame);
   if (fs::exists(colliders_path)) {
     for (const ColliderState& c : read_colliders_file(colliders_path.string()))
@@ -202,9 +214,29 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
   write_png(report.png, r.image);
   report.tree = scene.tree.stats;
   report.hidden = scene.hidden;
+  report.triangles = triangles;
   report.render_seconds = r.seconds;
   report.rays = r.rays;
   return report;
+}
+
+int64_t RunRenderer::add_crack_mesh(int64_t frame, const std::vector<int32_t>& body, PrimitiveSet* prims,
+                                    std::vector<Vec3>* albedo, std::vector<uint8_t>* material,
+                                    std::vector<uint8_t>* left_out) const {
+  const std::string path = (fs::path(options_.dir) / crack_mesh_file_name(frame, "ply")).string();
+  if (!fs::exists(path))
+    throw std::invalid_argument("render --surface mesh: no " + path +
+                                " (the run must write crack meshes: fragment output on, the default)");
+  CrackSurface mesh = read_crack_mesh(path);
+  try {
+    *left_out = covered_particles(mesh, body);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("render --surface mesh: " + path + ": " + e.what());
+  }
+  smooth_cracks(mesh, options_.smooth_cracks);
+  add_surface_triangles(mesh, corner_normals(mesh), prims, albedo, material);
+  left_out->resize(size_t(prims->size()), 0);
+  return int64_t(mesh.triangles.size());
 }
 
 void RunRenderer::add_mesh_grids(std::vector<Collider>& colliders) {
@@ -300,6 +332,8 @@ RenderOptions with_scene_render(const RenderOptions& cli, std::string* note) {
   if (given(cli, "--ior")) o.ior = cli.ior;
   if (given(cli, "--environment")) o.environment = cli.environment;
   if (given(cli, "--damage-colors")) o.damage_colors = cli.damage_colors;
+  if (given(cli, "--surface")) o.surface = cli.surface;
+  if (given(cli, "--smooth-cracks")) o.smooth_cracks = cli.smooth_cracks;
   *note = "the scene's [render] block (" + scene.path + "), with the options given here";
   return o;
 }
@@ -332,11 +366,14 @@ int render_frames(const RenderOptions& cli) {
     const FrameRenderReport r = renderer.render(frames[k]);
     ray_seconds += r.render_seconds;
     rays += r.rays;
+    const std::string mesh =
+        o.surface == "mesh" ? ", " + std::to_string(r.triangles) + " mesh triangles" : "";
     std::printf(
-        "frame %zu/%zu  kd-tree %.2f s (%lld nodes, depth %d, %lld hidden)  render %.3f s  %.2f Mrays/s  "
+        "frame %zu/%zu  kd-tree %.2f s (%lld nodes, depth %d, %lld hidden%s)  render %.3f s  %.2f Mrays/s  "
         "%s\n",
         k + 1, frames.size(), r.tree.build_seconds, (long long)r.tree.nodes, r.tree.depth,
-        (long long)r.hidden, r.render_seconds, 1e-6 * double(r.rays) / r.render_seconds, r.png.c_str());
+        (long long)r.hidden, mesh.c_str(), r.render_seconds, 1e-6 * double(r.rays) / r.render_seconds,
+        r.png.c_str());
     std::fflush(stdout);
   }
   std::printf("rendered   %zu frames, %.2f Mrays/s overall\n", frames.size(),

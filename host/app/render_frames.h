@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "host/app/frame_primitives.h"
+#include "host/app/mesh_surface.h"
 #include "host/scene/scene.h"
 #include "render/renderer.h"
 
@@ -28,8 +29,13 @@ struct RenderOptions {
   std::string material = "opaque";  // opaque | glass: the material of every body without a look
   std::vector<std::optional<BodyLook>> body_looks;  // per body id: the scene's [render.bodies]
   bool damage_colors = false;                       // tint damaged particles red
-  real ior = real(1.5);                             // glass index of refraction
-  std::string environment = "sky";                  // "sky" (procedural) or the path of a Radiance .hdr map
+  // "elements": every particle drawn as its element. "mesh": the bodies in a frame's crack mesh
+  // (crack_mesh_NNNNN.ply) drawn from its triangles, smooth-shaded (mesh_surface.h); a frame
+  // without that file is an error.
+  std::string surface = "elements";
+  int smooth_cracks = kDefaultCrackSmoothing;  // Taubin passes over the crack surfaces (mesh only)
+  real ior = real(1.5);                        // glass index of refraction
+  std::string environment = "sky";             // "sky" (procedural) or the path of a Radiance .hdr map
   bool movie = true;            // DIR/render/movie.mp4 when ffmpeg is on PATH (all frames only)
   std::vector<int64_t> frames;  // frame numbers to render; empty: every frame of the run
   // `perifrac render`: the options given on the command line (their long names); the others take
@@ -46,14 +52,15 @@ RenderOptions render_options_from_scene(const Scene& scene, const std::string& d
 std::vector<std::string> select_frame_files(const std::string& dir, const std::vector<int64_t>& wanted);
 
 // Throws std::invalid_argument naming the option and what is allowed when `o` holds a bad value
-// (image size, spp, field of view, material, ior, eye at look-at).
+// (image size, spp, field of view, material, ior, surface, smoothing passes, eye at look-at).
 void check_render_options(const RenderOptions& o);
 
 // What one rendered frame took.
 struct FrameRenderReport {
   std::string png;
   KdTreeStats tree;
-  int64_t hidden = 0;  // tetrahedra left out of the kd-tree (hidden_tets.h)
+  int64_t hidden = 0;     // tetrahedra left out of the kd-tree (hidden_tets.h)
+  int64_t triangles = 0;  // crack mesh triangles drawn (--surface mesh)
   double render_seconds = 0;
   int64_t rays = 0;
 };
@@ -68,6 +75,8 @@ class RunRenderer {
   RunRenderer(const RenderOptions& options, const std::string& last_frame);
   ~RunRenderer();
 
+  // Throws std::invalid_argument with --surface mesh when the frame's crack mesh is missing or
+  // does not name its faces' particles.
   FrameRenderReport render(const std::string& frame_file);
   const std::string& image_dir() const { return out_; }
   std::string device() const;         // "<device name> [<backend>]"
@@ -81,6 +90,11 @@ class RunRenderer {
   std::optional<RestTrimtopes> trimtopes_;
   std::optional<EmbeddedTets> tets_;
   Camera camera_;
+  // --surface mesh: the frame's crack mesh appended to its primitives (the covered particles'
+  // flags set in `left_out`); returns the triangles added.
+  int64_t add_crack_mesh(int64_t frame, const std::vector<int32_t>& body, PrimitiveSet* prims,
+                         std::vector<Vec3>* albedo, std::vector<uint8_t>* material,
+                         std::vector<uint8_t>* left_out) const;
   RenderSettings settings_;
   std::unique_ptr<Renderer> renderer_;
   std::string backend_name_;

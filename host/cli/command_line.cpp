@@ -259,6 +259,15 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
                   "opaque | glass: the material of every body (replaces the scene's looks)")
       ->check(CLI::IsMember({"opaque", "glass"}));
   cmd->add_flag("--damage-colors", o.damage_colors, "tint damaged particles red");
+  cmd->add_option("--surface", o.surface,
+                  "elements | mesh: draw every particle as its element (default), or the bodies from "
+                  "each frame's crack mesh (crack_mesh_NNNNN.ply, which the run must have written), "
+                  "smooth-shaded")
+      ->check(CLI::IsMember({"elements", "mesh"}));
+  cmd->add_option("--smooth-cracks", o.smooth_cracks,
+                  "Taubin smoothing passes over the crack surfaces with --surface mesh (default 2; 0: "
+                  "the element faces as they are)")
+      ->check(CLI::Range(0, 100));
   cmd->add_option("--ior", o.ior, "glass index of refraction")->check(CLI::Range(1.0, 4.0));
   cmd->add_option("--environment", o.environment,
                   "sky (procedural) or a Radiance .hdr latitude-longitude map");

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <sstream>
+#include <stdexcept>
 
 #include "host/fragments/obj_text.h"
 #include "host/geometry/mesh_io.h"
@@ -51,15 +52,23 @@ void write_crack_obj(const std::string& path, const CrackSurface& s, const std::
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
               "the binary PLY writer assumes a little-endian host");
 
+// A face record: 3, three vertex indices, the crack flag and the owning particle; files written
+// before the particle property have records of kPlyOldFaceBytes.
+constexpr size_t kPlyFaceBytes = 18, kPlyOldFaceBytes = 14;
+
 void write_crack_ply(const std::string& path, const CrackSurface& s, const std::string& comment) {
+  if (!s.particle.empty() && s.particle.size() != s.triangles.size())
+    throw std::invalid_argument("write_crack_ply: " + std::to_string(s.particle.size()) + " owners for " +
+                                std::to_string(s.triangles.size()) + " triangles");
   std::ostringstream header;
   header << "ply\nformat binary_little_endian 1.0\ncomment perifrac crack mesh: " << comment
          << "\nelement vertex " << s.vertices.size()
          << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << s.triangles.size()
-         << "\nproperty list uchar int vertex_indices\nproperty uchar crack\nend_header\n";
+         << "\nproperty list uchar int vertex_indices\nproperty uchar crack\nproperty int "
+            "particle\nend_header\n";
   std::string bytes = header.str();
   const size_t start = bytes.size();
-  bytes.resize(start + 12 * s.vertices.size() + 14 * s.triangles.size());
+  bytes.resize(start + 12 * s.vertices.size() + kPlyFaceBytes * s.triangles.size());
   char* p = &bytes[start];
   for (const Vec3d& v : s.vertices) {
     const float x[3] = {float(v[0]), float(v[1]), float(v[2])};
@@ -71,6 +80,9 @@ void write_crack_ply(const std::string& path, const CrackSurface& s, const std::
     std::memcpy(p, s.triangles[f].data(), 12);
     p += 12;
     *p++ = char(s.crack[f]);
+    const int32_t owner = s.particle.empty() ? -1 : s.particle[f];
+    std::memcpy(p, &owner, 4);
+    p += 4;
   }
   write_file_atomic(path, bytes);
 }
@@ -125,14 +137,17 @@ CrackSurface read_crack_ply(const std::string& path, const std::string& bytes) {
   while (std::getline(header, line))
     if (line.rfind("comment", 0) != 0) lines.push_back(line);
   size_t nv = 0, nf = 0;
-  if (lines.size() != 9 || lines[0] != "ply" || lines[1] != "format binary_little_endian 1.0" ||
+  // The layout: 9 lines, and a 10th with the owning particle (files written since it exists).
+  const bool owners = lines.size() == 10 && lines[9] == "property int particle";
+  if ((lines.size() != 9 && !owners) || lines[0] != "ply" || lines[1] != "format binary_little_endian 1.0" ||
       std::sscanf(lines[2].c_str(), "element vertex %zu", &nv) != 1 || lines[3] != "property float x" ||
       lines[4] != "property float y" || lines[5] != "property float z" ||
       std::sscanf(lines[6].c_str(), "element face %zu", &nf) != 1 ||
       lines[7] != "property list uchar int vertex_indices" || lines[8] != "property uchar crack")
     fail("unexpected header");
   const size_t start = end + std::strlen("end_header\n");
-  if (bytes.size() != start + 12 * nv + 14 * nf)
+  const size_t face_bytes = owners ? kPlyFaceBytes : kPlyOldFaceBytes;
+  if (bytes.size() != start + 12 * nv + face_bytes * nf)
     fail("the body is not " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces long");
   CrackSurface s;
   const char* p = bytes.data() + start;
@@ -141,7 +156,7 @@ CrackSurface read_crack_ply(const std::string& path, const std::string& bytes) {
     std::memcpy(x, p, 12);
     s.vertices.push_back({x[0], x[1], x[2]});
   }
-  for (size_t f = 0; f < nf; ++f, p += 14) {
+  for (size_t f = 0; f < nf; ++f, p += face_bytes) {
     std::array<int32_t, 3> t;
     std::memcpy(t.data(), p + 1, 12);
     if (p[0] != 3) fail("face " + std::to_string(f) + " is not a triangle");
@@ -149,6 +164,10 @@ CrackSurface read_crack_ply(const std::string& path, const std::string& bytes) {
       if (i < 0 || size_t(i) >= nv) fail("face " + std::to_string(f) + " has vertex " + std::to_string(i));
     s.triangles.push_back(t);
     s.crack.push_back(uint8_t(p[13]));
+    if (!owners) continue;
+    int32_t owner;
+    std::memcpy(&owner, p + 14, 4);
+    s.particle.push_back(owner);
   }
   return s;
 }

@@ -301,8 +301,11 @@ void EmbeddedMesh::surface(CrackSurface& out) const {
   out.vertices.clear();
   out.triangles.clear();
   out.crack.clear();
+  out.particle.clear();
   // Faces on the object's surface, then opened crack faces (each side as its own polygon), outward
-  // from their element, as fans; vertices numbered in order of first use.
+  // from their element, as fans owned by the element's particle; vertices numbered in order of
+  // first use. (Faces are stored element by element, so the walk over elements is the walk over
+  // faces.)
   std::vector<int32_t> index(position_.size(), -1);
   auto vertex = [&](int32_t corner) {
     const size_t copy = size_t(corner_copy_[size_t(corner)]);
@@ -313,17 +316,19 @@ void EmbeddedMesh::surface(CrackSurface& out) const {
     return index[copy];
   };
   for (uint8_t crack = 0; crack < 2; ++crack)
-    for (size_t f = 0; f < complex_.faces(); ++f) {
-      const int64_t p = face_pair_[f];
-      if (crack ? p < 0 || pair_state_[size_t(p)] != 2 : p >= 0) continue;
-      const int64_t b = complex_.face_corner_start[f], end = complex_.face_corner_start[f + 1];
-      const int32_t first = vertex(complex_.face_corner[size_t(b)]);
-      for (int64_t k = b + 1; k + 1 < end; ++k) {
-        const int32_t second = vertex(complex_.face_corner[size_t(k)]);
-        out.triangles.push_back({first, second, vertex(complex_.face_corner[size_t(k + 1)])});
-        out.crack.push_back(crack);
+    for (size_t e = 0; e < complex_.size(); ++e)
+      for (size_t f = size_t(complex_.face_start[e]); f < size_t(complex_.face_start[e + 1]); ++f) {
+        const int64_t p = face_pair_[f];
+        if (crack ? p < 0 || pair_state_[size_t(p)] != 2 : p >= 0) continue;
+        const int64_t b = complex_.face_corner_start[f], end = complex_.face_corner_start[f + 1];
+        const int32_t first = vertex(complex_.face_corner[size_t(b)]);
+        for (int64_t k = b + 1; k + 1 < end; ++k) {
+          const int32_t second = vertex(complex_.face_corner[size_t(k)]);
+          out.triangles.push_back({first, second, vertex(complex_.face_corner[size_t(k + 1)])});
+          out.crack.push_back(crack);
+          out.particle.push_back(complex_.particle[e]);
+        }
       }
-    }
 }
 
 CrackSurface EmbeddedMesh::surface() const {

@@ -575,8 +575,9 @@ const Keys kRegionShapeKeys[] = {
     {"box_min", "box_max"}, {"center", "radius"}, {"mesh", "scale", "translate"}};
 const Keys kShardKeys = {"size", "hold", "jitter", "body", "center", "radius", "pattern", "dust_hold"};
 const Keys kOutputKeys = {"vtk", "binary"};
-const Keys kRenderKeys = {"eye",      "look_at", "vfov",        "width", "height",        "spp",
-                          "material", "ior",     "environment", "every", "damage_colors", "bodies"};
+const Keys kRenderKeys = {"eye",           "look_at",  "vfov",          "width",       "height",
+                          "spp",           "material", "ior",           "environment", "every",
+                          "damage_colors", "surface",  "smooth_cracks", "bodies"};
 const Keys kRenderBodyKeys = {"look", "color"};
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
@@ -1146,6 +1147,8 @@ SceneRender parse_render(const TableReader& r, const std::string& file, bool wri
   if (s.environment != "sky") s.environment_path = resolve_path(file, s.environment);
   r.integer("every", s.every, 0);
   r.boolean("damage_colors", s.damage_colors);
+  r.string("surface", s.surface, {"elements", "mesh"});
+  whole("smooth_cracks", s.smooth_cracks, 0, 100);
   // [render.bodies.NAME]: a look and a colour per body (the names are checked against the bodies
   // in parse_root).
   Keys looks;

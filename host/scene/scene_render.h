@@ -28,6 +28,8 @@ struct SceneRender {
   std::string environment_path;       // the .hdr path resolved against the scene file's folder
   int64_t every = 1;                  // render every N-th output frame (frame 0 included), >= 1
   bool damage_colors = false;         // tint damaged particles red (a debugging view)
+  std::string surface = "elements";   // "elements" | "mesh": bodies drawn from the crack mesh
+  int64_t smooth_cracks = 2;          // Taubin passes over the crack surfaces (surface = "mesh"), [0, 100]
   std::vector<SceneBodyLook> bodies;  // per-body looks, in the file's order
 };
 

@@ -56,6 +56,33 @@ inline void random_axes(Random& rng, Vec3 axis[3]) {
   axis[2] = {real(2 * (x * z + w * y)), real(2 * (y * z - w * x)), real(1 - 2 * (x * x + y * y))};
 }
 
+// The box [lo, hi] as 12 flat triangles, counter-clockwise seen from outside (a closed surface).
+inline void add_box_triangles(PrimitiveSet& s, Vec3 lo, Vec3 hi) {
+  const Vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z},
+                     {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}};
+  // Each face's corners counter-clockwise seen from outside (corner index bits: x, y, z).
+  const int face[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  for (const auto& f : face) {
+    s.add_triangle(c[f[0]], c[f[1]], c[f[2]]);
+    s.add_triangle(c[f[0]], c[f[2]], c[f[3]]);
+  }
+}
+
+// Triangles of assorted sizes and orientations in [-1, 1]^3, with random unit vertex normals on
+// the side of their geometric normal.
+inline void add_random_triangles(PrimitiveSet& s, Random& rng, int count) {
+  for (int k = 0; k < count; ++k) {
+    const Vec3 a = uniform_point(rng, -1, 1);
+    const real size = uniform(rng, 0.01, 0.3);
+    const Vec3 b = a + size * random_direction(rng), c = a + size * random_direction(rng);
+    const Vec3 v[3] = {a, b, c};
+    const Vec3 n = triangle_normal(v);
+    Vec3 corner[3];
+    for (Vec3& m : corner) m = normalize(n + real(0.5) * random_direction(rng));
+    s.add_triangle(a, b, c, corner[0], corner[1], corner[2]);
+  }
+}
+
 // Randomly turned cubes of assorted sizes in [-1, 1]^3.
 inline void add_random_oriented_cubes(PrimitiveSet& s, Random& rng, int count) {
   for (int i = 0; i < count; ++i) {

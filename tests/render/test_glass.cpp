@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "host/geometry/random.h"
 #include "render/glass.h"
@@ -122,6 +123,52 @@ TEST(Glass, TotalInternalReflectionKeepsTheLightInside) {
   EXPECT_NEAR(length(r.out.dir), 1, 1e-5);
   EXPECT_GT(r.out.weight, 0);
   EXPECT_LE(r.out.weight, 1);
+}
+
+// A cube of 12 triangles is a closed surface: the light leaves it where it leaves a cube primitive
+// of the same size, through the same face, with the same normal and direction.
+TEST(Glass, ACubeOfTrianglesLeavesWhereACubeDoes) {
+  PrimitiveSet cube, mesh;
+  cube.add_cube({0, 0, 0}, real(0.5));
+  testing::add_box_triangles(mesh, {real(-0.5), real(-0.5), real(-0.5)}, {real(0.5), real(0.5), real(0.5)});
+  Random rng(5);
+  int crossed = 0;
+  for (int k = 0; k < 200; ++k) {
+    // From a point on a sphere around the cube towards a point inside it.
+    const Vec3 o = real(3) * testing::random_direction(rng);
+    const Vec3 d = normalize(testing::uniform_point(rng, -0.4, 0.4) - o);
+    const real gap = real(0.005);
+    const SlabResult a = cross_slab(cube, o, d, gap), b = cross_slab(mesh, o, d, gap);
+    ASSERT_GE(a.out.last, 0);
+    ASSERT_GE(b.out.last, 0) << "ray " << k;
+    EXPECT_EQ(b.out.elements, a.out.elements);
+    EXPECT_EQ(b.out.internal_reflections, a.out.internal_reflections);
+    for (const auto& [x, y] : {std::pair{a.entry, b.entry}, std::pair{a.out.point, b.out.point},
+                               std::pair{a.out.dir, b.out.dir}}) {
+      EXPECT_NEAR(x.x, y.x, 1e-5) << "ray " << k;
+      EXPECT_NEAR(x.y, y.y, 1e-5) << "ray " << k;
+      EXPECT_NEAR(x.z, y.z, 1e-5) << "ray " << k;
+    }
+    EXPECT_NEAR(b.out.weight, a.out.weight, 1e-5);
+    ++crossed;
+  }
+  EXPECT_EQ(crossed, 200);
+}
+
+// The exit of a closed triangle surface (union_walk.h): the nearest triangle beyond the entry,
+// its normal along the ray, whatever elements lie about.
+TEST(Glass, TheExitOfATriangleSurfaceIsItsNextCrossing) {
+  PrimitiveSet mesh;
+  testing::add_box_triangles(mesh, {-1, -1, -1}, {1, 1, 1});
+  const KdTree tree = build_kdtree(mesh.bounds());
+  const Ray r = make_ray({real(0.2), real(0.1), -1}, normalize(Vec3{0, real(0.3), 1}), real(1e-4), INFINITY);
+  const UnionExit e = union_exit(tree.view(), mesh.view(), r, 8, real(0.01));
+  ASSERT_GE(e.last, 0);
+  const Vec3 x = r.o + e.t * r.d;
+  EXPECT_NEAR(x.y, real(0.1) + real(0.6), 1e-5);  // through z = 1 after 2 along z
+  EXPECT_NEAR(x.z, 1, 1e-5);
+  EXPECT_NEAR(e.normal.z, 1, 1e-6);
+  EXPECT_GT(dot(e.normal, r.d), 0);
 }
 
 }  // namespace

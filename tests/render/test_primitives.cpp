@@ -6,6 +6,7 @@
 
 #include "host/geometry/random.h"
 #include "render/primitive_set.h"
+#include "tests/render/render_scenes.h"
 
 namespace pd {
 namespace {
@@ -206,6 +207,132 @@ TEST(PrimitiveIntersection, RandomHitsLieOnTheSurface) {
     }
   }
   EXPECT_GT(hits, 150);
+}
+
+// The triangle (0,0,0), (1,0,0), (0,1,0): counter-clockwise seen from +z, so +z is outside.
+const Vec3 kTri[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+const Vec3 kUp[3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+
+TEST(TriangleIntersection, HitFromEitherSideWithTheOutwardNormal) {
+  SurfaceHit h;
+  ASSERT_TRUE(intersect_triangle(ray({real(0.25), real(0.25), 2}, {0, 0, -1}), kTri, kUp, &h));
+  EXPECT_EQ(h.t, 2);
+  expect_vec(h.normal, {0, 0, 1});  // against the ray: an entry
+  ASSERT_TRUE(intersect_triangle(ray({real(0.25), real(0.25), -3}, {0, 0, 1}), kTri, kUp, &h));
+  EXPECT_EQ(h.t, 3);
+  expect_vec(h.normal, {0, 0, 1});  // along the ray: an exit, still outward
+  // Oblique: t is the distance along the unit direction.
+  const Vec3 d = normalize({real(0.1), real(0.2), -1});
+  ASSERT_TRUE(intersect_triangle(make_ray(Vec3{real(0.2), real(0.1), 1}, d, 0, INFINITY), kTri, kUp, &h));
+  EXPECT_NEAR(h.t, 1 / -d.z, 1e-6);
+  // The geometric normal of the winding.
+  expect_vec(triangle_normal(kTri), {0, 0, 1});
+  const Vec3 flipped[3] = {kTri[0], kTri[2], kTri[1]};
+  expect_vec(triangle_normal(flipped), {0, 0, -1});
+}
+
+TEST(TriangleIntersection, MissesOutsideBehindBeyondTmaxAndParallel) {
+  SurfaceHit h;
+  EXPECT_FALSE(
+      intersect_triangle(ray({real(0.6), real(0.6), 1}, {0, 0, -1}), kTri, kUp, &h));  // past the hypotenuse
+  EXPECT_FALSE(intersect_triangle(ray({real(-0.1), real(0.5), 1}, {0, 0, -1}), kTri, kUp, &h));
+  EXPECT_FALSE(intersect_triangle(ray({real(0.2), real(0.2), 1}, {0, 0, 1}), kTri, kUp, &h));  // behind
+  EXPECT_FALSE(intersect_triangle(ray({real(0.2), real(0.2), 1}, {0, 0, -1}, 0, real(0.5)), kTri, kUp, &h));
+  EXPECT_FALSE(intersect_triangle(ray({real(0.2), real(0.2), 1}, {0, 0, -1}, real(1.5)), kTri, kUp, &h));
+  EXPECT_FALSE(intersect_triangle(ray({-1, real(0.2), 0}, {1, 0, 0}), kTri, kUp, &h));  // in its plane
+}
+
+// Watertight: a square of 2 x 2 cells cut into 8 triangles. Rays aimed at the shared edges and
+// vertices, straight and oblique, hit at least one triangle, and a ray never hits two triangles at
+// different t.
+TEST(TriangleIntersection, RaysThroughSharedEdgesAndVerticesAreNotLost) {
+  PrimitiveSet grid;
+  const real s = real(0.1);
+  auto p = [&](int i, int j) { return Vec3{i * s, j * s, real(0.3)}; };
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      grid.add_triangle(p(i, j), p(i + 1, j), p(i + 1, j + 1));
+      grid.add_triangle(p(i, j), p(i + 1, j + 1), p(i, j + 1));
+    }
+  const PrimitivesView v = grid.view();
+  Random rng(3);
+  int rays = 0;
+  for (int k = 0; k < 400; ++k) {
+    // A point on an interior edge (x = s, y = s, or a cell's diagonal), or the centre vertex.
+    const real u = real(rng.uniform()) * s;
+    const int cell = k % 4;
+    const Vec3 targets[4] = {{s, 2 * u, real(0.3)},
+                             {2 * u, s, real(0.3)},
+                             {(cell % 2) * s + u, (cell / 2) * s + u, real(0.3)},
+                             p(1, 1)};
+    const Vec3 target = targets[(k / 2) % 4];
+    const Vec3 d = k % 2 ? Vec3{0, 0, -1} : testing::random_direction(rng);
+    if (std::fabs(d.z) < real(0.2)) continue;
+    const Vec3 o = target - real(2) * d;
+    const Ray r = make_ray(o, d, 0, INFINITY);
+    int hits = 0;
+    real first_t = 0;
+    for (int32_t i = 0; i < v.n; ++i) {
+      SurfaceHit h;
+      if (!intersect_primitive(v, i, r, &h)) continue;
+      if (hits++ == 0) first_t = h.t;
+      EXPECT_NEAR(h.t, first_t, 1e-6);
+    }
+    EXPECT_GE(hits, 1) << "ray " << k << " through (" << target.x << ", " << target.y << ")";
+    ++rays;
+  }
+  EXPECT_GT(rays, 300);
+}
+
+TEST(TriangleIntersection, ShadingNormalInterpolatesTheVertexNormals) {
+  const Vec3 n[3] = {normalize({-1, 0, 1}), normalize({1, 0, 1}), {0, 0, 1}};
+  SurfaceHit h;
+  // At vertex 0 the normal is vertex 0's, halfway between vertices 0 and 1 their mean.
+  ASSERT_TRUE(intersect_triangle(ray({real(1e-4), real(1e-4), 1}, {0, 0, -1}), kTri, n, &h));
+  expect_vec(h.normal, n[0], real(1e-3));
+  ASSERT_TRUE(intersect_triangle(ray({real(0.5), 0, 1}, {0, 0, -1}), kTri, n, &h));
+  expect_vec(h.normal, {0, 0, 1});
+  // At barycentric (0.25, 0.25, 0.5): normalize(0.25 n0 + 0.25 n1 + 0.5 n2).
+  ASSERT_TRUE(intersect_triangle(ray({real(0.25), real(0.5), 1}, {0, 0, -1}), kTri, n, &h));
+  expect_vec(h.normal, normalize(real(0.25) * n[0] + real(0.25) * n[1] + real(0.5) * n[2]));
+}
+
+TEST(TriangleIntersection, NormalStaysOnTheGeometricSide) {
+  SurfaceHit h;
+  // Vertex normals pointing into the material: mirrored through the plane, to the outside.
+  const Vec3 inward[3] = {normalize({real(0.3), 0, -1}), normalize({real(0.3), 0, -1}),
+                          normalize({real(0.3), 0, -1})};
+  ASSERT_TRUE(intersect_triangle(ray({real(0.2), real(0.2), 1}, {0, 0, -1}), kTri, inward, &h));
+  expect_vec(h.normal, normalize({real(0.3), 0, 1}));
+  // A grazing ray that enters the triangle's front side while the smooth normal faces away from
+  // it: the geometric normal, so that the hit still reads as an entry (dot(normal, d) < 0).
+  const Vec3 tilted[3] = {normalize({1, 0, real(0.2)}), normalize({1, 0, real(0.2)}),
+                          normalize({1, 0, real(0.2)})};
+  const Vec3 d = normalize({1, 0, real(-0.1)});
+  ASSERT_TRUE(intersect_triangle(make_ray(Vec3{real(0.1), real(0.2), 0} - real(1) * d, d, 0, INFINITY), kTri,
+                                 tilted, &h));
+  EXPECT_LT(dot(h.normal, d), 0);
+  expect_vec(h.normal, {0, 0, 1});
+}
+
+TEST(TriangleIntersection, PrimitiveDispatchBoundsAndNoSolid) {
+  PrimitiveSet p;
+  p.add_cube({5, 5, 5}, 1);
+  const int32_t t = p.add_triangle(kTri[0], kTri[1], kTri[2]);
+  const PrimitivesView v = p.view();
+  EXPECT_EQ(v.kind[t], kPrimTriangle);
+  SurfaceHit h;
+  ASSERT_TRUE(intersect_primitive(v, t, ray({real(0.2), real(0.2), -1}, {0, 0, 1}), &h));
+  EXPECT_EQ(h.t, 1);
+  expect_vec(h.normal, {0, 0, 1});
+  const Box b = primitive_bounds(v, t);
+  EXPECT_LE(b.lo.x, 0);
+  EXPECT_GE(b.hi.y, 1);
+  EXPECT_LT(b.lo.z, 0);  // widened: a flat box would lose round-off hits
+  EXPECT_GT(b.hi.z, 0);
+  EXPECT_LT(b.hi.z - b.lo.z, 1e-5);
+  EXPECT_FALSE(primitive_contains(v, t, {real(0.2), real(0.2), 0}));
+  EXPECT_FALSE(primitive_exit(v, t, ray({real(0.2), real(0.2), -1}, {0, 0, 1}), &h));
 }
 
 }  // namespace

@@ -160,6 +160,25 @@ TEST(ShortStackTraversal, MatchesBruteForceOnATurnedLattice) {
   check_scene(testing::oriented_lattice_scene(10, 8, 7, real(0.125), axis), 109, 400);
 }
 
+TEST(ShortStackTraversal, MatchesBruteForceOnTriangles) {
+  // Loose random triangles, alone and among cubes and tets.
+  Random rng(11);
+  PrimitiveSet alone;
+  testing::add_random_triangles(alone, rng, 800);
+  EXPECT_GT(check_scene(alone, 110, 400), 0);
+  PrimitiveSet mixed = testing::random_scene(12, 300, 300);
+  testing::add_random_triangles(mixed, rng, 600);
+  EXPECT_GT(check_scene(mixed, 111, 300), 0);
+  // Closed boxes of triangles whose faces lie on shared planes (a lattice of touching boxes).
+  PrimitiveSet boxes;
+  const real s = real(0.125);
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 7; ++i)
+        testing::add_box_triangles(boxes, {i * s, j * s, k * s}, {(i + 1) * s, (j + 1) * s, (k + 1) * s});
+  check_scene(boxes, 112, 400);
+}
+
 TEST(ShortStackTraversal, FullStackVisitsNoMoreNodesThanRestarts) {
   const PrimitiveSet scene = testing::random_scene(3, 2000, 0);
   const KdTree tree = build_kdtree(scene.bounds());

@@ -6,16 +6,20 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <Eigen/Geometry>
 
+#include "host/fragments/crack_mesh_file.h"
 #include "host/fragments/fragments_file.h"
 #include "host/fragments/trimtope_file.h"
 #include "host/geometry/shapes.h"
 #include "host/geometry/voronoi_particles.h"
 #include "host/io/atomic_file.h"
 #include "host/io/frame_file.h"
+
+#include "tests/support/stb_png.h"
 
 namespace pd {
 namespace {
@@ -140,6 +144,144 @@ TEST_F(RenderFramesTest, RejectsMismatchedFramesAndMissingInputs) {
   o.dir = dir_.string();
   o.spp = 0;
   EXPECT_THROW(render_frames(o), std::invalid_argument);
+}
+
+// The closed surface of body 0's cubes in frame f (the lattice's cubes i < 3), quads as two
+// triangles counter-clockwise from outside, each owned by its cube's particle: the crack mesh a run
+// would write for an unbroken body 0.
+CrackSurface body0_surface(const FrameData& frame, real lambda) {
+  CrackSurface s;
+  std::map<std::array<int, 3>, int32_t> corner;  // lattice corner (doubled coordinates) -> vertex
+  const Vec3 origin = frame.position[0];
+  auto vertex = [&](std::array<int, 3> c) {
+    const auto [it, added] = corner.emplace(c, int32_t(s.vertices.size()));
+    if (added)
+      s.vertices.push_back(
+          {origin.x + 0.5 * lambda * c[0], origin.y + 0.5 * lambda * c[1], origin.z + 0.5 * lambda * c[2]});
+    return it->second;
+  };
+  const int n[3] = {3, 4, 5};
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < 3; ++a)
+          for (int side = -1; side <= 1; side += 2) {
+            const int at[3] = {i, j, k};
+            if (at[a] + side >= 0 && at[a] + side < n[a]) continue;  // a neighbour of body 0 there
+            // The face's corners counter-clockwise seen from outside: (b, c) = the next two axes.
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            int32_t q[4];
+            const int sb[4] = {-1, 1, 1, -1}, sc[4] = {-1, -1, 1, 1};
+            for (int m = 0; m < 4; ++m) {
+              std::array<int, 3> x{2 * i, 2 * j, 2 * k};
+              x[size_t(a)] += side;
+              x[size_t(b)] += side > 0 ? sb[m] : sb[3 - m];
+              x[size_t(c)] += side > 0 ? sc[m] : sc[3 - m];
+              q[m] = vertex(x);
+            }
+            const int32_t owner = (k * 4 + j) * 6 + i;
+            s.triangles.push_back({q[0], q[1], q[2]});
+            s.triangles.push_back({q[0], q[2], q[3]});
+            s.crack.insert(s.crack.end(), {0, 0});
+            s.particle.insert(s.particle.end(), {owner, owner});
+          }
+  return s;
+}
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+};
+Png read_png(const std::string& path) {
+  Png p;
+  int comp = 0;
+  unsigned char* data = stbi_load(path.c_str(), &p.width, &p.height, &comp, 3);
+  if (data) p.rgb.assign(data, data + 3 * size_t(p.width) * size_t(p.height));
+  stbi_image_free(data);
+  return p;
+}
+
+// Pixels whose colour differs by more than `tol` in a channel.
+int differing_pixels(const Png& a, const Png& b, int tol) {
+  int count = 0;
+  for (size_t i = 0; i + 2 < a.rgb.size(); i += 3)
+    for (size_t c = 0; c < 3; ++c)
+      if (std::abs(int(a.rgb[i + c]) - int(b.rgb[i + c])) > tol) {
+        ++count;
+        break;
+      }
+  return count;
+}
+
+// --surface mesh draws body 0 from its crack mesh and body 1 from its cubes: the mesh is body 0's
+// cube surface, so the image is the elements' one but for round-off at edges, in both the
+// bodies' looks and the damage colours. The mesh moved shows where body 0 is and nowhere else; a
+// frame without its crack mesh, or a mesh without owners, is an error naming the file.
+TEST_F(RenderFramesTest, SurfaceMeshDrawsTheCoveredBodiesFromTheirMesh) {
+  const real lambda = real(0.01);
+  for (int f = 0; f < 2; ++f)
+    write_crack_ply(path(crack_mesh_file_name(f, "ply")),
+                    body0_surface(read_frame_file(path(frame_file_name(f, "pfr"))), lambda), "test");
+  RenderOptions o;
+  o.dir = dir_.string();
+  o.backend = "cpu";
+  o.width = 80;
+  o.height = 60;
+  o.spp = 1;
+  o.movie = false;
+  o.damage_colors = true;
+  // From the front, looking along -z at the block's middle: body 0 (x < 0.025) on the left half.
+  o.eye = Vec3{real(0.025), real(0.065), real(0.15)};
+  o.look_at = Vec3{real(0.025), real(0.065), real(0.02)};
+  o.out = path("elements");
+  ASSERT_EQ(render_frames(o), 0);
+  o.surface = "mesh";
+  o.out = path("mesh");
+  ASSERT_EQ(render_frames(o), 0);
+  for (const char* name : {"frame_00000.png", "frame_00001.png"}) {
+    SCOPED_TRACE(name);
+    const Png elements = read_png(path("elements/") + name), mesh = read_png(path("mesh/") + name);
+    ASSERT_EQ(mesh.width, 80);
+    ASSERT_EQ(mesh.rgb.size(), elements.rgb.size());
+    EXPECT_LE(differing_pixels(elements, mesh, 2), 80 * 60 / 100);
+  }
+
+  // Body 0's mesh lifted by two cubes: the image changes, and only on the left half, where body 0
+  // and its lifted copy are seen.
+  CrackSurface lifted = body0_surface(read_frame_file(path("frame_00000.pfr")), lambda);
+  for (Vec3d& v : lifted.vertices) v[1] += 2 * lambda;
+  write_crack_ply(path("crack_mesh_00000.ply"), lifted, "test");
+  o.out = path("lifted");  // all frames: the last one sets the floor
+  ASSERT_EQ(render_frames(o), 0);
+  const Png base = read_png(path("elements/frame_00000.png")),
+            moved = read_png(path("lifted/frame_00000.png"));
+  ASSERT_EQ(moved.rgb.size(), base.rgb.size());
+  EXPECT_GT(differing_pixels(base, moved, 2), 80 * 60 / 50);
+  int right = 0;
+  for (int y = 0; y < 60; ++y)
+    for (int x = 0; x < 80; ++x) {
+      const size_t i = 3 * size_t(y * 80 + x);
+      bool differs = false;
+      for (size_t c = 0; c < 3; ++c) differs |= std::abs(int(base.rgb[i + c]) - int(moved.rgb[i + c])) > 2;
+      right += differs && x > 48;
+    }
+  EXPECT_LE(right, 80 * 60 / 200) << "body 1 (drawn as cubes) changed";
+
+  // A frame without its crack mesh; a mesh that does not name its faces' particles.
+  fs::remove(path("crack_mesh_00001.ply"));
+  o.frames = {1};
+  try {
+    render_frames(o);
+    FAIL() << "a frame without a crack mesh was rendered";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("crack_mesh_00001.ply"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("must write crack meshes"), std::string::npos) << e.what();
+  }
+  lifted.particle.clear();
+  write_crack_ply(path("crack_mesh_00001.ply"), lifted, "test");
+  EXPECT_THROW(render_frames(o), std::invalid_argument);
+  o.surface = "faces";
+  EXPECT_THROW(check_render_options(o), std::invalid_argument);
 }
 
 // A run directory of one Voronoi body (a box) with two frames: at rest, then rotated and moved

@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/shapes.h"
+#include "host/io/atomic_file.h"
 #include "tests/host/fragments/fragment_fixtures.h"
 
 namespace pd {
@@ -26,6 +29,7 @@ TEST_F(CrackMeshFile, ObjAndPlyRoundTrip) {
       s.crack.push_back(crack);
     }
   ASSERT_EQ(s.crack_count(), 2u);
+  for (size_t f = 0; f < s.triangles.size(); ++f) s.particle.push_back(int32_t(7 * f + 3));
   write_crack_obj(path("m.obj"), s, "frame 1");
   write_crack_ply(path("m.ply"), s, "frame 1");
   for (const char* name : {"m.obj", "m.ply"}) {
@@ -33,6 +37,8 @@ TEST_F(CrackMeshFile, ObjAndPlyRoundTrip) {
     const CrackSurface back = read_crack_mesh(path(name));
     EXPECT_EQ(back.triangles, s.triangles);
     EXPECT_EQ(back.crack, s.crack);
+    // The owning particles: in the PLY file only.
+    EXPECT_EQ(back.particle, std::string(name) == "m.ply" ? s.particle : std::vector<int32_t>());
     ASSERT_EQ(back.vertices.size(), s.vertices.size());
     for (size_t v = 0; v < s.vertices.size(); ++v) EXPECT_LT(norm(back.vertices[v] - s.vertices[v]), 1e-7);
     // Generic mesh readers (as other tools read them) see the same triangles.
@@ -40,6 +46,36 @@ TEST_F(CrackMeshFile, ObjAndPlyRoundTrip) {
   }
   EXPECT_EQ(crack_mesh_file_name(42, "ply"), "crack_mesh_00042.ply");
   EXPECT_THROW(read_crack_mesh(path("m.obj") + ".ply"), MeshError);
+}
+
+// PLY files written before the faces named their particles (14-byte face records) still read, with
+// no owners; a file without owners is written with -1 for each face.
+TEST_F(CrackMeshFile, PlyWithoutParticlesReadsWithNoOwners) {
+  std::string bytes =
+      "ply\nformat binary_little_endian 1.0\ncomment perifrac crack mesh: frame 0\nelement vertex 3\n"
+      "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nproperty uchar crack\nend_header\n";
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  bytes.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  const int32_t tri[3] = {0, 1, 2};
+  bytes += char(3);
+  bytes.append(reinterpret_cast<const char*>(tri), sizeof tri);
+  bytes += char(1);
+  write_file_atomic(path("old.ply"), bytes);
+  const CrackSurface old = read_crack_mesh(path("old.ply"));
+  ASSERT_EQ(old.triangles.size(), 1u);
+  EXPECT_EQ(old.crack, std::vector<uint8_t>{1});
+  EXPECT_TRUE(old.particle.empty());
+  // Written again (no owners): -1 per face.
+  write_crack_ply(path("again.ply"), old, "frame 0");
+  EXPECT_EQ(read_crack_mesh(path("again.ply")).particle, std::vector<int32_t>{-1});
+  // Owners that do not match the triangles are refused.
+  CrackSurface bad = old;
+  bad.particle = {1, 2};
+  EXPECT_THROW(write_crack_ply(path("bad.ply"), bad, "frame 0"), std::invalid_argument);
+  // A truncated body is refused.
+  write_file_atomic(path("short.ply"), bytes.substr(0, bytes.size() - 1));
+  EXPECT_THROW(read_crack_mesh(path("short.ply")), MeshError);
 }
 
 }  // namespace

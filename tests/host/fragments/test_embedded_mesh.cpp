@@ -176,6 +176,19 @@ TEST(EmbeddedMesh, CutBlockSplitsIntoTwoClosedSurfacesWithCrackFacesOnTheCut) {
       if (s.crack[f]) {
         for (int32_t v : s.triangles[f]) EXPECT_NEAR(s.vertices[size_t(v)][0], 2 * kSide, on_plane);
       }
+    // Each triangle is owned by the particle whose element it bounds: its centre lies within the
+    // element, and a crack triangle faces away from its owner's side of the cut.
+    ASSERT_EQ(s.particle.size(), s.triangles.size());
+    for (size_t f = 0; f < s.triangles.size(); ++f) {
+      const auto& t = s.triangles[f];
+      const Vec3d& a = s.vertices[size_t(t[0])];
+      const Vec3d centre = (1.0 / 3) * (a + s.vertices[size_t(t[1])] + s.vertices[size_t(t[2])]);
+      const Vec3& owner = b.in.particles.rest[size_t(s.particle[f])];
+      EXPECT_LT(norm(centre - Vec3d{owner.x, owner.y, owner.z}), 0.87 * kSide) << "triangle " << f;
+      if (!s.crack[f]) continue;
+      const double out_x = cross(s.vertices[size_t(t[1])] - a, s.vertices[size_t(t[2])] - a)[0];
+      EXPECT_EQ(out_x > 0, owner.x < 2 * kSide) << "triangle " << f;
+    }
     const std::vector<double> volumes = testing::closed_piece_volumes(s);
     ASSERT_EQ(volumes.size(), 2u);
     EXPECT_NEAR(volumes[0], 12 * kSide * kSide * kSide, 1e-6 * 12 * kSide * kSide * kSide);

@@ -52,6 +52,8 @@ material = "glass"
 ior = 1.33
 environment = "maps/studio.hdr"
 every = 5
+surface = "mesh"
+smooth_cracks = 4
 )",
                               kFile);
   ASSERT_TRUE(s.render);
@@ -67,6 +69,8 @@ every = 5
   EXPECT_EQ(r.environment, "maps/studio.hdr");
   EXPECT_EQ(r.environment_path, "scenes/maps/studio.hdr");  // relative to the scene's folder
   EXPECT_EQ(r.every, 5);
+  EXPECT_EQ(r.surface, "mesh");
+  EXPECT_EQ(r.smooth_cracks, 4);
 }
 
 TEST(SceneRender, AbsentBlockMeansNoRenderingAndEmptyBlockTheDefaults) {
@@ -85,6 +89,8 @@ TEST(SceneRender, AbsentBlockMeansNoRenderingAndEmptyBlockTheDefaults) {
   EXPECT_EQ(r.environment, "sky");
   EXPECT_EQ(r.environment_path, "");
   EXPECT_EQ(r.every, 1);
+  EXPECT_EQ(r.surface, "elements");
+  EXPECT_EQ(r.smooth_cracks, 2);
   const Scene absolute = parse_scene(kMinimal + "[render]\nenvironment = \"/maps/sky.hdr\"\n", kFile);
   EXPECT_EQ(absolute.render->environment_path, "/maps/sky.hdr");
 }
@@ -104,6 +110,8 @@ TEST(SceneRender, MistakesNameTheKeyAndWhatIsAllowed) {
   expect_error("[render]\nenvironment = \"\"\n", "render.environment", "the path is empty");
   expect_error("[render]\nenvironment = 3\n", "render.environment", "expected a string");
   expect_error("[render]\nevery = -1\n", "render.every", "an integer >= 0");
+  expect_error("[render]\nsurface = \"smooth\"\n", "render.surface", "\"elements\", \"mesh\"");
+  expect_error("[render]\nsmooth_cracks = 101\n", "render.smooth_cracks", "an integer in [0, 100]");
   expect_error("", "render", "expected a table", "render = 1\n");
   expect_error("[output]\nbinary = false\n[render]\n", "render", "output.binary = true");
 }
