@@ -23,6 +23,8 @@ cd "$(dirname "$0")/.."
 
 # name | scene | paper figure | overrides (;-separated) | GPU scale | CPU scale | frames | still frame
 # [| camera: `perifrac render` options, where the default 3/4 view of the rest box misses the action]
+# An override's value @NAME is entry NAME's run folder (an earlier entry, run in this call or left in
+# DIR by an earlier one): a [[shards]] pattern's first run. Entries so named write a checkpoint.
 ENTRIES=(
   "glass_plate|glass_plate_projectile|Levine Fig. 2|-|1|0.05|40|24"
   "glass_plate_ks_1e6|glass_plate_projectile|Levine Fig. 5, K_S = 1e6|projectiles[0].strength=1e6|1|0.05|24|24"
@@ -56,6 +58,9 @@ ENTRIES=(
   "glass_plate_shards|glass_plate_projectile|Levine Fig. 2 with [[shards]] (issue 31)|shards[0].size=0.02;shards[0].hold=10|1|0.05|40|24"
   "vase_shards|vase_drop|Levine Fig. 1 with [[shards]] (issue 31)|shards[0].size=0.02;shards[0].hold=10|1|0.02|150|120"
   "elastic_drop_shards|chen_elastic_drop|Chen Fig. 16 with [[shards]] (issue 31)|shards[0].size=0.05;shards[0].hold=10|1|0.1|60|60|--eye 0.9,0.6,1.4 --look-at 0.1,0.05,0"
+  "glass_plate_pattern|glass_plate_projectile|Levine Fig. 2, shards along its own cracks (issue 31)|shards[0].size=0.01;shards[0].hold=10;shards[0].pattern=@glass_plate|1|0.05|40|24"
+  "vase_pattern|vase_drop|Levine Fig. 1, shards along its own cracks (issue 31)|shards[0].size=0.02;shards[0].hold=10;shards[0].dust_hold=3;shards[0].pattern=@vase|1|0.02|150|120|--surface mesh"
+  "elastic_drop_pattern|chen_elastic_drop|Chen Fig. 16, shards along its own cracks (issue 31)|shards[0].size=0.02;shards[0].hold=10;shards[0].dust_hold=3;shards[0].pattern=@elastic_drop|1|0.1|60|60|--eye 0.9,0.6,1.4 --look-at 0.1,0.05,0 --surface mesh"
 )
 
 usage() { sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
@@ -165,9 +170,18 @@ for entry in "${ENTRIES[@]}"; do
   [[ $BACKEND == cpu ]] && scale=$cpu_scale
   args=(run --overwrite "scenes/$scene.toml" --backend "$BACKEND" --scale "$scale" --frames "$frames" --out "$OUT/$name"
         --set output.vtk=false)
+  # A pattern's first run keeps its checkpoint.
+  printf '%s\n' "${ENTRIES[@]}" | grep -q "=@$name[;|]" && args+=(--checkpoint-every "$frames")
   if [[ $sets != - ]]; then
     IFS=';' read -ra list <<<"$sets"
-    for s in "${list[@]}"; do args+=(--set "$s"); done
+    for s in "${list[@]}"; do
+      if [[ $s == *=@* ]]; then  # @NAME: that entry's run folder
+        source_dir=$OUT/${s#*=@}
+        [[ -f $source_dir/checkpoint.pck ]] || { echo "   $name needs entry ${s#*=@} run first (no $source_dir/checkpoint.pck)"; continue 2; }
+        s="${s%%=@*}=\"$(cd "$source_dir" && pwd)\""
+      fi
+      args+=(--set "$s")
+    done
   fi
   echo "== $name ($figure): perifrac ${args[*]}"
   if ! "$BIN" "${args[@]}" >"$OUT/$name.log" 2>&1; then
