@@ -147,7 +147,9 @@ CrackSurface read_crack_ply(const std::string& path, const std::string& bytes) {
     fail("unexpected header");
   const size_t start = end + std::strlen("end_header\n");
   const size_t face_bytes = owners ? kPlyFaceBytes : kPlyOldFaceBytes;
-  if (bytes.size() != start + 12 * nv + face_bytes * nf)
+  // Counts the file cannot hold are refused before they are multiplied (no wrap-around).
+  const size_t body = bytes.size() - start;
+  if (nv > body / 12 || nf > body / face_bytes || bytes.size() != start + 12 * nv + face_bytes * nf)
     fail("the body is not " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces long");
   CrackSurface s;
   const char* p = bytes.data() + start;

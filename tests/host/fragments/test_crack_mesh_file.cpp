@@ -76,6 +76,19 @@ TEST_F(CrackMeshFile, PlyWithoutParticlesReadsWithNoOwners) {
   // A truncated body is refused.
   write_file_atomic(path("short.ply"), bytes.substr(0, bytes.size() - 1));
   EXPECT_THROW(read_crack_mesh(path("short.ply")), MeshError);
+  // Counts whose byte sizes wrap around 2^64 to the body's length (12 nv + 14 nf = 2^64 k + body)
+  // are refused, not read: nf = 2^62 + 1, and nv the solution of 12 nv = body - 14 nf mod 2^64
+  // (divisible by 4; 0xAAAAAAAAAAAAAAAB is the inverse of 3 mod 2^64).
+  const size_t body = bytes.size() - (bytes.find("end_header\n") + 11);
+  const size_t nf = (size_t(1) << 62) + 1, x = body - 14 * nf;
+  ASSERT_EQ(x % 4, 0u);
+  const size_t nv = (x / 4) * size_t(0xAAAAAAAAAAAAAAABull);
+  ASSERT_EQ(size_t(12 * nv + 14 * nf), body);  // wraps to the body's length
+  std::string wrapped = bytes;
+  wrapped.replace(wrapped.find("element vertex 3"), 16, "element vertex " + std::to_string(nv));
+  wrapped.replace(wrapped.find("element face 1"), 14, "element face " + std::to_string(nf));
+  write_file_atomic(path("wrapped.ply"), wrapped);
+  EXPECT_THROW(read_crack_mesh(path("wrapped.ply")), MeshError);
 }
 
 }  // namespace
