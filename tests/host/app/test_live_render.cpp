@@ -62,19 +62,8 @@ class LiveRender : public ::testing::Test {
 const char* kGridBody = "size = [0.02, 0.01, 0.01]\nspacing = 0.002\n";
 
 // A PNG's pixels (RGB, row by row); empty when it does not load.
-struct Png {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-  const unsigned char* at(int x, int y) const { return &rgb[3 * (size_t(y) * size_t(width) + size_t(x))]; }
-};
-Png read_png(const std::string& path) {
-  Png p;
-  int comp = 0;
-  unsigned char* data = stbi_load(path.c_str(), &p.width, &p.height, &comp, 3);
-  if (data) p.rgb.assign(data, data + 3 * size_t(p.width) * size_t(p.height));
-  stbi_image_free(data);
-  return p;
-}
+using testing_png::Png;
+using testing_png::read_png;
 
 // A body's look from [render.bodies.NAME] colours it in the run's images, and `perifrac render`
 // of the finished run takes the scene's [render] block (camera, size, looks) unless an option

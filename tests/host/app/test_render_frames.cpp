@@ -188,18 +188,8 @@ CrackSurface body0_surface(const FrameData& frame, real lambda) {
   return s;
 }
 
-struct Png {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-};
-Png read_png(const std::string& path) {
-  Png p;
-  int comp = 0;
-  unsigned char* data = stbi_load(path.c_str(), &p.width, &p.height, &comp, 3);
-  if (data) p.rgb.assign(data, data + 3 * size_t(p.width) * size_t(p.height));
-  stbi_image_free(data);
-  return p;
-}
+using testing_png::Png;
+using testing_png::read_png;
 
 // Pixels whose colour differs by more than `tol` in a channel.
 int differing_pixels(const Png& a, const Png& b, int tol) {
