@@ -18,6 +18,7 @@ struct KernelFeatures {
   bool weak_bonds = false;       // some bonds carry a strength factor (pre-cracks and weakening)
   bool surface = false;          // some bond-based material has the surface correction
   bool surface_factors = false;  // some material has it (the factors are made at set-up)
+  bool ghosts = false;           // some material has the ghost surface correction
   bool lattice = false;          // some bodies have lattice families (host/lattice_families.h)
   bool lattice_listed = false;   // ... whose partners are read from the lists (a partitioned rank)
 };
@@ -39,6 +40,7 @@ inline KernelFeatures features_of(const MaterialTable& mt, bool contact) {
   for (int k = 0; k < mt.count; ++k) {
     const Material& m = mt.m[k];
     f.surface_factors = f.surface_factors || m.surface_correction;
+    f.ghosts = f.ghosts || m.ghost_correction;
     if (m.model != kStateBased) {
       f.surface = f.surface || m.surface_correction;
       continue;

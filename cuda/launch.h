@@ -18,6 +18,7 @@
 #include "cuda/kernels/plasticity.h"
 #include "cuda/kernels/springforces.h"
 #include "cuda/kernels/springforces_state.h"
+#include "cuda/kernels/surface_ghosts.h"
 
 namespace pd {
 
@@ -165,6 +166,32 @@ void launch_init(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, Kerne
 template <class Exec>
 void launch_plasticity(Exec& ex, ParticlesView p, MaterialTable mt) {
   ex.parallel_for("pd/plasticity", p.n, [=] PD_HD(int64_t i) { yield_test(int32_t(i), p, mt); });
+}
+
+// The ghost surface correction (surface_ghosts.h): the fits after `init`, the ghost bonds' forces
+// after `springforces`, and each ghosted particle's liveness from its bonds (set-up, restore).
+template <class Exec>
+void launch_ghost_fit(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
+  ex.parallel_for("pd/ghost_fit", g.n, [=] PD_HD(int64_t k) { ghost_fit(int32_t(k), p, b, g, mt); });
+}
+template <class Exec>
+void launch_ghost_forces(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
+  ex.parallel_for("pd/ghost_forces", g.receivers.size,
+                  [=] PD_HD(int64_t r) { ghost_forces(int32_t(r), p, b, g, mt); });
+}
+template <class Exec>
+void launch_ghost_liveness(Exec& ex, BondsView b, GhostView g) {
+  ex.parallel_for("family/ghost_liveness", g.n, [=] PD_HD(int64_t k) { ghost_liveness(int32_t(k), b, g); });
+}
+template <class Exec>
+void launch_ghost_weighted_volume(Exec& ex, ParticlesView p, GhostView g) {
+  ex.parallel_for("family/ghost_weighted_volume", g.n,
+                  [=] PD_HD(int64_t k) { ghost_weighted_volume(int32_t(k), p, g); });
+}
+template <class Exec>
+double reduce_ghost_energy(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
+  return ex.template reduce_sum<double>(
+      "stats/ghost_energy", g.n, [=] PD_HD(int64_t k) { return ghost_energy(int32_t(k), p, b, g, mt); });
 }
 
 // After a restore: each bond end's e^p copied to its mirror at the partner's slot.

@@ -227,6 +227,9 @@ struct Material {
   // V_j, state-based sum_j n_x^2 |xi| beta V_j (the second moment's, omega |xi|^2 = delta |xi|).
   uint8_t surface_correction = 0;
   real axial_sum = 0;
+  // The ghost surface correction instead (cuda/kernels/surface_ghosts.h): surface particles
+  // complete their families with ghosts on their fitted quadratic field.
+  uint8_t ghost_correction = 0;
   // Bond-based:
   real micromodulus = 0;  // c = 18 K / sum_j |xi| beta V_j over an interior lattice family [N/m^6]
   // State-based:

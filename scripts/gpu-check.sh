@@ -59,6 +59,11 @@ for extra in chen_bar_twist:0.3 chen_thin_sheet_tear:0.1; do
     --out "$OUT/equiv-$name-gpu"
   step "equiv-$name-compare" "$bin" compare "$OUT/equiv-$name-cpu" "$OUT/equiv-$name-gpu"
 done
+# The ghost surface correction (cuda/kernels/surface_ghosts.h) on the twisted rubber bar.
+ghost_twist=(scenes/chen_bar_twist.toml --scale 0.3 --frames 3 --set 'materials.rubber.surface_correction="ghosts"')
+step equiv-ghosts-cpu "$bin" run --overwrite "${ghost_twist[@]}" --backend cpu --out "$OUT/equiv-ghosts-cpu"
+step equiv-ghosts-gpu "$bin" run --overwrite "${ghost_twist[@]}" --backend cuda --out "$OUT/equiv-ghosts-gpu"
+step equiv-ghosts-compare "$bin" compare "$OUT/equiv-ghosts-cpu" "$OUT/equiv-ghosts-gpu"
 # Colliders: a wall resting on frictional ground, hit by a scripted sphere from the first frame.
 # Two frames (13% of the bonds broken): in the third the coarse wall shatters (43% broken) and the
 # CPU's and GPU's roundings grow into different debris (measured 2026-11-26 on an H100, surface
@@ -104,6 +109,8 @@ for tool in memcheck racecheck; do
     --out "$OUT/sanitizer-plastic"
   step "sanitizer-$tool-colliders" compute-sanitizer --tool "$tool" --error-exitcode 9 \
     "$bin" run --overwrite "${cannon[@]}" --backend cuda --frames 1 --steps-per-frame 10 --out "$OUT/sanitizer-colliders"
+  step "sanitizer-$tool-ghosts" compute-sanitizer --tool "$tool" --error-exitcode 9 \
+    "$bin" run --overwrite "${ghost_twist[@]}" --backend cuda --frames 1 --steps-per-frame 10 --out "$OUT/sanitizer-ghosts"
   step "sanitizer-$tool-render" compute-sanitizer --tool "$tool" --error-exitcode 9 \
     "$bin" render "$OUT/sanitizer" --backend cuda --width 64 --height 48 --spp 1
 done
@@ -118,6 +125,12 @@ for model in bond_based state_based anisotropic plastic; do
     --out "$OUT/bench"
   step "bench-lattice-$model-explicit" "$bin" bench --lattice 100 --model "$model" --backend cuda --steps 300 \
     --warmup 30 --explicit-families --out "$OUT/bench"
+done
+# What the ghost surface correction costs per step: the twisted bar (every particle within a
+# horizon of its surface) with and without it.
+for sc in false '"ghosts"'; do
+  step "bench-twist-surface-$sc" "$bin" bench --scene scenes/chen_bar_twist.toml --scale 100 \
+    --set "materials.rubber.surface_correction=$sc" --backend cuda --steps 300 --warmup 30 --out "$OUT/bench"
 done
 step glass-full "$bin" run --overwrite "$scene" --backend cuda --out "$OUT/glass-full"
 

@@ -43,6 +43,10 @@ struct ParticleState {
 };
 
 // Families as stored (sliced ELL, see BondsView), copied back to the host.
+struct SurfaceGhostCounts {
+  int64_t ghosted = 0, thin = 0, precracked = 0;
+};
+
 struct BondLists {
   std::vector<int64_t> slice_offset;
   std::vector<int32_t> count;
@@ -128,6 +132,9 @@ class Engine {
   virtual double critical_time_step() const = 0;
   // Bytes of backend memory held by the engine.
   virtual size_t memory_bytes() const = 0;
+  // The ghost surface correction's set-up (cuda/engine/surface_ghosts.h): particles with ghosts,
+  // and those that miss bonds but have none (thin families, pre-cracks).
+  virtual SurfaceGhostCounts surface_ghosts() const { return {}; }
   // Force passes run (one per step, and one at set-up) and those `springforces` ran screened
   // (cuda/kernels/bond_screen.h).
   virtual int64_t force_passes() const = 0;

@@ -20,6 +20,7 @@
 #include "cuda/engine/engine_state.h"
 #include "cuda/engine/family_builder.h"
 #include "cuda/engine/free_bodies.h"
+#include "cuda/engine/surface_ghosts.h"
 #include "cuda/launch.h"
 #include "cuda/parallel/contact_ghosts.h"
 #include "cuda/parallel/halo.h"
@@ -80,6 +81,9 @@ class EngineImpl final : public Engine {
       have_host_bonds = true;
       return host_bonds;
     };
+    // The ghost correction's families before the pre-cracks, for the same reason.
+    BondLists uncut;
+    if (features_.ghosts) download_bonds(state_, uncut);
     if (!in.cuts.empty() || !in.particles.shard.empty()) {
       features_.weak_bonds = apply_cuts(mem_, state_, owned_, in, family_, host_bonds);
       have_host_bonds = true;
@@ -96,15 +100,26 @@ class EngineImpl final : public Engine {
     }
     if (features_.surface_factors && !lattice_.empty())
       upload_surface_rows(mem_, state_, lattice_, family_, bonds_on_host());
-    host_bonds = BondLists();
     end_stage("lattice tables");
+    std::vector<double> ghost_rate;
+    if (features_.ghosts) {
+      if (rank)
+        throw std::runtime_error(
+            "the ghost surface correction (surface_correction = \"ghosts\") runs on one rank; "
+            "run without --ranks or use surface_correction = true");
+      set_up_ghosts(in.particles, uncut, bonds_on_host().count, ghost_rate);
+      uncut = BondLists();
+      end_stage("surface ghosts");
+    }
+    host_bonds = BondLists();
     double collider_stiffness = 0;
     for (const Collider& c : colliders_host_)  // (the indent law's stiffness grows with the depth: not here)
       if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
-    critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_, collider_stiffness);
+    critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_, collider_stiffness, ghost_rate);
     end_stage("stable step");
     if (features_.state_based) {
       set_up_state_based();
+      if (features_.ghosts) launch_ghost_weighted_volume(exec_, particles(), ghost_view());
       end_stage("state-based");
     }
     if (contact_) contacts_.allocate(mem_, state_.n, materials_);
@@ -199,7 +214,10 @@ class EngineImpl final : public Engine {
 
   Energy energy() override {
     if (contact_) refresh_contacts();
-    return reduce_energy(exec_, particles(), bonds(), contact_view(), materials_, step_params_, contact_);
+    Energy e = reduce_energy(exec_, particles(), bonds(), contact_view(), materials_, step_params_, contact_);
+    if (features_.ghosts)
+      e.strain += reduce_ghost_energy(exec_, particles(), bonds(), ghost_view(), materials_);
+    return e;
   }
 
   int64_t first_non_finite() override {
@@ -212,6 +230,7 @@ class EngineImpl final : public Engine {
   }
 
   size_t memory_bytes() const override { return mem_.bytes(); }
+  SurfaceGhostCounts surface_ghosts() const override { return ghost_counts_; }
   int64_t force_passes() const override { return force_passes_; }
   int64_t screened_passes() const override { return screened_passes_; }
   double critical_time_step() const override { return critical_dt_; }
@@ -234,6 +253,7 @@ class EngineImpl final : public Engine {
     state_.upload_saved(in);
     if (!lattice_.empty()) lattice_.intact.upload(lattice_.tables.intact);
     if (features_.plastic) launch_mirror_plastic(exec_, bonds());
+    if (features_.ghosts) launch_ghost_liveness(exec_, bonds(), ghost_view());
     contacts_.invalidate();
   }
 
@@ -313,6 +333,41 @@ class EngineImpl final : public Engine {
     }
   }
 
+  // The ghost surface correction's tables (cuda/engine/surface_ghosts.h) from the families as
+  // built, before cuts, and their sizes after (`cut_count`); `rate` gets the ghost bonds' share of
+  // each particle's stability rate.
+  void set_up_ghosts(const ParticleSet& ps, const BondLists& uncut, const std::vector<int32_t>& cut_count,
+                     std::vector<double>& rate) {
+    GhostTables t = pd::surface_ghosts(ps, materials_, uncut, cut_count);
+    surface_ghosts_.particle = mem_.make_from(t.particle);
+    surface_ghosts_.of = mem_.make_from(t.of);
+    surface_ghosts_.inverse = mem_.make_from(t.inverse);
+    surface_ghosts_.inv_mw = mem_.make_from(t.inv_mw);
+    surface_ghosts_.first = mem_.make_from(t.first);
+    surface_ghosts_.offset = mem_.make_from(t.offset);
+    surface_ghosts_.receivers = mem_.make_from(t.receivers);
+    surface_ghosts_.pull = mem_.template make_zeroed<real>(size_t(t.size()) * kGhostPull);
+    surface_ghosts_.live = mem_.template make_zeroed<uint8_t>(size_t(t.size()));
+    ghost_counts_ = {t.size(), t.thin, t.precracked};
+    rate = std::move(t.stability_rate);
+    launch_ghost_liveness(exec_, bonds(), ghost_view());
+  }
+
+  GhostView ghost_view() const {
+    GhostView v;
+    v.n = int32_t(surface_ghosts_.particle.size());
+    v.particle = view_of(surface_ghosts_.particle);
+    v.of = view_of(surface_ghosts_.of);
+    v.inverse = view_of(surface_ghosts_.inverse);
+    v.inv_mw = view_of(surface_ghosts_.inv_mw);
+    v.first = view_of(surface_ghosts_.first);
+    v.offset = view_of(surface_ghosts_.offset);
+    v.receivers = view_of(surface_ghosts_.receivers);
+    v.pull = view_of(surface_ghosts_.pull);
+    v.live = view_of(surface_ghosts_.live);
+    return v;
+  }
+
   // State-based set-up: the weighted volumes m from the families as built, and for plastic
   // materials the per-bond history (zero).
   void set_up_state_based() {
@@ -381,12 +436,14 @@ class EngineImpl final : public Engine {
       with_halo(init, state_.disp);
     else
       init(all_particles(p));
+    if (features_.ghosts) launch_ghost_fit(exec_, p, b, ghost_view(), materials_);
     if (features_.plastic) launch_plasticity(exec_, p, materials_);
     const auto springforces = [&](ParticleRange r) { queue_springforces(p, b, r); };
     if (features_.state_based)
       with_halo(springforces, state_.disp, state_.state);
     else
       with_halo(springforces, state_.disp);
+    if (features_.ghosts) launch_ghost_forces(exec_, p, b, ghost_view(), materials_);
     take_broke_flags();
     // (After a contact build that brought in contact ghosts the state may have moved: the views
     // are taken again.)
@@ -460,6 +517,15 @@ class EngineImpl final : public Engine {
 
   KernelStats stats_;
   Exec exec_;
+  // The ghost surface correction's tables (set_up_ghosts), and its counts: ghosted particles,
+  // and those left without ghosts (thin families, pre-cracks).
+  struct GhostArrays {
+    DeviceArray<int32_t, Exec> particle, of, first, receivers;
+    DeviceArray<real, Exec> inverse, inv_mw, pull;
+    DeviceArray<Vec4, Exec> offset;
+    DeviceArray<uint8_t, Exec> live;
+  } surface_ghosts_;
+  SurfaceGhostCounts ghost_counts_;
   DeviceMemory<Exec> mem_;
   std::string device_;
   MaterialTable materials_;

@@ -230,12 +230,14 @@ void refresh_lattice_after_restore(const EngineState<Exec>& s, const std::vector
 // collider's push (Engine::critical_time_step).
 template <class Exec>
 double stable_time_step(DeviceMemory<Exec>& mem, const ParticlesView& p, const BondsView& b,
-                        const MaterialTable& materials, double collider_stiffness) {
+                        const MaterialTable& materials, double collider_stiffness,
+                        const std::vector<double>& extra_rate = {}) {
   auto rate = mem.template make<double>(size_t(p.n));
   launch_stability_rate(mem.exec(), p, b, materials, collider_stiffness, rate.data());
   std::vector<double> host;
   rate.download(host);
   mem.drop(rate);
+  for (size_t i = 0; i < extra_rate.size() && i < host.size(); ++i) host[i] += extra_rate[i];
   const double fastest = *std::max_element(host.begin(), host.end());
   return fastest > 0 ? std::sqrt(2.0 / fastest) : std::numeric_limits<double>::infinity();
 }

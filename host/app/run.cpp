@@ -242,6 +242,13 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
   const double family_dt = engine.critical_time_step();
   std::printf("stability  dt_c from the families %.4g s (continuum estimate %.4g s): dt = %.2f of it\n",
               family_dt, setup.critical_dt, setup.dt / family_dt);
+  const SurfaceGhostCounts ghosts = engine.surface_ghosts();
+  if (ghosts.ghosted + ghosts.thin + ghosts.precracked > 0)
+    std::printf(
+        "ghosts     %lld surface particles complete their families with ghosts; %lld without (%lld too "
+        "thin to fit, %lld at pre-cracks)\n",
+        (long long)ghosts.ghosted, (long long)(ghosts.thin + ghosts.precracked), (long long)ghosts.thin,
+        (long long)ghosts.precracked);
   check_family_time_step(sim.scene, setup.dt, family_dt, opt.allow_unstable_dt);
 }
 

@@ -20,6 +20,7 @@ const char* const kValidationCsvHeader =
 namespace {
 
 const char* surface_name(const ValidationCase& c) {
+  if (c.surface_ghosts) return "ghosts";
   return !c.surface_correction ? "default" : *c.surface_correction ? "on" : "off";
 }
 
@@ -62,7 +63,7 @@ int validate_command(const ValidateOptions& o) {
                  names.c_str());
     return 2;
   }
-  if (!(o.delta_over_lambda >= 1) || !(o.dt_fraction > 0)) {
+  if (!(o.delta_over_lambda >= 1) || !(o.dt_fraction >= 0)) {
     std::fprintf(stderr, "error: validate: need --delta-over-lambda >= 1 and --dt-fraction > 0\n");
     return 2;
   }
@@ -81,8 +82,13 @@ int validate_command(const ValidateOptions& o) {
   }
   if (!note.empty() && !o.quiet) std::printf("backend    %s\n", note.c_str());
   c.delta_over_lambda = o.delta_over_lambda;
-  c.dt_fraction = o.dt_fraction;
-  if (o.surface != "default") c.surface_correction = o.surface == "on";
+  c.dt_fraction = o.dt_fraction > 0 ? o.dt_fraction : o.surface == "ghosts" ? kGhostDtFraction : 0.5;
+  if (o.surface == "ghosts") {
+    c.surface_correction = false;
+    c.surface_ghosts = true;
+  } else if (o.surface != "default") {
+    c.surface_correction = o.surface == "on";
+  }
 
   int status = 0;
   for (const ValidationProblem* p : selected) {

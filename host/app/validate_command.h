@@ -5,15 +5,22 @@
 #include <string>
 #include <vector>
 
+#include "cuda/engine/surface_ghosts.h"
+
 namespace pd {
+
+// The default dt / dt_c with the ghost correction: its bonds shorten the stable step
+// (cuda/engine/surface_ghosts.h kGhostStableStepRatio), and the continuum dt_c the validation
+// problems scale does not know them.
+constexpr double kGhostDtFraction = 0.5 * kGhostStableStepRatio;
 
 struct ValidateOptions {
   std::string problem = "all";      // a name from validation_problems(), or "all"
   std::vector<int> resolutions;     // empty: each problem's default sweep
   double delta_over_lambda = 3;     // horizon in spacings, >= 1
-  double dt_fraction = 0.5;         // dt / dt_c, > 0
+  double dt_fraction = 0;           // dt / dt_c, > 0; 0: 0.5, or kGhostDtFraction with ghosts
   std::string backend = "cpu";      // "cpu" | "cuda" | "auto"
-  std::string surface = "default";  // surface correction: "default" (each model's) | "on" | "off"
+  std::string surface = "default";  // surface correction: "default" (each model's) | "on" | "off" | "ghosts"
   std::string csv;                  // rows appended here (header first when the file is new); "" = none
   bool quiet = false;               // no per-row lines on stdout
 };

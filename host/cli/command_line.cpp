@@ -218,13 +218,15 @@ void add_validate(CLI::App& app, const CommandActions& actions, std::function<in
                   "particles across, e.g. 4,6,8 (default: each problem's sweep)")
       ->delimiter(',');
   cmd->add_option("--delta-over-lambda", validate->delta_over_lambda, "horizon in spacings (default 3)");
-  cmd->add_option("--dt-fraction", validate->dt_fraction, "dt / dt_c (default 0.5)");
+  cmd->add_option("--dt-fraction", validate->dt_fraction,
+                  "dt / dt_c (default 0.5; 0.125 with --surface-correction ghosts, whose bonds shorten the "
+                  "stable step)");
   cmd->add_option("--backend", validate->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cmd->add_option("--surface-correction", validate->surface,
-                  "default | on | off: the surface correction (default: each model's, on for bond-based, off "
-                  "for state-based)")
-      ->check(CLI::IsMember({"default", "on", "off"}));
+                  "default | on | off | ghosts: the surface correction (default: each model's, on for "
+                  "bond-based, off for state-based; ghosts: the ghost correction)")
+      ->check(CLI::IsMember({"default", "on", "off", "ghosts"}));
   cmd->add_option("--csv", validate->csv, "append rows to this CSV");
   cmd->add_flag("--quiet", validate->quiet, "no per-row output");
   on_parsed(cmd, chosen, [&actions, validate] { return actions.validate(*validate); });

@@ -67,6 +67,9 @@ struct SceneMaterial {
   double compression_alpha = 0.25;         // alpha of Levine eq. 5, >= 0
   std::optional<bool> partial_volumes;     // default: true for state_based, false for bond_based
   std::optional<bool> surface_correction;  // default: true for bond_based, false for state_based
+  // surface_correction = "ghosts": the ghost correction instead of the factors
+  // (cuda/kernels/surface_ghosts.h); surface_correction then reads false.
+  bool surface_ghosts = false;
 };
 
 // A body: a solid (a procedural shape or a mesh file) filled with particles of one kind.

@@ -693,17 +693,28 @@ SceneMaterial parse_material(const std::string& name, const TableReader& r) {
   bool partial = false;
   if (r.boolean("partial_volumes", partial)) m.partial_volumes = partial;
   bool surface = false;
-  if (r.boolean("surface_correction", surface)) m.surface_correction = surface;
+  if (r.is_string("surface_correction")) {
+    std::string word;
+    r.string("surface_correction", word, {"ghosts"});
+    m.surface_correction = false;
+    m.surface_ghosts = true;
+  } else if (r.boolean("surface_correction", surface)) {
+    m.surface_correction = surface;
+  }
 
   // State-based extras: fracture criterion, plasticity, anisotropy.
   r.string("fracture", m.fracture, {"chen", "stretch"});
   r.number("damage_alpha", m.damage_alpha, at_least(0));
   if (r.has("plastic")) m.plastic = parse_plastic(r.table("plastic", kPlasticKeys));
   if (r.has("anisotropy")) m.anisotropy = parse_anisotropy(r.table("anisotropy", kAnisotropyKeys));
-  if (m.anisotropy && m.surface_correction.value_or(false))
+  if (m.anisotropy && (m.surface_correction.value_or(false) || m.surface_ghosts))
     r.fail("surface_correction",
-           "is not available with anisotropy (its factors assume an isotropic influence)",
+           "is not available with anisotropy (its factors and ghosts assume an isotropic influence)",
            "false, or no anisotropy");
+  if (m.plastic && m.surface_ghosts)
+    r.fail("surface_correction",
+           "\"ghosts\" is not available for plastic materials (ghost bonds keep no plastic history)",
+           "true or false, or no [plastic] table");
   return m;
 }
 

@@ -10,6 +10,7 @@
 #include "cuda/engine/bond_cuts.h"
 #include "cuda/engine/material.h"
 #include "cuda/engine/memory_budget.h"
+#include "cuda/engine/surface_ghosts.h"
 #include "cuda/parallel/comm.h"
 #include "host/geometry/box_grid.h"
 #include "host/geometry/grid_particles.h"
@@ -78,7 +79,8 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   if (!state) {
     const double c = pmb_lattice_micromodulus(sm.bulk_modulus, m);
     m.micromodulus = real(c);
-    m.surface_correction = sm.surface_correction.value_or(true) ? 1 : 0;
+    m.surface_correction = sm.surface_correction.value_or(!sm.surface_ghosts) ? 1 : 0;
+    m.ghost_correction = sm.surface_ghosts ? 1 : 0;
     m.axial_sum = real(lattice_family_sums(m).axial_sum);
     summary.micromodulus = m.micromodulus;
     summary.strain_limit =
@@ -89,6 +91,7 @@ Material derive_material(const SceneMaterial& sm, double spacing, double contact
   m.bulk_modulus = real(sm.bulk_modulus);
   m.shear_modulus = real(sm.shear_modulus);
   m.surface_correction = sm.surface_correction.value_or(false) ? 1 : 0;
+  m.ghost_correction = sm.surface_ghosts ? 1 : 0;
   m.axial_sum = real(lattice_family_sums(m).bond_sum / 3);  // the second moment's, per axis
   m.chen_fracture = sm.fracture == "chen" ? 1 : 0;
   if (sm.plastic) {
@@ -358,7 +361,10 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
 
   // Step parameters.
   StepParams& sp = in.step;
-  result.dt = scene.dt_auto ? kAutoDtFraction * result.critical_dt : scene.dt;
+  const bool ghosts = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                  [](const SceneMaterial& m) { return m.surface_ghosts; });
+  const double auto_fraction = kAutoDtFraction * (ghosts ? kGhostStableStepRatio : 1.0);
+  result.dt = scene.dt_auto ? auto_fraction * result.critical_dt : scene.dt;
   sp.dt = real(result.dt);
   sp.gravity = to_vec3(scene.gravity);
   sp.floor_enabled = scene.floor ? 1 : 0;

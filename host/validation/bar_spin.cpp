@@ -38,7 +38,7 @@ std::vector<ValidationResult> bar_spin(const ValidationCase& c, const ElasticSol
 
   SimulationInput in;
   in.materials.count = 1;
-  in.materials.m[0] = validation_material(solid, lambda, m, c.surface_correction);
+  in.materials.m[0] = validation_material(solid, lambda, m, c.surface_correction, c.surface_ghosts);
   in.step.dt = real(dt);
   const double corner[3] = {-0.5 * length, -0.5 * side, -0.5 * side};
   std::vector<int> left, right;

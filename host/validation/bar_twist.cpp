@@ -48,7 +48,7 @@ std::vector<ValidationResult> bar_twist(const ValidationCase& c, const ElasticSo
 
   SimulationInput in;
   in.materials.count = 1;
-  in.materials.m[0] = validation_material(solid, lambda, m, c.surface_correction);
+  in.materials.m[0] = validation_material(solid, lambda, m, c.surface_correction, c.surface_ghosts);
   in.step.dt = real(dt);
   const double corner[3] = {-half, -0.5 * side, -0.5 * side};
   std::vector<int> left, right, gauge;

@@ -85,7 +85,7 @@ std::vector<ValidationResult> run_crack_branching(const ValidationCase& c) {
   pl.nx = int(std::lround(kWidth / lambda));
   pl.ny = c.resolution + ((c.resolution - slot) % 2 != 0 ? 1 : 0);
   pl.nz = int(std::ceil(m));
-  const Material mat = validation_material(glass, lambda, m, c.surface_correction);
+  const Material mat = validation_material(glass, lambda, m, c.surface_correction, c.surface_ghosts);
   const double s0 = pmb_lattice_critical_stretch(3.8, double(mat.micromodulus), mat);
   const double traction = kLoadFraction * glass.youngs * s0;
 

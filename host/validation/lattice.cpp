@@ -5,7 +5,7 @@
 namespace pd {
 
 Material validation_material(const ElasticSolid& s, double lambda, double m,
-                             std::optional<bool> surface_correction) {
+                             std::optional<bool> surface_correction, bool ghosts) {
   Material mat;
   mat.horizon = real(m * lambda);
   mat.spacing = real(lambda);
@@ -14,7 +14,8 @@ Material validation_material(const ElasticSolid& s, double lambda, double m,
   if (!s.state_based) {
     mat.model = kBondBased;
     mat.micromodulus = real(pmb_lattice_micromodulus(s.bulk(), mat));
-    mat.surface_correction = surface_correction.value_or(true) ? 1 : 0;
+    mat.surface_correction = surface_correction.value_or(!ghosts) ? 1 : 0;
+    mat.ghost_correction = ghosts ? 1 : 0;
     mat.axial_sum = real(lattice_family_sums(mat).axial_sum);
     return mat;
   }
@@ -23,6 +24,7 @@ Material validation_material(const ElasticSolid& s, double lambda, double m,
   mat.shear_modulus = real(s.shear());
   mat.chen_fracture = 0;  // the stretch criterion: validation bonds never reach their limit
   mat.surface_correction = surface_correction.value_or(false) ? 1 : 0;
+  mat.ghost_correction = ghosts ? 1 : 0;
   mat.axial_sum = real(lattice_family_sums(mat).bond_sum / 3);
   return mat;
 }

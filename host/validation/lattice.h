@@ -32,7 +32,7 @@ struct ElasticSolid {
 // the lattice's micromodulus; the surface correction as given, else each model's default (on for
 // bond-based, off for state-based).
 Material validation_material(const ElasticSolid& s, double lambda, double m,
-                             std::optional<bool> surface_correction);
+                             std::optional<bool> surface_correction, bool ghosts = false);
 
 // The continuum stable time step estimate of host/material.h for this solid.
 double validation_critical_dt(const ElasticSolid& s, double lambda, double m);

@@ -49,7 +49,7 @@ std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c) {
   const double m = c.delta_over_lambda, lambda = kWidth / n;
   const int grip = int(std::ceil(m)), nz = std::max(1, n / 2), nx = 3 * n + 2 * grip + (3 * n) % 2;
   const double thickness = nz * lambda, a = kNotchOverWidth * kWidth;
-  const Material mat = validation_material(glass, lambda, m, c.surface_correction);
+  const Material mat = validation_material(glass, lambda, m, c.surface_correction, c.surface_ghosts);
   const double s0 = pmb_lattice_critical_stretch(kFractureEnergy, double(mat.micromodulus), mat);
   const double failure =
       std::sqrt(glass.youngs * kFractureEnergy) /

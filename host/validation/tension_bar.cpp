@@ -43,7 +43,7 @@ std::vector<ValidationResult> tension_bar(const ValidationCase& c, const Elastic
   // The bar, centred on the origin; grips at both ends; gauge = the central width.
   SimulationInput in;
   in.materials.count = 1;
-  in.materials.m[0] = validation_material(solid, lambda, m, c.surface_correction);
+  in.materials.m[0] = validation_material(solid, lambda, m, c.surface_correction, c.surface_ghosts);
   in.step.dt = real(dt);
   const double half = 0.5 * nx * lambda;
   const double corner[3] = {-half, -0.5 * width, -0.5 * width};

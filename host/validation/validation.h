@@ -21,6 +21,7 @@ struct ValidationCase {
   // The surface correction (cuda/kernels/surface_correction.h); none: each model's default (on
   // for bond-based materials, off for state-based ones).
   std::optional<bool> surface_correction;
+  bool surface_ghosts = false;  // the ghost correction instead (cuda/kernels/surface_ghosts.h)
   Backend backend = Backend::kCpu;
 };
 

@@ -43,7 +43,7 @@ std::vector<ValidationResult> run_wave_bar(const ValidationCase& c) {
   // The bar along x; the first `grip_layers` layers are the grip.
   SimulationInput in;
   in.materials.count = 1;
-  in.materials.m[0] = validation_material(glass, lambda, m, c.surface_correction);
+  in.materials.m[0] = validation_material(glass, lambda, m, c.surface_correction, c.surface_ghosts);
   const double corner[3] = {0, 0, 0};
   for_each_cube(nx, n, n, lambda, corner, [&](int i, int, int, double x, double y, double z) {
     const bool grip = i < grip_layers;

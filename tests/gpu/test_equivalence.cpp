@@ -110,6 +110,58 @@ TEST(GpuEquivalence, StateBasedPlasticBarPulledApart) {
   }
 }
 
+// The ghost surface correction (cuda/kernels/surface_ghosts.h): a bar pulled apart by its grips,
+// bond-based and state-based, the same on both backends (ghosts dropped where bonds break
+// included) and bit-identical from one GPU run to the next.
+TEST(GpuEquivalence, SurfaceGhostsBarPulledApart) {
+  REQUIRE_GPU();
+  for (bool state : {false, true}) {
+    auto in = state ? testing::state_block(24, 6, 6, 1e-3, 2e-3, false)
+                    : testing::lattice_block(24, 6, 6, 1e-3, 2e-3);
+    Material& m = in.materials.m[0];
+    m.partial_volumes = 1;
+    m.surface_correction = 0;
+    m.ghost_correction = 1;
+    if (state) m.chen_fracture = 0;
+    in.step.dt = real(0.4 * make_cpu_engine(in)->critical_time_step());
+    for (size_t i = 0; i < in.particles.size(); ++i) {
+      const real x = in.particles.rest[i].x;
+      if (x < real(2.5e-3) || x > real(20.5e-3)) {
+        in.particles.flags[i] |= kAnchored;
+        in.particles.velocity[i] = {real(x < real(2.5e-3) ? -20 : 20), 0, 0};
+      }
+    }
+    const int64_t steps = int64_t(1.5e-6 / in.step.dt);
+    auto cpu = make_cpu_engine(in);
+    ASSERT_GT(cpu->surface_ghosts().ghosted, 0);
+    ParticleState a, b, c;
+    cpu->advance(steps);
+    cpu->read_state(a);
+    for (ParticleState* s : {&b, &c}) {
+      auto gpu = make_cuda_engine(in);
+      gpu->advance(steps);
+      gpu->read_state(*s);
+      if (s == &b) {
+        const auto ba = testing::broken_bond_set(*cpu), bb = testing::broken_bond_set(*gpu);
+        std::printf(
+            "[ equivalence ] %s bar with surface ghosts, %zu particles, %lld steps: displacement rel L2 "
+            "%.3e, "
+            "broken bonds cpu %zu gpu %zu, Jaccard %.5f; energy balance cpu %.6e gpu %.6e J\n",
+            state ? "state-based" : "bond-based", in.particles.size(), (long long)steps,
+            relative_l2(b.disp, a.disp), ba.size(), bb.size(), testing::jaccard(ba, bb),
+            cpu->energy().balance(), gpu->energy().balance());
+        ASSERT_GT(ba.size(), 100u) << "the bar should have started to break";
+        EXPECT_GT(testing::jaccard(ba, bb), 0.98);
+      }
+    }
+    EXPECT_LT(relative_l2(b.disp, a.disp), 1e-3);
+    for (size_t i = 0; i < b.disp.size(); ++i) {
+      ASSERT_EQ(b.disp[i].x, c.disp[i].x) << i;
+      ASSERT_EQ(b.disp[i].z, c.disp[i].z) << i;
+    }
+  }
+}
+
 TEST(GpuConservation, MomentumAndDeterminism) {
   REQUIRE_GPU();
   auto in = testing::lattice_block(16, 12, 10, 1e-3, 5e-4, 0.2);

@@ -1,0 +1,179 @@
+#include "cuda/engine/surface_ghosts.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "cuda/kernels/family.h"
+
+namespace pd {
+
+namespace {
+
+// A stencil offset counts as present where a partner lies within this many spacings of it.
+constexpr double kCoverRadius = 0.75;
+// A family whose fit matrix has an eigenvalue below this fraction of its largest does not span
+// the quadratic basis (a plate or strand one or two particles thick): no ghosts.
+constexpr double kThinFamily = 1e-9;
+
+// What the set-up finds for one particle with ghosts.
+struct GhostRow {
+  bool ghosted = false, thin = false, precracked = false;
+  std::vector<real> inverse;  // 81
+  real inv_mw = 0;
+  std::vector<Vec4> offset;
+  std::vector<std::pair<int32_t, double>> rate;  // (particle, stability rate)
+};
+
+using Basis = Eigen::Matrix<double, kGhostBasis, 1>;
+
+Basis basis_of(Vec3 xi, const Material& m) {
+  real q[kGhostBasis];
+  ghost_basis(xi, real(1) / m.horizon, q);
+  Basis b;
+  for (int a = 0; a < kGhostBasis; ++a) b[a] = double(q[a]);
+  return b;
+}
+
+// The micromodulus the stability estimate takes (family.h stability_rate's).
+double stability_micromodulus(const Material& m) {
+  if (m.model != kStateBased) return double(m.micromodulus);
+  const double k_eq = (double(m.bulk_modulus) + 4.0 * double(m.shear_modulus) / 3.0) / 1.8;
+  const double d = double(m.horizon);
+  return 18.0 * k_eq / (3.14159265358979323846 * d * d * d * d);
+}
+
+GhostRow ghost_row(int32_t i, const ParticleSet& ps, const MaterialTable& mt, const BondsView& b,
+                   int32_t cut_count) {
+  GhostRow row;
+  const Material& m = mt.m[ps.material[i]];
+  if (!m.ghost_correction) return row;
+  if (cut_count != b.count[i]) {
+    row.precracked = true;
+    return row;
+  }
+  const double lambda = double(m.spacing), radius = double(m.family_radius()) * (1.0 + kHorizonSlack);
+  const int reach = int(std::floor(radius / lambda)) + 1, side = 2 * reach + 1;
+  std::vector<uint8_t> covered(size_t(side) * side * side, 0);
+  auto cell = [&](int x, int y, int z) {
+    return (size_t(z + reach) * side + size_t(y + reach)) * side + size_t(x + reach);
+  };
+  const Vec3 rest_i = ps.rest[i];
+  const int32_t count = b.count[i];
+  for (int32_t k = 0; k < count; ++k) {
+    const Vec3 v = (ps.rest[b.neighbor[b.slot(i, k)]] - rest_i) * real(1.0 / lambda);
+    const int cx = int(std::lround(v.x)), cy = int(std::lround(v.y)), cz = int(std::lround(v.z));
+    for (int z = cz - 1; z <= cz + 1; ++z)
+      for (int y = cy - 1; y <= cy + 1; ++y)
+        for (int x = cx - 1; x <= cx + 1; ++x) {
+          if (std::abs(x) > reach || std::abs(y) > reach || std::abs(z) > reach) continue;
+          const double dx = v.x - x, dy = v.y - y, dz = v.z - z;
+          if (dx * dx + dy * dy + dz * dz < kCoverRadius * kCoverRadius) covered[cell(x, y, z)] = 1;
+        }
+  }
+  const double cube = lambda * lambda * lambda;
+  for (int z = -reach; z <= reach; ++z)
+    for (int y = -reach; y <= reach; ++y)
+      for (int x = -reach; x <= reach; ++x) {
+        if ((x == 0 && y == 0 && z == 0) || covered[cell(x, y, z)]) continue;
+        const double r0 = lambda * std::sqrt(double(x * x + y * y + z * z));
+        if (r0 > radius) continue;
+        row.offset.push_back({real(x * lambda), real(y * lambda), real(z * lambda),
+                              real(double(volume_fraction(real(r0), m)) * cube)});
+      }
+  if (row.offset.empty()) return row;
+  // The fit over the family: A = sum_k w_k p_k p_k^T, with the kernels' float geometry.
+  std::vector<Basis> wp(static_cast<size_t>(count));  // w_k p_k
+  std::vector<int32_t> partner(static_cast<size_t>(count));
+  Eigen::Matrix<double, kGhostBasis, kGhostBasis> a = Eigen::Matrix<double, kGhostBasis, kGhostBasis>::Zero();
+  double m_real = 0;
+  for (int32_t k = 0; k < count; ++k) {
+    const int32_t j = b.neighbor[b.slot(i, k)];
+    const Vec3 xi = ps.rest[j] - rest_i;
+    const real r0 = length(xi);
+    const double w = double(ghost_fit_weight(r0, ps.volume[j], m));
+    const Basis p = basis_of(xi, m);
+    a += w * p * p.transpose();
+    wp[size_t(k)] = w * p;
+    partner[size_t(k)] = j;
+    m_real += w * double(r0) * double(r0);  // omega |xi|^2 beta V
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, kGhostBasis, kGhostBasis>> eig(a);
+  if (count < kGhostBasis || !(eig.eigenvalues()[0] > kThinFamily * eig.eigenvalues()[kGhostBasis - 1])) {
+    row.offset.clear();
+    row.thin = true;
+    return row;
+  }
+  const Eigen::Matrix<double, kGhostBasis, kGhostBasis> inv = a.inverse();
+  row.ghosted = true;
+  row.inverse.resize(kGhostBasis * kGhostBasis);
+  for (int r = 0; r < kGhostBasis; ++r)
+    for (int c = 0; c < kGhostBasis; ++c) row.inverse[size_t(r * kGhostBasis + c)] = real(inv(r, c));
+  double m_ghost = 0;
+  for (const Vec4& o : row.offset) {
+    const double r0 = double(length(xyz(o)));
+    m_ghost += double(m.horizon) * r0 * double(o.w);
+  }
+  row.inv_mw = real(1.0 / (m_real + m_ghost));
+  // The stable step: ghost bond o is a spring of stiffness k_o (one end's share, half a bond's)
+  // between i and the point sum_k a_ok x_k, a_ok = w_k p_k^T A^-1 p_o (and -sum_k a_ok on i); as
+  // stability_rate counts a bond's stiffness once on each end, particle l takes k_o |a_ol| S_o / 2
+  // with S_o = sum_l |a_ol| (the Gershgorin bound of the spring's stiffness matrix, halved).
+  const double c = stability_micromodulus(m), vol_i = double(ps.volume[i]);
+  std::vector<double> share(static_cast<size_t>(count) + 1, 0.0);
+  std::vector<double> coef(static_cast<size_t>(count));
+  for (const Vec4& o : row.offset) {
+    const double r0 = double(length(xyz(o)));
+    const double k_o = 0.5 * c * double(o.w) * vol_i / r0;
+    const Basis ainv_p = inv * basis_of(xyz(o), m);
+    double on_i = 0, sum = 0;
+    for (int32_t k = 0; k < count; ++k) {
+      coef[size_t(k)] = wp[size_t(k)].dot(ainv_p);
+      on_i -= coef[size_t(k)];
+      sum += std::fabs(coef[size_t(k)]);
+    }
+    sum += std::fabs(on_i);
+    for (int32_t k = 0; k < count; ++k) share[size_t(k)] += 0.5 * k_o * std::fabs(coef[size_t(k)]) * sum;
+    share[size_t(count)] += 0.5 * k_o * std::fabs(on_i) * sum;
+  }
+  for (int32_t k = 0; k < count; ++k) row.rate.emplace_back(partner[size_t(k)], share[size_t(k)]);
+  row.rate.emplace_back(i, share[size_t(count)]);
+  return row;
+}
+
+}  // namespace
+
+GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds,
+                           const std::vector<int32_t>& cut_count) {
+  const int32_t n = int32_t(ps.size());
+  const BondsView b = bonds.view();
+  std::vector<GhostRow> rows(static_cast<size_t>(n));
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int32_t i = 0; i < n; ++i) rows[size_t(i)] = ghost_row(i, ps, mt, b, cut_count[size_t(i)]);
+  GhostTables t;
+  t.of.assign(size_t(n), -1);
+  t.stability_rate.assign(size_t(n), 0.0);
+  t.first.push_back(0);
+  std::vector<uint8_t> receives(size_t(n), 0);
+  for (int32_t i = 0; i < n; ++i) {
+    GhostRow& r = rows[size_t(i)];
+    t.thin += r.thin;
+    t.precracked += r.precracked;
+    if (!r.ghosted) continue;
+    t.of[size_t(i)] = t.size();
+    t.particle.push_back(i);
+    t.inverse.insert(t.inverse.end(), r.inverse.begin(), r.inverse.end());
+    t.inv_mw.push_back(r.inv_mw);
+    t.offset.insert(t.offset.end(), r.offset.begin(), r.offset.end());
+    t.first.push_back(int32_t(t.offset.size()));
+    for (const auto& [j, rate] : r.rate) {
+      t.stability_rate[size_t(j)] += rate / double(ps.mass[size_t(j)]);
+      receives[size_t(j)] = 1;
+    }
+    r = GhostRow();
+  }
+  for (int32_t i = 0; i < n; ++i)
+    if (receives[size_t(i)]) t.receivers.push_back(i);
+  return t;
+}
+
+}  // namespace pd

@@ -1,0 +1,310 @@
+// The ghost surface correction (a material's `surface_correction = "ghosts"`; bench/NOTES.md,
+// issue 29): a particle near a free surface completes its family with ghosts. Each bond its
+// family misses (an offset of the interior lattice family ending outside the body) ends at a
+// private ghost, displaced by the quadratic field fitted to the particle's own family:
+//   u(x_i + xi) - u_i = C_i p(xi),  p(xi) = (x, y, z, x^2, y^2, z^2, xy, yz, xz) of xi / delta,
+//   C_i = D_i A_i^-1,  D_i = sum_k (u_k - u_i) w_k p(xi_k)^T,  A_i = sum_k w_k p(xi_k) p(xi_k)^T,
+// w_k = omega beta V_k over the particle's bonds. The ghosts own no energy: the particle's energy
+// density sums its real and ghost bonds as an interior particle's does (PMB: a quarter of c s^2
+// |xi| beta V_o per bond; LPS: ghost bonds in theta_i and in the deviatoric sum, m_i the
+// interior's), so under any field the fit reproduces (uniform strains, and the bending that a
+// linear fit misses) a surface particle stores what the interior does. The energy depends on the
+// real particles through C_i, so the ghost bonds' forces g_o = dW / dy_o go back to the family:
+//   f_k -= M_i p(xi_k) w_k,  f_i += M_i sum_k p(xi_k) w_k,  M_i = (sum_o g_o p(xi_o)^T) A_i^-1,
+// which sums to zero and, W being invariant under rotations, exerts no torque: momentum and
+// angular momentum are kept, and the forces come from an energy.
+// Per step: `ghost_fit` after `init` (the fit, the ghosts' stretches, theta_i completed, M_i),
+// `ghost_forces` after `springforces` (each particle near a surface gathers its ghosted partners'
+// M and its own). A particle's ghosts are dropped for good once any of its bonds is broken (its
+// fit would reach across the crack): it is then an uncorrected particle at a crack, and the
+// energy its ghost bonds held is booked as released. Pre-cracked particles never have ghosts.
+// Set-up: cuda/engine/surface_ghosts.h.
+#pragma once
+
+#include "cuda/kernels/bond.h"
+#include "cuda/kernels/springforces.h"
+#include "cuda/kernels/state_based.h"
+
+namespace pd {
+
+constexpr int kGhostBasis = 9;
+constexpr int kGhostPull = 32;  // floats of scratch per ghosted particle: M (3 x 9), M s (3), pad
+
+// The ghosted particles' tables (built at set-up, cuda/engine/surface_ghosts.h).
+struct GhostView {
+  int32_t n = 0;                       // ghosted particles
+  ArrayView<const int32_t> particle;   // [n] the particle
+  ArrayView<const int32_t> of;         // [particles] its row here, or -1
+  ArrayView<const real> inverse;       // [n x 81] A^-1, row major
+  ArrayView<const real> inv_mw;        // [n] LPS: 1 / m over the family and the ghosts (the interior's)
+  ArrayView<const int32_t> first;      // [n + 1] the particle's ghosts in `offset`
+  ArrayView<const Vec4> offset;        // xyz: a ghost bond's reference vector; w: its weight beta V_o
+  ArrayView<const int32_t> receivers;  // particles that are ghosted or bond to one
+  ArrayView<real> pull;                // [n x kGhostPull] this step's M and M s
+  ArrayView<uint8_t> live;             // [n] 1 while every bond of the particle holds
+};
+
+// p(xi) with xi in units of delta.
+PD_HD inline void ghost_basis(Vec3 xi, real inv_delta, real* q) {
+  const real x = xi.x * inv_delta, y = xi.y * inv_delta, z = xi.z * inv_delta;
+  q[0] = x;
+  q[1] = y;
+  q[2] = z;
+  q[3] = x * x;
+  q[4] = y * y;
+  q[5] = z * z;
+  q[6] = x * y;
+  q[7] = y * z;
+  q[8] = x * z;
+}
+
+// The fit's weight of a bond: omega beta V_k (omega = delta / |xi|; ghosts need an isotropic
+// influence, the loader refuses anisotropy with them).
+PD_HD inline real ghost_fit_weight(real r0, real volume, const Material& m) {
+  return m.horizon / r0 * volume_fraction(r0, m) * volume;
+}
+
+// One ghosted particle's fitted field: C = D A^-1 (3 x 9), row major.
+struct GhostFit {
+  real c[3 * kGhostBasis];
+};
+
+PD_HD inline GhostFit fit_ghost_field(int32_t g, int32_t i, const ParticlesView& p, const BondsView& b,
+                                      const GhostView& gv, const Material& m) {
+  real d[3 * kGhostBasis] = {};
+  const Vec3 rest_i = xyz(p.rest[i]), disp_i = xyz(p.disp[i]);
+  const real inv_delta = real(1) / m.horizon;
+  for (int32_t k = 0; k < b.count[i]; ++k) {
+    const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
+    const Vec4 rest_j = p.rest[j];
+    const Vec3 xi = xyz(rest_j) - rest_i;
+    const real w = ghost_fit_weight(length(xi), rest_j.w, m);
+    const Vec3 du = (xyz(p.disp[j]) - disp_i) * w;
+    real q[kGhostBasis];
+    ghost_basis(xi, inv_delta, q);
+    for (int a = 0; a < kGhostBasis; ++a) {
+      d[a] += du.x * q[a];
+      d[kGhostBasis + a] += du.y * q[a];
+      d[2 * kGhostBasis + a] += du.z * q[a];
+    }
+  }
+  GhostFit f;
+  const real* inv = gv.inverse.data() + int64_t(g) * kGhostBasis * kGhostBasis;
+  for (int c = 0; c < 3; ++c)
+    for (int a = 0; a < kGhostBasis; ++a) {
+      real s = 0;
+      for (int q = 0; q < kGhostBasis; ++q) s += d[c * kGhostBasis + q] * inv[q * kGhostBasis + a];
+      f.c[c * kGhostBasis + a] = s;
+    }
+  return f;
+}
+
+// One ghost bond at the fitted field: its reference and current vectors, lengths and extension.
+struct GhostBond {
+  Vec3 y;
+  real r0, inv_r, e, weight;
+  real q[kGhostBasis];
+};
+
+PD_HD inline GhostBond ghost_bond(const GhostFit& f, Vec4 offset, real inv_delta) {
+  GhostBond o;
+  const Vec3 xi = xyz(offset);
+  ghost_basis(xi, inv_delta, o.q);
+  Vec3 eta{0, 0, 0};
+  for (int a = 0; a < kGhostBasis; ++a) {
+    eta.x += f.c[a] * o.q[a];
+    eta.y += f.c[kGhostBasis + a] * o.q[a];
+    eta.z += f.c[2 * kGhostBasis + a] * o.q[a];
+  }
+  o.y = xi + eta;
+  const BondLengths l = bond_lengths(xi, o.y);
+  o.r0 = l.r0;
+  o.inv_r = l.inv_r;
+  o.e = bond_elongation(xi, eta, l.r0, l.r);
+  o.weight = offset.w;
+  return o;
+}
+
+// theta_i with the ghost bonds (LPS): init's sum over the real bonds, taken with 1/m of the
+// interior, plus the ghosts' share.
+PD_HD inline real ghost_dilatation(const GhostFit& f, int32_t g, real theta_real, real inv_mw,
+                                   const GhostView& gv, const Material& m) {
+  const real inv_delta = real(1) / m.horizon;
+  real sum = 0;
+  for (int32_t o = gv.first[g]; o < gv.first[g + 1]; ++o) {
+    const GhostBond gb = ghost_bond(f, gv.offset[o], inv_delta);
+    sum += m.horizon * gb.e * gb.weight;  // omega |xi| e beta V_o, omega |xi| = delta
+  }
+  return theta_real + real(3) * sum * inv_mw;
+}
+
+// The energy the particle's ghost bonds hold (V_i times their share of its energy density; LPS:
+// the deviatoric part, theta's K theta^2 / 2 being counted with the particle's own).
+PD_HD inline double ghost_bond_energy(const GhostFit& f, int32_t g, int32_t i, const ParticlesView& p,
+                                      const GhostView& gv, const Material& m, real theta, real inv_mw) {
+  const real inv_delta = real(1) / m.horizon, vol_i = p.volume(i);
+  double sum = 0;
+  for (int32_t o = gv.first[g]; o < gv.first[g + 1]; ++o) {
+    const GhostBond gb = ghost_bond(f, gv.offset[o], inv_delta);
+    if (m.model == kStateBased) {
+      const real ed = gb.e - theta * gb.r0 * real(1.0 / 3.0);
+      sum += double(real(7.5) * m.shear_modulus * inv_mw * (m.horizon / gb.r0) * ed * ed * gb.weight * vol_i);
+    } else {
+      sum += double(pmb_bond_energy(gb.e / gb.r0, gb.r0, vol_i, gb.weight, m));
+    }
+  }
+  return sum;
+}
+
+// Kernel `ghost_fit`, after `init`: the fit, theta_i completed (LPS), and M_i and M_i s_i for
+// `ghost_forces` (zeros for a particle whose ghosts were dropped).
+PD_HD inline void ghost_fit(int32_t g, ParticlesView p, BondsView b, GhostView gv, const MaterialTable& mt) {
+  real* pull = gv.pull.data() + int64_t(g) * kGhostPull;
+  if (!gv.live[g]) {
+    for (int a = 0; a < kGhostPull; ++a) pull[a] = 0;
+    return;
+  }
+  const int32_t i = gv.particle[g];
+  const Material& m = mt.m[p.material[i]];
+  const bool state = m.model == kStateBased;
+  const GhostFit f = fit_ghost_field(g, i, p, b, gv, m);
+  const real inv_m_full = state ? gv.inv_mw[g] : real(0);
+  const real inv_delta = real(1) / m.horizon, vol_i = p.volume(i);
+  ForceStateCoefficients k{0, 0};
+  if (state) {
+    Vec4 s = p.state[i];
+    s.x = ghost_dilatation(f, g, s.x, inv_m_full, gv, m);
+    p.state[i] = s;
+    k = force_state_coefficients(s.x, inv_m_full, m);
+  }
+  // Q = sum_o g_o p(xi_o)^T
+  real q_sum[3 * kGhostBasis] = {};
+  for (int32_t o = gv.first[g]; o < gv.first[g + 1]; ++o) {
+    const GhostBond gb = ghost_bond(f, gv.offset[o], inv_delta);
+    const real t =
+        state ? (m.horizon / gb.r0) * (k.a * gb.e + k.c * gb.r0) : real(0.5) * m.micromodulus * gb.e / gb.r0;
+    const Vec3 go = (t * gb.weight * vol_i * gb.inv_r) * gb.y;
+    for (int a = 0; a < kGhostBasis; ++a) {
+      q_sum[a] += go.x * gb.q[a];
+      q_sum[kGhostBasis + a] += go.y * gb.q[a];
+      q_sum[2 * kGhostBasis + a] += go.z * gb.q[a];
+    }
+  }
+  // M = Q A^-1, and M s with s = sum_k w_k p(xi_k) (the particle's own force)
+  const real* inv = gv.inverse.data() + int64_t(g) * kGhostBasis * kGhostBasis;
+  for (int c = 0; c < 3; ++c)
+    for (int a = 0; a < kGhostBasis; ++a) {
+      real s = 0;
+      for (int q = 0; q < kGhostBasis; ++q) s += q_sum[c * kGhostBasis + q] * inv[q * kGhostBasis + a];
+      pull[c * kGhostBasis + a] = s;
+    }
+  Vec3 own{0, 0, 0};
+  const Vec3 rest_i = xyz(p.rest[i]);
+  for (int32_t kk = 0; kk < b.count[i]; ++kk) {
+    const Vec4 rest_j = p.rest[bond_partner(b.neighbor[b.slot(i, kk)])];
+    const Vec3 xi = xyz(rest_j) - rest_i;
+    const real w = ghost_fit_weight(length(xi), rest_j.w, m);
+    real qk[kGhostBasis];
+    ghost_basis(xi, inv_delta, qk);
+    for (int a = 0; a < kGhostBasis; ++a) {
+      own.x += pull[a] * qk[a] * w;
+      own.y += pull[kGhostBasis + a] * qk[a] * w;
+      own.z += pull[2 * kGhostBasis + a] * qk[a] * w;
+    }
+  }
+  pull[27] = own.x;
+  pull[28] = own.y;
+  pull[29] = own.z;
+}
+
+// A ghosted particle one of whose bonds broke in this step's force pass loses its ghosts (after
+// this step's forces, which its fit took with the bond), as if its ghost bonds broke with it:
+// their energy leaves the books (LPS: their deviatoric energy and the change of K theta^2 / 2
+// as theta loses their share; m stays the interior's, as m stays the initial family's when real
+// bonds break). Between steps, then, a particle's ghosts hold exactly while all its bonds do,
+// which is what a restore rebuilds (ghost_liveness).
+PD_HD inline void drop_ghosts(int32_t g, int32_t i, ParticlesView p, BondsView b, GhostView gv,
+                              const MaterialTable& mt) {
+  const Material& m = mt.m[p.material[i]];
+  const GhostFit f = fit_ghost_field(g, i, p, b, gv, m);
+  if (m.model == kStateBased) {
+    Vec4 s = p.state[i];
+    const real inv_mw = gv.inv_mw[g];
+    const real theta_real = s.x - ghost_dilatation(f, g, 0, inv_mw, gv, m);
+    p.ledger[i].released += ghost_bond_energy(f, g, i, p, gv, m, s.x, inv_mw) +
+                            0.5 * double(m.bulk_modulus) * double(p.volume(i)) *
+                                (double(s.x) * double(s.x) - double(theta_real) * double(theta_real));
+    s.x = theta_real;
+    p.state[i] = s;
+  } else {
+    p.ledger[i].released += ghost_bond_energy(f, g, i, p, gv, m, 0, 0);
+  }
+  gv.live[g] = 0;
+}
+
+// Kernel `ghost_forces`, after `springforces`: receiver r's share of the ghost bonds' forces,
+// its own ghosts' and those of each ghosted partner (every bond, including one broken in this
+// step's force pass: the partner's fit still took it), added to its force.
+PD_HD inline void ghost_forces(int32_t r, ParticlesView p, BondsView b, GhostView gv,
+                               const MaterialTable& mt) {
+  const int32_t i = gv.receivers[r];
+  Vec3 f{0, 0, 0};
+  const int32_t own = gv.of[i];
+  if (own >= 0) {
+    const real* pull = gv.pull.data() + int64_t(own) * kGhostPull;
+    f = {pull[27], pull[28], pull[29]};
+  }
+  const Vec4 rest_i = p.rest[i];
+  bool intact = true;
+  for (int32_t k = 0; k < b.count[i]; ++k) {
+    const int32_t nb = b.neighbor[b.slot(i, k)];
+    intact = intact && bond_intact(nb);
+    const int32_t j = bond_partner(nb);
+    const int32_t g = gv.of[j];
+    if (g < 0) continue;
+    const real* pull = gv.pull.data() + int64_t(g) * kGhostPull;
+    const Material& m = mt.m[p.material[j]];
+    const Vec3 xi = xyz(rest_i) - xyz(p.rest[j]);  // from j's side
+    const real w = ghost_fit_weight(length(xi), rest_i.w, m);
+    real q[kGhostBasis];
+    ghost_basis(xi, real(1) / m.horizon, q);
+    Vec3 pj{0, 0, 0};
+    for (int a = 0; a < kGhostBasis; ++a) {
+      pj.x += pull[a] * q[a];
+      pj.y += pull[kGhostBasis + a] * q[a];
+      pj.z += pull[2 * kGhostBasis + a] * q[a];
+    }
+    f -= w * pj;
+  }
+  p.force[i] += f;
+  if (own >= 0 && !intact && gv.live[own]) drop_ghosts(own, i, p, b, gv, mt);
+}
+
+// The ghost bonds' energy of ghosted particle g (0 once its ghosts are dropped).
+PD_HD inline double ghost_energy(int32_t g, const ParticlesView& p, const BondsView& b, const GhostView& gv,
+                                 const MaterialTable& mt) {
+  if (!gv.live[g]) return 0;
+  const int32_t i = gv.particle[g];
+  const Material& m = mt.m[p.material[i]];
+  const bool state = m.model == kStateBased;
+  const GhostFit f = fit_ghost_field(g, i, p, b, gv, m);
+  return ghost_bond_energy(f, g, i, p, gv, m, state ? p.state[i].x : real(0), state ? gv.inv_mw[g] : real(0));
+}
+
+// State-based set-up, after the weighted volumes: a ghosted particle's 1/m is the interior's
+// (over its family and its ghosts), which init's theta over the real bonds then takes, and
+// which it keeps when its ghosts go.
+PD_HD inline void ghost_weighted_volume(int32_t g, ParticlesView p, const GhostView& gv) {
+  p.state[gv.particle[g]].y = gv.inv_mw[g];
+}
+
+// Whether particle g's ghosts hold: every bond of the particle intact (set-up and after a
+// restore; drop_ghosts keeps it from then on).
+PD_HD inline void ghost_liveness(int32_t g, const BondsView& b, GhostView gv) {
+  const int32_t i = gv.particle[g];
+  uint8_t live = 1;
+  for (int32_t k = 0; k < b.count[i]; ++k) live = live && bond_intact(b.neighbor[b.slot(i, k)]);
+  gv.live[g] = live;
+}
+
+}  // namespace pd
