@@ -60,9 +60,9 @@ for extra in chen_bar_twist:0.3 chen_thin_sheet_tear:0.1; do
   step "equiv-$name-compare" "$bin" compare "$OUT/equiv-$name-cpu" "$OUT/equiv-$name-gpu"
 done
 # The ghost surface correction (cuda/kernels/surface_ghosts.h) on the twisted rubber bar.
-ghost_twist=(scenes/chen_bar_twist.toml --scale 0.3 --frames 3 --set 'materials.rubber.surface_correction="ghosts"')
-step equiv-ghosts-cpu "$bin" run --overwrite "${ghost_twist[@]}" --backend cpu --out "$OUT/equiv-ghosts-cpu"
-step equiv-ghosts-gpu "$bin" run --overwrite "${ghost_twist[@]}" --backend cuda --out "$OUT/equiv-ghosts-gpu"
+ghost_twist=(scenes/chen_bar_twist.toml --scale 0.3 --set 'materials.rubber.surface_correction="ghosts"')
+step equiv-ghosts-cpu "$bin" run --overwrite "${ghost_twist[@]}" --frames 3 --backend cpu --out "$OUT/equiv-ghosts-cpu"
+step equiv-ghosts-gpu "$bin" run --overwrite "${ghost_twist[@]}" --frames 3 --backend cuda --out "$OUT/equiv-ghosts-gpu"
 step equiv-ghosts-compare "$bin" compare "$OUT/equiv-ghosts-cpu" "$OUT/equiv-ghosts-gpu"
 # Colliders: a wall resting on frictional ground, hit by a scripted sphere from the first frame.
 # Two frames (13% of the bonds broken): in the third the coarse wall shatters (43% broken) and the
