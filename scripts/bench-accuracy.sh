@@ -2,8 +2,8 @@
 # Accuracy benchmark of the validation problems (docs/validation.md): sweeps resolution, horizon
 # delta/lambda (3, 4), precision (float build; double build with -DPERIFRAC_DOUBLE=ON), backend
 # (cpu; cuda when the binary has it and a GPU answers), dt / dt_c and the surface correction (each
-# model's default, and the other way at delta = 3 lambda: off for bond-based problems, on for
-# state-based ones), through `perifrac validate`.
+# model's default, the other way at delta = 3 lambda: off for bond-based problems, on for
+# state-based ones, and the ghost correction at 0.125 dt_c), through `perifrac validate`.
 # Writes to bench/accuracy/ (or --out): accuracy.csv, pareto.png (error against wall time),
 # convergence.png (error against resolution) and summary.md (Pareto-optimal and recommended
 # settings per measured figure, with the device, CPU and date). Not a test: nothing is asserted.
@@ -57,7 +57,7 @@ PROBLEMS=${PROBLEMS:-"wave_bar tension_bar_pmb tension_bar_lps cantilever_pmb ca
 
 backends="cpu"
 "$BIN" info 2>/dev/null | grep -q '^cuda *available' && backends="cpu cuda"
-run() {  # binary backend problem resolutions delta dt [surface correction: default | on | off]
+run() {  # binary backend problem resolutions delta dt [surface correction: default | on | off | ghosts]
   echo "$(basename "$(dirname "$1")") $2 $3 res $4 delta/lambda $5 dt $6 dt_c surface ${7:-default}" >&2
   "$1" validate --problem "$3" --resolution "$4" --delta-over-lambda "$5" --dt-fraction "$6" --backend "$2" \
     --surface-correction "${7:-default}" --csv "$CSV" --quiet || echo "warning: $3 at $4 exited with $?" >&2
@@ -74,6 +74,9 @@ for bin in "$BIN" ${BIN_DOUBLE:+"$BIN_DOUBLE"}; do
       done
       if [[ " $BOND_BASED " == *" $p "* ]]; then other=off; else other=on; fi
       run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.5 "$other"
+      # The ghost correction (docs/scene-reference.md#ghost-correction) at its default dt / dt_c:
+      # the elastic problems (the fracture problems' ghosts go with their first broken bonds).
+      [[ $p == crack_branching || $p == notched_bar_pmb ]] || run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.125 ghosts
     done
   done
 done

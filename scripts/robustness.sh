@@ -166,6 +166,8 @@ case_ "command line" "[[shards]] cells far smaller than the particles" 2 "shards
 scene pattern.toml '[[shards]]\nsize = 0.01\npattern = "no-such-run"\n'
 case_ "command line" "[[shards]] pattern: a folder without a checkpoint" 2 "shards\[0\]\.pattern" "$BIN" "${P[@]}" pattern.toml --out o6
 scene dust.toml '[[shards]]\nsize = 0.01\ndust_hold = 2\n'
+case_ "command line" "surface_correction neither a boolean nor \"ghosts\"" 2 "materials\.glass\.surface_correction" \
+  "$BIN" "${P[@]}" s.toml --set 'materials.glass.surface_correction="faces"' --out o9
 case_ "command line" "[[shards]] dust_hold without a pattern" 2 "shards\[0\]\.dust_hold" "$BIN" "${P[@]}" dust.toml --out o7
 "$BIN" "${P[@]}" s.toml --out o8 >/dev/null 2>&1 && rm -f o8/crack_mesh_*
 case_ "command line" "render --surface mesh of a run without crack meshes" 2 "no o8/crack_mesh_00000.ply" "$BIN" render o8 --surface mesh --width 32 --height 32

@@ -3,7 +3,7 @@
 # pareto.png: relative error against wall time, every run; convergence.png: relative error
 # against resolution at dt = 0.5 dt_c, float CPU build, delta/lambda 3 (solid) and 4 (dashed) with
 # each model's default surface correction (on for bond-based, off for state-based), and 3 the
-# other way (dotted).
+# other way (dotted), and the ghost correction at delta = 3 lambda (dash-dot).
 set datafile separator ','
 set linetype cycle 12
 set terminal pngcairo size 1200,800 noenhanced font ',10'
@@ -21,13 +21,16 @@ plot for [i=1:words(problems)] csv skip 1 using (strcol(1) eq word(problems, i) 
   with points pt (i % 13 + 1) ps 1.3 title word(problems, i)
 
 set output out.'/convergence.png'
-set title 'Error against resolution (dt = 0.5 dt_c, float, CPU; solid: delta = 3 lambda, dashed: 4 lambda, dotted: 3 lambda, surface correction the other way)'
+set title 'Error against resolution (dt = 0.5 dt_c, float, CPU; solid: delta = 3 lambda, dashed: 4 lambda, dotted: 3 lambda, surface correction the other way; dash-dot: ghosts at 0.125 dt_c)'
 set xlabel 'resolution (particles across the width; plate: across the height)'
 # One series per figure and horizon, filtered by awk so that lines join consecutive resolutions.
 series(p, d, s) = sprintf("< awk -F, '$1 == \"%s\" && $5 == %d && $6 == 0.5 && $3 == \"float\" && $2 == \"cpu\" && ($13 == \"default\") == (\"%s\" == \"default\")' '%s'", p, d, s, csv)
+ghosts(p) = sprintf("< awk -F, '$1 == \"%s\" && $5 == 3 && $3 == \"float\" && $2 == \"cpu\" && $13 == \"ghosts\"' '%s'", p, csv)
 plot for [i=1:words(problems)] series(word(problems, i), 3, "default") using 4:(pos($12)) \
        with linespoints lc i pt (i % 13 + 1) ps 1.3 dt 1 title word(problems, i), \
      for [i=1:words(problems)] series(word(problems, i), 4, "default") using 4:(pos($12)) \
        with linespoints lc i pt (i % 13 + 1) ps 1.3 dt 2 notitle, \
      for [i=1:words(problems)] series(word(problems, i), 3, "other") using 4:(pos($12)) \
-       with linespoints lc i pt (i % 13 + 1) ps 1.3 dt 3 notitle
+       with linespoints lc i pt (i % 13 + 1) ps 1.3 dt 3 notitle, \
+     for [i=1:words(problems)] ghosts(word(problems, i)) using 4:(pos($12)) \
+       with linespoints lc i pt (i % 13 + 1) ps 1.3 dt 4 notitle

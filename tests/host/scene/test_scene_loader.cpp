@@ -242,6 +242,31 @@ strain_limit = 0.001
   expect_error(kMaterial, "bodies", "no body");
 }
 
+// surface_correction takes true, false or "ghosts" (the ghost correction instead of the factors);
+// ghosts are refused for plastic and anisotropic materials.
+TEST(SceneLoader, SurfaceCorrectionGhosts) {
+  const std::string ghosts =
+      "[materials.glass]\ndensity = 2440\nbulk_modulus = 4.3e10\nstrain_limit = 0.001\n"
+      "surface_correction = \"ghosts\"\n";
+  const Scene s = parse_scene(ghosts + kBody, kFile);
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_TRUE(s.materials[0].surface_ghosts);
+  EXPECT_EQ(s.materials[0].surface_correction, std::optional<bool>(false));
+  EXPECT_FALSE(parse_scene(kMinimal, kFile).materials[0].surface_ghosts);
+  const std::string state =
+      "[materials.glass]\nmodel = \"state_based\"\ndensity = 2440\nbulk_modulus = 4.3e10\n"
+      "shear_modulus = 3e10\nstrain_limit = 0.001\nsurface_correction = \"ghosts\"\n";
+  expect_error(
+      "[materials.glass]\ndensity = 2440\nbulk_modulus = 4.3e10\nstrain_limit = 0.001\n"
+      "surface_correction = \"faces\"\n" +
+          kBody,
+      "materials.glass.surface_correction", "\"ghosts\"");
+  expect_error(state + "[materials.glass.plastic]\nyield_stress = 1e8\n" + kBody,
+               "materials.glass.surface_correction", "plastic");
+  expect_error(state + "[materials.glass.anisotropy]\ndirection = [0, 0, 1]\nratio = 2\n" + kBody,
+               "materials.glass.surface_correction", "anisotropy");
+}
+
 // Scripted anchors and keyframed projectiles (docs/scene-reference.md, [[anchors]], [[projectiles]]).
 TEST(SceneLoader, AnchorAndProjectileMotionParses) {
   const Scene s = parse_scene(kMinimal + R"(
