@@ -45,6 +45,7 @@ struct ParticleState {
 // Families as stored (sliced ELL, see BondsView), copied back to the host.
 struct SurfaceGhostCounts {
   int64_t ghosted = 0, thin = 0, precracked = 0;
+  int64_t linear = 0;  // of the ghosted, those on the linear fit
 };
 
 struct BondLists {
@@ -132,8 +133,9 @@ class Engine {
   virtual double critical_time_step() const = 0;
   // Bytes of backend memory held by the engine.
   virtual size_t memory_bytes() const = 0;
-  // The ghost surface correction's set-up (cuda/engine/surface_ghosts.h): particles with ghosts,
-  // and those that miss bonds but have none (thin families, pre-cracks).
+  // The ghost surface correction's set-up (cuda/engine/surface_ghosts.h): particles with ghosts
+  // (and of them those on the linear fit), and those that miss bonds but have none (thin
+  // families, pre-cracks).
   virtual SurfaceGhostCounts surface_ghosts() const { return {}; }
   // Force passes run (one per step, and one at set-up) and those `springforces` ran screened
   // (cuda/kernels/bond_screen.h).

@@ -348,7 +348,7 @@ class EngineImpl final : public Engine {
     surface_ghosts_.receivers = mem_.make_from(t.receivers);
     surface_ghosts_.pull = mem_.template make_zeroed<real>(size_t(t.size()) * kGhostPull);
     surface_ghosts_.live = mem_.template make_zeroed<uint8_t>(size_t(t.size()));
-    ghost_counts_ = {t.size(), t.thin, t.precracked};
+    ghost_counts_ = {t.size(), t.thin, t.precracked, t.linear};
     rate = std::move(t.stability_rate);
     launch_ghost_liveness(exec_, bonds(), ghost_view());
   }

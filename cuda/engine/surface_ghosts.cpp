@@ -1,6 +1,7 @@
 #include "cuda/engine/surface_ghosts.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 #include "cuda/kernels/family.h"
@@ -14,10 +15,20 @@ constexpr double kCoverRadius = 0.75;
 // A family whose fit matrix has an eigenvalue below this fraction of its largest does not span
 // the quadratic basis (a plate or strand one or two particles thick): no ghosts.
 constexpr double kThinFamily = 1e-9;
+// A partner within this fraction of a spacing of a lattice point (per coordinate) is on it.
+constexpr double kAligned = 0.05;
+// A scattered particle whose family holds this fraction of the interior lattice family's volume
+// (sum beta V) is inside the body: no ghosts.
+constexpr double kInteriorVolume = 0.95;
+// The largest sum of |coefficients| by which a ghost's displacement is extrapolated from the
+// family that the quadratic fit may have: on lattices 17-20 at faces, edges and corners
+// (delta = 3 lambda); a scattered family whose quadratic fit extrapolates wildly (which would
+// shorten the stable step) takes the linear fit (exact under uniform strains, soft in bending).
+constexpr double kMaxExtrapolation = 30;
 
 // What the set-up finds for one particle with ghosts.
 struct GhostRow {
-  bool ghosted = false, thin = false, precracked = false;
+  bool ghosted = false, thin = false, precracked = false, linear = false;
   std::vector<real> inverse;  // 81
   real inv_mw = 0;
   std::vector<Vec4> offset;
@@ -59,9 +70,15 @@ GhostRow ghost_row(int32_t i, const ParticleSet& ps, const MaterialTable& mt, co
   };
   const Vec3 rest_i = ps.rest[i];
   const int32_t count = b.count[i];
+  bool aligned = true;     // every partner on a lattice point (within 5% of a spacing)
+  double real_volume = 0;  // sum_j beta V_j
   for (int32_t k = 0; k < count; ++k) {
-    const Vec3 v = (ps.rest[b.neighbor[b.slot(i, k)]] - rest_i) * real(1.0 / lambda);
+    const int32_t j = b.neighbor[b.slot(i, k)];
+    real_volume += double(volume_fraction(length(ps.rest[j] - rest_i), m)) * double(ps.volume[j]);
+    const Vec3 v = (ps.rest[j] - rest_i) * real(1.0 / lambda);
     const int cx = int(std::lround(v.x)), cy = int(std::lround(v.y)), cz = int(std::lround(v.z));
+    aligned = aligned && std::fabs(v.x - cx) < kAligned && std::fabs(v.y - cy) < kAligned &&
+              std::fabs(v.z - cz) < kAligned;
     for (int z = cz - 1; z <= cz + 1; ++z)
       for (int y = cy - 1; y <= cy + 1; ++y)
         for (int x = cx - 1; x <= cx + 1; ++x) {
@@ -81,6 +98,26 @@ GhostRow ghost_row(int32_t i, const ParticleSet& ps, const MaterialTable& mt, co
                               real(double(volume_fraction(real(r0), m)) * cube)});
       }
   if (row.offset.empty()) return row;
+  if (!aligned) {
+    // Scattered particles (tets, Voronoi cells) are not where the stencil's points are, and a
+    // stencil point inside the body may find no particle near it. A particle whose family holds
+    // nearly the interior's volume is inside; near a surface the ghosts fill what its family
+    // lacks of the interior's volume, their weights scaled to it.
+    double interior = 0, ghosts = 0;
+    for (int z = -reach; z <= reach; ++z)
+      for (int y = -reach; y <= reach; ++y)
+        for (int x = -reach; x <= reach; ++x) {
+          const double r0 = lambda * std::sqrt(double(x * x + y * y + z * z));
+          if (r0 > 0 && r0 <= radius) interior += double(volume_fraction(real(r0), m)) * cube;
+        }
+    for (const Vec4& o : row.offset) ghosts += double(o.w);
+    if (real_volume >= kInteriorVolume * interior) {
+      row.offset.clear();
+      return row;
+    }
+    const double scale = (interior - real_volume) / ghosts;
+    for (Vec4& o : row.offset) o.w = real(double(o.w) * scale);
+  }
   // The fit over the family: A = sum_k w_k p_k p_k^T, with the kernels' float geometry.
   std::vector<Basis> wp(static_cast<size_t>(count));  // w_k p_k
   std::vector<int32_t> partner(static_cast<size_t>(count));
@@ -103,11 +140,6 @@ GhostRow ghost_row(int32_t i, const ParticleSet& ps, const MaterialTable& mt, co
     row.thin = true;
     return row;
   }
-  const Eigen::Matrix<double, kGhostBasis, kGhostBasis> inv = a.inverse();
-  row.ghosted = true;
-  row.inverse.resize(kGhostBasis * kGhostBasis);
-  for (int r = 0; r < kGhostBasis; ++r)
-    for (int c = 0; c < kGhostBasis; ++c) row.inverse[size_t(r * kGhostBasis + c)] = real(inv(r, c));
   double m_ghost = 0;
   for (const Vec4& o : row.offset) {
     const double r0 = double(length(xyz(o)));
@@ -118,23 +150,44 @@ GhostRow ghost_row(int32_t i, const ParticleSet& ps, const MaterialTable& mt, co
   // between i and the point sum_k a_ok x_k, a_ok = w_k p_k^T A^-1 p_o (and -sum_k a_ok on i); as
   // stability_rate counts a bond's stiffness once on each end, particle l takes k_o |a_ol| S_o / 2
   // with S_o = sum_l |a_ol| (the Gershgorin bound of the spring's stiffness matrix, halved).
+  // Returns the largest S_o.
   const double c = stability_micromodulus(m), vol_i = double(ps.volume[i]);
   std::vector<double> share(static_cast<size_t>(count) + 1, 0.0);
   std::vector<double> coef(static_cast<size_t>(count));
-  for (const Vec4& o : row.offset) {
-    const double r0 = double(length(xyz(o)));
-    const double k_o = 0.5 * c * double(o.w) * vol_i / r0;
-    const Basis ainv_p = inv * basis_of(xyz(o), m);
-    double on_i = 0, sum = 0;
-    for (int32_t k = 0; k < count; ++k) {
-      coef[size_t(k)] = wp[size_t(k)].dot(ainv_p);
-      on_i -= coef[size_t(k)];
-      sum += std::fabs(coef[size_t(k)]);
+  using Inverse = Eigen::Matrix<double, kGhostBasis, kGhostBasis>;
+  auto stability_shares = [&](const Inverse& inv) {
+    std::fill(share.begin(), share.end(), 0.0);
+    double largest = 0;
+    for (const Vec4& o : row.offset) {
+      const double r0 = double(length(xyz(o)));
+      const double k_o = 0.5 * c * double(o.w) * vol_i / r0;
+      const Basis ainv_p = inv * basis_of(xyz(o), m);
+      double on_i = 0, sum = 0;
+      for (int32_t k = 0; k < count; ++k) {
+        coef[size_t(k)] = wp[size_t(k)].dot(ainv_p);
+        on_i -= coef[size_t(k)];
+        sum += std::fabs(coef[size_t(k)]);
+      }
+      sum += std::fabs(on_i);
+      largest = std::max(largest, sum);
+      for (int32_t k = 0; k < count; ++k) share[size_t(k)] += 0.5 * k_o * std::fabs(coef[size_t(k)]) * sum;
+      share[size_t(count)] += 0.5 * k_o * std::fabs(on_i) * sum;
     }
-    sum += std::fabs(on_i);
-    for (int32_t k = 0; k < count; ++k) share[size_t(k)] += 0.5 * k_o * std::fabs(coef[size_t(k)]) * sum;
-    share[size_t(count)] += 0.5 * k_o * std::fabs(on_i) * sum;
+    return largest;
+  };
+  // The quadratic fit where its extrapolation stays moderate; else the linear one (its inverse
+  // padded with zeros, so the kernels' quadratic coefficients come out 0).
+  Inverse inv = a.inverse();
+  if (stability_shares(inv) > kMaxExtrapolation) {
+    inv.setZero();
+    inv.topLeftCorner<3, 3>() = a.topLeftCorner<3, 3>().inverse();
+    stability_shares(inv);
+    row.linear = true;
   }
+  row.ghosted = true;
+  row.inverse.resize(kGhostBasis * kGhostBasis);
+  for (int r = 0; r < kGhostBasis; ++r)
+    for (int q = 0; q < kGhostBasis; ++q) row.inverse[size_t(r * kGhostBasis + q)] = real(inv(r, q));
   for (int32_t k = 0; k < count; ++k) row.rate.emplace_back(partner[size_t(k)], share[size_t(k)]);
   row.rate.emplace_back(i, share[size_t(count)]);
   return row;
@@ -157,6 +210,7 @@ GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const
   for (int32_t i = 0; i < n; ++i) {
     GhostRow& r = rows[size_t(i)];
     t.thin += r.thin;
+    t.linear += r.linear;
     t.precracked += r.precracked;
     if (!r.ghosted) continue;
     t.of[size_t(i)] = t.size();

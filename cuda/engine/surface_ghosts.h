@@ -27,6 +27,7 @@ struct GhostTables {
   std::vector<double> stability_rate;
   int64_t thin = 0;        // particles that miss bonds but whose family does not span the fit's basis
   int64_t precracked = 0;  // particles that lost bonds to the scene's cuts
+  int64_t linear = 0;      // ghosted particles on the linear fit (surface_ghosts.cpp kMaxExtrapolation)
   int32_t size() const { return int32_t(particle.size()); }
 };
 

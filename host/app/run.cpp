@@ -245,10 +245,10 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
   const SurfaceGhostCounts ghosts = engine.surface_ghosts();
   if (ghosts.ghosted + ghosts.thin + ghosts.precracked > 0)
     std::printf(
-        "ghosts     %lld surface particles complete their families with ghosts; %lld without (%lld too "
-        "thin to fit, %lld at pre-cracks)\n",
-        (long long)ghosts.ghosted, (long long)(ghosts.thin + ghosts.precracked), (long long)ghosts.thin,
-        (long long)ghosts.precracked);
+        "ghosts     %lld surface particles complete their families with ghosts (%lld on the linear "
+        "fit); %lld without (%lld too thin to fit, %lld at pre-cracks)\n",
+        (long long)ghosts.ghosted, (long long)ghosts.linear, (long long)(ghosts.thin + ghosts.precracked),
+        (long long)ghosts.thin, (long long)ghosts.precracked);
   check_family_time_step(sim.scene, setup.dt, family_dt, opt.allow_unstable_dt);
 }
 

@@ -219,6 +219,38 @@ TEST(SurfaceGhosts, GhostsGoWithTheFirstBrokenBond) {
   }
 }
 
+// Scattered particles (a jittered grid standing in for tets and Voronoi cells): the ghosts fill
+// what a surface particle's family lacks of the interior's volume, so the block stores nearly the
+// interior's energy under a uniform strain, where the uncorrected PMB block stores 30-40% less.
+TEST(SurfaceGhosts, ScatteredParticlesGetTheMissingVolume) {
+  SimulationInput in = testing::lattice_block(10, 9, 8, kLambda, 0.5, 0.4);
+  Material& m = in.materials.m[0];
+  m.surface_correction = 0;
+  m.ghost_correction = 1;
+  const double eps[3][3] = {{1e-5, 2e-6, 0}, {2e-6, -3e-6, 0}, {0, 0, 4e-6}};
+  auto strain = [&](Vec3 x) {
+    const double p[3] = {x.x, x.y, x.z};
+    double u[3] = {0, 0, 0};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) u[a] += eps[a][b] * p[b];
+    return Vec3{real(u[0]), real(u[1]), real(u[2])};
+  };
+  double volume = 0;
+  for (real v : in.particles.volume) volume += double(v);
+  const double exact = volume * interior_energy_density(m, eps);
+  auto e = displaced(in, strain);
+  SimulationInput plain = in;
+  plain.materials.m[0].ghost_correction = 0;
+  const double with = e->energy().strain / exact, without = displaced(plain, strain)->energy().strain / exact;
+  const SurfaceGhostCounts counts = e->surface_ghosts();
+  std::printf(
+      "  jittered block: energy / interior's %.4f with ghosts (%lld ghosted, %lld on the linear fit), "
+      "%.4f without\n",
+      with, (long long)counts.ghosted, (long long)counts.linear, without);
+  EXPECT_NEAR(with, 1.0, 0.05);
+  EXPECT_LT(without, 0.8);
+}
+
 // Particles that miss bonds but cannot have ghosts: a plate one particle thick (its families
 // do not span the quadratic fit) and the particles of a pre-cut block.
 TEST(SurfaceGhosts, ThinFamiliesAndPreCracksGetNone) {
