@@ -342,6 +342,7 @@ class EngineImpl final : public Engine {
     surface_ghosts_.particle = mem_.make_from(t.particle);
     surface_ghosts_.of = mem_.make_from(t.of);
     surface_ghosts_.inverse = mem_.make_from(t.inverse);
+    surface_ghosts_.moment = mem_.make_from(t.moment);
     surface_ghosts_.inv_mw = mem_.make_from(t.inv_mw);
     surface_ghosts_.first = mem_.make_from(t.first);
     surface_ghosts_.offset = mem_.make_from(t.offset);
@@ -359,6 +360,7 @@ class EngineImpl final : public Engine {
     v.particle = view_of(surface_ghosts_.particle);
     v.of = view_of(surface_ghosts_.of);
     v.inverse = view_of(surface_ghosts_.inverse);
+    v.moment = view_of(surface_ghosts_.moment);
     v.inv_mw = view_of(surface_ghosts_.inv_mw);
     v.first = view_of(surface_ghosts_.first);
     v.offset = view_of(surface_ghosts_.offset);
@@ -521,7 +523,7 @@ class EngineImpl final : public Engine {
   // and those left without ghosts (thin families, pre-cracks).
   struct GhostArrays {
     DeviceArray<int32_t, Exec> particle, of, first, receivers;
-    DeviceArray<real, Exec> inverse, inv_mw, pull;
+    DeviceArray<real, Exec> inverse, moment, inv_mw, pull;
     DeviceArray<Vec4, Exec> offset;
     DeviceArray<uint8_t, Exec> live;
   } surface_ghosts_;

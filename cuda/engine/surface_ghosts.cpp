@@ -30,6 +30,7 @@ constexpr double kMaxExtrapolation = 30;
 struct GhostRow {
   bool ghosted = false, thin = false, precracked = false, linear = false;
   std::vector<real> inverse;  // 81
+  std::vector<real> moment;   // 9: A^-1 sum_k w_k p_k
   real inv_mw = 0;
   std::vector<Vec4> offset;
   std::vector<std::pair<int32_t, double>> rate;  // (particle, stability rate)
@@ -185,6 +186,10 @@ GhostRow ghost_row(int32_t i, const ParticleSet& ps, const MaterialTable& mt, co
     row.linear = true;
   }
   row.ghosted = true;
+  Basis sum = Basis::Zero();
+  for (const Basis& v : wp) sum += v;
+  const Basis moment = inv * sum;
+  for (int r = 0; r < kGhostBasis; ++r) row.moment.push_back(real(moment[r]));
   row.inverse.resize(kGhostBasis * kGhostBasis);
   for (int r = 0; r < kGhostBasis; ++r)
     for (int q = 0; q < kGhostBasis; ++q) row.inverse[size_t(r * kGhostBasis + q)] = real(inv(r, q));
@@ -216,6 +221,7 @@ GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const
     t.of[size_t(i)] = t.size();
     t.particle.push_back(i);
     t.inverse.insert(t.inverse.end(), r.inverse.begin(), r.inverse.end());
+    t.moment.insert(t.moment.end(), r.moment.begin(), r.moment.end());
     t.inv_mw.push_back(r.inv_mw);
     t.offset.insert(t.offset.end(), r.offset.begin(), r.offset.end());
     t.first.push_back(int32_t(t.offset.size()));

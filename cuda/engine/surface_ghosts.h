@@ -20,7 +20,7 @@ constexpr double kGhostStableStepRatio = 0.25;
 // The tables of GhostView on the host, and what the set-up found.
 struct GhostTables {
   std::vector<int32_t> particle, of, first, receivers;
-  std::vector<real> inverse, inv_mw;
+  std::vector<real> inverse, moment, inv_mw;
   std::vector<Vec4> offset;
   // Per particle, the ghost bonds' share of its stability rate (cuda/kernels/family.h
   // stability_rate's units: 1/s^2), added to the bonds' before the stable step is taken.

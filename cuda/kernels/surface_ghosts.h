@@ -38,6 +38,7 @@ struct GhostView {
   ArrayView<const int32_t> particle;   // [n] the particle
   ArrayView<const int32_t> of;         // [particles] its row here, or -1
   ArrayView<const real> inverse;       // [n x 81] A^-1, row major
+  ArrayView<const real> moment;        // [n x 9] A^-1 sum_k w_k p(xi_k), over the family
   ArrayView<const real> inv_mw;        // [n] LPS: 1 / m over the family and the ghosts (the interior's)
   ArrayView<const int32_t> first;      // [n + 1] the particle's ghosts in `offset`
   ArrayView<const Vec4> offset;        // xyz: a ghost bond's reference vector; w: its weight beta V_o
@@ -200,19 +201,13 @@ PD_HD inline void ghost_fit(int32_t g, ParticlesView p, BondsView b, GhostView g
       for (int q = 0; q < kGhostBasis; ++q) s += q_sum[c * kGhostBasis + q] * inv[q * kGhostBasis + a];
       pull[c * kGhostBasis + a] = s;
     }
+  // M s = Q (A^-1 s), A^-1 s fixed at set-up (s = sum_k w_k p(xi_k) over the intact family)
+  const real* t = gv.moment.data() + int64_t(g) * kGhostBasis;
   Vec3 own{0, 0, 0};
-  const Vec3 rest_i = xyz(p.rest[i]);
-  for (int32_t kk = 0; kk < b.count[i]; ++kk) {
-    const Vec4 rest_j = p.rest[bond_partner(b.neighbor[b.slot(i, kk)])];
-    const Vec3 xi = xyz(rest_j) - rest_i;
-    const real w = ghost_fit_weight(length(xi), rest_j.w, m);
-    real qk[kGhostBasis];
-    ghost_basis(xi, inv_delta, qk);
-    for (int a = 0; a < kGhostBasis; ++a) {
-      own.x += pull[a] * qk[a] * w;
-      own.y += pull[kGhostBasis + a] * qk[a] * w;
-      own.z += pull[2 * kGhostBasis + a] * qk[a] * w;
-    }
+  for (int a = 0; a < kGhostBasis; ++a) {
+    own.x += q_sum[a] * t[a];
+    own.y += q_sum[kGhostBasis + a] * t[a];
+    own.z += q_sum[2 * kGhostBasis + a] * t[a];
   }
   pull[27] = own.x;
   pull[28] = own.y;
