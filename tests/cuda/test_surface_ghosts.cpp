@@ -40,6 +40,17 @@ std::unique_ptr<Engine> displaced(SimulationInput in, const std::function<Vec3(V
   return e;
 }
 
+// The displacement field u = eps x.
+std::function<Vec3(Vec3)> uniform_strain(const double (&eps)[3][3]) {
+  return [&eps](Vec3 x) {
+    const double p[3] = {x.x, x.y, x.z};
+    double u[3] = {0, 0, 0};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) u[a] += eps[a][b] * p[b];
+    return Vec3{real(u[0]), real(u[1]), real(u[2])};
+  };
+}
+
 // The interior lattice family's energy density under a uniform strain eps (small: stretches
 // taken linear), as the engine's sums define it.
 double interior_energy_density(const Material& m, const double eps[3][3]) {
@@ -86,13 +97,7 @@ TEST(SurfaceGhosts, UniformStrainsStoreTheInteriorsEnergy) {
   for (bool state : {false, true})
     for (const auto& eps : strains) {
       const SimulationInput in = ghost_block(state, 8, 7, 6);
-      auto strain = [&](Vec3 x) {
-        const double p[3] = {x.x, x.y, x.z};
-        double u[3] = {0, 0, 0};
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b) u[a] += eps[a][b] * p[b];
-        return Vec3{real(u[0]), real(u[1]), real(u[2])};
-      };
+      const auto strain = uniform_strain(eps);
       auto e = displaced(in, strain);
       const double exact = double(in.particles.size()) * kLambda * kLambda * kLambda *
                            interior_energy_density(in.materials.m[0], eps);
@@ -228,13 +233,7 @@ TEST(SurfaceGhosts, ScatteredParticlesGetTheMissingVolume) {
   m.surface_correction = 0;
   m.ghost_correction = 1;
   const double eps[3][3] = {{1e-5, 2e-6, 0}, {2e-6, -3e-6, 0}, {0, 0, 4e-6}};
-  auto strain = [&](Vec3 x) {
-    const double p[3] = {x.x, x.y, x.z};
-    double u[3] = {0, 0, 0};
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) u[a] += eps[a][b] * p[b];
-    return Vec3{real(u[0]), real(u[1]), real(u[2])};
-  };
+  const auto strain = uniform_strain(eps);
   double volume = 0;
   for (real v : in.particles.volume) volume += double(v);
   const double exact = volume * interior_energy_density(m, eps);
