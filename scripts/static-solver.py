@@ -11,6 +11,8 @@ problems define them (host/validation/):
   bending     the same bar bent between grips (u_x = k x z, u_z = -k x^2 / 2): EI over E W^4 / 12
   cantilever  the validation's beam, L = LH h, clamped by 3 layers under a uniform body force: the
               tip deflection against Timoshenko's
+  torsion     the bar between grips, the right one turned about the axis: GJ over Saint-Venant's
+              G k a^4 (k = 0.14058, a square)
   uniform     every particle of the bar's body (grips included) moved by uniform strains: the
               energy over the exact
 Models:
@@ -348,6 +350,35 @@ def bar(args, bending=False):
           f"nu {-lateral / axial:.4f}")
 
 
+def torsion(args):
+    """The square bar between grips, the right one turned by a small angle about the bar's axis:
+    GJ from the grips' torque over the gauge's twist per length (the slope of the particles'
+    rotation angle against x over the central width), against Saint-Venant's G k a^4."""
+    n, grip = args.n, 3
+    nx = 4 * n + 2 * grip
+    origin = (-0.5 * nx * LAMBDA, -0.5 * n * LAMBDA, -0.5 * n * LAMBDA)
+    b = Body(nx, n, n, origin)
+    H, E, nu = body_stiffness(b, (nx, n, n), origin, args)
+    right, left = b.idx[:, 0] >= nx - grip, b.idx[:, 0] < grip
+    fixed = np.repeat(left | right, 3)
+    x, y, z = b.pos[:, 0], b.pos[:, 1], b.pos[:, 2]
+    phi = 1e-4
+    u0 = np.zeros(3 * b.n)
+    u0[1::3] = np.where(right, -phi * z, 0.0)
+    u0[2::3] = np.where(right, phi * y, 0.0)
+    u = solve(H, fixed, u0)
+    f = H @ u
+    torque = np.sum(y[right] * f[2::3][right] - z[right] * f[1::3][right])
+    gauge = np.abs(x) < 0.5 * n * LAMBDA
+    r2 = y * y + z * z
+    ok = gauge & (r2 > 0)
+    angle = (y[ok] * u[2::3][ok] - z[ok] * u[1::3][ok]) / r2[ok]
+    rate = fit(x[ok], angle)
+    a = n * LAMBDA
+    reference = E / (2 * (1 + nu)) * 0.14058 * a ** 4
+    print(f"torsion {args.model} n={n}: GJ / (G k a^4) = {torque / rate / reference:.4f}")
+
+
 def cantilever(args):
     n, clamp = args.n, 3
     nl = args.length_over_height * n
@@ -383,7 +414,7 @@ def uniform(args):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("problem", choices=["bar", "bending", "cantilever", "uniform"])
+    p.add_argument("problem", choices=["bar", "bending", "cantilever", "torsion", "uniform"])
     p.add_argument("--n", type=int, default=8, help="particles across")
     p.add_argument("--model", default="lps", choices=["lps", "lps-axis", "lps-axis-dev", "pals", "pals-maxent",
                                                        "pals-odd", "pals-dil", "pmb", "pmb-axis"])
@@ -400,7 +431,8 @@ def main():
                    help="layer: a fictitious layer outside every face; fit: each particle's own ghosts on "
                         "its family's fitted linear field (see above)")
     args = p.parse_args()
-    {"bar": bar, "bending": lambda a: bar(a, True), "cantilever": cantilever, "uniform": uniform}[args.problem](args)
+    {"bar": bar, "bending": lambda a: bar(a, True), "cantilever": cantilever, "torsion": torsion,
+     "uniform": uniform}[args.problem](args)
 
 
 if __name__ == "__main__":
