@@ -339,6 +339,7 @@ class EngineImpl final : public Engine {
   void set_up_ghosts(const ParticleSet& ps, const BondLists& uncut, const std::vector<int32_t>& cut_count,
                      std::vector<double>& rate) {
     GhostTables t = pd::surface_ghosts(ps, materials_, uncut, cut_count);
+    check_ghost_memory(t, backend());
     surface_ghosts_.particle = mem_.make_from(t.particle);
     surface_ghosts_.of = mem_.make_from(t.of);
     surface_ghosts_.inverse = mem_.make_from(t.inverse);

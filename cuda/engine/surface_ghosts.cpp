@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cuda/engine/memory_budget.h"
 #include "cuda/kernels/family.h"
 
 namespace pd {
@@ -234,6 +235,25 @@ GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const
   for (int32_t i = 0; i < n; ++i)
     if (receives[size_t(i)]) t.receivers.push_back(i);
   return t;
+}
+
+double ghost_table_bytes(const GhostTables& t) {
+  const auto bytes = [](const auto& v) { return double(v.size()) * double(sizeof(v[0])); };
+  return bytes(t.particle) + bytes(t.of) + bytes(t.first) + bytes(t.receivers) + bytes(t.inverse) +
+         bytes(t.moment) + bytes(t.inv_mw) + bytes(t.offset) +
+         double(t.size()) * (kGhostPull * sizeof(real) + sizeof(uint8_t));  // pull, live
+}
+
+void check_ghost_memory(const GhostTables& t, Backend backend) {
+  const double need = ghost_table_bytes(t), free = double(backend_available_bytes(backend));
+  if (need <= free) return;
+  const bool gpu = backend == Backend::kCuda;
+  throw ResourceError(
+      "the ghost surface correction's tables (" + std::to_string(t.size()) + " ghosted particles, " +
+      std::to_string(t.offset.size()) + " ghost bonds) need " + format_bytes(need) + " of " +
+      (gpu ? "GPU" : "host") + " memory; " + format_bytes(free) +
+      " are free. Set the materials' surface_correction to true (the factors) or " +
+      "false, lower --scale or the particle count" + (gpu ? ", or run on a GPU with more memory" : ""));
 }
 
 }  // namespace pd

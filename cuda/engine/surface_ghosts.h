@@ -42,4 +42,12 @@ struct GhostTables {
 GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds,
                            const std::vector<int32_t>& cut_count);
 
+// The backend memory the tables take as the engine holds them (GhostView's arrays, this step's
+// scratch included). A body of many thin parts can have most particles ghosted, at ~1-2 KB each.
+double ghost_table_bytes(const GhostTables& t);
+
+// Refuses the tables with a clear message (ResourceError) where `backend` has not the memory
+// for them free, before they are allocated.
+void check_ghost_memory(const GhostTables& t, Backend backend);
+
 }  // namespace pd

@@ -40,6 +40,22 @@ PD_HD inline BondLengths bond_lengths(Vec3 xi, Vec3 y) {
   return l;
 }
 
+// A listed bond's surface factor, loaded a bond ahead with its partner index
+// (for_each_intact_listed_bond): like the index it streams from DRAM, and each bond would
+// otherwise wait for it in turn (bench/NOTES.md: +5-7% on the vase's and the torus's
+// springforces). 0 in runs without factors, and a kernel that does not read it leaves its load
+// out. (The strength of weakened bonds loaded ahead as well cost the 1M glass plate's explicit
+// families 3%: it is read at its slot.)
+struct SlotAhead {
+  uint16_t surface = 0;  // BondsView::surface_bond
+};
+
+PD_HD inline SlotAhead slot_ahead(const BondsView& b, int64_t slot) {
+  SlotAhead a;
+  if (b.surface_bond) a.surface = b.surface_bond[slot];
+  return a;
+}
+
 // Geometry of one bond at the current positions, with what the partner's records carry.
 // weight(m) is beta V_j, the partner's volume inside the horizon: a lattice bond carries it from
 // its stencil entry (kWeighted); a listed bond computes it where it is used, since computing it
@@ -53,6 +69,7 @@ struct BondGeometryOf {
   real tau_j;                    // the partner's effective strain limit
   bool weak;                     // the bond may carry a strength factor (BondsView::strength)
   int32_t entry;                 // kWeighted: the bond's stencil entry
+  SlotAhead ahead;               // !kWeighted: what the bond's slot stores, loaded with its index
   PD_HD real weight(const Material& m) const {
     if constexpr (kWeighted)
       return volume_j;
@@ -63,8 +80,10 @@ struct BondGeometryOf {
 using BondGeometry = BondGeometryOf<false>;
 using LatticeBondGeometry = BondGeometryOf<true>;
 
-PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j) {
+PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j,
+                                        SlotAhead ahead = {}) {
   BondGeometry g;
+  g.ahead = ahead;
   g.xi = xyz(rest_j) - xyz(rest_i);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
   g.y = g.xi + eta;
@@ -103,11 +122,12 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geomet
   }
 }
 
-// Explicit families: the next bond's partner index is loaded before this bond is visited: a
-// visit may break its own slot, which keeps the compiler from hoisting the next load over it,
-// and without the early load every bond waits for two dependent loads in turn (index, then the
-// partner's records). Measured on the H100 (bench/NOTES.md): +10-17% on springforces. A team's
-// lane visits bonds lane, lane + kThreads, ... and returns the bonds it found intact.
+// Explicit families: the next bond's partner index (and its surface factor, SlotAhead) is loaded
+// before this bond is visited: a visit may break its own slot, which keeps the compiler from
+// hoisting the next load over it, and without the early load every bond waits for two dependent
+// loads in turn (index, then the partner's records). Measured on the H100 (bench/NOTES.md):
+// +10-17% on springforces. A team's lane visits bonds lane, lane + kThreads, ... and returns the
+// bonds it found intact.
 template <int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                                  const Team<kThreads>& team, Visit& visit) {
@@ -115,14 +135,24 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
   const int32_t count = b.count[i];
   int32_t holding = 0;
   const int32_t first = team.lane();
-  int32_t next = first < count ? b.neighbor[b.slot(i, first)] : 0;
+  int32_t next = 0;
+  SlotAhead next_ahead;
+  if (first < count) {
+    next = b.neighbor[b.slot(i, first)];
+    next_ahead = slot_ahead(b, b.slot(i, first));
+  }
   PD_BOND_LOOP
   for (int32_t k = first; k < count; k += kThreads) {
     const int64_t slot = b.slot(i, k);
     const int32_t j = next;
-    if (k + kThreads < count) next = b.neighbor[b.slot(i, k + kThreads)];
+    const SlotAhead ahead = next_ahead;
+    if (k + kThreads < count) {
+      const int64_t next_slot = b.slot(i, k + kThreads);
+      next = b.neighbor[next_slot];
+      next_ahead = slot_ahead(b, next_slot);
+    }
     if (!bond_intact(j)) continue;
-    if (visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j])))
+    if (visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j], ahead)))
       ++holding;
     else
       b.neighbor[slot] = ~j;
@@ -159,6 +189,41 @@ PD_HD inline int32_t bit_count(uint32_t x) {
 #endif
 }
 
+// A hint that the memory line holding `address` be brought into the L2 cache: no register, no
+// fault, nothing to wait for; nothing on the CPU.
+PD_HD inline void prefetch_line(const void* address) {
+#if defined(__CUDA_ARCH__)
+  asm volatile("prefetch.global.L2 [%0];" ::"l"(address));
+#else
+  (void)address;
+#endif
+}
+
+// Which plastic histories a visitor reads: none, its own end's e^p (BondsView::plastic), or both
+// ends' (plastic and plastic_mirror).
+enum HistoryReads : int { kNoHistory = 0, kOwnHistory = 1, kBothHistories = 2 };
+
+// Visitors that read plastic histories (kHistory), one thread per particle: the histories' rows
+// of a word's bonds fetched ahead into L2. A warp's particles share a slice (kSliceWidth = 32),
+// whose row k (bond k of each) is one line of each history array; lane t fetches row k0 + t, so
+// the warp asks for the word's rows at once where each bond would otherwise wait for its two rows
+// from DRAM in turn (a visit may store into them, which keeps the compiler from loading ahead).
+// Measured on the plastic lattice (H200, bench/NOTES.md): springforces +5%, the step +6%.
+template <int kHistory, int kThreads>
+PD_HD inline void prefetch_history_rows(int32_t i, int32_t k0, uint32_t present, const BondsView& b) {
+#if defined(__CUDA_ARCH__)
+  if constexpr (kHistory != kNoHistory && kThreads == 1) {
+    const int32_t lane = int32_t(threadIdx.x % 32);
+    if (lane >= bit_count(present)) return;
+    const int64_t row = b.slot(i, k0 + lane);
+    prefetch_line(b.plastic.data() + row);
+    if constexpr (kHistory == kBothHistories) prefetch_line(b.plastic_mirror.data() + row);
+  }
+#else
+  (void)i, (void)k0, (void)present, (void)b;
+#endif
+}
+
 // Lattice families: the warp's threads walk the same stencil entries together (one broadcast
 // load of the entry, partners at the same offset: one contiguous gather), each skipping the
 // entries its intact bits leave out (intact bits are a subset of the present ones). A bond's
@@ -167,8 +232,9 @@ PD_HD inline int32_t bit_count(uint32_t x) {
 // intact are counted from the bits after each word. kUnroll: the entry loop unrolled that many
 // times, chosen per kernel as measured (bench/NOTES.md; 2 is what the compiler picks alone). A
 // team's lane visits entries lane, lane + kThreads, ... of each word and counts the intact bonds
-// among those.
-template <int kLattice, int kUnroll, int kThreads, class Visit>
+// among those. kHistory (HistoryReads): the plastic histories the visitor reads, fetched ahead
+// (prefetch_history_rows).
+template <int kLattice, int kUnroll, int kHistory, int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
                                                   const BondsView& b, const Team<kThreads>& team,
                                                   Visit& visit) {
@@ -186,6 +252,7 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
     const uint32_t present = l.present[word];
     uint32_t intact = l.intact[word];
     const uint32_t weak = l.weak ? l.weak[word] : 0u;
+    prefetch_history_rows<kHistory, kThreads>(i, k0, present, b);
     // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
     PD_UNROLL(kEntryUnroll)
     for (int32_t r = 0; r < kEntries; ++r) {
@@ -213,14 +280,15 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
 // Calls visit(slot, j, geometry) for every intact bond of particle i, in storage order, and
 // returns the bonds still intact after the visits. kLattice (LatticeMode, features.h): how
 // lattice families are walked (kNoLattice: every family is read from its list, and the lattice
-// loop is not compiled in); kUnroll as for_each_intact_lattice_bond. With a team (team.h), each
-// lane visits its share of the bonds and the count returned is the whole team's.
-template <int kLattice = kLatticeListed, int kUnroll = 2, int kThreads = 1, class Visit>
+// loop is not compiled in); kUnroll and kHistory as for_each_intact_lattice_bond. With a team
+// (team.h), each lane visits its share of the bonds and the count returned is the whole team's.
+template <int kLattice = kLatticeListed, int kUnroll = 2, int kHistory = kNoHistory, int kThreads = 1,
+          class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                           const Team<kThreads>& team, Visit&& visit) {
   const int32_t stencil = kLattice != kNoLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
   if (kLattice != kNoLattice && stencil >= 0)
-    return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll>(i, stencil, p, b, team, visit));
+    return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll, kHistory>(i, stencil, p, b, team, visit));
   return team.sum(for_each_intact_listed_bond(i, p, b, team, visit));
 }
 template <int kLattice = kLatticeListed, int kUnroll = 2, class Visit>

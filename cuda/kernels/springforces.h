@@ -22,17 +22,16 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, co
 
 // A bond's weight beta V_j times the surface correction's factor on its micromodulus
 // (surface_correction.h): a lattice bond's from its particle's row of factors per stencil entry
-// (`row`, surface_row_of), a listed bond's at its slot; the weight alone without the correction
-// (kSurface false), at no cost.
+// (`row`, surface_row_of), a listed bond's from its slot, loaded ahead (SlotAhead); the weight
+// alone without the correction (kSurface false), at no cost.
 template <bool kSurface, class Geometry>
-PD_HD inline real surface_bond_weight(real weight, const BondsView& b, int64_t slot, const Geometry& g,
-                                      const uint16_t* row) {
+PD_HD inline real surface_bond_weight(real weight, const Geometry& g, const uint16_t* row) {
   if constexpr (!kSurface)
     return weight;
   else if constexpr (std::is_same_v<Geometry, LatticeBondGeometry>)
     return weight * surface_bond_value(row[g.entry]);
   else
-    return weight * surface_bond_value(b.surface_bond[slot]);
+    return weight * surface_bond_value(g.ahead.surface);
 }
 
 // The entry loop unrolled 8 times where bonds may be weakened, as the compiler picks (2) else
@@ -54,7 +53,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
       i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
-        const real weight = surface_bond_weight<kSurface>(g.weight(m), b, slot, g, row);
+        const real weight = surface_bond_weight<kSurface>(g.weight(m), g, row);
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
           released.add(p, i, double(pmb_bond_energy(s, g.r0, vol_i, weight, m)));
           if (kRaiseInBranch<kWeak>) raise_flag(broke);
@@ -88,7 +87,7 @@ PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b
         const real s = g.e * g.inv_r0;
         nearest = max_of(nearest, kWeak ? s - bond_strength<kWeak>(b, slot, g) * tau_i : s);
         smin = min_of(s, smin);
-        f += (s * surface_bond_weight<kSurface>(g.weight(m), b, slot, g, row) * g.inv_r) * g.y;
+        f += (s * surface_bond_weight<kSurface>(g.weight(m), g, row) * g.inv_r) * g.y;
       });
   if (may_break<kWeak>(team.max(nearest), tau_i))
     return spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke, team);

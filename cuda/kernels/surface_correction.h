@@ -150,14 +150,16 @@ PD_HD inline const uint16_t* surface_row_of(const BondsView& b, int32_t i) {
 
 // The state-based kernels' factor on a bond: 1 without factors (first, the one test an
 // uncorrected run makes, as in surface_bond_at), a lattice bond's from its particle's row (the
-// same stored bits as at its slot, without the slot's index), else the slot's.
+// same stored bits as at its slot, without the slot's index) else its slot's, a listed bond's
+// from its slot, loaded ahead (SlotAhead).
 template <class Geometry>
 PD_HD inline real surface_factor_of(const BondsView& b, int64_t slot, const Geometry& g,
                                     const uint16_t* row) {
   if (!b.surface_bond) return real(1);
   if constexpr (std::is_same_v<Geometry, LatticeBondGeometry>)
-    if (row) return surface_bond_value(row[g.entry]);
-  return surface_bond_value(b.surface_bond[slot]);
+    return surface_bond_value(row ? row[g.entry] : b.surface_bond[slot]);
+  else
+    return surface_bond_value(g.ahead.surface);
 }
 
 }  // namespace pd

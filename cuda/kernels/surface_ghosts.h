@@ -67,6 +67,17 @@ PD_HD inline real ghost_fit_weight(real r0, real volume, const Material& m) {
   return m.horizon / r0 * volume_fraction(r0, m) * volume;
 }
 
+// out = x A_g^-1 for x and out 3 x 9 (row major), A_g^-1 the ghosted particle g's.
+PD_HD inline void times_inverse(const real* x, int32_t g, const GhostView& gv, real* out) {
+  const real* inv = gv.inverse.data() + int64_t(g) * kGhostBasis * kGhostBasis;
+  for (int c = 0; c < 3; ++c)
+    for (int a = 0; a < kGhostBasis; ++a) {
+      real s = 0;
+      for (int q = 0; q < kGhostBasis; ++q) s += x[c * kGhostBasis + q] * inv[q * kGhostBasis + a];
+      out[c * kGhostBasis + a] = s;
+    }
+}
+
 // One ghosted particle's fitted field: C = D A^-1 (3 x 9), row major.
 struct GhostFit {
   real c[3 * kGhostBasis];
@@ -92,13 +103,7 @@ PD_HD inline GhostFit fit_ghost_field(int32_t g, int32_t i, const ParticlesView&
     }
   }
   GhostFit f;
-  const real* inv = gv.inverse.data() + int64_t(g) * kGhostBasis * kGhostBasis;
-  for (int c = 0; c < 3; ++c)
-    for (int a = 0; a < kGhostBasis; ++a) {
-      real s = 0;
-      for (int q = 0; q < kGhostBasis; ++q) s += d[c * kGhostBasis + q] * inv[q * kGhostBasis + a];
-      f.c[c * kGhostBasis + a] = s;
-    }
+  times_inverse(d, g, gv, f.c);
   return f;
 }
 
@@ -194,13 +199,7 @@ PD_HD inline void ghost_fit(int32_t g, ParticlesView p, BondsView b, GhostView g
     }
   }
   // M = Q A^-1, and M s with s = sum_k w_k p(xi_k) (the particle's own force)
-  const real* inv = gv.inverse.data() + int64_t(g) * kGhostBasis * kGhostBasis;
-  for (int c = 0; c < 3; ++c)
-    for (int a = 0; a < kGhostBasis; ++a) {
-      real s = 0;
-      for (int q = 0; q < kGhostBasis; ++q) s += q_sum[c * kGhostBasis + q] * inv[q * kGhostBasis + a];
-      pull[c * kGhostBasis + a] = s;
-    }
+  times_inverse(q_sum, g, gv, pull);
   // M s = Q (A^-1 s), A^-1 s fixed at set-up (s = sum_k w_k p(xi_k) over the intact family)
   const real* t = gv.moment.data() + int64_t(g) * kGhostBasis;
   Vec3 own{0, 0, 0};

@@ -10,8 +10,10 @@
 #include "cuda/engine/cut_triangle.h"
 #include "cuda/engine/engine.h"
 #include "cuda/engine/material.h"
+#include "cuda/engine/memory_budget.h"
 #include "cuda/kernels/surface_ghosts.h"
 #include "tests/support/fixtures.h"
+#include "tests/support/scoped_env.h"
 
 namespace pd {
 namespace {
@@ -263,6 +265,27 @@ TEST(SurfaceGhosts, ThinFamiliesAndPreCracksGetNone) {
   const auto counts = make_cpu_engine(cut)->surface_ghosts();
   EXPECT_GT(counts.precracked, 0);
   EXPECT_GT(counts.ghosted, 0);
+}
+
+// The ghost tables count against the backend's memory: a body whose bonds fit but whose tables
+// do not is refused with a message that names them and the remedy, before they are allocated.
+TEST(SurfaceGhosts, TablesThatDoNotFitAreRefused) {
+  const SimulationInput in = ghost_block(false, 12, 12, 4);  // every particle within delta of a face
+  const auto fits = make_cpu_engine(in);
+  const SurfaceGhostCounts counts = fits->surface_ghosts();
+  EXPECT_EQ(counts.ghosted, 12 * 12 * 4);
+  // ~1.5 KB of tables per ghosted particle here against ~0.3 KB of bond slots: a cap between.
+  const testing::ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", "0.4");
+  try {
+    make_cpu_engine(in);
+    FAIL() << "accepted";
+  } catch (const ResourceError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("ghost surface correction"), std::string::npos) << m;
+    EXPECT_NE(m.find("576 ghosted particles"), std::string::npos) << m;
+    EXPECT_NE(m.find("host memory"), std::string::npos) << m;
+    EXPECT_NE(m.find("surface_correction to true"), std::string::npos) << m;
+  }
 }
 
 }  // namespace

@@ -14,19 +14,12 @@
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
 #include "tests/support/fixtures.h"
+#include "tests/support/scoped_env.h"
 
 namespace pd {
 namespace {
 
-// Sets an environment variable for the scope of the object.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) { setenv(name, value, 1); }
-  ~ScopedEnv() { unsetenv(name_); }
-
- private:
-  const char* name_;
-};
+using testing::ScopedEnv;
 
 TEST(MemoryBudget, BondsPerParticleCountsTheCellsOfThePartialVolumeSphere) {
   // delta = 3 lambda with partial volumes reaches 3.5 lambda: 4/3 pi 3.5^3 = 179.6 cells.
