@@ -40,6 +40,19 @@ PD_HD inline BondLengths bond_lengths(Vec3 xi, Vec3 y) {
   return l;
 }
 
+// A load from a stream each step reads once (explicit families' partner indices and surface
+// factors): on the GPU marked evict-first, so that it does not push the partners' records, which
+// the families read again and again, out of L1 and L2 (H200, bench/NOTES.md: the vase's and the
+// torus's step +3%; the plastic histories read so lost 3.4% on the lattice, and are not).
+template <class T>
+PD_HD inline T load_streaming(const T& x) {
+#if defined(__CUDA_ARCH__)
+  return __ldcs(&x);
+#else
+  return x;
+#endif
+}
+
 // A listed bond's surface factor, loaded a bond ahead with its partner index
 // (for_each_intact_listed_bond): like the index it streams from DRAM, and each bond would
 // otherwise wait for it in turn (bench/NOTES.md: +5-7% on the vase's and the torus's
@@ -52,7 +65,7 @@ struct SlotAhead {
 
 PD_HD inline SlotAhead slot_ahead(const BondsView& b, int64_t slot) {
   SlotAhead a;
-  if (b.surface_bond) a.surface = b.surface_bond[slot];
+  if (b.surface_bond) a.surface = load_streaming(b.surface_bond[slot]);
   return a;
 }
 
@@ -138,7 +151,7 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
   int32_t next = 0;
   SlotAhead next_ahead;
   if (first < count) {
-    next = b.neighbor[b.slot(i, first)];
+    next = load_streaming(b.neighbor[b.slot(i, first)]);
     next_ahead = slot_ahead(b, b.slot(i, first));
   }
   PD_BOND_LOOP
@@ -148,7 +161,7 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
     const SlotAhead ahead = next_ahead;
     if (k + kThreads < count) {
       const int64_t next_slot = b.slot(i, k + kThreads);
-      next = b.neighbor[next_slot];
+      next = load_streaming(b.neighbor[next_slot]);
       next_ahead = slot_ahead(b, next_slot);
     }
     if (!bond_intact(j)) continue;
