@@ -58,7 +58,7 @@ PD_HD inline T load_streaming(const T& x) {
 // otherwise wait for it in turn (bench/NOTES.md: +5-7% on the vase's and the torus's
 // springforces). 0 in runs without factors, and a kernel that does not read it leaves its load
 // out. (The strength of weakened bonds loaded ahead as well cost the 1M glass plate's explicit
-// families 3%: it is read at its slot.)
+// families 2.5% in one round: it is read at its slot.)
 struct SlotAhead {
   uint16_t surface = 0;  // BondsView::surface_bond
 };
