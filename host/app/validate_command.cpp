@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "host/app/backend_choice.h"
+#include "host/geometry/tri_mesh.h"
 #include "host/io/atomic_file.h"
 #include "host/validation/validation.h"
 
@@ -55,13 +56,26 @@ void append_csv(const std::string& path, const std::string& rows) {
 int validate_command(const ValidateOptions& o) {
   std::vector<const ValidationProblem*> selected;
   for (const auto& p : validation_problems())
-    if (o.problem == "all" || o.problem == p.name) selected.push_back(&p);
+    if ((o.problem == "all" && (o.particles == "grid" || p.scattered)) || o.problem == p.name)
+      selected.push_back(&p);
   if (selected.empty()) {
     std::string names;
     for (const auto& p : validation_problems()) names += std::string(", ") + p.name;
     std::fprintf(stderr, "error: validate: unknown problem '%s' (allowed: all%s)\n", o.problem.c_str(),
                  names.c_str());
     return 2;
+  }
+  if (o.particles != "grid") {
+    std::string scattered;
+    for (const auto& p : validation_problems())
+      if (p.scattered) scattered += std::string(scattered.empty() ? "" : ", ") + p.name;
+    for (const ValidationProblem* p : selected)
+      if (!p->scattered) {
+        std::fprintf(stderr,
+                     "error: validate: --particles %s: problem '%s' runs on a grid only (allowed: %s)\n",
+                     o.particles.c_str(), p->name, scattered.c_str());
+        return 2;
+      }
   }
   if (!(o.delta_over_lambda >= 1) || !(o.dt_fraction >= 0)) {
     std::fprintf(stderr, "error: validate: need --delta-over-lambda >= 1 and --dt-fraction > 0\n");
@@ -82,6 +96,7 @@ int validate_command(const ValidateOptions& o) {
   }
   if (!note.empty() && !o.quiet) std::printf("backend    %s\n", note.c_str());
   c.delta_over_lambda = o.delta_over_lambda;
+  c.particles = o.particles;
   c.dt_fraction = o.dt_fraction > 0 ? o.dt_fraction : o.surface == "ghosts" ? kGhostDtFraction : 0.5;
   if (o.surface == "ghosts") {
     c.surface_correction = false;
@@ -95,7 +110,14 @@ int validate_command(const ValidateOptions& o) {
     for (int res : o.resolutions.empty() ? p->resolutions : o.resolutions) {
       c.resolution = res;
       std::string rows;
-      for (const ValidationResult& r : p->run(c)) {
+      std::vector<ValidationResult> results;
+      try {
+        results = p->run(c);
+      } catch (const MeshError& e) {
+        std::fprintf(stderr, "error: validate: %s: %s\n", p->name, e.what());
+        return 2;
+      }
+      for (const ValidationResult& r : results) {
         rows += csv_row(r, c);
         if (!std::isfinite(r.measured)) status = 3;
         if (!o.quiet)

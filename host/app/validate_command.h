@@ -21,6 +21,7 @@ struct ValidateOptions {
   double dt_fraction = 0;           // dt / dt_c, > 0; 0: 0.5, or kGhostDtFraction with ghosts
   std::string backend = "cpu";      // "cpu" | "cuda" | "auto"
   std::string surface = "default";  // surface correction: "default" (each model's) | "on" | "off" | "ghosts"
+  std::string particles = "grid";   // "grid" | "voronoi" | "tets" (ValidationCase::particles)
   std::string csv;                  // rows appended here (header first when the file is new); "" = none
   bool quiet = false;               // no per-row lines on stdout
 };

@@ -227,6 +227,10 @@ void add_validate(CLI::App& app, const CommandActions& actions, std::function<in
                   "default | on | off | ghosts: the surface correction (default: each model's, on for "
                   "bond-based, off for state-based; ghosts: the ghost correction)")
       ->check(CLI::IsMember({"default", "on", "off", "ghosts"}));
+  cmd->add_option("--particles", validate->particles,
+                  "grid | voronoi | tets: the bar's particles (default grid; voronoi and tets in the tension "
+                  "bars only)")
+      ->check(CLI::IsMember({"grid", "voronoi", "tets"}));
   cmd->add_option("--csv", validate->csv, "append rows to this CSV");
   cmd->add_flag("--quiet", validate->quiet, "no per-row output");
   on_parsed(cmd, chosen, [&actions, validate] { return actions.validate(*validate); });

@@ -10,6 +10,13 @@ double ParticleGeometry::total_volume() const {
   return std::accumulate(volume.begin(), volume.end(), 0.0);
 }
 
+double median_nearest_distance(const ParticleGeometry& g) {
+  std::vector<double> d = g.lambda;
+  if (d.empty()) return 0;
+  std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
 void compute_lambda(ParticleGeometry& g) {
   const size_t n = g.size();
   g.lambda.assign(n, 0);

@@ -36,6 +36,10 @@ struct ParticleGeometry {
 // lambda and min_distance from the positions (a uniform-grid nearest-neighbour search).
 void compute_lambda(ParticleGeometry& g);
 
+// The median of `lambda`: the typical spacing of scattered particles, which their horizon is
+// measured in (Levine's lambda for tets and Voronoi cells).
+double median_nearest_distance(const ParticleGeometry& g);
+
 // mass = density * volume.
 void set_density(ParticleGeometry& g, double density);
 

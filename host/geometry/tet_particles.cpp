@@ -10,6 +10,33 @@
 
 namespace pd {
 
+namespace {
+
+// Tets of almost no volume (below this fraction of the mean): TetGen without its optimization
+// pass (tetgen.cpp) leaves flat tets, four coplanar corners, where symmetric surface points
+// meet, as along a box's edges.
+constexpr double kFlatTetFraction = 1e-6;
+
+// A flat tet's particle would have no mass (and NaN accelerations); each shares the volume of
+// its largest face neighbour, half and half, so the body's volume and mass stay as they are.
+void share_flat_tet_volumes(const TetMesh& mesh, std::vector<double>& volume) {
+  double mean = 0;
+  for (double v : volume) mean += v / double(volume.size());
+  const double flat = kFlatTetFraction * mean;
+  for (size_t t = 0; t < volume.size(); ++t) {
+    if (volume[t] >= flat) continue;
+    int32_t largest = -1;
+    for (int32_t other : mesh.neighbors[t])
+      if (other >= 0 && (largest < 0 || volume[size_t(other)] > volume[size_t(largest)])) largest = other;
+    if (largest < 0) continue;  // (a lone tet: nothing to share)
+    const double half = 0.5 * (volume[t] + volume[size_t(largest)]);
+    volume[t] = half;
+    volume[size_t(largest)] = half;
+  }
+}
+
+}  // namespace
+
 ParticleGeometry tet_particles(TetMesh mesh) {
   ParticleGeometry g;
   StageClock clock(&g.stages);
@@ -25,6 +52,7 @@ ParticleGeometry tet_particles(TetMesh mesh) {
     for (int32_t other : mesh.neighbors[t])
       if (other >= 0) pairs.emplace_back(int32_t(t), other);
   }
+  share_flat_tet_volumes(mesh, g.volume);
   g.adjacency = adjacency_from_pairs(n, std::move(pairs));
   g.tets = std::move(mesh);
   reorder_particles(g, morton_order(g.position));

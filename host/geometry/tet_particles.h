@@ -12,7 +12,7 @@
 namespace pd {
 
 // Particles of an existing tet mesh (kept in the result, its tets reordered along a space-filling
-// curve: curve_order.h).
+// curve: curve_order.h). A flat tet (no volume) shares its largest face neighbour's volume.
 ParticleGeometry tet_particles(TetMesh mesh);
 
 // TetGen on the closed solid, then tet_particles. MeshError naming `name` when the volume bound

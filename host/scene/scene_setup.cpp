@@ -191,13 +191,6 @@ void remove_cut_pairs(const std::vector<CutTriangle>& cuts, const ParticleSet& p
               pairs.end());
 }
 
-double median_nearest_distance(const ParticleGeometry& g) {
-  std::vector<double> d = g.lambda;
-  if (d.empty()) return 0;
-  std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
-  return d[d.size() / 2];
-}
-
 }  // namespace
 
 const SceneMaterial& find_material(const Scene& scene, const std::string& name) {

@@ -23,6 +23,10 @@ struct ValidationCase {
   std::optional<bool> surface_correction;
   bool surface_ghosts = false;  // the ghost correction instead (cuda/kernels/surface_ghosts.h)
   Backend backend = Backend::kCpu;
+  // The particles: "grid" (simple cubic), or, in the problems that take them
+  // (ValidationProblem::scattered), the same solid filled with "voronoi" cells or TetGen "tets"
+  // of about the grid's spacing, lambda then their median nearest-neighbour distance.
+  std::string particles = "grid";
 };
 
 // One measured figure of one run.
@@ -44,6 +48,7 @@ struct ValidationProblem {
   const char* summary;
   std::vector<int> resolutions;  // the benchmark's default sweep, coarse to fine
   ValidationRun run;
+  bool scattered = false;  // also runs on Voronoi cells and tets (ValidationCase::particles)
 };
 
 // The registered problems, in the order `validate all` runs them.

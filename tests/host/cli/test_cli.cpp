@@ -193,6 +193,18 @@ TEST_F(Cli, BadOptionValues) {
   EXPECT_NE(r.output.find("--scale"), std::string::npos) << r.output;
 }
 
+// `validate --particles voronoi` on a problem that runs on a grid only: one line naming the
+// option, the problem and the problems that take scattered particles; exit code 2.
+TEST_F(Cli, ValidateParticlesOnAGridOnlyProblem) {
+  const Result r = run_perifrac("validate --problem cantilever_pmb --particles voronoi --resolution 4");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(r.output.rfind("error: ", 0), 0u) << r.output;
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "not one line: " << r.output;
+  for (const char* word : {"--particles voronoi", "cantilever_pmb", "tension_bar_pmb, tension_bar_lps"})
+    EXPECT_NE(r.output.find(word), std::string::npos) << word << "\n" << r.output;
+  EXPECT_EQ(run_perifrac("validate --particles hexagons").exit_code, 2);
+}
+
 // Overflow to infinity (a huge dt, allowed explicitly) is caught at the end of the frame,
 // with the step and the frames written so far kept.
 TEST_F(Cli, BlowUpIsDetectedWithTheStep) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -125,6 +126,37 @@ TEST(TetParticles, SphereVolumeIsExact) {
   for (const auto& nb : g.tets.neighbors)
     for (int32_t t : nb) boundary += t < 0;
   EXPECT_EQ(boundary, g.tets.boundary_faces.size());
+}
+
+// A flat tet (four coplanar corners) shares the volume of its face neighbour: both particles get
+// half, so neither is massless and the total stays.
+TEST(TetParticles, FlatTetSharesItsNeighboursVolume) {
+  TetMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1},
+                   {5, 5, 5}, {6, 5, 5}, {5, 6, 5}, {5, 5, 6}};
+  mesh.tets = {{0, 1, 2, 4}, {0, 2, 1, 3}, {5, 6, 7, 8}};  // a tet, the flat one below it, a lone one
+  mesh.neighbors = {{-1, -1, -1, 1}, {-1, -1, -1, 0}, {-1, -1, -1, -1}};
+  ASSERT_EQ(mesh.volume(1), 0.0);
+  const ParticleGeometry g = tet_particles(mesh);
+  ASSERT_EQ(g.size(), 3u);
+  std::vector<double> volumes = g.volume;
+  std::sort(volumes.begin(), volumes.end());
+  EXPECT_DOUBLE_EQ(volumes[0], 1.0 / 12);
+  EXPECT_DOUBLE_EQ(volumes[1], 1.0 / 12);
+  EXPECT_DOUBLE_EQ(volumes[2], 1.0 / 6);
+}
+
+// The tension bar's box (`perifrac validate --particles tets`): TetGen leaves flat tets along
+// its edges, which get volume; the box's volume is kept.
+TEST(TetParticles, BoxHasNoMasslessParticles) {
+  if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
+  const TriMesh box = box_mesh({0.055, 0.01, 0.01});
+  TetgenOptions options;
+  options.max_volume = 2 * 0.0025 * 0.0025 * 0.0025;
+  const ParticleGeometry g = tet_particles(box, options, kBudget, "box");
+  EXPECT_NEAR(g.total_volume(), 0.055 * 0.01 * 0.01, 1e-5 * 0.055 * 0.01 * 0.01);
+  const double mean = g.total_volume() / double(g.size());
+  for (size_t t = 0; t < g.size(); ++t) ASSERT_GT(g.volume[t], 1e-6 * mean) << "particle " << t;
 }
 
 // tet_keep_surface (-Y): TetGen adds no points on the surface, so the tet mesh's boundary is the

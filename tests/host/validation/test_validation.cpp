@@ -90,6 +90,23 @@ TEST(Validation, GhostCorrectedBarsAreAsStiffAsTheInterior) {
   EXPECT_LT(std::fabs(figure(pmb, "tension_bar_pmb/poisson").measured - 0.25), 0.01);
 }
 
+// Scattered particles (issue 29: "tets and Voronoi bodies get the correction too"): the same
+// bar filled with Voronoi cells, 4 across, meets the issue's targets for 8 across with ghosts
+// (elongation within 3%, the state-based nu within 0.01); uncorrected, the state-based bar is 30%
+// off (docs/validation.md, scattered particles).
+TEST(Validation, GhostCorrectedVoronoiBarsMeetTheTargets) {
+  ValidationCase c = at(4, false);
+  c.surface_ghosts = true;
+  c.dt_fraction = 0.125;
+  c.particles = "voronoi";
+  const auto lps = run_tension_bar_lps(c), pmb = run_tension_bar_pmb(c);
+  print(lps);
+  print(pmb);
+  EXPECT_LT(figure(lps, "tension_bar_lps_voronoi/elongation").rel_error, 0.03);
+  EXPECT_LT(std::fabs(figure(lps, "tension_bar_lps_voronoi/poisson").measured - 0.3), 0.01);
+  EXPECT_LT(figure(pmb, "tension_bar_pmb_voronoi/elongation").rel_error, 0.03);
+}
+
 // State-based bar: same bounds; nu converges to the input 0.3, not to PMB's 1/4.
 TEST(Validation, TensionBarLpsConvergesToInputPoisson) {
   const auto coarse = run_tension_bar_lps(at(4)), fine = run_tension_bar_lps(at(6));
