@@ -11,7 +11,11 @@ namespace pd {
 
 namespace {
 
-// A stencil offset counts as present where a partner lies within this many spacings of it.
+// A stencil offset counts as present where a partner (or the particle itself) lies within this
+// many of its sizes of it, a particle's size being the larger of the spacing and the cube root of
+// its volume: on a lattice 0.75 spacings; scattered particles, whose typical nearest distance
+// (the spacing, lambda) is well below their size (tets: their centroids sit at about 0.65 of it),
+// cover the stencil points their volume holds, so that only those outside the body take ghosts.
 constexpr double kCoverRadius = 0.75;
 // A family whose fit matrix has an eigenvalue below this fraction of its largest does not span
 // the quadratic basis (a plate or strand one or two particles thick): no ghosts.
@@ -70,6 +74,19 @@ GhostRow ghost_row(int32_t i, const ParticleSet& ps, const MaterialTable& mt, co
   auto cell = [&](int x, int y, int z) {
     return (size_t(z + reach) * side + size_t(y + reach)) * side + size_t(x + reach);
   };
+  // The stencil points within kCoverRadius sizes of particle j (v: its offset in spacings).
+  auto cover = [&](const Vec3& v, int32_t j) {
+    const double size = std::max(1.0, std::cbrt(double(ps.volume[j])) / lambda), r = kCoverRadius * size;
+    const int cx = int(std::lround(v.x)), cy = int(std::lround(v.y)), cz = int(std::lround(v.z));
+    const int span = int(std::ceil(r));
+    for (int z = cz - span; z <= cz + span; ++z)
+      for (int y = cy - span; y <= cy + span; ++y)
+        for (int x = cx - span; x <= cx + span; ++x) {
+          if (std::abs(x) > reach || std::abs(y) > reach || std::abs(z) > reach) continue;
+          const double dx = v.x - x, dy = v.y - y, dz = v.z - z;
+          if (dx * dx + dy * dy + dz * dz < r * r) covered[cell(x, y, z)] = 1;
+        }
+  };
   const Vec3 rest_i = ps.rest[i];
   const int32_t count = b.count[i];
   bool aligned = true;     // every partner on a lattice point (within 5% of a spacing)
@@ -78,17 +95,11 @@ GhostRow ghost_row(int32_t i, const ParticleSet& ps, const MaterialTable& mt, co
     const int32_t j = b.neighbor[b.slot(i, k)];
     real_volume += double(volume_fraction(length(ps.rest[j] - rest_i), m)) * double(ps.volume[j]);
     const Vec3 v = (ps.rest[j] - rest_i) * real(1.0 / lambda);
-    const int cx = int(std::lround(v.x)), cy = int(std::lround(v.y)), cz = int(std::lround(v.z));
-    aligned = aligned && std::fabs(v.x - cx) < kAligned && std::fabs(v.y - cy) < kAligned &&
-              std::fabs(v.z - cz) < kAligned;
-    for (int z = cz - 1; z <= cz + 1; ++z)
-      for (int y = cy - 1; y <= cy + 1; ++y)
-        for (int x = cx - 1; x <= cx + 1; ++x) {
-          if (std::abs(x) > reach || std::abs(y) > reach || std::abs(z) > reach) continue;
-          const double dx = v.x - x, dy = v.y - y, dz = v.z - z;
-          if (dx * dx + dy * dy + dz * dz < kCoverRadius * kCoverRadius) covered[cell(x, y, z)] = 1;
-        }
+    aligned = aligned && std::fabs(v.x - std::round(v.x)) < kAligned &&
+              std::fabs(v.y - std::round(v.y)) < kAligned && std::fabs(v.z - std::round(v.z)) < kAligned;
+    cover(v, j);
   }
+  cover({0, 0, 0}, i);
   const double cube = lambda * lambda * lambda;
   for (int z = -reach; z <= reach; ++z)
     for (int y = -reach; y <= reach; ++y)
