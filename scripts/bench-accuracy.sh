@@ -9,23 +9,26 @@
 # settings per measured figure, with the device, CPU and date). Not a test: nothing is asserted.
 #
 #   scripts/bench-accuracy.sh BUILD [--double BUILD2] [--quick] [--out DIR] [--problems "a b"]
+#                             [--backends "cpu cuda"]
 # BUILD, BUILD2: a build folder holding `perifrac`, or the binary itself. --quick: coarse
-# resolutions only (fits ~3 minutes on a GPU machine, a few more on 2 CPU cores).
+# resolutions only (fits ~3 minutes on a GPU machine, a few more on 2 CPU cores). --backends:
+# the backends to sweep (default: cpu, and cuda when the binary has it and a GPU answers).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-usage() { sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 binary() { if [[ -d $1 ]]; then echo "$1/perifrac"; else echo "$1"; fi; }
 
 [[ $# -ge 1 ]] || usage
 BIN=$(binary "$1"); shift
-BIN_DOUBLE="" QUICK=0 OUT=bench/accuracy PROBLEMS=""
+BIN_DOUBLE="" QUICK=0 OUT=bench/accuracy PROBLEMS="" BACKENDS=""
 while [[ $# -gt 0 ]]; do
   case $1 in
     --double) BIN_DOUBLE=$(binary "$2"); shift 2 ;;
     --quick) QUICK=1; shift ;;
     --out) OUT=$2; shift 2 ;;
     --problems) PROBLEMS=$2; shift 2 ;;
+    --backends) BACKENDS=$2; shift 2 ;;
     *) usage ;;
   esac
 done
@@ -57,6 +60,12 @@ PROBLEMS=${PROBLEMS:-"wave_bar tension_bar_pmb tension_bar_lps cantilever_pmb ca
 
 backends="cpu"
 "$BIN" info 2>/dev/null | grep -q '^cuda *available' && backends="cpu cuda"
+if [[ -n $BACKENDS ]]; then
+  for b in $BACKENDS; do
+    [[ $b == cpu || $b == cuda ]] || { echo "error: --backends '$BACKENDS' (allowed: cpu, cuda)" >&2; exit 2; }
+  done
+  backends=$BACKENDS
+fi
 run() {  # binary backend problem resolutions delta dt [surface correction: default | on | off | ghosts]
   echo "$(basename "$(dirname "$1")") $2 $3 res $4 delta/lambda $5 dt $6 dt_c surface ${7:-default}" >&2
   "$1" validate --problem "$3" --resolution "$4" --delta-over-lambda "$5" --dt-fraction "$6" --backend "$2" \
@@ -83,7 +92,9 @@ done
 
 # Plots and summary.
 if command -v gnuplot >/dev/null; then
-  gnuplot -e "csv='$CSV'; out='$OUT'" scripts/plot/accuracy.gp
+  plotted=cpu
+  [[ " $backends " == *" cpu "* ]] || plotted=${backends%% *}
+  gnuplot -e "csv='$CSV'; out='$OUT'; backend='$plotted'" scripts/plot/accuracy.gp
 fi
 DEVICE=$(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)
 GPU=$(command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1 || true)
