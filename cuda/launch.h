@@ -169,15 +169,38 @@ void launch_plasticity(Exec& ex, ParticlesView p, MaterialTable mt) {
 }
 
 // The ghost surface correction (surface_ghosts.h): the fits after `init`, the ghost bonds' forces
-// after `springforces`, and each ghosted particle's liveness from its bonds (set-up, restore).
-template <class Exec>
-void launch_ghost_fit(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
-  ex.parallel_for("pd/ghost_fit", g.n, [=] PD_HD(int64_t k) { ghost_fit(int32_t(k), p, b, g, mt); });
+// after `springforces` (`threads` per particle: team.h), and each ghosted particle's liveness
+// from its bonds (set-up, restore).
+template <int kThreads, class Exec>
+void launch_ghost_fit_variant(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
+  if constexpr (kThreads == 1)
+    ex.parallel_for("pd/ghost_fit", g.n, [=] PD_HD(int64_t k) { ghost_fit(int32_t(k), p, b, g, mt); });
+  else
+    ex.template parallel_for_team<kThreads>(
+        "pd/ghost_fit", 0, g.n,
+        [=] PD_HD(int64_t k, const Team<kThreads>& team) { ghost_fit(int32_t(k), p, b, g, mt, team); });
+}
+template <int kThreads, class Exec>
+void launch_ghost_forces_variant(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
+  if constexpr (kThreads == 1)
+    ex.parallel_for("pd/ghost_forces", g.receivers.size,
+                    [=] PD_HD(int64_t r) { ghost_forces(int32_t(r), p, b, g, mt); });
+  else
+    ex.template parallel_for_team<kThreads>(
+        "pd/ghost_forces", 0, g.receivers.size,
+        [=] PD_HD(int64_t r, const Team<kThreads>& team) { ghost_forces(int32_t(r), p, b, g, mt, team); });
 }
 template <class Exec>
-void launch_ghost_forces(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
-  ex.parallel_for("pd/ghost_forces", g.receivers.size,
-                  [=] PD_HD(int64_t r) { ghost_forces(int32_t(r), p, b, g, mt); });
+void launch_ghost_fit(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt,
+                      int threads = 1) {
+  with_bond_threads<Exec>(
+      threads, [&](auto lanes) { launch_ghost_fit_variant<decltype(lanes)::value>(ex, p, b, g, mt); });
+}
+template <class Exec>
+void launch_ghost_forces(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt,
+                         int threads = 1) {
+  with_bond_threads<Exec>(
+      threads, [&](auto lanes) { launch_ghost_forces_variant<decltype(lanes)::value>(ex, p, b, g, mt); });
 }
 template <class Exec>
 void launch_ghost_liveness(Exec& ex, BondsView b, GhostView g) {

@@ -129,4 +129,19 @@ constexpr int bond_threads_for(int64_t particles, bool mesh_filled, int requeste
   return threads;
 }
 
+// The lanes per ghosted particle of the ghost kernels (surface_ghosts.h), from their count: each
+// particle's fit walks its family and its ghosts with 27 sums in registers. Swept on an H200
+// (bench/NOTES.md, "Teams for the ghost kernels"; both kernels per step, ms): the twisted bar's
+// 119k ghosted particles 1 lane 1.17, 4 1.22, 8 1.11, 16 1.75, 32 2.36; the vase's 134k 1.04,
+// 1.15, 0.85, 1.43, 1.87; the small twisted bar's 3.8k 0.33 on one lane, 0.065 on 32. So 8 lanes,
+// and more while ghosted x lanes leaves the GPU idle. `requested` > 0 (PERIFRAC_BOND_THREADS)
+// forces a count.
+constexpr int64_t kGhostTeamThreads = int64_t(1) << 19;
+constexpr int ghost_threads_for(int64_t ghosted, int requested) {
+  if (requested > 0) return requested;
+  int threads = 8;
+  while (threads < 32 && ghosted * threads < kGhostTeamThreads) threads *= 2;
+  return threads;
+}
+
 }  // namespace pd

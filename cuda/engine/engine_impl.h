@@ -108,6 +108,7 @@ class EngineImpl final : public Engine {
             "the ghost surface correction (surface_correction = \"ghosts\") runs on one rank; "
             "run without --ranks or use surface_correction = true");
       set_up_ghosts(in.particles, uncut, bonds_on_host().count, ghost_rate);
+      ghost_threads_ = ghost_threads_for(ghost_counts_.ghosted, requested_bond_threads(in));
       uncut = BondLists();
       end_stage("surface ghosts");
     }
@@ -439,14 +440,14 @@ class EngineImpl final : public Engine {
       with_halo(init, state_.disp);
     else
       init(all_particles(p));
-    if (features_.ghosts) launch_ghost_fit(exec_, p, b, ghost_view(), materials_);
+    if (features_.ghosts) launch_ghost_fit(exec_, p, b, ghost_view(), materials_, ghost_threads_);
     if (features_.plastic) launch_plasticity(exec_, p, materials_);
     const auto springforces = [&](ParticleRange r) { queue_springforces(p, b, r); };
     if (features_.state_based)
       with_halo(springforces, state_.disp, state_.state);
     else
       with_halo(springforces, state_.disp);
-    if (features_.ghosts) launch_ghost_forces(exec_, p, b, ghost_view(), materials_);
+    if (features_.ghosts) launch_ghost_forces(exec_, p, b, ghost_view(), materials_, ghost_threads_);
     take_broke_flags();
     // (After a contact build that brought in contact ghosts the state may have moved: the views
     // are taken again.)
@@ -550,7 +551,8 @@ class EngineImpl final : public Engine {
   std::vector<std::vector<Vec3>> probes_;  // the meshes' probe points (body_contact.h)
   bool contact_ = false;
   BondScreen screen_ = BondScreen::kAuto;
-  int bond_threads_ = 1;  // per particle in the GPU's bond loops (cuda/team.h)
+  int bond_threads_ = 1;   // per particle in the GPU's bond loops (cuda/team.h)
+  int ghost_threads_ = 1;  // per ghosted particle in the ghost kernels (team.h ghost_threads_for)
   int64_t force_passes_ = 0, screened_passes_ = 0;
   int breaking_hold_ = 0;       // passes left to run with the breaking pass
   bool pass_screened_ = false;  // the form of the pass being queued

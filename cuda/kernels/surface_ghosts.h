@@ -15,15 +15,18 @@
 // angular momentum are kept, and the forces come from an energy.
 // Per step: `ghost_fit` after `init` (the fit, the ghosts' stretches, theta_i completed, M_i),
 // `ghost_forces` after `springforces` (each particle near a surface gathers its ghosted partners'
-// M and its own). A particle's ghosts are dropped for good once any of its bonds is broken (its
-// fit would reach across the crack): it is then an uncorrected particle at a crack, and the
-// energy its ghost bonds held is booked as released. Pre-cracked particles never have ghosts.
-// Set-up: cuda/engine/surface_ghosts.h.
+// M and its own). On the GPU both run a team of lanes per particle (cuda/team.h): the lanes split
+// the family's bonds and the ghosts and add their partial sums in the team's fixed tree; Team<1>
+// (the CPU, or PERIFRAC_BOND_THREADS=1) is one thread per particle. A particle's ghosts are dropped for good
+// once any of its bonds is broken (its fit would reach across the crack): it is then an uncorrected particle
+// at a crack, and the energy its ghost bonds held is booked as released. Pre-cracked particles never have
+// ghosts. Set-up: cuda/engine/surface_ghosts.h.
 #pragma once
 
 #include "cuda/kernels/bond.h"
 #include "cuda/kernels/springforces.h"
 #include "cuda/kernels/state_based.h"
+#include "cuda/team.h"
 
 namespace pd {
 
@@ -83,12 +86,14 @@ struct GhostFit {
   real c[3 * kGhostBasis];
 };
 
+// Every lane of `team` ends with the same fit.
+template <class TeamT = Team<1>>
 PD_HD inline GhostFit fit_ghost_field(int32_t g, int32_t i, const ParticlesView& p, const BondsView& b,
-                                      const GhostView& gv, const Material& m) {
+                                      const GhostView& gv, const Material& m, const TeamT& team = {}) {
   real d[3 * kGhostBasis] = {};
   const Vec3 rest_i = xyz(p.rest[i]), disp_i = xyz(p.disp[i]);
   const real inv_delta = real(1) / m.horizon;
-  for (int32_t k = 0; k < b.count[i]; ++k) {
+  for (int32_t k = team.lane(); k < b.count[i]; k += TeamT::kSize) {
     const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
     const Vec4 rest_j = p.rest[j];
     const Vec3 xi = xyz(rest_j) - rest_i;
@@ -102,6 +107,8 @@ PD_HD inline GhostFit fit_ghost_field(int32_t g, int32_t i, const ParticlesView&
       d[2 * kGhostBasis + a] += du.z * q[a];
     }
   }
+  if constexpr (TeamT::kSize > 1)
+    for (int a = 0; a < 3 * kGhostBasis; ++a) d[a] = team.sum(d[a]);
   GhostFit f;
   times_inverse(d, g, gv, f.c);
   return f;
@@ -135,15 +142,16 @@ PD_HD inline GhostBond ghost_bond(const GhostFit& f, Vec4 offset, real inv_delta
 
 // theta_i with the ghost bonds (LPS): init's sum over the real bonds, taken with 1/m of the
 // interior, plus the ghosts' share.
+template <class TeamT = Team<1>>
 PD_HD inline real ghost_dilatation(const GhostFit& f, int32_t g, real theta_real, real inv_mw,
-                                   const GhostView& gv, const Material& m) {
+                                   const GhostView& gv, const Material& m, const TeamT& team = {}) {
   const real inv_delta = real(1) / m.horizon;
   real sum = 0;
-  for (int32_t o = gv.first[g]; o < gv.first[g + 1]; ++o) {
+  for (int32_t o = gv.first[g] + team.lane(); o < gv.first[g + 1]; o += TeamT::kSize) {
     const GhostBond gb = ghost_bond(f, gv.offset[o], inv_delta);
     sum += m.horizon * gb.e * gb.weight;  // omega |xi| e beta V_o, omega |xi| = delta
   }
-  return theta_real + real(3) * sum * inv_mw;
+  return theta_real + real(3) * team.sum(sum) * inv_mw;
 }
 
 // The energy the particle's ghost bonds hold (V_i times their share of its energy density; LPS:
@@ -166,28 +174,30 @@ PD_HD inline double ghost_bond_energy(const GhostFit& f, int32_t g, int32_t i, c
 
 // Kernel `ghost_fit`, after `init`: the fit, theta_i completed (LPS), and M_i and M_i s_i for
 // `ghost_forces` (zeros for a particle whose ghosts were dropped).
-PD_HD inline void ghost_fit(int32_t g, ParticlesView p, BondsView b, GhostView gv, const MaterialTable& mt) {
+template <class TeamT = Team<1>>
+PD_HD inline void ghost_fit(int32_t g, ParticlesView p, BondsView b, GhostView gv, const MaterialTable& mt,
+                            const TeamT& team = {}) {
   real* pull = gv.pull.data() + int64_t(g) * kGhostPull;
   if (!gv.live[g]) {
-    for (int a = 0; a < kGhostPull; ++a) pull[a] = 0;
+    for (int a = team.lane(); a < kGhostPull; a += TeamT::kSize) pull[a] = 0;
     return;
   }
   const int32_t i = gv.particle[g];
   const Material& m = mt.m[p.material[i]];
   const bool state = m.model == kStateBased;
-  const GhostFit f = fit_ghost_field(g, i, p, b, gv, m);
+  const GhostFit f = fit_ghost_field(g, i, p, b, gv, m, team);
   const real inv_m_full = state ? gv.inv_mw[g] : real(0);
   const real inv_delta = real(1) / m.horizon, vol_i = p.volume(i);
   ForceStateCoefficients k{0, 0};
   if (state) {
     Vec4 s = p.state[i];
-    s.x = ghost_dilatation(f, g, s.x, inv_m_full, gv, m);
-    p.state[i] = s;
+    s.x = ghost_dilatation(f, g, s.x, inv_m_full, gv, m, team);
+    if (team.leader()) p.state[i] = s;
     k = force_state_coefficients(s.x, inv_m_full, m);
   }
   // Q = sum_o g_o p(xi_o)^T
   real q_sum[3 * kGhostBasis] = {};
-  for (int32_t o = gv.first[g]; o < gv.first[g + 1]; ++o) {
+  for (int32_t o = gv.first[g] + team.lane(); o < gv.first[g + 1]; o += TeamT::kSize) {
     const GhostBond gb = ghost_bond(f, gv.offset[o], inv_delta);
     const real t =
         state ? (m.horizon / gb.r0) * (k.a * gb.e + k.c * gb.r0) : real(0.5) * m.micromodulus * gb.e / gb.r0;
@@ -198,6 +208,9 @@ PD_HD inline void ghost_fit(int32_t g, ParticlesView p, BondsView b, GhostView g
       q_sum[2 * kGhostBasis + a] += go.z * gb.q[a];
     }
   }
+  if constexpr (TeamT::kSize > 1)
+    for (int a = 0; a < 3 * kGhostBasis; ++a) q_sum[a] = team.sum(q_sum[a]);
+  if (!team.leader()) return;
   // M = Q A^-1, and M s with s = sum_k w_k p(xi_k) (the particle's own force)
   times_inverse(q_sum, g, gv, pull);
   // M s = Q (A^-1 s), A^-1 s fixed at set-up (s = sum_k w_k p(xi_k) over the intact family)
@@ -241,18 +254,19 @@ PD_HD inline void drop_ghosts(int32_t g, int32_t i, ParticlesView p, BondsView b
 // Kernel `ghost_forces`, after `springforces`: receiver r's share of the ghost bonds' forces,
 // its own ghosts' and those of each ghosted partner (every bond, including one broken in this
 // step's force pass: the partner's fit still took it), added to its force.
-PD_HD inline void ghost_forces(int32_t r, ParticlesView p, BondsView b, GhostView gv,
-                               const MaterialTable& mt) {
+template <class TeamT = Team<1>>
+PD_HD inline void ghost_forces(int32_t r, ParticlesView p, BondsView b, GhostView gv, const MaterialTable& mt,
+                               const TeamT& team = {}) {
   const int32_t i = gv.receivers[r];
   Vec3 f{0, 0, 0};
   const int32_t own = gv.of[i];
-  if (own >= 0) {
+  if (own >= 0 && team.leader()) {
     const real* pull = gv.pull.data() + int64_t(own) * kGhostPull;
     f = {pull[27], pull[28], pull[29]};
   }
   const Vec4 rest_i = p.rest[i];
   bool intact = true;
-  for (int32_t k = 0; k < b.count[i]; ++k) {
+  for (int32_t k = team.lane(); k < b.count[i]; k += TeamT::kSize) {
     const int32_t nb = b.neighbor[b.slot(i, k)];
     intact = intact && bond_intact(nb);
     const int32_t j = bond_partner(nb);
@@ -281,6 +295,11 @@ PD_HD inline void ghost_forces(int32_t r, ParticlesView p, BondsView b, GhostVie
     }
     f -= w * pj;
   }
+  if constexpr (TeamT::kSize > 1) {
+    f = team.sum(f);
+    intact = team.sum(int32_t(!intact)) == 0;
+  }
+  if (!team.leader()) return;
   p.force[i] += f;
   if (own >= 0 && !intact && gv.live[own]) drop_ghosts(own, i, p, b, gv, mt);
 }
