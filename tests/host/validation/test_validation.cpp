@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "host/validation/validation.h"
 
@@ -74,16 +76,25 @@ TEST(Validation, SurfaceCorrectedLpsBarHasTheInputPoissonRatio) {
             0.6 * figure(off, "tension_bar_lps/elongation").rel_error);
 }
 
+// Both tension bars `resolution` across on `particles`, with the ghost correction at its default
+// dt / dt_c (state-based first), printed.
+std::pair<std::vector<ValidationResult>, std::vector<ValidationResult>> ghost_corrected_bars(
+    int resolution, const char* particles) {
+  ValidationCase c = at(resolution, false);
+  c.surface_ghosts = true;
+  c.dt_fraction = 0.125;
+  c.particles = particles;
+  auto lps = run_tension_bar_lps(c), pmb = run_tension_bar_pmb(c);
+  print(lps);
+  print(pmb);
+  return {std::move(lps), std::move(pmb)};
+}
+
 // The ghost correction (issue 29; docs/validation.md): the bar 4 across, both models, at the
 // lattice interior's own error (E +1.4% along an axis) within issue 29's 3% for 8 across, and
 // nu within 0.01 of the input; the uncorrected LPS bar is 33% off there.
 TEST(Validation, GhostCorrectedBarsAreAsStiffAsTheInterior) {
-  ValidationCase c = at(4, false);
-  c.surface_ghosts = true;
-  c.dt_fraction = 0.125;
-  const auto lps = run_tension_bar_lps(c), pmb = run_tension_bar_pmb(c);
-  print(lps);
-  print(pmb);
+  const auto [lps, pmb] = ghost_corrected_bars(4, "grid");
   EXPECT_LT(figure(lps, "tension_bar_lps/elongation").rel_error, 0.03);
   EXPECT_LT(std::fabs(figure(lps, "tension_bar_lps/poisson").measured - 0.3), 0.01);
   EXPECT_LT(figure(pmb, "tension_bar_pmb/elongation").rel_error, 0.03);
@@ -95,13 +106,7 @@ TEST(Validation, GhostCorrectedBarsAreAsStiffAsTheInterior) {
 // (elongation within 3%, the state-based nu within 0.01); uncorrected, the state-based bar is 20%
 // off (docs/validation.md, scattered particles).
 TEST(Validation, GhostCorrectedVoronoiBarsMeetTheTargets) {
-  ValidationCase c = at(6, false);
-  c.surface_ghosts = true;
-  c.dt_fraction = 0.125;
-  c.particles = "voronoi";
-  const auto lps = run_tension_bar_lps(c), pmb = run_tension_bar_pmb(c);
-  print(lps);
-  print(pmb);
+  const auto [lps, pmb] = ghost_corrected_bars(6, "voronoi");
   EXPECT_LT(figure(lps, "tension_bar_lps_voronoi/elongation").rel_error, 0.03);
   EXPECT_LT(std::fabs(figure(lps, "tension_bar_lps_voronoi/poisson").measured - 0.3), 0.01);
   EXPECT_LT(figure(pmb, "tension_bar_pmb_voronoi/elongation").rel_error, 0.03);
