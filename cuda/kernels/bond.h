@@ -69,6 +69,28 @@ PD_HD inline SlotAhead slot_ahead(const BondsView& b, int64_t slot) {
   return a;
 }
 
+// A hint that the memory line holding `address` be brought into the L2 cache: no register, no
+// fault, nothing to wait for; nothing on the CPU.
+PD_HD inline void prefetch_line(const void* address) {
+#if defined(__CUDA_ARCH__)
+  asm volatile("prefetch.global.L2 [%0];" ::"l"(address));
+#else
+  (void)address;
+#endif
+}
+
+// Which plastic histories a visitor reads: none, its own end's e^p (BondsView::plastic), or both
+// ends' (plastic and plastic_mirror).
+enum HistoryReads : int { kNoHistory = 0, kOwnHistory = 1, kBothHistories = 2 };
+
+// Listed families: the histories a visitor reads at the next bond's slot, fetched into L2 with
+// its partner index (the visit may store into them, which keeps the compiler from loading ahead).
+template <int kHistory>
+PD_HD inline void prefetch_history(const BondsView& b, int64_t slot) {
+  if constexpr (kHistory != kNoHistory) prefetch_line(b.plastic.data() + slot);
+  if constexpr (kHistory == kBothHistories) prefetch_line(b.plastic_mirror.data() + slot);
+}
+
 // Geometry of one bond at the current positions, with what the partner's records carry.
 // weight(m) is beta V_j, the partner's volume inside the horizon: a lattice bond carries it from
 // its stencil entry (kWeighted); a listed bond computes it where it is used, since computing it
@@ -140,29 +162,38 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geomet
 // hoisting the next load over it, and without the early load every bond waits for two dependent
 // loads in turn (index, then the partner's records). Measured on the H100 (bench/NOTES.md):
 // +10-17% on springforces. A team's lane visits bonds lane, lane + kThreads, ... and returns the
-// bonds it found intact.
-template <int kThreads, class Visit>
+// bonds it found intact. kHistory (HistoryReads): the plastic histories the visitor reads, fetched
+// into L2 with the next index (prefetch_history: the plastic explicit lattice's step +12%). Slots
+// are counted from the family's first (H200, bench/NOTES.md: springforces +7-11% on the vase,
+// the torus and the explicit lattices).
+template <int kHistory, int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                                  const Team<kThreads>& team, Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
   const int32_t count = b.count[i];
   int32_t holding = 0;
   const int32_t first = team.lane();
+  // Slot k is first_slot + k kSliceWidth (BondsView::slot): the slice's offset read once, where
+  // each bond would read it again (a visit's stores keep the compiler from hoisting the load).
+  const int64_t first_slot = b.slot(i, 0);
+  constexpr int64_t kStride = int64_t(kThreads) * kSliceWidth;
   int32_t next = 0;
   SlotAhead next_ahead;
   if (first < count) {
-    next = load_streaming(b.neighbor[b.slot(i, first)]);
-    next_ahead = slot_ahead(b, b.slot(i, first));
+    const int64_t slot = first_slot + int64_t(first) * kSliceWidth;
+    next = load_streaming(b.neighbor[slot]);
+    next_ahead = slot_ahead(b, slot);
   }
   PD_BOND_LOOP
   for (int32_t k = first; k < count; k += kThreads) {
-    const int64_t slot = b.slot(i, k);
+    const int64_t slot = first_slot + int64_t(k) * kSliceWidth;
     const int32_t j = next;
     const SlotAhead ahead = next_ahead;
     if (k + kThreads < count) {
-      const int64_t next_slot = b.slot(i, k + kThreads);
+      const int64_t next_slot = slot + kStride;
       next = load_streaming(b.neighbor[next_slot]);
       next_ahead = slot_ahead(b, next_slot);
+      prefetch_history<kHistory>(b, next_slot);
     }
     if (!bond_intact(j)) continue;
     if (visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j], ahead)))
@@ -201,20 +232,6 @@ PD_HD inline int32_t bit_count(uint32_t x) {
   return __builtin_popcount(x);
 #endif
 }
-
-// A hint that the memory line holding `address` be brought into the L2 cache: no register, no
-// fault, nothing to wait for; nothing on the CPU.
-PD_HD inline void prefetch_line(const void* address) {
-#if defined(__CUDA_ARCH__)
-  asm volatile("prefetch.global.L2 [%0];" ::"l"(address));
-#else
-  (void)address;
-#endif
-}
-
-// Which plastic histories a visitor reads: none, its own end's e^p (BondsView::plastic), or both
-// ends' (plastic and plastic_mirror).
-enum HistoryReads : int { kNoHistory = 0, kOwnHistory = 1, kBothHistories = 2 };
 
 // Visitors that read plastic histories (kHistory), one thread per particle: the histories' rows
 // of a word's bonds fetched ahead into L2. A warp's particles share a slice (kSliceWidth = 32),
@@ -302,7 +319,7 @@ PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, con
   const int32_t stencil = kLattice != kNoLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
   if (kLattice != kNoLattice && stencil >= 0)
     return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll, kHistory>(i, stencil, p, b, team, visit));
-  return team.sum(for_each_intact_listed_bond(i, p, b, team, visit));
+  return team.sum(for_each_intact_listed_bond<kHistory>(i, p, b, team, visit));
 }
 template <int kLattice = kLatticeListed, int kUnroll = 2, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
