@@ -18,6 +18,7 @@ namespace pd {
 class CpuExec {
  public:
   static constexpr bool kDevice = false;
+  static constexpr bool kGraphs = false;  // (CUDA graphs of the step: exec_cuda.cuh)
 
   explicit CpuExec(KernelStats* stats) : stats_(stats) {}
 

@@ -58,6 +58,9 @@ CudaExec::~CudaExec() {
   if (fork_) cudaEventDestroy(fork_);
   if (join_) cudaEventDestroy(join_);
   if (side_) cudaStreamDestroy(side_);
+  for (cudaGraphExec_t g : graphs_)
+    if (g) cudaGraphExecDestroy(g);
+  if (capture_) cudaStreamDestroy(capture_);
 }
 
 int CudaExec::device_count() const {
@@ -90,6 +93,46 @@ void CudaExec::end_side() {
 
 void CudaExec::wait_side() {
   cuda_check(cudaStreamWaitEvent(nullptr, join_, 0), "cudaStreamWaitEvent");
+}
+
+// Capture goes to a stream of its own (the legacy default stream cannot capture), thread-local:
+// a call of this thread that would wait for the device fails the capture instead.
+void CudaExec::begin_capture() {
+  if (!capture_)
+    cuda_check(cudaStreamCreateWithFlags(&capture_, cudaStreamNonBlocking), "cudaStreamCreateWithFlags");
+  cuda_check(cudaStreamBeginCapture(capture_, cudaStreamCaptureModeThreadLocal), "cudaStreamBeginCapture");
+  stream_ = capture_;
+  capture_stats_ = stats_;
+  stats_ = nullptr;
+}
+
+void CudaExec::end_capture(int slot) {
+  cudaGraph_t graph = nullptr;
+  const cudaError_t ended = cudaStreamEndCapture(capture_, &graph);
+  stream_ = nullptr;
+  stats_ = capture_stats_;
+  cuda_check(ended, "cudaStreamEndCapture");
+  if (graphs_[slot]) cudaGraphExecDestroy(graphs_[slot]);
+  graphs_[slot] = nullptr;
+  const cudaError_t made = cudaGraphInstantiate(&graphs_[slot], graph, 0);
+  cudaGraphDestroy(graph);
+  cuda_check(made, "cudaGraphInstantiate");
+}
+
+void CudaExec::abort_capture() {
+  if (stream_ != capture_ || !capture_) return;
+  cudaGraph_t graph = nullptr;
+  cudaStreamEndCapture(capture_, &graph);
+  if (graph) cudaGraphDestroy(graph);
+  cudaGetLastError();  // (the failed capture's error is the one being reported)
+  stream_ = nullptr;
+  stats_ = capture_stats_;
+}
+
+void CudaExec::launch_graph(int slot, const char* name) {
+  cudaEvent_t start = begin_timing(name);
+  cuda_check(cudaGraphLaunch(graphs_[slot], stream_), name);
+  end_timing(name, start);
 }
 
 void CudaExec::describe(KernelStat* s, const void* kernel) {

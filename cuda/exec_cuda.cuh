@@ -181,6 +181,17 @@ class CudaExec {
   void end_side();
   void wait_side();
   void* stream() { return stream_; }
+  // CUDA graphs (the engine's step, step_graphs.h): the launches between begin_capture() and
+  // end_capture(slot) are recorded into a graph, not run; launch_graph(slot, name) runs it as one
+  // launch, counted and timed as `name`. While capturing nothing may wait for the device and the
+  // launches are neither counted nor timed; abort_capture() ends a capture that failed.
+  static constexpr bool kGraphs = true;
+  static constexpr int kGraphSlots = 4;
+  void begin_capture();
+  void end_capture(int slot);
+  void abort_capture();
+  bool has_graph(int slot) const { return graphs_[slot] != nullptr; }
+  void launch_graph(int slot, const char* name);
   int device_count() const;  // GPUs this process sees
   double side_seconds() const { return side_seconds_; }
   // Waits for the device, adds the timed launches to the stats, and reports any
@@ -212,6 +223,9 @@ class CudaExec {
   cudaEvent_t fork_ = nullptr, join_ = nullptr;
   std::vector<Pending> side_spans_;  // begin_side to end_side, resolved in flush_stats
   double side_seconds_ = 0;
+  cudaStream_t capture_ = nullptr;        // where a graph's launches are recorded
+  KernelStats* capture_stats_ = nullptr;  // stats_ while capturing
+  cudaGraphExec_t graphs_[kGraphSlots] = {};
 };
 
 }  // namespace pd

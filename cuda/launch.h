@@ -416,6 +416,20 @@ void launch_stability_rate(Exec& ex, ParticlesView p, BondsView b, MaterialTable
   });
 }
 
+// Bit k of words[w]: whether slot 32 w + k holds a broken bond (its neighbor is ~j < 0); changed[w]
+// the bits that differ from words[w] as it was (Engine::update_bonds).
+template <class Exec>
+void launch_broken_bits(Exec& ex, ArrayView<const int32_t> neighbor, ArrayView<uint32_t> words,
+                        ArrayView<uint32_t> changed) {
+  ex.parallel_for("stats/broken_bits", words.size, [=] PD_HD(int64_t w) {
+    const int64_t first = 32 * w, end = first + 32 < neighbor.size ? first + 32 : neighbor.size;
+    uint32_t bits = 0;
+    for (int64_t slot = first; slot < end; ++slot) bits |= uint32_t(neighbor[slot] < 0) << (slot - first);
+    changed[w] = bits ^ words[w];
+    words[w] = bits;
+  });
+}
+
 // Reductions read once per frame.
 template <class Exec>
 int64_t reduce_broken_bonds(Exec& ex, BondsView b, const int32_t* intact) {

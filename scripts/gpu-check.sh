@@ -91,6 +91,15 @@ same_files() {
   for f in "$@"; do cmp "$a/$f" "$b/$f" || return 1; done
   echo "identical: $*"
 }
+# CUDA graphs of the step (cuda/engine/step_graphs.h): the swinging bar, whose steps go as graphs,
+# against the CPU, and bit for bit against the same run launched step by step.
+swing=(scenes/chen_bar_swing.toml --scale 0.3)
+step equiv-graphs-cpu "$bin" run --overwrite "${swing[@]}" --frames 2 --backend cpu --out "$OUT/equiv-graphs-cpu"
+step equiv-graphs-gpu "$bin" run --overwrite "${swing[@]}" --frames 2 --backend cuda --out "$OUT/equiv-graphs-gpu"
+step equiv-graphs-compare "$bin" compare "$OUT/equiv-graphs-cpu" "$OUT/equiv-graphs-gpu"
+step graphs-off-run env PERIFRAC_STEP_GRAPHS=off "$bin" run --overwrite "${swing[@]}" --frames 2 \
+  --backend cuda --out "$OUT/graphs-off"
+step graphs-off-compare same_files "$OUT/equiv-graphs-gpu" "$OUT/graphs-off" frame_00002.pfr energy.csv
 step determinism-run "$bin" run --overwrite "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu-again"
 step determinism-compare same_files "$OUT/equiv-gpu" "$OUT/equiv-gpu-again" frame_00003.pfr energy.csv fragments_00003.pfg
 step resume-first "$bin" run --overwrite "$walls" --backend cuda --scale 0.02 --frames 2 --checkpoint-every 2 --out "$OUT/resume"
@@ -111,6 +120,8 @@ for tool in memcheck racecheck; do
     "$bin" run --overwrite "${cannon[@]}" --backend cuda --frames 1 --steps-per-frame 10 --out "$OUT/sanitizer-colliders"
   step "sanitizer-$tool-ghosts" compute-sanitizer --tool "$tool" --error-exitcode 9 \
     "$bin" run --overwrite "${ghost_twist[@]}" --backend cuda --frames 1 --steps-per-frame 10 --out "$OUT/sanitizer-ghosts"
+  step "sanitizer-$tool-graphs" compute-sanitizer --tool "$tool" --error-exitcode 9 \
+    "$bin" run --overwrite "${swing[@]}" --backend cuda --frames 1 --steps-per-frame 70 --out "$OUT/sanitizer-graphs"
   step "sanitizer-$tool-render" compute-sanitizer --tool "$tool" --error-exitcode 9 \
     "$bin" render "$OUT/sanitizer" --backend cuda --width 64 --height 48 --spp 1
 done
@@ -131,6 +142,11 @@ done
 for sc in false '"ghosts"'; do
   step "bench-twist-surface-$sc" "$bin" bench --scene scenes/chen_bar_twist.toml --scale 100 \
     --set "materials.rubber.surface_correction=$sc" --backend cuda --steps 300 --warmup 30 --out "$OUT/bench"
+done
+# Launch-bound: the swinging bar (3,840 particles) with and without graphs of the step.
+for graphs in on off; do
+  step "bench-swing-graphs-$graphs" "$bin" bench --scene scenes/chen_bar_swing.toml --step-graphs "$graphs" \
+    --backend cuda --steps 4000 --warmup 400 --out "$OUT/bench"
 done
 step glass-full "$bin" run --overwrite "$scene" --backend cuda --out "$OUT/glass-full"
 

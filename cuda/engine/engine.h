@@ -118,6 +118,9 @@ class Engine {
   virtual double time() const = 0;
   virtual void read_state(ParticleState& out) = 0;
   virtual void read_bonds(BondLists& out) = 0;
+  // Brings `bonds`, what the previous call gave, up to date: the first call reads them whole, later
+  // ones only which slots changed (one bit per slot), which is what a frame's output needs.
+  virtual void update_bonds(BondLists& bonds) { read_bonds(bonds); }
   virtual int64_t broken_bonds() = 0;
   // Energy terms at the current state, and the work and released energy since the start.
   virtual Energy energy() = 0;
@@ -141,6 +144,8 @@ class Engine {
   // (cuda/kernels/bond_screen.h).
   virtual int64_t force_passes() const = 0;
   virtual int64_t screened_passes() const = 0;
+  // Steps run as CUDA graphs (cuda/engine/step_graphs.h); 0 on the CPU and on ranks.
+  virtual int64_t graphed_steps() const { return 0; }
   // Per rank of a partitioned run, in rank order; empty for a run on one rank.
   virtual std::vector<RankStats> rank_stats() { return {}; }
   // Where the set-up's time went, stage by stage (a partitioned run: rank 0's engine).

@@ -20,6 +20,7 @@
 #include "cuda/engine/engine_state.h"
 #include "cuda/engine/family_builder.h"
 #include "cuda/engine/free_bodies.h"
+#include "cuda/engine/step_graphs.h"
 #include "cuda/engine/surface_ghosts.h"
 #include "cuda/launch.h"
 #include "cuda/parallel/contact_ghosts.h"
@@ -47,6 +48,10 @@ class EngineImpl final : public Engine {
         screen_(in.screen),
         bond_threads_(bond_threads_of(in)) {
     features_ = features_of(materials_, contact_);
+    // Graphs where no host work falls between the step's launches (step_graphs.h).
+    const bool graphs_wanted = step_graphs_wanted(in);  // (a bad PERIFRAC_STEP_GRAPHS fails on the CPU too)
+    graphs_ = Exec::kGraphs && graphs_wanted && !rank && !scripted_motion_ && free_.empty() &&
+              !moving_colliders_ && !contact_ && step_params_.n_projectiles == 0;
     colliders_host_ = in.colliders;
     if (in.particles.size() == 0) throw std::runtime_error("the scene has no particles");
     stage_start_ = std::chrono::steady_clock::now();
@@ -158,6 +163,11 @@ class EngineImpl final : public Engine {
     const auto t0 = std::chrono::steady_clock::now();
     const real dt = step_params_.dt;
     for (int64_t s = 0; s < steps; ++s) {
+      if (graphs_ && steps - s >= kGraphSteps) {
+        run_step_graph();
+        s += kGraphSteps - 1;
+        continue;
+      }
       step_params_.time = real(time_ + dt);
       if (scripted_motion_) motion_.apply(time_ + dt, step_params_);
       if (!free_.empty()) {  // velocity Verlet, as the particles: half kick, drift ...
@@ -211,6 +221,27 @@ class EngineImpl final : public Engine {
 
   void read_bonds(BondLists& out) override { download_bonds(state_, out); }
 
+  // The slots' broken bits as the previous call left them, on the backend; the slots whose bit
+  // changed since are flipped (j and ~j) in `bonds`.
+  void update_bonds(BondLists& bonds) override {
+    const size_t words = (state_.neighbor.size() + 31) / 32;
+    const bool first = broken_bits_.size() != words || bonds.neighbor.size() != state_.neighbor.size();
+    if (first) {
+      read_bonds(bonds);
+      broken_bits_ = mem_.template make_zeroed<uint32_t>(words);
+      changed_bits_ = mem_.template make<uint32_t>(words);
+    }
+    launch_broken_bits(exec_, ArrayView<const int32_t>(view_of(state_.neighbor)), view_of(broken_bits_),
+                       view_of(changed_bits_));
+    if (first) return;
+    changed_bits_.download(changed_host_);
+    for (size_t w = 0; w < words; ++w)
+      for (uint32_t c = changed_host_[w]; c != 0; c &= c - 1) {
+        int32_t& j = bonds.neighbor[32 * w + size_t(__builtin_ctz(c))];
+        j = ~j;
+      }
+  }
+
   int64_t broken_bonds() override { return reduce_broken_bonds(exec_, bonds(), state_.intact.data()); }
 
   Energy energy() override {
@@ -234,6 +265,7 @@ class EngineImpl final : public Engine {
   SurfaceGhostCounts surface_ghosts() const override { return ghost_counts_; }
   int64_t force_passes() const override { return force_passes_; }
   int64_t screened_passes() const override { return screened_passes_; }
+  int64_t graphed_steps() const override { return graphed_steps_; }
   double critical_time_step() const override { return critical_dt_; }
 
   void save(EngineSnapshot& out) override {
@@ -484,13 +516,17 @@ class EngineImpl final : public Engine {
   // Kernel 4 in the form chosen from the pass before the last (bond_screen.h), over `r`; the
   // pass's flag is read by take_broke_flags once the whole pass is queued, and the host waits
   // only for the pass before, not for what the device still runs.
+  // (While a graph is captured, in the graph's form.)
   void queue_springforces(const ParticlesView& p, const BondsView& b, ParticleRange r) {
-    const bool screened =
-        screen_ == BondScreen::kAlways || (screen_ == BondScreen::kAuto && breaking_hold_ == 0);
-    const int parity = int(force_passes_ % kBrokeFlags);
+    const bool screened = capturing_ ? pass_screened_ : screen_next_pass();
+    const int parity = int(flag_units_ % kBrokeFlags);
     launch_springforces(exec_, p, b, materials_, features_, r, listed_in(r), screened,
                         exec_.flag(kFlagBroke + parity), bond_threads_);
     pass_screened_ = screened;
+  }
+
+  bool screen_next_pass() const {
+    return screen_ == BondScreen::kAlways || (screen_ == BondScreen::kAuto && breaking_hold_ == 0);
   }
 
   // The lattice particles of r whose stencil is `listed` (a partitioned rank's that read their
@@ -502,14 +538,56 @@ class EngineImpl final : public Engine {
     return {int32_t(lo - ids.begin()), int32_t(hi - lo), lattice_.listed_ids.data()};
   }
 
-  void take_broke_flags() {
-    const int parity = int(force_passes_ % kBrokeFlags);
+  // After a force pass, or a graph of `passes` (whose passes raise one flag): marks its flag and
+  // reads the one of the pass or graph before it. (Nothing while a graph is captured.)
+  void take_broke_flags(int passes = 1) {
+    if (capturing_) return;
+    const int parity = int(flag_units_ % kBrokeFlags);
     exec_.mark_flags(kBrokeFlagEvent + parity);
-    screened_passes_ += pass_screened_;
-    if (force_passes_++ == 0) return;
-    const int last = int((force_passes_ - 2) % kBrokeFlags);
+    screened_passes_ += pass_screened_ ? passes : 0;
+    force_passes_ += passes;
+    if (flag_units_++ == 0) return;
+    const int last = int((flag_units_ - 2) % kBrokeFlags);
     const bool broke = exec_.take_flags(1u << (kFlagBroke + last), kBrokeFlagEvent + last) != 0;
-    breaking_hold_ = broke ? kScreenHoldPasses : std::max(breaking_hold_ - 1, 0);
+    breaking_hold_ = broke ? kScreenHoldPasses : std::max(breaking_hold_ - passes, 0);
+  }
+
+  // kGraphSteps steps as one graph launch (step_graphs.h), in the form the next pass would take;
+  // the graph of that form and flag parity is recorded the first time it is needed. The steps'
+  // host work is only the clock's.
+  void run_step_graph() {
+    if constexpr (Exec::kGraphs) {
+      const bool screened = screen_next_pass();
+      const int slot = 2 * int(screened) + int(flag_units_ % kBrokeFlags);
+      pass_screened_ = screened;
+      if (!exec_.has_graph(slot)) record_step_graph(slot);
+      exec_.launch_graph(slot, kStepGraphStat);
+      for (int k = 0; k < kGraphSteps; ++k) time_ += step_params_.dt;
+      step_params_.time = real(time_);
+      step_ += kGraphSteps;
+      graphed_steps_ += kGraphSteps;
+      take_broke_flags(kGraphSteps);
+    }
+  }
+
+  void record_step_graph(int slot) {
+    if constexpr (Exec::kGraphs) {
+      capturing_ = true;
+      exec_.begin_capture();
+      try {
+        for (int k = 0; k < kGraphSteps; ++k) {
+          launch_position_update(exec_, particles(), step_params_, ContactView{});
+          compute_forces();
+          launch_velocity_update(exec_, particles(), step_params_);
+        }
+      } catch (...) {
+        exec_.abort_capture();
+        capturing_ = false;
+        throw;
+      }
+      capturing_ = false;
+      exec_.end_capture(slot);
+    }
   }
 
   // Exec flag events: the contact flags' (ContactLists), and one per parity of the force
@@ -554,6 +632,12 @@ class EngineImpl final : public Engine {
   int bond_threads_ = 1;   // per particle in the GPU's bond loops (cuda/team.h)
   int ghost_threads_ = 1;  // per ghosted particle in the ghost kernels (team.h ghost_threads_for)
   int64_t force_passes_ = 0, screened_passes_ = 0;
+  int64_t flag_units_ = 0;  // force passes and graphs of passes queued (their broke flags' parity)
+  bool graphs_ = false;     // the step as graphs of kGraphSteps steps (step_graphs.h)
+  bool capturing_ = false;  // a graph is being recorded: no host work between the launches
+  int64_t graphed_steps_ = 0;
+  DeviceArray<uint32_t, Exec> broken_bits_, changed_bits_;  // update_bonds' bits
+  std::vector<uint32_t> changed_host_;
   int breaking_hold_ = 0;       // passes left to run with the breaking pass
   bool pass_screened_ = false;  // the form of the pass being queued
   KernelFeatures features_;

@@ -41,6 +41,10 @@ double longest_bond_bound(const ParticleSet& ps, const MaterialTable& mt);
 // last passes (kAuto), never (kOff), or in every pass (kAlways); the results are the same.
 enum class BondScreen { kAuto, kOff, kAlways };
 
+// The step as CUDA graphs where the scene allows (step_graphs.h): in small scenes (kAuto), in
+// any (kOn) or never (kOff); the results are the same. The CPU backend has no graphs.
+enum class StepGraphs { kAuto, kOn, kOff };
+
 struct SimulationInput {
   ParticleSet particles;
   MaterialTable materials;
@@ -59,6 +63,7 @@ struct SimulationInput {
   // Threads per particle in the GPU's bond loops (cuda/team.h): 1, 4, 8, 16 or 32; 0 chooses
   // from the scene (bond_threads.h). The CPU backend runs one.
   int bond_threads = 0;
+  StepGraphs step_graphs = StepGraphs::kAuto;
 };
 
 }  // namespace pd

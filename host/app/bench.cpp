@@ -11,6 +11,7 @@
 
 #include "cuda/engine/engine.h"
 #include "cuda/engine/material.h"
+#include "cuda/engine/step_graphs.h"
 #include "cuda/kernel_stats.h"
 #include "host/app/backend_choice.h"
 #include "host/app/kernel_report.h"
@@ -139,6 +140,10 @@ int bench_command(const BenchOptions& opt) {
     input.bond_threads = opt.bond_threads;
     workload += "_threads" + std::to_string(opt.bond_threads);
   }
+  if (opt.step_graphs != "auto") {
+    input.step_graphs = opt.step_graphs == "on" ? StepGraphs::kOn : StepGraphs::kOff;
+    workload += "_graphs_" + opt.step_graphs;
+  }
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
   const auto engine_start = std::chrono::steady_clock::now();
   auto engine = make_engine(backend, input);
@@ -156,7 +161,7 @@ int bench_command(const BenchOptions& opt) {
   }
   engine->advance(opt.warmup);
   engine->stats().reset_times();
-  const int64_t screened_before = engine->screened_passes();
+  const int64_t screened_before = engine->screened_passes(), graphed_before = engine->graphed_steps();
   const std::vector<RankStats> ranks_before = engine->rank_stats();
   const auto t0 = std::chrono::steady_clock::now();
   profiler_range_push("pd-bench-timed");  // what scripts/profile.sh profiles after a long warm-up
@@ -164,6 +169,7 @@ int bench_command(const BenchOptions& opt) {
   profiler_range_pop();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const int64_t screened = engine->screened_passes() - screened_before;
+  const int64_t graphed = engine->graphed_steps() - graphed_before;
   const std::vector<RankStats> ranks = rank_deltas(ranks_before, engine->rank_stats());
   // Whether the workload broke anything: a scene's fracture, or none for the elastic lattice.
   const int64_t broken = engine->broken_bonds();
@@ -171,7 +177,7 @@ int bench_command(const BenchOptions& opt) {
   const std::string date = utc_now("%Y-%m-%dT%H:%M:%SZ"), rev = git_revision();
   // (Under mpirun the kernel table is rank 0's: its kernels over its own bonds.)
   const int64_t kernel_bonds = ranks.empty() ? fam.bonds : ranks[0].bonds;
-  const auto rows = kernel_rows(engine->stats(), "pd/", kernel_bonds, opt.steps);
+  const auto rows = kernel_rows(engine->stats(), "pd/", kernel_bonds, opt.steps, graphed);
   std::printf("bench      %s on %s [%s], %s, git %s\n", workload.c_str(), engine->device_name().c_str(),
               backend_name(backend), date.c_str(), rev.c_str());
   std::printf("size       %zu particles, %lld bonds (mean %.1f per particle), %.1f MiB, %lld steps\n",
@@ -206,6 +212,11 @@ int bench_command(const BenchOptions& opt) {
                 (long long)kTimedLaunchStride);
   std::printf("screened   springforces ran without the breaking path in %lld of the %lld steps\n",
               (long long)screened, (long long)opt.steps);
+  if (graphed > 0)
+    std::printf(
+        "graphs     %lld of the %lld steps ran as CUDA graphs of %d steps, timed as one launch each "
+        "(\"%s\"; per-kernel times: --step-graphs off)\n",
+        (long long)graphed, (long long)opt.steps, kGraphSteps, kStepGraphStat);
   std::printf("wall       %.3f s for %lld steps: %.3e bond-updates/s end to end\n", wall,
               (long long)opt.steps, double(fam.bonds) * double(opt.steps) / wall);
   std::printf("broken     %lld of %lld bonds after %lld steps (%.4g s simulated, warm-up included)\n",
@@ -231,7 +242,8 @@ int bench_command(const BenchOptions& opt) {
      << ",\n  \"lattice_particles\": " << fam.lattice_particles
      << ",\n  \"lattice_listed_particles\": " << fam.lattice_listed
      << ",\n  \"surface_rows\": " << fam.surface_rows << ",\n  \"bond_slots\": " << fam.slots
-     << ",\n  \"steps\": " << opt.steps << ",\n  \"screened_steps\": " << screened << ",\n  \"dt\": " << dt
+     << ",\n  \"steps\": " << opt.steps << ",\n  \"screened_steps\": " << screened
+     << ",\n  \"graphed_steps\": " << graphed << ",\n  \"dt\": " << dt
      << ",\n  \"dt_over_stable\": " << dt / family_dt << ",\n  \"broken_bonds\": " << broken
      << ",\n  \"simulated_seconds\": " << engine->time() << ",\n  \"wall_seconds\": " << wall
      << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds << ", \"engine\": " << engine_seconds

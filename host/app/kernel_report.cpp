@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <map>
 
+#include "cuda/engine/step_graphs.h"
+
 namespace pd {
 
 std::vector<KernelRow> kernel_rows(const KernelStats& stats, const std::string& prefix, int64_t bonds,
-                                   int64_t steps) {
+                                   int64_t steps, int64_t graphed) {
   std::vector<KernelRow> rows;
   double total = 0;
   for (const auto& [name, s] : stats.table())
@@ -24,12 +26,15 @@ std::vector<KernelRow> kernel_rows(const KernelStats& stats, const std::string& 
     }
   }
   // An instantiation runs in some steps only (the screened and breaking passes alternate): its
-  // rate is per launch, the bonds of one step over its time per launch; other rows' is per step.
+  // rate is per launch, the bonds of one step over its time per launch; the graphs' is per
+  // graphed step, other rows' per step outside the graphs.
   auto add_row = [&](KernelRow r) {
     r.ms_per_launch = r.launches > 0 ? 1e3 * r.seconds / double(r.launches) : 0;
     r.share = total > 0 ? r.seconds / total : 0;
     const bool instantiation = r.name.find('[') != std::string::npos;
-    const double runs = instantiation ? double(r.launches) : double(steps);
+    const double runs = instantiation              ? double(r.launches)
+                        : r.name == kStepGraphStat ? double(graphed)
+                                                   : double(steps - graphed);
     r.bond_updates_per_s = r.seconds > 0 ? double(bonds) * runs / r.seconds : 0;
     rows.push_back(r);
   };

@@ -25,9 +25,11 @@ struct KernelRow {
 // instantiation ("pd/springforces[state,lattice]": its own time, registers and occupancy), a row
 // "name (all)" after the instantiations of a kernel that has them, and a final "step" row summing
 // every kernel. `bonds` is the number of stored bonds (both directions)
-// and `steps` the number of steps the stats cover.
+// and `steps` the number of steps the stats cover, of which `graphed` ran as CUDA graphs: their
+// kernels are timed together as the row kStepGraphStat (cuda/engine/step_graphs.h), the other
+// rows cover the steps outside graphs.
 std::vector<KernelRow> kernel_rows(const KernelStats& stats, const std::string& prefix, int64_t bonds,
-                                   int64_t steps);
+                                   int64_t steps, int64_t graphed = 0);
 
 void print_kernel_table(std::ostream& os, const std::vector<KernelRow>& rows);
 

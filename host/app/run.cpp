@@ -375,7 +375,7 @@ class RunOutput {
     drain();
     Engine& engine = *sim_.engine;
     FrameData f = frame_data(engine, sim_.setup.input.particles, bonds_.count, frame, state_);
-    if (frame > 0) engine.read_bonds(bonds_);
+    if (frame > 0) engine.update_bonds(bonds_);
     auto job = [this, frame, f = std::move(f), colliders = engine.colliders(),
                 done = std::move(done)]() mutable {
       folder_.begin_frame(frame);
@@ -750,8 +750,8 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
       times.checks, times.checkpoints);
   const int64_t steps = (scene.frames - first_frame + 1) * scene.steps_per_frame;
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(sim.backend));
-  print_kernel_table(std::cout,
-                     kernel_rows(sim.engine->stats(), "pd/", sim.engine->family_stats().bonds, steps));
+  print_kernel_table(std::cout, kernel_rows(sim.engine->stats(), "pd/", sim.engine->family_stats().bonds,
+                                            steps, sim.engine->graphed_steps()));
   output.finish();
   std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", output.dir().c_str(),
               (long long)scene.frames + 1, output.fragment_pieces());

@@ -85,6 +85,10 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
                   "threads per particle in the GPU's bond loops: 1, 4, 8, 16, 32, or 0 to "
                   "choose from the scene (cuda/team.h)")
       ->check(CLI::IsMember({0, 1, 4, 8, 16, 32}));
+  cmd->add_option("--step-graphs", bench->step_graphs,
+                  "the step as CUDA graphs of 32 steps where no host work falls between its launches: "
+                  "in scenes below 524,288 particles (auto), in any (on), or never (off: per-kernel times)")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   cmd->add_option("--model", bench->model,
                   "lattice material: bond_based | state_based | plastic | anisotropic")
       ->check(CLI::IsMember({"bond_based", "state_based", "plastic", "anisotropic"}));

@@ -111,6 +111,30 @@ TEST(EngineReadBack, KeepsTheCallersMemory) {
   }
 }
 
+// update_bonds keeps a frame's bonds as a whole read would give them, from one bit per slot,
+// while bonds break, and across a restore to an earlier state (bonds whole again).
+TEST(EngineReadBack, UpdatedBondsAreTheWholeRead) {
+  const SimulationInput in = testing::pulled_apart(lattice_block(16, 8, 8, 1e-3, 2e-4), 16, 1e-3, 2);
+  auto e = make_cpu_engine(in);
+  BondLists kept, whole;
+  EngineSnapshot early;
+  e->update_bonds(kept);
+  e->advance(30);
+  e->save(early);
+  for (int frame = 0; frame < 4; ++frame) {
+    e->advance(40);
+    e->update_bonds(kept);
+    e->read_bonds(whole);
+    ASSERT_EQ(kept.neighbor, whole.neighbor) << "after frame " << frame;
+  }
+  ASSERT_GT(e->broken_bonds(), 0) << "the run must break bonds";
+  e->restore(early);
+  e->update_bonds(kept);
+  e->read_bonds(whole);
+  EXPECT_EQ(kept.neighbor, whole.neighbor) << "after the restore";
+  EXPECT_EQ(kept.count, whole.count);
+}
+
 // The set-up's stages, in the order they run, each timed; pre-cracks and the state-based
 // set-up only where the run has them.
 TEST(EngineSetup, ReportsItsStagesInOrder) {

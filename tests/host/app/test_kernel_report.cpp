@@ -6,6 +6,8 @@
 
 #include <sstream>
 
+#include "cuda/engine/step_graphs.h"
+
 namespace pd {
 namespace {
 
@@ -43,6 +45,23 @@ TEST(KernelReport, InstantiationsGetTheirOwnRowsAndASum) {
   std::ostringstream table;
   print_kernel_table(table, rows);
   EXPECT_NE(table.str().find("pd/springforces[lattice,screened]"), std::string::npos);
+}
+
+// Steps run as CUDA graphs are timed as one row: its rate is over the graphed steps, the other
+// kernels' over the steps outside the graphs, and the step row over all.
+TEST(KernelReport, GraphedStepsHaveTheirOwnRow) {
+  KernelStats stats;
+  stats.entry(kStepGraphStat).seconds = 6.0;
+  stats.entry(kStepGraphStat).launches = 3;
+  stats.entry("pd/init").seconds = 1.0;
+  stats.entry("pd/init").launches = 4;
+  const auto rows = kernel_rows(stats, "pd/", 1000, 100, 96);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].name, "pd/init");
+  EXPECT_DOUBLE_EQ(rows[0].bond_updates_per_s, 1000.0 * 4 / 1.0);
+  EXPECT_EQ(rows[1].name, kStepGraphStat);
+  EXPECT_DOUBLE_EQ(rows[1].bond_updates_per_s, 1000.0 * 96 / 6.0);
+  EXPECT_DOUBLE_EQ(rows[2].bond_updates_per_s, 1000.0 * 100 / 7.0);
 }
 
 }  // namespace
