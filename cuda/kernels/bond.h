@@ -245,9 +245,7 @@ PD_HD inline void prefetch_history_rows(int32_t i, int32_t k0, uint32_t present,
   if constexpr (kHistory != kNoHistory && kThreads == 1) {
     const int32_t lane = int32_t(threadIdx.x % 32);
     if (lane >= bit_count(present)) return;
-    const int64_t row = b.slot(i, k0 + lane);
-    prefetch_line(b.plastic.data() + row);
-    if constexpr (kHistory == kBothHistories) prefetch_line(b.plastic_mirror.data() + row);
+    prefetch_history<kHistory>(b, b.slot(i, k0 + lane));
   }
 #else
   (void)i, (void)k0, (void)present, (void)b;
