@@ -226,11 +226,11 @@ class EngineImpl final : public Engine {
   void update_bonds(BondLists& bonds) override {
     const size_t words = (state_.neighbor.size() + 31) / 32;
     const bool first = broken_bits_.size() != words || bonds.neighbor.size() != state_.neighbor.size();
-    if (first) {
-      read_bonds(bonds);
-      broken_bits_ = mem_.template make_zeroed<uint32_t>(words);
+    if (broken_bits_.size() != words) {
+      broken_bits_ = mem_.template make<uint32_t>(words);
       changed_bits_ = mem_.template make<uint32_t>(words);
     }
+    if (first) read_bonds(bonds);
     launch_broken_bits(exec_, ArrayView<const int32_t>(view_of(state_.neighbor)), view_of(broken_bits_),
                        view_of(changed_bits_));
     if (first) return;
