@@ -47,16 +47,17 @@ rm -f "$CSV"
 if [[ $QUICK == 1 ]]; then
   declare -A RES=([wave_bar]=4,6,8 [tension_bar_pmb]=4,6,8 [tension_bar_lps]=4,6,8 [cantilever_pmb]=4
                   [cantilever_lps]=4 [bar_twist_lps]=4,6 [bar_spin_lps]=4,6 [crack_branching]=20
-                  [notched_bar_pmb]=10)
+                  [notched_bar_pmb]=10 [crack_tip_pmb]=30)
   DELTAS="3 4" DTS="0.5"
 else
   declare -A RES=([wave_bar]=4,6,8,12 [tension_bar_pmb]=4,6,8,12 [tension_bar_lps]=4,6,8,12
                   [cantilever_pmb]=4,6 [cantilever_lps]=4,6 [bar_twist_lps]=4,6,8
-                  [bar_spin_lps]=4,6,8 [crack_branching]=20,40 [notched_bar_pmb]=10,20)
+                  [bar_spin_lps]=4,6,8 [crack_branching]=20,40 [notched_bar_pmb]=10,20
+                  [crack_tip_pmb]=30,60)
   DELTAS="3 4" DTS="0.25 0.5 0.9"
 fi
 PROBLEMS=${PROBLEMS:-"wave_bar tension_bar_pmb tension_bar_lps cantilever_pmb cantilever_lps bar_twist_lps bar_spin_lps
-  crack_branching notched_bar_pmb"}
+  crack_branching notched_bar_pmb crack_tip_pmb"}
 
 backends="cpu"
 "$BIN" info 2>/dev/null | grep -q '^cuda *available' && backends="cpu cuda"
@@ -71,7 +72,7 @@ run() {  # binary backend problem resolutions delta dt [surface correction: defa
   "$1" validate --problem "$3" --resolution "$4" --delta-over-lambda "$5" --dt-fraction "$6" --backend "$2" \
     --surface-correction "${7:-default}" --csv "$CSV" --quiet || echo "warning: $3 at $4 exited with $?" >&2
 }
-BOND_BASED="wave_bar tension_bar_pmb cantilever_pmb crack_branching notched_bar_pmb"
+BOND_BASED="wave_bar tension_bar_pmb cantilever_pmb crack_branching notched_bar_pmb crack_tip_pmb"
 for bin in "$BIN" ${BIN_DOUBLE:+"$BIN_DOUBLE"}; do
   for backend in $backends; do
     for p in $PROBLEMS; do
@@ -85,7 +86,7 @@ for bin in "$BIN" ${BIN_DOUBLE:+"$BIN_DOUBLE"}; do
       run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.5 "$other"
       # The ghost correction (docs/scene-reference.md#ghost-correction) at its default dt / dt_c:
       # the elastic problems (the fracture problems' ghosts go with their first broken bonds).
-      [[ $p == crack_branching || $p == notched_bar_pmb ]] || run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.125 ghosts
+      [[ $p == crack_branching || $p == notched_bar_pmb || $p == crack_tip_pmb ]] || run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.125 ghosts
     done
   done
 done

@@ -217,7 +217,7 @@ void add_validate(CLI::App& app, const CommandActions& actions, std::function<in
   cmd->add_option("--problem", validate->problem,
                   "all | wave_bar | tension_bar_pmb | tension_bar_lps | cantilever_pmb | "
                   "cantilever_lps | bar_twist_lps | bar_spin_lps | "
-                  "crack_branching | notched_bar_pmb");
+                  "crack_branching | notched_bar_pmb | crack_tip_pmb");
   cmd->add_option("--resolution", validate->resolutions,
                   "particles across, e.g. 4,6,8 (default: each problem's sweep)")
       ->delimiter(',');

@@ -10,6 +10,7 @@
 
 #include "cuda/engine/engine.h"
 #include "cuda/engine/particle_set.h"
+#include "cuda/views.h"
 #include "host/validation/validation.h"
 
 namespace pd {
@@ -74,6 +75,17 @@ inline double grip_force(const ParticleState& s, const std::vector<int>& left,
   for (int p : left) f += 0.5 * s.force[size_t(p)].x;
   for (int p : right) f -= 0.5 * s.force[size_t(p)].x;
   return f;
+}
+
+// Calls visit(i, j) for each broken bond of `bonds`, once per stored direction.
+template <class Visit>
+void for_each_broken_bond(const BondLists& bonds, Visit visit) {
+  const BondsView b = bonds.view();
+  for (int32_t i = 0; i < b.n; ++i)
+    for (int32_t k = 0; k < b.count[i]; ++k) {
+      const int32_t nb = b.neighbor[b.slot(i, k)];
+      if (nb < 0) visit(i, bond_partner(nb));
+    }
 }
 
 // `out`, each figure stamped with the run that measured it: its particles, steps, wall time since

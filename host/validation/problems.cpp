@@ -13,7 +13,7 @@ ValidationResult make_result(std::string problem, double measured, double refere
   return r;
 }
 
-// Resolutions: particles across the bar or beam width, or the plate height.
+// Resolutions: particles across the bar or beam width, the plate height, or the disc's radius.
 const std::vector<ValidationProblem>& validation_problems() {
   static const std::vector<ValidationProblem> problems = {
       {"wave_bar", "step wave in a PMB bar: front speed against sqrt(E/rho)", {4, 6, 8, 12}, run_wave_bar},
@@ -51,6 +51,10 @@ const std::vector<ValidationProblem>& validation_problems() {
        "double-edge-notched glass bar pulled to failure: failure stress against LEFM (K_Ic = sqrt(E G0))",
        {10, 20, 30},
        run_notched_bar_pmb},
+      {"crack_tip_pmb",
+       "sharp crack in a PMB disc under Williams' K field: K at growth against sqrt(E G0)",
+       {30, 60},
+       run_crack_tip_pmb},
   };
   return problems;
 }

@@ -13,7 +13,7 @@
 namespace pd {
 
 // One run's settings. `resolution` counts particles across the problem's characteristic
-// length (the bar or beam width, the plate height).
+// length (the bar or beam width, the plate height, the crack-tip disc's radius).
 struct ValidationCase {
   int resolution = 0;
   double delta_over_lambda = 3;
@@ -64,5 +64,6 @@ std::vector<ValidationResult> run_bar_twist_lps(const ValidationCase& c);
 std::vector<ValidationResult> run_bar_spin_lps(const ValidationCase& c);
 std::vector<ValidationResult> run_crack_branching(const ValidationCase& c);
 std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c);
+std::vector<ValidationResult> run_crack_tip_pmb(const ValidationCase& c);
 
 }  // namespace pd
