@@ -207,6 +207,14 @@ TEST(Validation, NotchedPlateCrackIsSymmetricAndSubRayleigh) {
   EXPECT_GT(figure(r, "crack_branching/symmetry").measured, 0.95);
 }
 
+// The sanitizers run the code 4-5 times slower: the two fracture problems below (35 s each on two
+// cores) then run at a coarse size, for the memory checks alone.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+
 // The double-edge-notched bar at 20 across (a / delta = 1.7) breaks within issue 29's 10% of
 // LEFM's sigma_f = K_Ic / (sqrt(pi a) F(a/b)) with the surface correction (measured -6.0%; -1.7%
 // and +2.8% at 40 and 80 across on the GPU). The peak is the ligament's: the run stops when the
@@ -214,6 +222,12 @@ TEST(Validation, NotchedPlateCrackIsSymmetricAndSubRayleigh) {
 // once read as the failure stress). Every bond across the ligament broke, so the released energy
 // is at least G0 per ligament area (measured 4.85 J/m^2: bonds broken off the plane add).
 TEST(Validation, NotchedBarBreaksAtTheLefmStress) {
+  if (kSanitized) {  // the same code at a coarse size; the figures are checked in the release suite
+    const auto r = run_notched_bar_pmb(at(10));
+    EXPECT_GT(figure(r, "notched_bar_pmb/failure_stress").measured, 0);
+    EXPECT_GT(figure(r, "notched_bar_pmb/released_energy").measured, 0);
+    return;
+  }
   const auto r = run_notched_bar_pmb(at(20));
   print(r);
   EXPECT_LT(figure(r, "notched_bar_pmb/failure_stress").rel_error, 0.10);
@@ -226,6 +240,10 @@ TEST(Validation, NotchedBarBreaksAtTheLefmStress) {
 // 20, 30, 40 delta): at R = 10 delta within 15%, and not before K_Ic (a crack growing earlier
 // would take less than G0 per area).
 TEST(Validation, CrackTipGrowsAtGriffithsToughness) {
+  if (kSanitized) {
+    EXPECT_GT(figure(run_crack_tip_pmb(at(12)), "crack_tip_pmb/growth_toughness").measured, 0);
+    return;
+  }
   const auto r = run_crack_tip_pmb(at(30));
   print(r);
   const auto& growth = figure(r, "crack_tip_pmb/growth_toughness");
