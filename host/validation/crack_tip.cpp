@@ -111,7 +111,8 @@ std::vector<ValidationResult> run_crack_tip_pmb(const ValidationCase& c) {
   char note[260];
   std::snprintf(
       note, sizeof note,
-      "K at the first break %.3g, at growth by 1, 2, 4 delta %.3g, %.3g, %.3g MPa m^0.5 (K_Ic %.3g); "
+      "K at the first break %.3g, at growth by 1, 2, 4 delta %.3g, %.3g, %.3g MPa m^0.5 (0: not by 2 K_Ic; "
+      "K_Ic %.3g); "
       "s0 %.3g; %lld bonds broken; %zu particles, %d layers",
       initiation / 1e6, grown[0] / 1e6, grown[1] / 1e6, grown[2] / 1e6, toughness / 1e6, s0,
       (long long)engine->broken_bonds(), in.particles.size(), nz);

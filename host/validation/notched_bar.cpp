@@ -146,7 +146,8 @@ std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c) {
   char note[360];
   std::snprintf(note, sizeof note,
                 "peak %.3g MPa at strain %.3g before the severing (LEFM %.3g MPa, strain %.3g); "
-                "first break at %.3g, growth by delta at %.3g MPa; s0 %.3g; released %.3g J/m^2 "
+                "first break at %.3g, growth by delta at %.3g MPa (0: none before the severing); s0 %.3g; "
+                "released %.3g J/m^2 "
                 "(%.1f%% of %lld broken bonds off the crack plane); %d x %d x %d particles",
                 peak / 1e6, peak_strain, failure / 1e6, failure / glass.youngs, first_break / 1e6,
                 growth / 1e6, s0, released,
