@@ -6,9 +6,9 @@
 // bend, so the clamped grips load it as a remote uniform stress does (a single edge notch would
 // bend, and clamping its ends lowers K well below the pin-loaded handbook value). The grips move apart at a
 // constant strain rate (as in tension_bar, every particle starting with the homogeneous velocity field, so no
-// stress wave is launched) up to twice the expected failure strain over 160 width transit times (40 was
-// too fast: at n = 20 the failure stress fell from +30.5% to +19.2% at 80 and +20.1% at 160). PMB with the
-// lattice critical stretch (pmb_lattice_critical_stretch) and no strain-limit scatter.
+// stress wave is launched) up to twice the expected failure strain over 160 width transit times (a
+// faster pull reads higher: at n = 20 and 30, 40 transits gave 2-5% more, 80 transits 1-4% more).
+// PMB with the lattice critical stretch (pmb_lattice_critical_stretch) and no strain-limit scatter.
 //   measured: the peak of the grips' mean reaction while the ligament holds, as a stress F / (W t);
 //   the run stops when the halves are severed (the reaction turns compressive as they ring). (Until
 //   2026-11-28 the peak was taken over the whole run, which read the ringing of the two severed
