@@ -134,7 +134,7 @@ std::vector<ValidationResult> cantilever(const ValidationCase& c, const ElasticS
 }  // namespace
 
 std::vector<ValidationResult> run_cantilever_pmb(const ValidationCase& c) {
-  return cantilever(c, {72e9, 0.25, 2440, false}, "cantilever_pmb");
+  return cantilever(c, kGlass, "cantilever_pmb");
 }
 
 std::vector<ValidationResult> run_cantilever_lps(const ValidationCase& c) {

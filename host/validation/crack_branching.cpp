@@ -75,7 +75,7 @@ int runs_in_column(const Plate& pl, const std::vector<double>& phi, int i, int s
 
 std::vector<ValidationResult> run_crack_branching(const ValidationCase& c) {
   const WallClock clock;
-  const ElasticSolid glass{72e9, 0.25, 2440, false};
+  const ElasticSolid& glass = kGlass;
   const double m = c.delta_over_lambda, lambda = kHeight / c.resolution, delta = m * lambda;
   // Slot rows: k rows removed leave a gap of (k + 1) lambda between the faces' particle rows,
   // which must exceed the family radius delta + lambda / 2; ny and k of equal parity keep the
@@ -86,7 +86,7 @@ std::vector<ValidationResult> run_crack_branching(const ValidationCase& c) {
   pl.ny = c.resolution + ((c.resolution - slot) % 2 != 0 ? 1 : 0);
   pl.nz = int(std::ceil(m));
   const Material mat = validation_material(glass, lambda, m, c.surface_correction, c.surface_ghosts);
-  const double s0 = pmb_lattice_critical_stretch(3.8, double(mat.micromodulus), mat);
+  const double s0 = pmb_lattice_critical_stretch(kGlassFractureEnergy, double(mat.micromodulus), mat);
   const double traction = kLoadFraction * glass.youngs * s0;
 
   SimulationInput in;

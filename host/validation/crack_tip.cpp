@@ -30,9 +30,8 @@ namespace pd {
 
 namespace {
 
-constexpr double kRadius = 0.02;         // R [m]
-constexpr double kFractureEnergy = 3.8;  // G0 of soda-lime glass [J/m^2] (Ha & Bobaru 2010)
-constexpr double kRadiusTransits = 40;   // time for K to reach 2 K_Ic, in transit times R / c0
+constexpr double kRadius = 0.02;        // R [m]
+constexpr double kRadiusTransits = 40;  // time for K to reach 2 K_Ic, in transit times R / c0
 constexpr int kSamples = 400;
 
 // Williams' mode I displacement per unit K at (x, y) from the tip, plane stress.
@@ -59,13 +58,13 @@ double crack_extension(const BondLists& bonds, const std::vector<Vec3>& rest, do
 
 std::vector<ValidationResult> run_crack_tip_pmb(const ValidationCase& c) {
   const WallClock clock;
-  const ElasticSolid glass{72e9, 0.25, 2440, false};
+  const ElasticSolid& glass = kGlass;
   const int n = c.resolution;
   const double m = c.delta_over_lambda, lambda = kRadius / n, delta = m * lambda;
   const int ring = int(std::ceil(m)), nz = 2 * ring, half = n + ring;  // cells from the centre to the edge
   const Material mat = validation_material(glass, lambda, m, c.surface_correction, c.surface_ghosts);
-  const double s0 = pmb_lattice_critical_stretch(kFractureEnergy, double(mat.micromodulus), mat);
-  const double toughness = std::sqrt(glass.youngs * kFractureEnergy);  // K_Ic [Pa m^0.5]
+  const double s0 = pmb_lattice_critical_stretch(kGlassFractureEnergy, double(mat.micromodulus), mat);
+  const double toughness = std::sqrt(glass.youngs * kGlassFractureEnergy);  // K_Ic [Pa m^0.5]
   const double c0 = std::sqrt(glass.youngs / glass.density);
   const double dt = c.dt_fraction * validation_critical_dt(glass, lambda, m);
   const int64_t steps = int64_t(std::ceil(kRadiusTransits * kRadius / (c0 * dt)));

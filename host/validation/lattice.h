@@ -28,6 +28,11 @@ struct ElasticSolid {
   double shear() const { return youngs / (2 * (1 + nu())); }
 };
 
+// The soda-lime glass of the PMB problems (Ha & Bobaru 2010): E 72 GPa, nu 1/4, rho 2440 kg/m^3,
+// and its fracture energy G0 [J/m^2].
+inline constexpr ElasticSolid kGlass{72e9, 0.25, 2440, false};
+inline constexpr double kGlassFractureEnergy = 3.8;
+
 // Kernel constants at spacing lambda and horizon m lambda, with partial volumes (the choice that
 // makes the lattice sums closest to the continuum integrals; docs/validation.md); bond-based:
 // the lattice's micromodulus; the surface correction as given, else each model's default (on for

@@ -35,7 +35,7 @@ double front_position(const std::vector<double>& layer_speed, double lambda) {
 
 std::vector<ValidationResult> run_wave_bar(const ValidationCase& c) {
   const WallClock clock;
-  const ElasticSolid glass{72e9, 0.25, 2440, false};
+  const ElasticSolid& glass = kGlass;
   const int n = c.resolution, nx = int(kLengthOverWidth * n);
   const double width = 0.01, lambda = width / n, m = c.delta_over_lambda;
   const int grip_layers = int(std::ceil(m));
