@@ -74,8 +74,8 @@ class EngineImpl final : public Engine {
     build_families(mem_, state_, owned_, materials_, features_, backend(), family_);
     end_stage("families");
     // The surface correction's factors come from the families before the pre-cracks: a crack is
-    // not a surface of the body (none formed in the run is either), and corrected crack faces
-    // raise the toughness at a notch's tip (docs/validation.md, notched_bar_pmb).
+    // not a surface of the body (none formed in the run is either; docs/validation.md,
+    // notched_bar_pmb).
     if (features_.surface_factors) set_up_surface_correction();
     end_stage("surface correction");
     // The families on the host, downloaded once for the stages below that read them.
