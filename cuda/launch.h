@@ -291,10 +291,16 @@ template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kL
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r,
                                  int32_t* broke) {
   // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
-  // with weakened bonds or screened 5 (48 registers; they would take 55-56 and run 4);
-  // state-based 4 (at most 64; they spill at 48). The plain bond-based breaking pass has 48
-  // either way and runs 4% slower with the bound.
-  constexpr int kMinBlocks = kStateBased ? 4 : (kWeak || kScreened ? 5 : 0);
+  // with weakened bonds or screened 5 (48 registers; they would take 55-56 and run 4), the plain
+  // breaking pass unbounded (48 either way, 4% slower bounded); but bond-based families read
+  // from their lists (kNoLattice), which wait on their partners' records, hide it with more
+  // resident warps: 6 (40 registers), the screened pass of one thread per particle 8 (32), the
+  // weakened bonds' breaking pass 5 (at 40 it lost 11%); state-based 4 (at most 64; they spill
+  // at 48).
+  constexpr int kListedBlocks = kScreened ? (!kWeak && kThreads == 1 ? 8 : 6) : (kWeak ? 5 : 6);
+  constexpr int kMinBlocks = kStateBased              ? 4
+                             : kLattice == kNoLattice ? kListedBlocks
+                                                      : (kWeak || kScreened ? 5 : 0);
   static const std::string name =
       kernel_variant("pd/springforces", {{"state", kStateBased},
                                          {"plastic", kPlastic},
@@ -344,10 +350,14 @@ void launch_springforces(Exec& ex, ParticlesView p, BondsView b, MaterialTable m
   });
 }
 
-// Kernel 5.
+// Kernel 5: without projectiles and colliders, the gravity-only instantiation.
 template <class Exec>
 void launch_bodyforces(Exec& ex, ParticlesView p, StepParams sp) {
-  ex.parallel_for("pd/bodyforces", p.n, [=] PD_HD(int64_t i) { body_forces(int32_t(i), p, sp); });
+  if (sp.n_projectiles > 0 || sp.colliders.size > 0)
+    ex.parallel_for("pd/bodyforces", p.n, [=] PD_HD(int64_t i) { body_forces<true>(int32_t(i), p, sp); });
+  else
+    ex.parallel_for("pd/bodyforces[gravity]", p.n,
+                    [=] PD_HD(int64_t i) { body_forces<false>(int32_t(i), p, sp); });
 }
 
 // Kernels 6 and 7.

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "cuda/kernels/bodyforces.h"
 #include "cuda/kernels/integrate.h"
@@ -83,6 +84,30 @@ TEST(BodyForces, GravityAndFloorReflection) {
   // Moving up already: not reflected again.
   velocity_update(0, p, sp);
   EXPECT_FLOAT_EQ(vel.y, real(1.98));
+}
+
+// Gravity alone: the instantiation without pushers reads no position and gives the same bits.
+TEST(BodyForces, GravityAloneMatchesTheFullKernelBitForBit) {
+  Vec4 rest{real(0.3), real(-0.7), real(0.1), 1}, disp{real(1e-4), 0, real(-2e-5), 1};
+  Vec3 vel{0, real(-2), 0};
+  real inv_mass = real(0.37);
+  const Vec3 start{real(1.25), real(-3.5e-3), real(7.1)};
+  Vec3 force = start;
+  ParticlesView p;
+  p.n = 1;
+  p.rest = {&rest, 1};
+  p.disp = {&disp, 1};
+  p.vel = {&vel, 1};
+  p.force = {&force, 1};
+  p.inv_mass = {&inv_mass, 1};
+  StepParams sp;
+  sp.gravity = {real(0.1), real(-9.81), 0};
+  body_forces<true>(0, p, sp);
+  const Vec3 full = force;
+  force = start;
+  body_forces<false>(0, p, sp);
+  EXPECT_EQ(std::memcmp(&full, &force, sizeof(Vec3)), 0);
+  EXPECT_FLOAT_EQ(force.y, start.y + real(-9.81) / inv_mass);
 }
 
 }  // namespace
