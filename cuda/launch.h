@@ -286,21 +286,29 @@ PD_HD inline void springforces_body(int32_t i, const ParticlesView& p, const Bon
     spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke, team);
 }
 
+// Blocks of 256 a springforces variant keeps resident per SM, which caps its registers (0: no
+// bound; bench/NOTES.md). Lattice families, bond-based: with weakened bonds or screened 5 (48
+// registers; they would take 55-56 and run 4), the plain breaking pass unbounded (48 either way, 4%
+// slower bounded). Families read from their lists wait on their partners' records and hide it with
+// more resident warps: bond-based 6 (40 registers), the screened pass of one thread per particle 8
+// (32), the weakened bonds' breaking pass 5 (at 40 it lost 11%). State-based 4 (at most 64; on the
+// lattice they spill at 48), the screened elastic pass on lists 5 (48 registers: +4%; the plastic
+// pass and the breaking pass lose 1-2% there).
+template <bool kStateBased, bool kPlastic, bool kWeak, int kLattice, bool kScreened, int kThreads>
+constexpr int springforces_min_blocks() {
+  const bool listed = kLattice == kNoLattice;
+  if (kStateBased) return listed && kScreened && !kPlastic ? 5 : 4;
+  if (!listed) return kWeak || kScreened ? 5 : 0;
+  if (!kScreened) return kWeak ? 5 : 6;
+  return !kWeak && kThreads == 1 ? 8 : 6;
+}
+
 template <bool kStateBased, bool kPlastic, bool kAnisotropic, bool kWeak, int kLattice, bool kScreened,
           bool kSurface, int kThreads, class Exec>
 void launch_springforces_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, ParticleRange r,
                                  int32_t* broke) {
-  // Blocks of 256 kept resident per SM, which caps the registers (bench/NOTES.md): bond-based
-  // with weakened bonds or screened 5 (48 registers; they would take 55-56 and run 4), the plain
-  // breaking pass unbounded (48 either way, 4% slower bounded); but bond-based families read
-  // from their lists (kNoLattice), which wait on their partners' records, hide it with more
-  // resident warps: 6 (40 registers), the screened pass of one thread per particle 8 (32), the
-  // weakened bonds' breaking pass 5 (at 40 it lost 11%); state-based 4 (at most 64; they spill
-  // at 48).
-  constexpr int kListedBlocks = kScreened ? (!kWeak && kThreads == 1 ? 8 : 6) : (kWeak ? 5 : 6);
-  constexpr int kMinBlocks = kStateBased              ? 4
-                             : kLattice == kNoLattice ? kListedBlocks
-                                                      : (kWeak || kScreened ? 5 : 0);
+  constexpr int kMinBlocks =
+      springforces_min_blocks<kStateBased, kPlastic, kWeak, kLattice, kScreened, kThreads>();
   static const std::string name =
       kernel_variant("pd/springforces", {{"state", kStateBased},
                                          {"plastic", kPlastic},
