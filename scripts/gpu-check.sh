@@ -137,6 +137,13 @@ for model in bond_based state_based anisotropic plastic; do
   step "bench-lattice-$model-explicit" "$bin" bench --lattice 100 --model "$model" --backend cuda --steps 300 \
     --warmup 30 --explicit-families --out "$OUT/bench"
 done
+# Issue 27's mesh-filled workloads: the vase at Levine's size (577k TetGen tets) before and while it
+# meets the floor (its breaking pass), and the torus of 519k Voronoi cells.
+vase=(--scene scenes/vase_drop.toml --scale 4.27 --backend cuda --out "$OUT/bench")
+step bench-vase "$bin" bench "${vase[@]}" --steps 1000 --warmup 100
+step bench-vase-impact "$bin" bench "${vase[@]}" --steps 3000 --warmup 8000
+step bench-torus "$bin" bench --scene scenes/torus_voronoi_drop.toml --scale 31.5 --backend cuda --steps 300 \
+  --warmup 30 --out "$OUT/bench"
 # What the ghost surface correction costs per step: the twisted bar (every particle within a
 # horizon of its surface) with and without it.
 for sc in false '"ghosts"'; do
