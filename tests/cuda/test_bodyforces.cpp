@@ -52,21 +52,37 @@ TEST(BodyForces, ProjectileDirectionIsHalfwayBetweenMotionAndRepulsion) {
   EXPECT_NEAR(later.x, f.x, 1e-5);
 }
 
-TEST(BodyForces, GravityAndFloorReflection) {
-  Vec4 rest{0, real(-0.001), 0, 1}, disp{0, 0, 0, 1};
-  Vec3 vel{0, real(-2), 0}, force{real(1), 0, 0};
-  real inv_mass = real(0.5);
+// One particle's records and a view of them.
+struct OneParticle {
+  Vec4 rest{0, 0, 0, 1}, disp{0, 0, 0, 1};
+  Vec3 vel{0, 0, 0}, force{0, 0, 0};
+  real inv_mass = 1;
   uint8_t flags = 0;
   Ledger ledger;
-  ParticlesView p;
-  p.n = 1;
-  p.rest = {&rest, 1};
-  p.disp = {&disp, 1};
-  p.vel = {&vel, 1};
-  p.force = {&force, 1};
-  p.inv_mass = {&inv_mass, 1};
-  p.flags = {&flags, 1};
-  p.ledger = {&ledger, 1};
+  ParticlesView view() {
+    ParticlesView p;
+    p.n = 1;
+    p.rest = {&rest, 1};
+    p.disp = {&disp, 1};
+    p.vel = {&vel, 1};
+    p.force = {&force, 1};
+    p.inv_mass = {&inv_mass, 1};
+    p.flags = {&flags, 1};
+    p.ledger = {&ledger, 1};
+    return p;
+  }
+};
+
+TEST(BodyForces, GravityAndFloorReflection) {
+  OneParticle one;
+  one.rest = {0, real(-0.001), 0, 1};
+  one.vel = {0, real(-2), 0};
+  one.force = {real(1), 0, 0};
+  one.inv_mass = real(0.5);
+  const ParticlesView p = one.view();
+  Vec3& force = one.force;
+  Vec3& vel = one.vel;
+  Ledger& ledger = one.ledger;
   StepParams sp;
   sp.gravity = {0, real(-9.81), 0};
   sp.floor_enabled = 1;
@@ -88,18 +104,15 @@ TEST(BodyForces, GravityAndFloorReflection) {
 
 // Gravity alone: the instantiation without pushers reads no position and gives the same bits.
 TEST(BodyForces, GravityAloneMatchesTheFullKernelBitForBit) {
-  Vec4 rest{real(0.3), real(-0.7), real(0.1), 1}, disp{real(1e-4), 0, real(-2e-5), 1};
-  Vec3 vel{0, real(-2), 0};
-  real inv_mass = real(0.37);
+  OneParticle one;
+  one.rest = {real(0.3), real(-0.7), real(0.1), 1};
+  one.disp = {real(1e-4), 0, real(-2e-5), 1};
+  one.vel = {0, real(-2), 0};
+  one.inv_mass = real(0.37);
   const Vec3 start{real(1.25), real(-3.5e-3), real(7.1)};
-  Vec3 force = start;
-  ParticlesView p;
-  p.n = 1;
-  p.rest = {&rest, 1};
-  p.disp = {&disp, 1};
-  p.vel = {&vel, 1};
-  p.force = {&force, 1};
-  p.inv_mass = {&inv_mass, 1};
+  Vec3& force = one.force;
+  force = start;
+  const ParticlesView p = one.view();
   StepParams sp;
   sp.gravity = {real(0.1), real(-9.81), 0};
   body_forces<true>(0, p, sp);
@@ -107,7 +120,7 @@ TEST(BodyForces, GravityAloneMatchesTheFullKernelBitForBit) {
   force = start;
   body_forces<false>(0, p, sp);
   EXPECT_EQ(std::memcmp(&full, &force, sizeof(Vec3)), 0);
-  EXPECT_FLOAT_EQ(force.y, start.y + real(-9.81) / inv_mass);
+  EXPECT_FLOAT_EQ(force.y, start.y + real(-9.81) / one.inv_mass);
 }
 
 }  // namespace
