@@ -11,6 +11,7 @@
 #include "cuda/kernels/bodyforces.h"
 #include "cuda/kernels/collection.h"
 #include "cuda/kernels/collisions.h"
+#include "cuda/kernels/contact_relist.h"
 #include "cuda/kernels/energy.h"
 #include "cuda/kernels/family.h"
 #include "cuda/kernels/init.h"
@@ -259,6 +260,31 @@ void launch_build_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c,
     extend_contacts(int32_t(i), p, h, c, mt, quarter_max, overflow, pairs);
   });
   ex.parallel_for("pd/contact_sort", p.n, [=] PD_HD(int64_t i) { sort_contacts(int32_t(i), p, c); });
+}
+
+// Kernel 2 for contact, where few particles left their skins: their lists alone, in five passes
+// (contact_relist.h); `rebuild` raised where all must be built instead.
+template <class Exec>
+void launch_relist_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c, RelistView r,
+                            MaterialTable mt, real quarter_max, int32_t round, int32_t* rebuild,
+                            int32_t* pairs) {
+  ex.parallel_for("pd/contact_relist", c.movers.size,
+                  [=] PD_HD(int64_t t) { relist_mover(int32_t(t), p, h, c, r, mt, round, rebuild); });
+  ex.parallel_for("pd/contact_relist_gather", c.movers.size * kRelistLanes,
+                  [=] PD_HD(int64_t g) { gather_mover(int32_t(g), h, c, r, quarter_max); });
+  ex.parallel_for("pd/contact_relist_finish", c.movers.size,
+                  [=] PD_HD(int64_t t) { finish_mover(int32_t(t), p, c, r, round, rebuild, pairs); });
+  ex.parallel_for("pd/contact_relist_add", r.link.size / 2,
+                  [=] PD_HD(int64_t q) { add_link(int32_t(q), c, r, rebuild); });
+  ex.parallel_for("pd/contact_relist_sort", r.link.size / 2,
+                  [=] PD_HD(int64_t q) { sort_linked(int32_t(q), p, c, r); });
+}
+
+// After a full build of the lists: no particle relisted.
+template <class Exec>
+void launch_clear_relisted(Exec& ex, RelistView r) {
+  ex.parallel_for("pd/contact_relist_clear", r.id.size,
+                  [=] PD_HD(int64_t e) { clear_relisted(int32_t(e), r); });
 }
 
 // Kernel 3, over the particles' contact lists.

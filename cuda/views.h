@@ -124,9 +124,10 @@ struct HashView {
 // closer than the pair's contact distance plus both particles' skins when the lists were built,
 // in ascending index order. A particle's skin is `base` at rest and grows with its speed (up to
 // `cap`), so that a fragment in flight does not force a build every few steps. The lists hold
-// every pair in contact for as long as no particle has moved more than 0.9 of its skin since the
-// build (`origin`); `position_update` raises `moved` when one has, and the engine rebuilds them
-// before the next `collisions`. Each particle has room for `capacity` partners, stored like the
+// every pair in contact for as long as no particle has moved more than 0.9 of its skin since its
+// list was built (`origin`); `position_update` raises `moved` when one has, and the engine
+// rebuilds the lists before the next `collisions` (those of the particles that moved alone where
+// they are few, contact_relist.h). Each particle has room for `capacity` partners, stored like the
 // bonds' slices so that a warp reads partner k of its particles together: partner k of
 // particle i at partner[k * n + i].
 struct ContactView {
@@ -137,8 +138,12 @@ struct ContactView {
   real cap = 0;                // largest skin [m]
   ArrayView<int32_t> count;    // partners of each particle (above capacity: the list overflowed)
   ArrayView<int32_t> partner;  // capacity x n partner indices
-  ArrayView<Vec4> origin;      // xyz: each particle's displacement at the last build; w: its skin
+  ArrayView<Vec4> origin;      // xyz: each particle's displacement at its list's build; w: its skin
   int32_t* moved = nullptr;    // set to 1 by any particle that moved farther than 0.9 of its skin
+  // The particles that raised `moved` since the last refresh (the first movers.size of them) and
+  // how many did: the lists rebuilt for them alone where they are few (contact_relist.h).
+  ArrayView<int32_t> movers;
+  int32_t* mover_count = nullptr;
   PD_HD int64_t slot(int32_t i, int32_t k) const { return int64_t(k) * n + i; }
 };
 
@@ -148,6 +153,15 @@ PD_HD inline int32_t atomic_increment(int32_t* counter) {
   return atomicAdd(counter, 1);
 #else
   return __atomic_fetch_add(counter, 1, __ATOMIC_RELAXED);
+#endif
+}
+
+// Stores v where many threads may store at once; returns the value it replaced.
+PD_HD inline int32_t atomic_exchange(int32_t* slot, int32_t v) {
+#if defined(__CUDA_ARCH__)
+  return atomicExch(slot, v);
+#else
+  return __atomic_exchange_n(slot, v, __ATOMIC_RELAXED);
 #endif
 }
 

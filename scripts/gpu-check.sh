@@ -100,6 +100,13 @@ step equiv-graphs-compare "$bin" compare "$OUT/equiv-graphs-cpu" "$OUT/equiv-gra
 step graphs-off-run env PERIFRAC_STEP_GRAPHS=off "$bin" run --overwrite "${swing[@]}" --frames 2 \
   --backend cuda --out "$OUT/graphs-off"
 step graphs-off-compare same_files "$OUT/equiv-graphs-gpu" "$OUT/graphs-off" frame_00002.pfr energy.csv
+# Contact lists rebuilt for the movers alone (cuda/kernels/contact_relist.h) against every list
+# built at every rebuild: the vase through its impact, bit for bit.
+vase_impact=(scenes/vase_drop.toml --scale 0.1 --frames 12)
+step relist-run "$bin" run --overwrite "${vase_impact[@]}" --backend cuda --out "$OUT/relist"
+step relist-full-run env PERIFRAC_CONTACT_REBUILD=full "$bin" run --overwrite "${vase_impact[@]}" --backend cuda \
+  --out "$OUT/relist-full"
+step relist-compare same_files "$OUT/relist" "$OUT/relist-full" frame_00012.pfr energy.csv fragments_00012.pfg
 step determinism-run "$bin" run --overwrite "$scene" --backend cuda --scale 0.05 --frames 3 --out "$OUT/equiv-gpu-again"
 step determinism-compare same_files "$OUT/equiv-gpu" "$OUT/equiv-gpu-again" frame_00003.pfr energy.csv fragments_00003.pfg
 step resume-first "$bin" run --overwrite "$walls" --backend cuda --scale 0.02 --frames 2 --checkpoint-every 2 --out "$OUT/resume"

@@ -1,6 +1,7 @@
 // Contact lists (cuda/kernels/collisions.h): per particle, the particles within its contact
-// reach plus both skins, rebuilt through a spatial hash over current positions whenever a
-// particle has left its skin since the last build (position_update raises the flag).
+// reach plus both skins, rebuilt whenever a particle has left its skin since its list's build
+// (position_update raises the flag and names the movers): where few did, their lists alone
+// (contact_relist.h), else every list through a spatial hash over current positions.
 #pragma once
 
 #include <algorithm>
@@ -19,10 +20,16 @@ class ContactLists {
  public:
   // Exec flag event the contact flags are read through.
   static constexpr int kFlagEvent = 0;
+  // Movers a round may rebuild alone (at least; n / 512 where more), relistings between two full
+  // builds (at least; n / 8), and pairs (partner, mover) a round may link per mover it keeps.
+  static constexpr int32_t kMovers = 256;
+  static constexpr int32_t kRelistings = 4096;
+  static constexpr int32_t kLinksPerMover = 8;
 
   // The hash they are built from, with cells twice the reach of two particles at rest (contact
   // distance plus their skins), its sorted records, and the lists.
-  void allocate(DeviceMemory<Exec>& mem, int32_t n, const MaterialTable& materials) {
+  // incremental: the movers' lists rebuilt alone where they can be (the forces are the same).
+  void allocate(DeviceMemory<Exec>& mem, int32_t n, const MaterialTable& materials, bool incremental = true) {
     n_ = n;
     real spacing = 0;
     for (int m = 0; m < materials.count; ++m) spacing = std::max(spacing, materials.m[m].contact_spacing);
@@ -33,6 +40,16 @@ class ContactLists {
     cell_ = real(2 * (contact_distance + 2 * double(rest_skin_)));
     reach_ = contact_distance + 2 * double(skin_cap_);
     size_lists(mem, n, kContactCapacity);
+    incremental_ = incremental;
+    const int32_t movers = std::max(kMovers, n / 512), nodes = std::max(kRelistings, n / 8);
+    movers_ = mem.template make<int32_t>(size_t(movers));
+    counters_ = mem.template make_zeroed<int32_t>(3);
+    node_id_ = mem.template make<int32_t>(size_t(nodes));
+    node_next_ = mem.template make<int32_t>(size_t(nodes));
+    node_round_ = mem.template make<int32_t>(size_t(nodes));
+    node_record_ = mem.template make<Vec4>(size_t(nodes));
+    node_skin_ = mem.template make<real>(size_t(nodes));
+    link_ = mem.template make<int32_t>(2 * size_t(kLinksPerMover) * size_t(movers));
   }
 
   // The farthest two particles can be and still be listed: the largest contact distance plus two
@@ -50,12 +67,15 @@ class ContactLists {
     c.partner = view_of(partner_);
     c.origin = view_of(origin_);
     c.moved = exec.flag(kFlagMoved);
+    c.movers = view_of(movers_);
+    c.mover_count = counters_.data();
     return c;
   }
 
-  // Builds the lists at the current positions if a particle has left its skin since the last
-  // build, or if there are none yet. A list that overflows its room doubles the room of all and
-  // builds again. Returns whether some list is not empty (else `collisions` need not run).
+  // Builds the lists at the current positions if a particle has left its skin since its list's
+  // build, or if there are none yet: the movers' alone where that can be done (relist), else all.
+  // A list that overflows its room doubles the room of all and builds again. Returns whether some
+  // list is not empty (else `collisions` need not run).
   // In a partitioned run (`world` given) every rank builds when any particle has moved, and
   // `gather_ghosts` first brings in the other ranks' particles within reach, returning the view of
   // every particle the rank then holds: the lists are built over them all.
@@ -65,6 +85,7 @@ class ContactLists {
     bool moved = exec.take_flags(kContactFlagMask, kFlagEvent) & (1u << kFlagMoved);
     if (world) moved = world->bit_or(moved) != 0;
     if (built_ && !moved) return pairs_;
+    if (built_ && incremental_ && !world && relist(exec, p, materials, dt)) return pairs_;
     if (gather_ghosts) {
       p = gather_ghosts();
       if (p.n != n_) size_lists(mem, p.n, room_);
@@ -83,6 +104,11 @@ class ContactLists {
       partner_ = mem.template make<int32_t>(room);
       room_ *= 2;
     }
+    if (incremental_) {  // no particle relisted: every bin empty (-1)
+      launch_clear_relisted(exec, relist_view());
+      exec.fill_bytes(relist_head_.data(), 0xff, relist_head_.bytes());
+    }
+    counters_.zero();
     built_ = true;
     return pairs_;
   }
@@ -100,6 +126,8 @@ class ContactLists {
     mem.drop(origin_);
     mem.drop(count_);
     mem.drop(partner_);
+    mem.drop(relist_entry_);
+    mem.drop(relist_head_);
     rows_ = int32_t(rows);
     room_ = capacity;
     hash_.allocate(mem, rows_, cell_);
@@ -107,6 +135,8 @@ class ContactLists {
     origin_ = mem.template make<Vec4>(size_t(rows_));
     count_ = mem.template make<int32_t>(size_t(rows_));
     partner_ = mem.template make<int32_t>(size_t(room_) * size_t(rows_));
+    relist_entry_ = mem.template make_zeroed<int32_t>(size_t(rows_));
+    relist_head_ = mem.template make<int32_t>(hash_.bins);
   }
 
   // The lists are built again from the next positions (after a restore).
@@ -114,6 +144,36 @@ class ContactLists {
   bool pairs() const { return pairs_; }
 
  private:
+  // The movers' lists rebuilt alone (contact_relist.h), the movers and the pairs linked cleared
+  // for the next round; false where that cannot be done (more movers or relistings than kept, a
+  // list past its room): then all are built.
+  bool relist(Exec& exec, ParticlesView p, const MaterialTable& materials, real dt) {
+    ++round_;
+    launch_relist_contacts(exec, p, hash_.view(true), view(exec, dt), relist_view(), materials, quarter_max_,
+                           round_, exec.flag(kFlagOverflow), exec.flag(kFlagPairs));
+    exec.fill_bytes(counters_.data(), 0, 2 * sizeof(int32_t));
+    exec.mark_flags(kFlagEvent);
+    const uint32_t raised = exec.take_flags(kContactFlagMask, kFlagEvent);
+    if (raised & (1u << kFlagOverflow)) return false;
+    pairs_ = pairs_ || (raised & (1u << kFlagPairs));
+    return true;
+  }
+
+  RelistView relist_view() const {
+    RelistView r;
+    r.entry = view_of(relist_entry_);
+    r.head = view_of(relist_head_);
+    r.id = view_of(node_id_);
+    r.next = view_of(node_next_);
+    r.round = view_of(node_round_);
+    r.record = view_of(node_record_);
+    r.skin = view_of(node_skin_);
+    r.link = view_of(link_);
+    r.links = counters_.data() + 1;
+    r.nodes = counters_.data() + 2;
+    return r;
+  }
+
   int32_t n_ = 0;     // particles the lists are for
   int32_t rows_ = 0;  // particles the buffers hold (at least n_)
   int32_t room_ = 0;  // partners each list has room for (partner_ holds room_ x rows_)
@@ -122,8 +182,16 @@ class ContactLists {
   double reach_ = 0;
   bool built_ = false;
   bool pairs_ = false;  // some list is not empty
+  bool incremental_ = true;
+  int32_t round_ = 0;  // rounds of relisting so far
   DeviceArray<Vec4, Exec> origin_;
   DeviceArray<int32_t, Exec> count_, partner_;
+  // The movers of this round; counters_: movers counted, pairs linked, relisted nodes taken.
+  DeviceArray<int32_t, Exec> movers_, counters_;
+  // RelistView: per particle, per hash bin, per node, and the pairs to link.
+  DeviceArray<int32_t, Exec> relist_entry_, relist_head_, node_id_, node_next_, node_round_, link_;
+  DeviceArray<Vec4, Exec> node_record_;
+  DeviceArray<real, Exec> node_skin_;
 };
 
 }  // namespace pd

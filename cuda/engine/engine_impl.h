@@ -16,6 +16,7 @@
 #include "cuda/engine/collider_grid.h"
 #include "cuda/engine/collider_reactions.h"
 #include "cuda/engine/contact_lists.h"
+#include "cuda/engine/contact_rebuild.h"
 #include "cuda/engine/engine.h"
 #include "cuda/engine/engine_state.h"
 #include "cuda/engine/family_builder.h"
@@ -50,6 +51,7 @@ class EngineImpl final : public Engine {
     features_ = features_of(materials_, contact_);
     // Graphs where no host work falls between the step's launches (step_graphs.h).
     const bool graphs_wanted = step_graphs_wanted(in);  // (a bad PERIFRAC_STEP_GRAPHS fails on the CPU too)
+    const ContactRebuild contact_rebuild = requested_contact_rebuild(in);  // (and a bad ..._CONTACT_REBUILD)
     graphs_ = Exec::kGraphs && graphs_wanted && !rank && !scripted_motion_ && free_.empty() &&
               !moving_colliders_ && !contact_ && step_params_.n_projectiles == 0;
     colliders_host_ = in.colliders;
@@ -128,7 +130,8 @@ class EngineImpl final : public Engine {
       if (features_.ghosts) launch_ghost_weighted_volume(exec_, particles(), ghost_view());
       end_stage("state-based");
     }
-    if (contact_) contacts_.allocate(mem_, state_.n, materials_);
+    if (contact_)
+      contacts_.allocate(mem_, state_.n, materials_, contact_rebuild == ContactRebuild::kIncremental);
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0 || !colliders_host_.empty();
     colliders_ = mem_.make_from(colliders_host_);

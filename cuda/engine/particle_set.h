@@ -45,6 +45,10 @@ enum class BondScreen { kAuto, kOff, kAlways };
 // any (kOn) or never (kOff); the results are the same. The CPU backend has no graphs.
 enum class StepGraphs { kAuto, kOn, kOff };
 
+// Contact lists rebuilt for just the particles that left their skins where they are few
+// (kIncremental, contact_relist.h), or every list at every build (kFull); the forces are the same.
+enum class ContactRebuild { kIncremental, kFull };
+
 struct SimulationInput {
   ParticleSet particles;
   MaterialTable materials;
@@ -60,6 +64,7 @@ struct SimulationInput {
   bool contact = false;          // launch `collection` and `collisions`
   bool lattice_families = true;  // box-grid bodies find partners by offset (lattice_families.h)
   BondScreen screen = BondScreen::kAuto;
+  ContactRebuild contact_rebuild = ContactRebuild::kIncremental;
   // Threads per particle in the GPU's bond loops (cuda/team.h): 1, 4, 8, 16 or 32; 0 chooses
   // from the scene (bond_threads.h). The CPU backend runs one.
   int bond_threads = 0;

@@ -97,6 +97,26 @@ PD_HD inline void build_contacts(int32_t s, ParticlesView p, HashView h, Contact
   if (count > c.capacity) raise_flag(overflow);
 }
 
+// visit(cell) for every cell of the box of half side `radius` around x (the cells that hold
+// every point within `radius` of x).
+template <class Visit>
+PD_HD inline void for_each_cell_in_box(Vec3 x, real radius, real inv_cell, Visit visit) {
+  const Cell lo = cell_of(x - Vec3{radius, radius, radius}, inv_cell);
+  const Cell hi = cell_of(x + Vec3{radius, radius, radius}, inv_cell);
+  for (int32_t z = lo.z; z <= hi.z; ++z)
+    for (int32_t y = lo.y; y <= hi.y; ++y)
+      for (int32_t cx = lo.x; cx <= hi.x; ++cx) visit(Cell{cx, y, z});
+}
+
+// visit(t, record) for every sorted entry t whose record lies in cell nc.
+template <class Visit>
+PD_HD inline void for_each_record_in_cell(Cell nc, HashView h, Visit visit) {
+  for_each_entry_in_bin(cell_bin(nc, h.bins), h, [&](int32_t t) {
+    const Vec4 rt = h.record[t];
+    if (same_cell(cell_of(xyz(rt), h.inv_cell), nc)) visit(t, rt);
+  });
+}
+
 // Pass 2 per particle, for the particles whose skin exceeds the one at rest: the pairs beyond the
 // first pass's reach but within the pair's contact distance plus both skins, added to both lists
 // (between two such particles by the one of lower index, order_of). The search covers every cell within
@@ -107,26 +127,18 @@ PD_HD inline void extend_contacts(int32_t f, ParticlesView p, HashView h, Contac
   const real skin_f = c.origin[f].w;
   if (!(skin_f > c.base)) return;
   const Vec4 rf = with_w(p.position(f), contact_quarter(f, p, mt));  // its hash record
-  const real radius = rf.w + quarter_max + skin_f + c.cap;
-  const Cell lo = cell_of(xyz(rf) - Vec3{radius, radius, radius}, h.inv_cell);
-  const Cell hi = cell_of(xyz(rf) + Vec3{radius, radius, radius}, h.inv_cell);
-  for (int32_t z = lo.z; z <= hi.z; ++z)
-    for (int32_t y = lo.y; y <= hi.y; ++y)
-      for (int32_t x = lo.x; x <= hi.x; ++x) {
-        const Cell nc{x, y, z};
-        for_each_entry_in_bin(cell_bin(nc, h.bins), h, [&](int32_t t) {
-          const Vec4 rt = h.record[t];
-          if (!same_cell(cell_of(xyz(rt), h.inv_cell), nc)) return;
-          const int32_t j = h.sorted[t];
-          if (j == f || within_contact_reach(rf, rt, 2 * c.base)) return;  // listed by pass 1
-          const real skin_j = c.origin[j].w;
-          if (skin_j > c.base && order_of(p, j) < order_of(p, f)) return;  // listed from j
-          if (!within_contact_reach(rf, rt, skin_f + skin_j)) return;
-          append_contact(f, j, c, overflow);
-          append_contact(j, f, c, overflow);
-          raise_flag(pairs);
-        });
-      }
+  for_each_cell_in_box(xyz(rf), rf.w + quarter_max + skin_f + c.cap, h.inv_cell, [&](Cell nc) {
+    for_each_record_in_cell(nc, h, [&](int32_t t, Vec4 rt) {
+      const int32_t j = h.sorted[t];
+      if (j == f || within_contact_reach(rf, rt, 2 * c.base)) return;  // listed by pass 1
+      const real skin_j = c.origin[j].w;
+      if (skin_j > c.base && order_of(p, j) < order_of(p, f)) return;  // listed from j
+      if (!within_contact_reach(rf, rt, skin_f + skin_j)) return;
+      append_contact(f, j, c, overflow);
+      append_contact(j, f, c, overflow);
+      raise_flag(pairs);
+    });
+  });
 }
 
 // Pass 3 per particle: its list sorted by index (order_of), so that its contact forces add up in
@@ -165,6 +177,15 @@ PD_HD inline void collision_forces(int32_t i, ParticlesView p, ContactView c, co
 PD_HD inline bool left_contact_skin(Vec4 u, Vec4 origin) {
   const real trigger = real(kContactTrigger) * origin.w;
   return !(length_squared(xyz(u) - xyz(origin)) <= trigger * trigger);
+}
+
+// A particle that left its skin: raises `moved` and joins the movers (each counted, the first
+// movers.size kept).
+PD_HD inline void report_mover(int32_t i, const ContactView& c) {
+  raise_flag(c.moved);
+  if (!c.mover_count) return;
+  const int32_t k = atomic_increment(c.mover_count);
+  if (k < c.movers.size) c.movers[k] = i;
 }
 
 }  // namespace pd

@@ -15,7 +15,7 @@ PD_HD inline Vec3 rotate_minus_identity(const real* m, Vec3 d) {
           m[6] * d.x + m[7] * d.y + m[8] * d.z};
 }
 
-// kContact: also raises c.moved when the particle has left its contact skin (collisions.h).
+// kContact: also reports the particle when it has left its contact skin (collisions.h).
 template <bool kContact = false>
 PD_HD inline void position_update(int32_t i, ParticlesView p, const StepParams& sp, ContactView c = {}) {
   const real dt = sp.dt;
@@ -40,7 +40,7 @@ PD_HD inline void position_update(int32_t i, ParticlesView p, const StepParams& 
   }
   p.disp[i] = u;
   if constexpr (kContact)
-    if (left_contact_skin(u, c.origin[i])) raise_flag(c.moved);
+    if (left_contact_skin(u, c.origin[i])) report_mover(i, c);
 }
 
 // An anchor holds its particle against the force on it: it does work -f.v dt on the body.

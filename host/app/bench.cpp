@@ -136,6 +136,10 @@ int bench_command(const BenchOptions& opt) {
     input.screen = opt.screen == "off" ? BondScreen::kOff : BondScreen::kAlways;
     workload += "_screen_" + opt.screen;
   }
+  if (opt.contact_rebuild == "full") {
+    input.contact_rebuild = ContactRebuild::kFull;
+    workload += "_full_contact_rebuilds";
+  }
   if (opt.bond_threads > 0) {
     input.bond_threads = opt.bond_threads;
     workload += "_threads" + std::to_string(opt.bond_threads);

@@ -20,7 +20,8 @@ struct BenchOptions {
   std::string screen = "auto";         // springforces: auto | off | always (cuda/kernels/bond_screen.h)
   int bond_threads = 0;                // threads per particle in the GPU's bond loops: 0 (auto), 1 .. 32
   std::string step_graphs = "auto";    // the step as CUDA graphs: auto | on | off (cuda/engine/step_graphs.h)
-  std::string model = "bond_based";    // lattice material: bond_based | state_based | plastic
+  std::string contact_rebuild = "incremental";  // contact lists: incremental | full (contact_relist.h)
+  std::string model = "bond_based";             // lattice material: bond_based | state_based | plastic
   std::string backend = "auto";
   int64_t steps = 200;
   int64_t warmup = 20;

@@ -89,6 +89,10 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
                   "the step as CUDA graphs of 32 steps where no host work falls between its launches: "
                   "in scenes below 524,288 particles (auto), in any (on), or never (off: per-kernel times)")
       ->check(CLI::IsMember({"auto", "on", "off"}));
+  cmd->add_option("--contact-rebuild", bench->contact_rebuild,
+                  "contact lists rebuilt for just the particles that left their skins where they are "
+                  "few (incremental), or all at every build (full); the forces are the same")
+      ->check(CLI::IsMember({"incremental", "full"}));
   cmd->add_option("--model", bench->model,
                   "lattice material: bond_based | state_based | plastic | anisotropic")
       ->check(CLI::IsMember({"bond_based", "state_based", "plastic", "anisotropic"}));

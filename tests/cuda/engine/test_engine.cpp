@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -301,20 +303,27 @@ TEST(EngineDeterminism, TwoRunsAreBitIdentical) {
 // steps the force on each particle is, to the last bit, the sum of Levine's eq. 6 over every
 // other particle in ascending order, although the contact lists were built only now and then.
 // With a contact spacing of 3 lambda the lists outgrow their first room and are built again.
-void expect_list_forces_equal_all_pairs(double contact_spacing, double stiffness) {
+// few_fast: the cloud drifts at 1 m/s but for every 40th particle at 60 m/s, so that the builds
+// are set off by a few particles at a time, whose lists are rebuilt alone (contact_relist.h).
+void expect_list_forces_equal_all_pairs(double contact_spacing, double stiffness, bool few_fast = false,
+                                        ContactRebuild rebuild = ContactRebuild::kIncremental) {
   auto in = lattice_block(8, 8, 8, 1e-3, 1e-3, 0.9, 13);
   in.materials.m[0].contact_spacing = real(contact_spacing);
   Random rng(29);
   for (size_t i = 0; i < in.particles.size(); ++i) {
     in.particles.body[i] = int32_t(i);
-    in.particles.velocity[i] = {real(30 * rng.normal()), real(30 * rng.normal()), real(30 * rng.normal())};
+    const double speed = !few_fast ? 30 : i % 40 == 0 ? 60 : 1;
+    in.particles.velocity[i] = {real(speed * rng.normal()), real(speed * rng.normal()),
+                                real(speed * rng.normal())};
   }
   in.contact = true;
+  in.contact_rebuild = rebuild;
   in.step.contact_stiffness = real(stiffness);
   auto e = make_cpu_engine(in);
   const real rc = real(0.5) * in.materials.m[0].contact_spacing;
   int checked = 0, touching = 0;
-  for (int round = 0; round < 30; ++round) {
+  const int rounds = few_fast ? 60 : 30;
+  for (int round = 0; round < rounds; ++round) {
     e->advance(7);
     ParticleState s;
     e->read_state(s);
@@ -331,11 +340,21 @@ void expect_list_forces_equal_all_pairs(double contact_spacing, double stiffness
       ++checked;
     }
   }
-  EXPECT_GT(touching, checked / 20);  // contacts were there to find
-  // Built at the start and again as particles left their skins, not every step.
+  EXPECT_GT(touching, few_fast ? 0 : checked / 20);  // contacts were there to find
+  // Every list built at the start and again now and then, not every step; in between, the lists
+  // of the particles that left their skins rebuilt alone (relisted), in most steps: each particle
+  // sets off its own rebuild, where a full build starts every skin afresh.
   const int64_t builds = e->stats().entry("pd/contact_build").launches;
-  EXPECT_GT(builds, 3);
-  EXPECT_LT(builds, 210 / 3);
+  const int64_t relisted = e->stats().entry("pd/contact_relist").launches;
+  std::printf("  %lld full builds, %lld rounds of relisting in %lld steps\n", (long long)builds,
+              (long long)relisted, (long long)e->step());
+  EXPECT_GT(builds + relisted, 3);
+  EXPECT_LT(builds, 7 * rounds / 3);
+  EXPECT_LE(builds + relisted, 7 * rounds + 1);
+  if (few_fast && rebuild == ContactRebuild::kIncremental) {
+    EXPECT_GT(relisted, 3 * builds);  // most rounds rebuilt the movers' lists alone
+  }
+  if (rebuild == ContactRebuild::kFull) EXPECT_EQ(relisted, 0);
 }
 
 TEST(EngineContact, ListForcesEqualTheSumOverAllPairs) {
@@ -344,6 +363,64 @@ TEST(EngineContact, ListForcesEqualTheSumOverAllPairs) {
 
 TEST(EngineContact, ListsThatOutgrowTheirRoomAreBuiltAgain) {
   expect_list_forces_equal_all_pairs(3e-3, 1e6);
+}
+
+TEST(EngineContact, MoversListsRebuiltAloneGiveTheForcesOfAllPairs) {
+  expect_list_forces_equal_all_pairs(1e-3, 1e8, true);
+  expect_list_forces_equal_all_pairs(3e-3, 1e6, true);  // partners' lists outgrow their room
+}
+
+TEST(EngineContact, FullBuildsGiveTheForcesOfAllPairs) {
+  expect_list_forces_equal_all_pairs(1e-3, 1e8, true, ContactRebuild::kFull);
+}
+
+// The same run with the movers' lists rebuilt alone and with every list built at every build:
+// bit for bit the same state.
+TEST(EngineContact, RelistingAndFullBuildsRunTheSameBits) {
+  ParticleState a, b;
+  for (auto [rebuild, s] :
+       {std::pair{ContactRebuild::kIncremental, &a}, std::pair{ContactRebuild::kFull, &b}}) {
+    auto in = lattice_block(10, 10, 10, 1e-3, 1e-3, 0.9, 17);
+    Random rng(31);
+    for (size_t i = 0; i < in.particles.size(); ++i) {
+      in.particles.body[i] = int32_t(i);
+      const double speed = i % 50 == 0 ? 80 : 2;
+      in.particles.velocity[i] = {real(speed * rng.normal()), real(speed * rng.normal()),
+                                  real(speed * rng.normal())};
+    }
+    in.contact = true;
+    in.contact_rebuild = rebuild;
+    in.step.contact_stiffness = real(1e8);
+    auto e = make_cpu_engine(in);
+    e->advance(600);
+    e->read_state(*s);
+    EXPECT_GT(e->energy().contact + 1, 1);
+  }
+  ASSERT_EQ(a.disp.size(), b.disp.size());
+  for (size_t i = 0; i < a.disp.size(); ++i) {
+    ASSERT_EQ(a.disp[i].x, b.disp[i].x) << i;
+    ASSERT_EQ(a.disp[i].y, b.disp[i].y) << i;
+    ASSERT_EQ(a.disp[i].z, b.disp[i].z) << i;
+    ASSERT_EQ(a.vel[i].x, b.vel[i].x) << i;
+    ASSERT_EQ(a.vel[i].y, b.vel[i].y) << i;
+    ASSERT_EQ(a.vel[i].z, b.vel[i].z) << i;
+  }
+}
+
+// PERIFRAC_CONTACT_REBUILD names what it allows.
+TEST(EngineContact, ABadContactRebuildSettingIsNamed) {
+  setenv("PERIFRAC_CONTACT_REBUILD", "sometimes", 1);
+  auto in = lattice_block(3, 3, 3, 1e-3);
+  in.contact = true;
+  try {
+    make_cpu_engine(in);
+    ADD_FAILURE() << "a bad PERIFRAC_CONTACT_REBUILD was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("PERIFRAC_CONTACT_REBUILD='sometimes'"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("incremental"), std::string::npos) << e.what();
+  }
+  unsetenv("PERIFRAC_CONTACT_REBUILD");
 }
 
 // An intact lattice (neighbours at lambda, lists reaching 0.9 lambda) has empty lists: built
