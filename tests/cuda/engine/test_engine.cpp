@@ -354,7 +354,9 @@ void expect_list_forces_equal_all_pairs(double contact_spacing, double stiffness
   if (few_fast && rebuild == ContactRebuild::kIncremental) {
     EXPECT_GT(relisted, 3 * builds);  // most rounds rebuilt the movers' lists alone
   }
-  if (rebuild == ContactRebuild::kFull) EXPECT_EQ(relisted, 0);
+  if (rebuild == ContactRebuild::kFull) {
+    EXPECT_EQ(relisted, 0);
+  }
 }
 
 TEST(EngineContact, ListForcesEqualTheSumOverAllPairs) {
