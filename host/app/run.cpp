@@ -9,34 +9,28 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "cuda/engine/engine.h"
 #include "host/app/backend_choice.h"
 #include "host/app/checkpoint.h"
-#include "host/app/collider_output.h"
 #include "host/app/energy_watch.h"
 #include "host/app/interrupt.h"
 #include "host/app/kernel_report.h"
-#include "host/app/live_render.h"
 #include "host/app/run_folder.h"
+#include "host/app/run_output.h"
 #include "host/app/shards_pattern.h"
 #include "host/app/time_step_check.h"
-#include "host/fragments/fragment_log.h"
-#include "host/fragments/fragment_output.h"
 #include "host/fragments/tet_file.h"
 #include "host/fragments/trimtope_file.h"
 #include "host/io/atomic_file.h"
 #include "host/io/frame_file.h"
-#include "host/io/vtk_writer.h"
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
 
@@ -85,25 +79,6 @@ RestData rest_data(const ParticleSet& ps) {
   r.body = ps.body;
   r.material.assign(ps.material.begin(), ps.material.end());
   return r;
-}
-
-// Gathers one frame's per-particle data from the engine.
-FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame,
-                     ParticleState& s) {
-  engine.read_state(s);
-  FrameData f;
-  f.frame = frame;
-  f.step = engine.step();
-  f.time = engine.time();
-  f.position.resize(ps.size());
-  f.damage.resize(ps.size());
-  for (size_t i = 0; i < ps.size(); ++i) {
-    f.position[i] = ps.rest[i] + s.disp[i];
-    f.damage[i] = count[i] > 0 ? 1.0f - float(s.intact[i]) / float(count[i]) : 0.0f;
-  }
-  f.velocity = std::move(s.vel);
-  f.body = ps.body;
-  return f;
 }
 
 // The scene of checkpoint `c` in folder `dir`: at its absolute path, else where it lies relative to
@@ -304,162 +279,6 @@ void write_rest_outputs(const Simulation& sim, const std::string& out) {
   if (scene.write_binary && !setup.embedded.empty())
     write_tets_file(out + "/" + kTetsFileName, setup.embedded);
 }
-
-// The engine's bonds as built, before the first step.
-BondLists bonds_as_built(Engine& engine) {
-  BondLists bonds;
-  engine.read_bonds(bonds);
-  return bonds;
-}
-
-// The Voronoi bodies' cells, the elements of their particles.
-std::vector<VoronoiElements> voronoi_elements(const SetupResult& setup) {
-  std::vector<VoronoiElements> elements;
-  for (const VoronoiBody& v : setup.voronoi) elements.push_back({v.first_particle, &v.geometry});
-  return elements;
-}
-
-// PERIFRAC_OUTPUT_THREAD: 1 (the default) writes each frame on a thread of its own while the
-// engine steps on; 0 writes it before the next step (for measurements). Another value is an error.
-bool output_thread_wanted() {
-  const char* v = std::getenv("PERIFRAC_OUTPUT_THREAD");
-  if (!v || std::string(v) == "1") return true;
-  if (std::string(v) == "0") return false;
-  throw std::invalid_argument("PERIFRAC_OUTPUT_THREAD='" + std::string(v) + "' (allowed: 0 or 1)");
-}
-
-// The per-frame outputs of a run in its output folder: frame files, the VTK series, the fragment
-// outputs, the energy log and, with a [render] block, the frames rendered as they come.
-class RunOutput {
- public:
-  // Sets up the fragment outputs from the engine's bonds as built and reports touching elements
-  // farther apart than the horizon.
-  RunOutput(Simulation& sim, const RunOptions& opt, RunFolder& folder)
-      : sim_(sim),
-        folder_(folder),
-        out_(folder.dir()),
-        live_(sim.scene.render && sim.scene.render->every > 0
-                  ? std::make_unique<LiveRender>(sim.scene, out_, backend_name(sim.backend))
-                  : nullptr),
-        series_(out_, "particles"),
-        bonds_(bonds_as_built(*sim.engine)),
-        fragments_(sim.setup.input, bonds_, {out_, opt.blend_frames}, sim.setup.adjacency, sim.setup.embedded,
-                   voronoi_elements(sim.setup)),
-        energy_log_(out_ + "/energy.csv"),
-        fragment_csv_(out_ + "/" + kFragmentLogFileName),
-        colliders_(out_, sim.setup.input, sim.setup.collider_meshes, sim.scene.write_vtk) {
-    if (const FaceLinks& links = fragments_.face_links(); links.indirect() + links.unlinked() > 0)
-      std::printf(
-          "elements   %zu touching pairs farther apart than the horizon: %zu hold through common "
-          "neighbours, %zu have no bond path (cracks from the start)\n",
-          links.indirect() + links.unlinked(), links.indirect(), links.unlinked());
-  }
-
-  ~RunOutput() {
-    if (job_.joinable()) job_.join();  // (an error of a run already failing is not rethrown)
-  }
-  RunOutput(const RunOutput&) = delete;
-  RunOutput& operator=(const RunOutput&) = delete;
-
-  const std::string& dir() const { return out_; }
-  RunFolder& folder() { return folder_; }
-  EnergyLog& energy_log() { return energy_log_; }
-  size_t fragment_pieces() const { return fragments_.components().count(); }
-
-  // Writes frame `frame` of the engine's current state. What needs the engine happens now (the
-  // frame's particles and bonds downloaded, the colliders' poses copied); the rest (fragments,
-  // frame files, rendering, the manifest, then `done` called with the fragment statistics) on a
-  // thread of its own while the engine steps on to the next frame, or here with
-  // PERIFRAC_OUTPUT_THREAD=0. drain() waits for it; the files are the same either way.
-  void write_frame(int64_t frame, std::function<void(const std::string&)> done = {}) {
-    drain();
-    Engine& engine = *sim_.engine;
-    FrameData f = frame_data(engine, sim_.setup.input.particles, bonds_.count, frame, state_);
-    if (frame > 0) engine.update_bonds(bonds_);
-    auto job = [this, frame, f = std::move(f), colliders = engine.colliders(),
-                done = std::move(done)]() mutable {
-      folder_.begin_frame(frame);
-      const ComponentStats stats = fragments_.process(f, bonds_);
-      fragment_log_ = format_component_stats(stats);
-      fragment_csv_.add(frame, f.step, f.time, stats);
-      if (sim_.scene.write_binary) write_frame_file(out_ + "/" + frame_file_name(frame, "pfr"), f);
-      if (sim_.scene.write_vtk) {
-        const std::string name = frame_file_name(frame, "vtu");
-        write_vtu(out_ + "/" + name, f);
-        series_.add(f.time, name);
-      }
-      colliders_.write_frame(frame, f.time, colliders);
-      if (live_) live_->frame(frame);
-      folder_.frame_done(frame);
-      if (done) done(fragment_log_);
-    };
-    if (!threaded_) return job();
-    job_ = std::thread([this, job = std::move(job)]() mutable {
-      try {
-        job();
-      } catch (...) {
-        error_ = std::current_exception();
-      }
-    });
-  }
-
-  // Waits for the frame being written, if any; rethrows what its writing threw.
-  void drain() {
-    if (job_.joinable()) job_.join();
-    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
-  }
-
-  // Takes over a checkpoint's fragment smoothing, VTK series and energy log (moved from `c`).
-  void restore(RunCheckpoint& c) {
-    fragments_.smoother().restore(std::move(c.smoother));
-    colliders_.restore(c.series);
-    series_.restore(std::move(c.series));
-    energy_log_.restore(std::move(c.energy_log));
-    if (!c.fragment_log.empty()) fragment_csv_.restore(std::move(c.fragment_log));
-  }
-
-  // Puts the energy log, the VTK series and the fragment smoothing into checkpoint `c`.
-  void save(RunCheckpoint& c) {
-    drain();
-    c.energy_log = energy_log_.text();
-    c.fragment_log = fragment_csv_.text();
-    c.series = series_.entries();
-    c.smoother = fragments_.smoother().history();
-  }
-
-  // The end-of-run outputs of a run resumed after its last frame: the fragment pieces of the
-  // engine's current bonds.
-  void finish_complete_run() {
-    drain();
-    sim_.engine->read_bonds(bonds_);
-    fragments_.find_components(bonds_);
-    fragments_.write_meshes();
-  }
-
-  // The end-of-run outputs: the live render's summary and movie, and the fragment pieces.
-  void finish() {
-    drain();
-    if (live_) live_->finish();
-    fragments_.write_meshes();
-  }
-
- private:
-  Simulation& sim_;
-  RunFolder& folder_;
-  std::string out_;
-  std::unique_ptr<LiveRender> live_;
-  PvdSeries series_;
-  ParticleState state_;  // the engine's state as last read back (its memory kept for the next frame)
-  BondLists bonds_;
-  FragmentOutput fragments_;
-  EnergyLog energy_log_;
-  FragmentLog fragment_csv_;
-  ColliderOutput colliders_;
-  std::string fragment_log_;
-  bool threaded_ = output_thread_wanted();
-  std::thread job_;  // the frame being written (write_frame)
-  std::exception_ptr error_;
-};
 
 // Where the frame loop starts: the first frame to simulate and the energy the run started with.
 struct RunStart {
@@ -670,13 +489,6 @@ struct LoopTimes {
   double checks = 0;  // the blow-up checks and the energy
   double read = 0;    // the frame's particles and bonds read back (write_frame's own part)
   double checkpoints = 0;
-
-  // Seconds since `t`, added to `into`; returns now.
-  static std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point t, double& into) {
-    const auto now = std::chrono::steady_clock::now();
-    into += std::chrono::duration<double>(now - t).count();
-    return now;
-  }
 };
 
 // The frame loop: simulates and writes the frames from start.first_frame on, with checkpoints and a
@@ -702,9 +514,9 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
           tty ? "\n" : "", (long long)frame, (long long)engine.step(), output.dir().c_str());
       return kExitInterrupted;
     }
-    t = LoopTimes::lap(t, times.steps);
-    output.drain();  // the last frame's files are complete before anything else is written
-    t = LoopTimes::lap(t, times.drain);
+    t = lap(t, times.steps);
+    output.wait_for_bonds();  // the last frame's fragments found (its files may still be written)
+    t = lap(t, times.drain);
     if (stopped_by_non_finite(sim, frame, output.dir())) return kExitBlowUp;
     const Energy energy = engine.energy();
     const double excess = energy_excess(start.energy0, energy);
@@ -712,17 +524,17 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
       return kExitBlowUp;
     output.energy_log().add(frame, engine.step(), engine.time(), energy);
     const auto now = std::chrono::steady_clock::now();
-    t = LoopTimes::lap(t, times.checks);
+    t = lap(t, times.checks);
     const Progress progress = progress_after(sim, frame, start.first_frame,
                                              std::chrono::duration<double>(now - t0).count(), excess);
     output.write_frame(
         frame, [progress, tty](const std::string& fragments) { print_progress(progress, fragments, tty); });
-    t = LoopTimes::lap(t, times.read);
+    t = lap(t, times.read);
 
     if (checkpoint_due(opt, frame, std::chrono::duration<double>(now - last_checkpoint).count())) {
       write_run_checkpoint(sim, opt, output, start.energy0, frame);
       last_checkpoint = now;
-      LoopTimes::lap(t, times.checkpoints);
+      lap(t, times.checkpoints);
     }
     if (InterruptGuard::signal_received()) {
       output.drain();
@@ -734,7 +546,7 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
   }
   const auto t = std::chrono::steady_clock::now();
   output.drain();
-  LoopTimes::lap(t, times.drain);
+  lap(t, times.drain);
   times.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (tty) std::printf("\n");
   return kExitOk;
@@ -753,6 +565,13 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
   print_kernel_table(std::cout, kernel_rows(sim.engine->stats(), "pd/", sim.engine->family_stats().bonds,
                                             steps, sim.engine->graphed_steps()));
   output.finish();
+  const RunOutput::Times& out = output.times();
+  std::printf(
+      "output threads over %lld frames: fragments found %.2f s and crack surfaces taken %.2f s on the first "
+      "(longest frame %.3f s), the frames written %.2f s on the second (longest %.3f s; the fragment files "
+      "%.2f s beside the frame files %.2f s)\n",
+      (long long)out.frames, out.analysis, out.crack_surfaces, out.longest_analysis, out.writing,
+      out.longest_writing, out.fragment_files, out.frame_files);
   std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", output.dir().c_str(),
               (long long)scene.frames + 1, output.fragment_pieces());
 }
@@ -771,7 +590,7 @@ int run_command(const RunOptions& options) {
   // Only rank 0 of a run over MPI ranks gets here (the others serve its engine).
   const std::unique_ptr<RunFolder> folder = claim_output_folder(sim, opt, resume);
   write_rest_outputs(sim, folder->dir());
-  RunOutput output(sim, opt, *folder);
+  RunOutput output(sim.scene, sim.setup, *sim.engine, sim.backend, opt.blend_frames, *folder);
 
   // A fresh run writes frame 0; a resumed one restores the state after its checkpointed frame.
   const RunStart start = resume ? restore_run(sim, output, *resume) : start_fresh_run(sim, output);

@@ -8,6 +8,7 @@
 //                 the file appears under its name (frame -1: set-up outputs)
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -52,7 +53,7 @@ class OutputJournal {
   void record(const std::string& path);
   std::string dir_;
   int fd_ = -1;
-  int64_t frame_ = -1;
+  std::atomic<int64_t> frame_{-1};  // set by the output thread that writes frames, read by every writer
 };
 
 enum class FolderUse {

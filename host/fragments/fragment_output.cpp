@@ -28,6 +28,14 @@ FragmentOutput::FragmentOutput(const SimulationInput& input, const BondLists& bo
                 mass_) {}
 
 ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
+  const ComponentStats stats = analyse(f, bonds);
+  FragmentFiles files = files_of(f);
+  write_files(f, files);
+  crack_surface_ = std::move(files.crack_surface);
+  return stats;
+}
+
+ComponentStats FragmentOutput::analyse(FrameData& f, const BondLists& bonds) {
   if (f.size() != rest_.size())
     throw std::invalid_argument("FragmentOutput::process: the frame has " + std::to_string(f.size()) +
                                 " particles, the run " + std::to_string(rest_.size()));
@@ -38,31 +46,43 @@ ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
   // The embedded mesh: split along this frame's cracks, placed by the particles and the fits.
   if (options_.crack_meshes) embedded_.update(bonds, f.position, components_, fragments_);
   smoother_.apply(components_, rest_, f.position, mass_, fragments_);
-  // Files of the frame, written side by side: each is an atomic file of its own, synced to disk,
-  // and a shattered body's crack meshes take most of a frame's output time there (bench/REPORT.md).
-  // The crack surface is built while the first two are written.
+  return component_stats(components_, mass_, &bonds);
+}
+
+FragmentFiles FragmentOutput::files_of(const FrameData& f) const {
+  FragmentFiles files;
+  files.fragments = fragments_;
+  if (options_.crack_meshes) {
+    embedded_.surface(files.crack_surface);
+    char text[96];
+    std::snprintf(text, sizeof text, "frame %lld step %lld time %.17g", (long long)f.frame, (long long)f.step,
+                  f.time);
+    files.comment = text;
+  }
+  return files;
+}
+
+void FragmentOutput::write_files(const FrameData& f, const FragmentFiles& files) const {
+  // Each file is an atomic file of its own, synced to disk, written side by side: a shattered
+  // body's crack meshes take most of a frame's output time (bench/REPORT.md).
   std::vector<std::future<void>> writes;
   const auto write = [&writes](auto&& job) { writes.push_back(std::async(std::launch::async, job)); };
   write([&] {
     write_fragments_file(options_.dir + "/" + fragments_file_name(f.frame), f.frame, f.step, f.time,
-                         fragments_);
+                         files.fragments);
   });
   if (options_.points) write([&] { write_ply_points(options_.dir + "/" + points_file_name(f.frame), f); });
   if (options_.crack_meshes) {
-    embedded_.surface(crack_surface_);
-    char text[96];
-    std::snprintf(text, sizeof text, "frame %lld step %lld time %.17g", (long long)f.frame, (long long)f.step,
-                  f.time);
-    const std::string comment = text;
-    write([&, comment] {
-      write_crack_obj(options_.dir + "/" + crack_mesh_file_name(f.frame, "obj"), crack_surface_, comment);
+    write([&] {
+      write_crack_obj(options_.dir + "/" + crack_mesh_file_name(f.frame, "obj"), files.crack_surface,
+                      files.comment);
     });
-    write([&, comment] {
-      write_crack_ply(options_.dir + "/" + crack_mesh_file_name(f.frame, "ply"), crack_surface_, comment);
+    write([&] {
+      write_crack_ply(options_.dir + "/" + crack_mesh_file_name(f.frame, "ply"), files.crack_surface,
+                      files.comment);
     });
   }
   for (std::future<void>& w : writes) w.get();  // each finished; the first failure thrown
-  return component_stats(components_, mass_, &bonds);
 }
 
 void FragmentOutput::write_meshes(const std::string& name) const {

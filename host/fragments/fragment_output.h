@@ -30,6 +30,13 @@ struct FragmentOutputOptions {
   bool crack_meshes = true;  // write crack_mesh_NNNNN.obj and .ply
 };
 
+// What a frame's fragment files are written from (FragmentOutput::files_of).
+struct FragmentFiles {
+  std::vector<Fragment> fragments;  // the fragments file's transforms
+  CrackSurface crack_surface;       // the crack meshes (empty without them)
+  std::string comment;              // the crack meshes' comment line
+};
+
 class FragmentOutput {
  public:
   // `bonds`: the families as built, before the first step. `adjacency`: the elements that share
@@ -45,6 +52,13 @@ class FragmentOutput {
   // frame's files and returns the component statistics for the log. Throws IoError when a file
   // cannot be written, std::invalid_argument when `f` or `bonds` do not match the run.
   ComponentStats process(FrameData& f, const BondLists& bonds);
+  // process() in three parts, so that a run writes a frame's files while it analyses the next:
+  // analyse() is all that reads `bonds` (components, fits, the split embedded mesh, the
+  // statistics); files_of() takes what the frame's files need (the fragments, the crack surface);
+  // write_files() writes them, reading nothing else of this object but its options.
+  ComponentStats analyse(FrameData& f, const BondLists& bonds);
+  FragmentFiles files_of(const FrameData& f) const;
+  void write_files(const FrameData& f, const FragmentFiles& files) const;
 
   // Writes <dir>/<name>: the rest-space surfaces of the last processed frame's fragments (OBJ;
   // the last frame's are the finest, as fragments only split). Throws std::logic_error before the
@@ -61,7 +75,7 @@ class FragmentOutput {
   const Components& components() const { return components_; }
   FragmentSmoother& smoother() { return smoother_; }
   const std::vector<Fragment>& fragments() const { return fragments_; }
-  // The embedded mesh and its surface at the last processed frame.
+  // The embedded mesh at the last analysed frame and the crack surface process() last wrote.
   const EmbeddedMesh& embedded_mesh() const { return embedded_; }
   const CrackSurface& crack_surface() const { return crack_surface_; }
 
@@ -75,7 +89,7 @@ class FragmentOutput {
   Components components_;
   std::vector<Fragment> fragments_;
   EmbeddedMesh embedded_;
-  CrackSurface crack_surface_;
+  CrackSurface crack_surface_;  // the last one process() wrote
 };
 
 }  // namespace pd

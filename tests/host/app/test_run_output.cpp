@@ -1,7 +1,8 @@
-// A run's frames written on a thread of their own while the engine steps on (host/app/run.cpp,
+// A run's frames written on threads of their own while the engine steps on (host/app/run_output.cpp,
 // RunOutput::write_frame) give the files of frames written before stepping on
 // (PERIFRAC_OUTPUT_THREAD=0), bit for bit, checkpoints and the fragment outputs included; a bad
-// value of the variable is one error line before any work; the run reports where its loop's time went.
+// value of the variable is one error line before any work; the run reports where its loop's and its
+// output threads' time went; a file that cannot be written ends the run after the frames before it.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -79,6 +80,52 @@ TEST_F(RunOutputThread, EndsWithTheFrameLoopSplit) {
   EXPECT_LE(parts, total + rounding);
   EXPECT_GE(parts, 0.9 * total - rounding);
   EXPECT_NEAR(ratio, total / steps, 0.01 * ratio + 0.01);
+
+  // Then the output threads' own split, over frames 0 to 5.
+  const size_t threads_at = log.find("output threads over ");
+  ASSERT_NE(threads_at, std::string::npos) << log;
+  long long frames = 0;
+  double analysis = 0, surfaces = 0, longest_analysis = 0, writing = 0, longest_writing = 0,
+         fragment_files = 0, frame_files = 0;
+  ASSERT_EQ(
+      std::sscanf(log.c_str() + threads_at,
+                  "output threads over %lld frames: fragments found %lf s and crack surfaces taken %lf s "
+                  "on the first (longest frame %lf s), the frames written %lf s on the second (longest "
+                  "%lf s; the fragment files %lf s beside the frame files %lf s)",
+                  &frames, &analysis, &surfaces, &longest_analysis, &writing, &longest_writing,
+                  &fragment_files, &frame_files),
+      8)
+      << log.substr(threads_at, 400);
+  EXPECT_EQ(frames, 6);
+  EXPECT_GT(writing, 0);
+  // The longest frame is at most the sum of all and at least the mean (figures to 0.01 s and
+  // 0.001 s: each may be off by half of that).
+  const double r = 0.005 + 0.0005;
+  EXPECT_LE(longest_analysis, analysis + surfaces + 2 * r);
+  EXPECT_GE(6 * longest_analysis, analysis + surfaces - 2 * r);
+  EXPECT_LE(longest_writing, writing + r);
+  EXPECT_GE(6 * longest_writing, writing - r);
+  // The fragment files and the frame files are written side by side within a frame's writing.
+  EXPECT_LE(fragment_files, writing + 0.01);
+  EXPECT_LE(frame_files, writing + 0.01);
+}
+
+// A frame's file that cannot be written ends the run with the file's name, a non-zero exit and the
+// frames before it complete, whether the files of a frame are written while the next is stepped
+// or before: no later frame is written after the failure.
+TEST_F(RunOutputThread, AFailedWriteEndsTheRunWithTheFramesBeforeIt) {
+  for (const std::string value : {"0", "1"}) {
+    const std::string out = path("fail" + value);
+    // A folder in the way of frame 3's fragments file: its rename fails.
+    fs::create_directories(out + "/fragments_00003.pfg/in_the_way");
+    EXPECT_NE(run(value, out), 0) << value;
+    const std::string log = testing::read_all(out + ".log");
+    EXPECT_NE(log.find("fragments_00003.pfg"), std::string::npos) << value << "\n" << log;
+    for (int f = 0; f <= 2; ++f)
+      EXPECT_TRUE(fs::exists(out + "/frame_0000" + std::to_string(f) + ".pfr")) << f;
+    EXPECT_FALSE(fs::exists(out + "/frame_00004.pfr")) << value;
+    EXPECT_FALSE(fs::exists(out + "/frame_00005.pfr")) << value;
+  }
 }
 
 TEST_F(RunOutputThread, BadValueIsRefusedBeforeTheWork) {
