@@ -23,6 +23,9 @@ std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point 
   return now;
 }
 
+namespace {
+
+// One frame's per-particle data from the engine (`s`: memory kept from frame to frame).
 FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame,
                      ParticleState& s) {
   engine.read_state(s);
@@ -40,8 +43,6 @@ FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<in
   f.body = ps.body;
   return f;
 }
-
-namespace {
 
 // The engine's bonds as built, before the first step.
 BondLists bonds_as_built(Engine& engine) {

@@ -39,10 +39,6 @@ bool output_thread_wanted();
 // Seconds since `t`, added to `into`; returns now.
 std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point t, double& into);
 
-// Gathers one frame's per-particle data from the engine (`s`: memory kept from frame to frame).
-FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame,
-                     ParticleState& s);
-
 class RunOutput {
  public:
   // Sets up the fragment outputs from the engine's bonds as built (before the first step or a
