@@ -37,7 +37,7 @@ ComponentStats FragmentOutput::process(FrameData& f, const BondLists& bonds) {
 
 ComponentStats FragmentOutput::analyse(FrameData& f, const BondLists& bonds) {
   if (f.size() != rest_.size())
-    throw std::invalid_argument("FragmentOutput::process: the frame has " + std::to_string(f.size()) +
+    throw std::invalid_argument("FragmentOutput::analyse: the frame has " + std::to_string(f.size()) +
                                 " particles, the run " + std::to_string(rest_.size()));
   // Components, then one rigid fit per component, blended across splits.
   finder_.find(bonds, components_);
