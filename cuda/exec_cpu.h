@@ -107,7 +107,7 @@ class CpuExec {
   // mark_flags(e) after the launches that may raise them (event e < kFlagEvents), take_flags(mask,
   // e) waits for those launches and returns the raised flags of mask as bits (bit k: flag k),
   // those cleared.
-  static constexpr int kFlags = 5;
+  static constexpr int kFlags = 6;
   static constexpr int kFlagEvents = 3;
   int32_t* flag(int k) {
     return &flags_[k];

@@ -167,7 +167,7 @@ class CudaExec {
   // kFlagEvents), take_flags(mask, e) waits for the launches before the last mark_flags(e) (an
   // event, so later launches keep running) and returns the raised flags of mask as bits (bit k:
   // flag k), those cleared.
-  static constexpr int kFlags = 5;
+  static constexpr int kFlags = 6;
   static constexpr int kFlagEvents = 3;
   int32_t* flag(int k);
   void mark_flags(int event);

@@ -144,6 +144,7 @@ struct ContactView {
   // how many did: the lists rebuilt for them alone where they are few (contact_relist.h).
   ArrayView<int32_t> movers;
   int32_t* mover_count = nullptr;
+  int32_t* crowded = nullptr;  // set to 1 when more particles moved than `movers` holds
   PD_HD int64_t slot(int32_t i, int32_t k) const { return int64_t(k) * n + i; }
 };
 

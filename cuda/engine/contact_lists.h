@@ -69,6 +69,7 @@ class ContactLists {
     c.moved = exec.flag(kFlagMoved);
     c.movers = view_of(movers_);
     c.mover_count = counters_.data();
+    c.crowded = exec.flag(kFlagCrowded);
     return c;
   }
 
@@ -82,10 +83,14 @@ class ContactLists {
   bool refresh(DeviceMemory<Exec>& mem, ParticlesView p, const MaterialTable& materials, real dt,
                Comm* world = nullptr, const std::function<ParticlesView()>& gather_ghosts = {}) {
     Exec& exec = mem.exec();
-    bool moved = exec.take_flags(kContactFlagMask, kFlagEvent) & (1u << kFlagMoved);
+    const uint32_t raised_by_moves = exec.take_flags(kContactFlagMask, kFlagEvent);
+    bool moved = raised_by_moves & (1u << kFlagMoved);
     if (world) moved = world->bit_or(moved) != 0;
     if (built_ && !moved) return pairs_;
-    if (built_ && incremental_ && !world && relist(exec, p, materials, dt)) return pairs_;
+    // More movers than a round keeps (a body in free fall moves all at once): straight to the full
+    // build, without the round that would find as much.
+    const bool crowded = raised_by_moves & (1u << kFlagCrowded);
+    if (built_ && incremental_ && !world && !crowded && relist(exec, p, materials, dt)) return pairs_;
     if (gather_ghosts) {
       p = gather_ghosts();
       if (p.n != n_) size_lists(mem, p.n, room_);
@@ -145,8 +150,8 @@ class ContactLists {
 
  private:
   // The movers' lists rebuilt alone (contact_relist.h), the movers and the pairs linked cleared
-  // for the next round; false where that cannot be done (more movers or relistings than kept, a
-  // list past its room): then all are built.
+  // for the next round; false where that cannot be done (more relistings than kept, a list past
+  // its room): then all are built.
   bool relist(Exec& exec, ParticlesView p, const MaterialTable& materials, real dt) {
     ++round_;
     launch_relist_contacts(exec, p, hash_.view(true), view(exec, dt), relist_view(), materials, quarter_max_,

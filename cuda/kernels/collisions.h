@@ -26,10 +26,11 @@ constexpr double kContactTrigger = 0.9;
 // Partners each list has room for at first (doubled for all when one overflows).
 constexpr int32_t kContactCapacity = 8;
 
-// The backend flags (Exec::flag) contact raises: a particle left its skin (position_update); a
-// list outgrew its room, some list is not empty (the build).
-enum ContactFlag : int { kFlagMoved = 0, kFlagOverflow = 1, kFlagPairs = 2 };
-constexpr uint32_t kContactFlagMask = 0x7u;
+// The backend flags (Exec::flag) contact raises: a particle left its skin, more did than a
+// relisting round keeps (position_update); a list outgrew its room, some list is not empty (the
+// build). (Flags 3 and 4 are the bonds' breaking, bond_screen.h.)
+enum ContactFlag : int { kFlagMoved = 0, kFlagOverflow = 1, kFlagPairs = 2, kFlagCrowded = 5 };
+constexpr uint32_t kContactFlagMask = 0x7u | (1u << kFlagCrowded);
 
 PD_HD inline Vec3 contact_force(Vec3 xi, Vec3 xj, real contact_distance, real stiffness) {
   const Vec3 d = xi - xj;
@@ -185,7 +186,10 @@ PD_HD inline void report_mover(int32_t i, const ContactView& c) {
   raise_flag(c.moved);
   if (!c.mover_count) return;
   const int32_t k = atomic_increment(c.mover_count);
-  if (k < c.movers.size) c.movers[k] = i;
+  if (k < c.movers.size)
+    c.movers[k] = i;
+  else
+    raise_flag(c.crowded);  // all lists are built: no relisting round is tried first
 }
 
 }  // namespace pd

@@ -52,10 +52,10 @@ PD_HD inline bool relisted_in(int32_t j, const RelistView& r, int32_t round) {
 }
 
 // Pass 1 per mover: its new origin and skin in a new node, pushed into its cell's bin, and its
-// list emptied. More movers than kept, or more nodes than room, raise `rebuild`.
+// list emptied. More nodes than room raise `rebuild` (a round never starts with more movers than
+// kept: position_update raised kFlagCrowded, and the engine built all lists instead).
 PD_HD inline void relist_mover(int32_t t, ParticlesView p, HashView h, ContactView c, RelistView r,
                                const MaterialTable& mt, int32_t round, int32_t* rebuild) {
-  if (t == 0 && *c.mover_count > c.movers.size) raise_flag(rebuild);
   const int32_t f = round_mover(t, c);
   if (f < 0) return;
   const int32_t e = atomic_increment(r.nodes);

@@ -376,6 +376,23 @@ TEST(EngineContact, FullBuildsGiveTheForcesOfAllPairs) {
   expect_list_forces_equal_all_pairs(1e-3, 1e8, true, ContactRebuild::kFull);
 }
 
+// A body in free fall leaves all its skins at once: more movers than a relisting round keeps
+// (max(256, n / 512)), so every build is a full one, with no round tried first.
+TEST(EngineContact, ACrowdOfMoversGoesStraightToTheFullBuild) {
+  auto in = lattice_block(8, 8, 8, 1e-3);  // out of contact with each other: one velocity for all
+  for (size_t i = 0; i < in.particles.size(); ++i) {
+    in.particles.body[i] = int32_t(i);
+    in.particles.velocity[i] = {0, 0, real(-30)};
+  }
+  in.contact = true;
+  in.step.contact_stiffness = real(1e8);
+  auto e = make_cpu_engine(in);
+  e->advance(200);
+  const int64_t builds = e->stats().entry("pd/contact_build").launches;
+  EXPECT_GT(builds, 3);  // the skins were left again and again
+  EXPECT_EQ(e->stats().entry("pd/contact_relist").launches, 0);
+}
+
 // The same run with the movers' lists rebuilt alone and with every list built at every build:
 // bit for bit the same state.
 TEST(EngineContact, RelistingAndFullBuildsRunTheSameBits) {
