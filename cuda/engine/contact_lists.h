@@ -132,6 +132,7 @@ class ContactLists {
     mem.drop(count_);
     mem.drop(partner_);
     mem.drop(relist_entry_);
+    mem.drop(relist_claimed_);
     mem.drop(relist_head_);
     rows_ = int32_t(rows);
     room_ = capacity;
@@ -141,6 +142,7 @@ class ContactLists {
     count_ = mem.template make<int32_t>(size_t(rows_));
     partner_ = mem.template make<int32_t>(size_t(room_) * size_t(rows_));
     relist_entry_ = mem.template make_zeroed<int32_t>(size_t(rows_));
+    relist_claimed_ = mem.template make_zeroed<int32_t>(size_t(rows_));
     relist_head_ = mem.template make<int32_t>(hash_.bins);
   }
 
@@ -167,6 +169,7 @@ class ContactLists {
   RelistView relist_view() const {
     RelistView r;
     r.entry = view_of(relist_entry_);
+    r.claimed = view_of(relist_claimed_);
     r.head = view_of(relist_head_);
     r.id = view_of(node_id_);
     r.next = view_of(node_next_);
@@ -193,8 +196,9 @@ class ContactLists {
   DeviceArray<int32_t, Exec> count_, partner_;
   // The movers of this round; counters_: movers counted, pairs linked, relisted nodes taken.
   DeviceArray<int32_t, Exec> movers_, counters_;
-  // RelistView: per particle, per hash bin, per node, and the pairs to link.
-  DeviceArray<int32_t, Exec> relist_entry_, relist_head_, node_id_, node_next_, node_round_, link_;
+  // RelistView: per particle (two), per hash bin, per node, and the pairs to link.
+  DeviceArray<int32_t, Exec> relist_entry_, relist_claimed_, relist_head_, node_id_, node_next_, node_round_,
+      link_;
   DeviceArray<Vec4, Exec> node_record_;
   DeviceArray<real, Exec> node_skin_;
 };

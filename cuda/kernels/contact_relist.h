@@ -25,6 +25,7 @@ namespace pd {
 // latest node is the one that counts (older ones are skipped where met).
 struct RelistView {
   ArrayView<int32_t> entry;            // per particle: its latest node + 1 (0: listed at the full build)
+  ArrayView<int32_t> claimed;          // per particle: the last round it was relisted in (0: none)
   ArrayView<int32_t> head;             // per hash bin: the last node pushed into it, -1 for none
   ArrayView<int32_t> id, next, round;  // per node: the particle, the bin's node before, its round
   ArrayView<Vec4> record;              // per node: the origin's position, quarter contact spacing
@@ -35,14 +36,11 @@ struct RelistView {
 };
 
 // Mover t of this round, or -1 where t is past the movers, there were more than kept (then all
-// lists are built again), or t repeats an earlier mover.
+// lists are built again), or pass 1 found t repeating an earlier mover (relist_mover).
 PD_HD inline int32_t round_mover(int32_t t, const ContactView& c) {
   const int32_t movers = *c.mover_count;
   if (movers > c.movers.size || t >= movers) return -1;
-  const int32_t f = c.movers[t];
-  for (int32_t s = 0; s < t; ++s)
-    if (c.movers[s] == f) return -1;
-  return f;
+  return c.movers[t];
 }
 
 // Whether particle j was relisted in this round (it is a mover too).
@@ -53,11 +51,19 @@ PD_HD inline bool relisted_in(int32_t j, const RelistView& r, int32_t round) {
 
 // Pass 1 per mover: its new origin and skin in a new node, pushed into its cell's bin, and its
 // list emptied. More nodes than room raise `rebuild` (a round never starts with more movers than
-// kept: position_update raised kFlagCrowded, and the engine built all lists instead).
+// kept: position_update raised kFlagCrowded, and the engine built all lists instead). A particle
+// is named once per position_update, and every position_update is followed by a refresh; should
+// it still be named twice, the mover that claims it second is struck from the round (-1), so
+// that later passes skip it: a claim per particle, where a search of the earlier movers cost each
+// of the first three passes a loop as long as the round (bench/NOTES.md).
 PD_HD inline void relist_mover(int32_t t, ParticlesView p, HashView h, ContactView c, RelistView r,
                                const MaterialTable& mt, int32_t round, int32_t* rebuild) {
   const int32_t f = round_mover(t, c);
   if (f < 0) return;
+  if (atomic_exchange(&r.claimed[f], round) == round) {
+    c.movers[t] = -1;
+    return;
+  }
   const int32_t e = atomic_increment(r.nodes);
   if (e >= r.id.size) {
     raise_flag(rebuild);

@@ -92,5 +92,31 @@ TEST(ContactLists, BuildEveryPairWithinReachInBuffersLargerThanTheCount) {
   }
 }
 
+// position_update names a particle that left its skin once, and the engine refreshes the lists
+// after every position_update; named twice all the same, the mover is relisted once (pass 1's
+// claim), so its new list and its new partners' hold each pair once.
+TEST(ContactLists, RelistAMoverNamedTwiceOnce) {
+  CpuExec exec(nullptr);
+  DeviceMemory<CpuExec> mem(&exec);
+  const MaterialTable mt = spacing_table();
+  const real dt = real(1e-7);
+  ContactLists<CpuExec> lists;
+  lists.allocate(mem, 500, mt);
+  testing::ParticleArrays particles = cloud(500, 0);
+  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, dt));
+  // Particle 0 (at 0, its twin at 0.5) moves to 2.7 spacings: beside the next twins, at 3 and 3.5.
+  particles.disp[0] = {real(2.7) * kSpacing, 0, 0, 0};
+  const ContactView c = lists.view(exec, dt);
+  report_mover(0, c);
+  report_mover(0, c);
+  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, dt));
+  // Relisted, not built again: the twin it left still lists it (beyond reach, an exact zero).
+  EXPECT_EQ(list_of(lists, exec, 1), std::vector<int32_t>{0});
+  EXPECT_EQ(list_of(lists, exec, 0), (std::vector<int32_t>{2, 3}));
+  EXPECT_EQ(list_of(lists, exec, 2), (std::vector<int32_t>{0, 3}));
+  EXPECT_EQ(list_of(lists, exec, 3), (std::vector<int32_t>{0, 2}));
+  EXPECT_EQ(list_of(lists, exec, 4), std::vector<int32_t>{5});
+}
+
 }  // namespace
 }  // namespace pd
