@@ -307,9 +307,8 @@ RunStart start_fresh_run(Simulation& sim, RunOutput& output) {
                          : "the energy at the start is not finite (kinetic " + finite_or_not(e.kinetic) +
                                ", strain " + finite_or_not(e.strain) + ", gravity " +
                                finite_or_not(e.gravity) + "): the scene's numbers are out of range");
-  output.write_frame(0);
+  output.write_frame(0, start.energy0);
   output.drain();
-  output.energy_log().add(0, 0, 0.0, start.energy0);
   return start;
 }
 
@@ -522,13 +521,13 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
     const double excess = energy_excess(start.energy0, energy);
     if (stopped_by_energy_growth(sim, start.energy0, energy, excess, growth_limit, frame, output.dir()))
       return kExitBlowUp;
-    output.energy_log().add(frame, engine.step(), engine.time(), energy);
     const auto now = std::chrono::steady_clock::now();
     t = lap(t, times.checks);
     const Progress progress = progress_after(sim, frame, start.first_frame,
                                              std::chrono::duration<double>(now - t0).count(), excess);
-    output.write_frame(
-        frame, [progress, tty](const std::string& fragments) { print_progress(progress, fragments, tty); });
+    output.write_frame(frame, energy, [progress, tty](const std::string& fragments) {
+      print_progress(progress, fragments, tty);
+    });
     t = lap(t, times.read);
 
     if (checkpoint_due(opt, frame, std::chrono::duration<double>(now - last_checkpoint).count())) {

@@ -51,14 +51,14 @@ class RunOutput {
 
   const std::string& dir() const { return out_; }
   RunFolder& folder() { return folder_; }
-  EnergyLog& energy_log() { return energy_log_; }
   size_t fragment_pieces() const { return fragments_.components().count(); }
 
-  // Makes frame `frame`'s outputs from the engine's current state. What needs the engine happens
-  // now (the frame's particles and bonds read back, the colliders' poses copied); the fragments,
-  // files, rendering, the manifest and then `done` (called with the fragment statistics' line)
-  // come on the output threads. Waits first for the previous frame's fragments (wait_for_bonds).
-  void write_frame(int64_t frame, std::function<void(const std::string&)> done = {});
+  // Makes frame `frame`'s outputs from the engine's current state, `energy` its energy. What needs
+  // the engine happens now (the frame's particles and bonds read back, the colliders' poses
+  // copied); the fragments, files, the energy log's line, rendering, the manifest and then `done`
+  // (called with the fragment statistics' line) come on the output threads. Waits first for the
+  // previous frame's fragments (wait_for_bonds).
+  void write_frame(int64_t frame, const Energy& energy, std::function<void(const std::string&)> done = {});
 
   // Waits until the frame being analysed no longer reads the bonds; rethrows the failure of a
   // frame's outputs (the first one; no later frame is made after it).
