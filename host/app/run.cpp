@@ -481,6 +481,13 @@ class StepPacer {
 
 // Where the frame loop's wall time goes, printed at the end of a run: what is not stepping is
 // what the output costs the run (issue 27: at most 15% of the stepping).
+// Where the command's wall time went outside the frame loop.
+struct RunTimes {
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  double engine = 0;   // the scene read, its particles made, the engine set up
+  double outputs = 0;  // the output folder claimed, the rest outputs, frame 0 (or the restore)
+};
+
 struct LoopTimes {
   double total = 0;   // the whole loop
   double steps = 0;   // advancing the engine (kernels, and the host work between them)
@@ -552,7 +559,8 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
 }
 
 // The end of a run: the kernel table, the end-of-run outputs and where they are.
-void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, const LoopTimes& times) {
+void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, const LoopTimes& times,
+                const RunTimes& run) {
   const Scene& scene = sim.scene;
   std::printf(
       "frame loop %.2f s (%.2f times the stepping): stepping %.2f s, waiting for the output thread %.2f s, "
@@ -563,7 +571,10 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(sim.backend));
   print_kernel_table(std::cout, kernel_rows(sim.engine->stats(), "pd/", sim.engine->family_stats().bonds,
                                             steps, sim.engine->graphed_steps()));
+  const auto end = std::chrono::steady_clock::now();
   output.finish();
+  double end_outputs = 0;
+  const double wall = std::chrono::duration<double>(lap(end, end_outputs) - run.started).count();
   const RunOutput::Times& out = output.times();
   std::printf(
       "output threads over %lld frames: fragments found %.2f s and crack surfaces taken %.2f s on the first "
@@ -573,11 +584,18 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
       out.longest_writing, out.fragment_files, out.frame_files);
   std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", output.dir().c_str(),
               (long long)scene.frames + 1, output.fragment_pieces());
+  std::printf(
+      "run        %.2f s (%.2f times the stepping): set-up %.2f s (scene and engine %.2f s, outputs to frame "
+      "%lld "
+      "%.2f s), frame loop %.2f s, end-of-run outputs %.2f s\n",
+      wall, wall / std::max(times.steps, 1e-9), run.engine + run.outputs, run.engine,
+      (long long)first_frame - 1, run.outputs, times.total, end_outputs);
 }
 
 }  // namespace
 
 int run_command(const RunOptions& options) {
+  RunTimes run;
   RunOptions opt = options;
   output_thread_wanted();  // a bad PERIFRAC_OUTPUT_THREAD is refused before the set-up's work
   std::optional<RunCheckpoint> resume;
@@ -586,6 +604,7 @@ int run_command(const RunOptions& options) {
   check_run_folder(output_folder(opt), folder_use(opt));
   Simulation sim = set_up_simulation(opt, resume);
   start_engine(sim, opt);
+  auto t = lap(run.started, run.engine);
   // Only rank 0 of a run over MPI ranks gets here (the others serve its engine).
   const std::unique_ptr<RunFolder> folder = claim_output_folder(sim, opt, resume);
   write_rest_outputs(sim, folder->dir());
@@ -596,12 +615,13 @@ int run_command(const RunOptions& options) {
   // Killed after its last checkpoint: finish the end-of-run outputs; nothing else to run.
   if (resume && start.first_frame > sim.scene.frames) return finish_complete_run(output, *resume);
   sim.engine->stats().reset_times();
+  lap(t, run.outputs);
 
   // From here on, SIGINT/SIGTERM ends the run after the frame with a checkpoint.
   const InterruptGuard interrupt;
   LoopTimes times;
   if (const int code = run_frames(sim, opt, output, start, times); code != kExitOk) return code;
-  finish_run(sim, output, start.first_frame, times);
+  finish_run(sim, output, start.first_frame, times, run);
   return kExitOk;
 }
 

@@ -58,7 +58,8 @@ TEST_F(RunOutputThread, WritesTheFilesOfTheSerialOrder) {
 }
 
 // The run ends with its frame loop's split: the parts are measured, none negative, and they add up
-// to the loop's wall time within what lies between them (the progress line, the loop's own work).
+// to the loop's wall time within what lies between them (the progress line, the loop's own work);
+// then the output threads' split and the command's wall time.
 TEST_F(RunOutputThread, EndsWithTheFrameLoopSplit) {
   ASSERT_EQ(run("1", path("split")), 0) << testing::read_all(path("split.log"));
   const std::string log = testing::read_all(path("split.log"));
@@ -108,6 +109,28 @@ TEST_F(RunOutputThread, EndsWithTheFrameLoopSplit) {
   // The fragment files and the frame files are written side by side within a frame's writing.
   EXPECT_LE(fragment_files, writing + 0.01);
   EXPECT_LE(frame_files, writing + 0.01);
+
+  // Last, the command's wall time: the set-up's two parts, the same frame loop and the end-of-run
+  // outputs, which cover it but for the lines printed between them.
+  const size_t run_at = log.find("run        ");
+  ASSERT_NE(run_at, std::string::npos) << log;
+  long long frame0 = -1;
+  double wall = 0, wall_ratio = 0, setup = 0, engine = 0, outputs = 0, loop = 0, end = 0;
+  ASSERT_EQ(
+      std::sscanf(log.c_str() + run_at,
+                  "run %lf s (%lf times the stepping): set-up %lf s (scene and engine %lf s, outputs to "
+                  "frame %lld %lf s), frame loop %lf s, end-of-run outputs %lf s",
+                  &wall, &wall_ratio, &setup, &engine, &frame0, &outputs, &loop, &end),
+      8)
+      << log.substr(run_at, 300);
+  EXPECT_EQ(frame0, 0);
+  EXPECT_GT(engine, 0);
+  EXPECT_NEAR(setup, engine + outputs, 3 * 0.005);
+  EXPECT_NEAR(loop, total, 0.01);
+  EXPECT_NEAR(wall_ratio, wall / steps, 0.01 * wall_ratio + 0.01);
+  const double covered = setup + loop + end;
+  EXPECT_LE(covered, wall + 4 * 0.005);
+  EXPECT_GE(covered, 0.8 * wall - 4 * 0.005);
 }
 
 // A frame's file that cannot be written ends the run with the file's name, a non-zero exit and the
