@@ -12,8 +12,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 #include <utility>
+
+#include "host/geometry/tet_cache.h"
 
 extern char** environ;
 
@@ -71,6 +74,13 @@ void write_nodes(const std::vector<Vec3d>& points, const std::string& path) {
     out << buf;
   }
   if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+// The whole file TetGen is given (written just before).
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Runs argv with stdout and stderr to `log`; returns the exit status (-1 if it did not run).
@@ -198,6 +208,17 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
   }
   switches += "O0nzQ";
   clock.lap("tetgen input files");
+  // The cache (tet_cache.h), unless the caller wants TetGen's own files in its folder.
+  std::optional<TetCache> cache;
+  if (const std::string folder = tet_cache_folder(); !folder.empty() && options.work_dir.empty()) {
+    std::string input = switches + '\n' + read_bytes(dir.file("in.smesh"));
+    if (!options.extra_points.empty()) input += '\n' + read_bytes(dir.file("in.a.node"));
+    cache.emplace(folder, input);
+    if (std::optional<TetMesh> kept = cache->load()) {
+      clock.lap("tets from the cache");
+      return std::move(*kept);
+    }
+  }
   const int status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"));
   clock.lap("tetgen " + switches);
   if (status != 0)
@@ -219,6 +240,7 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
       std::swap(mesh.neighbors[t][0], mesh.neighbors[t][1]);
     }
   clock.lap("tetgen output files");
+  if (cache) cache->store(mesh);
   return mesh;
 }
 
