@@ -53,7 +53,7 @@ class ScopedEnv {
 };
 
 TEST(TetCache, GivesBackTheMeshOfTheSameInputOnly) {
-  test::ScratchDir dir("tetcache");
+  test::ScratchDir dir("tetcache-same");
   const TetMesh mesh = two_tets(0.25);
   EXPECT_FALSE(TetCache(dir.file("c"), "input a").load());  // nothing kept yet
   TetCache(dir.file("c"), "input a").store(mesh);
@@ -65,7 +65,7 @@ TEST(TetCache, GivesBackTheMeshOfTheSameInputOnly) {
 
 // An entry cut short, or with a byte changed, is no entry; storing again mends it.
 TEST(TetCache, IgnoresAnEntryThatIsNotWhole) {
-  test::ScratchDir dir("tetcache");
+  test::ScratchDir dir("tetcache-whole");
   const TetCache cache(dir.file("c"), "input");
   cache.store(two_tets(0.25));
   const uintmax_t size = fs::file_size(cache.path());
@@ -89,7 +89,7 @@ TEST(TetCache, IgnoresAnEntryThatIsNotWhole) {
 
 // With room for two entries, a third removes the one used longest ago.
 TEST(TetCache, KeepsItsFolderWithinItsBound) {
-  test::ScratchDir dir("tetcache");
+  test::ScratchDir dir("tetcache-bound");
   const TetMesh mesh = two_tets(0.25);
   TetCache(dir.file("c"), "first").store(mesh);
   const uint64_t entry = fs::file_size(TetCache(dir.file("c"), "first").path());
@@ -131,7 +131,7 @@ TEST(TetCache, FolderComesFromTheEnvironment) {
 // The same surface tetrahedralized twice: the second time from the cache, the same tets.
 TEST(TetCache, TheSecondTetrahedralizationTakesTheCachedTets) {
   if (find_tetgen().empty()) GTEST_SKIP() << "tetgen is not installed";
-  test::ScratchDir dir("tetcache");
+  test::ScratchDir dir("tetcache-twice");
   ScopedEnv cache("PERIFRAC_TET_CACHE", dir.file("c").c_str());
   const TriMesh sphere = sphere_mesh(1, 0.2);
   std::vector<StageTime> first, second;
