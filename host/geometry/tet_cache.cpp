@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "host/io/byte_file.h"
 #include "host/io/checksum.h"
 
 namespace pd {
@@ -26,11 +27,6 @@ constexpr char kMagic[8] = {'P', 'F', 'T', 'E', 'T', 'S', '0', '1'};
 constexpr uint64_t kSecondBasis = 0x84222325cbf29ce4ull;  // the second hash's start (another basis)
 constexpr size_t kCounts = 4;                             // vertices, tets, neighbours, faces
 constexpr size_t kHeaderBytes = sizeof kMagic + 8 * (2 + kCounts);
-
-template <class T>
-void put(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-}
 
 template <class T>
 void put_all(std::string& out, const std::vector<T>& v) {
@@ -145,11 +141,11 @@ void TetCache::store(const TetMesh& mesh) const {
   put_all(payload, mesh.neighbors);
   put_all(payload, mesh.boundary_faces);
   std::string bytes(kMagic, sizeof kMagic);
-  put(bytes, check_);
-  put(bytes, fnv1a(payload));
+  put_bytes(bytes, check_);
+  put_bytes(bytes, fnv1a(payload));
   for (uint64_t c : {uint64_t(mesh.vertices.size()), uint64_t(mesh.tets.size()),
                      uint64_t(mesh.neighbors.size()), uint64_t(mesh.boundary_faces.size())})
-    put(bytes, c);
+    put_bytes(bytes, c);
   bytes += payload;
   // Written beside the entry and renamed into place: a reader sees the whole entry or none.
   const std::string tmp = path_ + ".tmp." + std::to_string(::getpid());

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "host/geometry/tet_cache.h"
+#include "host/io/byte_file.h"
 
 extern char** environ;
 
@@ -74,13 +75,6 @@ void write_nodes(const std::vector<Vec3d>& points, const std::string& path) {
     out << buf;
   }
   if (!out) throw std::runtime_error("cannot write " + path);
-}
-
-// The whole file TetGen is given (written just before).
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Runs argv with stdout and stderr to `log`; returns the exit status (-1 if it did not run).
@@ -211,8 +205,8 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
   // The cache (tet_cache.h), unless the caller wants TetGen's own files in its folder.
   std::optional<TetCache> cache;
   if (const std::string folder = tet_cache_folder(); !folder.empty() && options.work_dir.empty()) {
-    std::string input = switches + '\n' + read_bytes(dir.file("in.smesh"));
-    if (!options.extra_points.empty()) input += '\n' + read_bytes(dir.file("in.a.node"));
+    std::string input = switches + '\n' + read_file_bytes(dir.file("in.smesh"));
+    if (!options.extra_points.empty()) input += '\n' + read_file_bytes(dir.file("in.a.node"));
     cache.emplace(folder, input);
     if (std::optional<TetMesh> kept = cache->load()) {
       clock.lap("tets from the cache");
