@@ -102,6 +102,10 @@ TetCache::TetCache(std::string folder, std::string_view input, uint64_t bound)
 }
 
 std::optional<TetMesh> TetCache::load() const {
+  // (A file past the folder's bound is no entry of its own making: not read.)
+  std::error_code size_ec;
+  const uintmax_t size = fs::file_size(path_, size_ec);
+  if (size_ec || size > bound_) return std::nullopt;
   std::ifstream in(path_, std::ios::binary);
   if (!in) return std::nullopt;
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
