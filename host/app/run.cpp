@@ -29,6 +29,7 @@
 #include "host/app/time_step_check.h"
 #include "host/fragments/tet_file.h"
 #include "host/fragments/trimtope_file.h"
+#include "host/geometry/stage_time.h"
 #include "host/io/atomic_file.h"
 #include "host/io/frame_file.h"
 #include "host/scene/scene.h"
@@ -161,24 +162,48 @@ struct Simulation {
   Backend backend = Backend::kCpu;
   SetupResult setup;
   std::unique_ptr<Engine> engine;
+  std::vector<StageTime> stages;  // the set-up's stages and their wall times, in order
 };
 
 // Loads the scene with the run's options, makes its particles and reports them; checks the time
 // step and, for a resumed run, that the checkpoint comes from this scene and set-up.
 Simulation set_up_simulation(const RunOptions& opt, const std::optional<RunCheckpoint>& resume) {
   Simulation sim;
+  StageClock clock(&sim.stages);
   Scene& scene = sim.scene;
   scene = load_scene(opt.scene, opt.overrides);
   if (opt.frames >= 0) scene.frames = opt.frames;
   if (opt.steps_per_frame >= 1) scene.steps_per_frame = opt.steps_per_frame;
+  clock.lap("scene file");
   std::string note;
   sim.backend = choose_backend(opt.backend, &note);
+  clock.lap("backend");
   sim.setup = setup_scene_with_patterns(scene, opt.scale, sim.backend);
+  clock.lap("particles");
+  split_last_stage(sim.stages, sim.setup.stages, "", "particles");
   print_setup(scene, sim.setup, opt);
   check_time_step(scene, sim.setup, opt.allow_unstable_dt);
   if (!note.empty()) std::printf("backend    %s\n", note.c_str());
   if (resume) check_resume(*resume, scene, opt.overrides, sim.setup, sim.backend);
   return sim;
+}
+
+// The set-up's stages on one line, those under 10 ms summed as "others".
+void print_setup_stages(const std::vector<StageTime>& stages) {
+  double total = 0, others = 0;
+  std::string line;
+  char buf[64];
+  for (const StageTime& s : stages) {
+    total += s.seconds;
+    if (s.seconds < 0.01) {
+      others += s.seconds;
+      continue;
+    }
+    std::snprintf(buf, sizeof buf, " %.2f s", s.seconds);
+    line += (line.empty() ? "" : ", ") + s.name + buf;
+  }
+  std::snprintf(buf, sizeof buf, "%sothers %.2f s", line.empty() ? "" : ", ", others);
+  std::printf("set-up     %.2f s: %s%s\n", total, line.c_str(), buf);
 }
 
 // Makes the engine (the particles' families) and reports it; dt must not exceed the stable time
@@ -189,6 +214,11 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
   if (opt.explicit_families) sim.setup.input.lattice_families = false;
   sim.engine = make_engine(sim.backend, setup.input);
   Engine& engine = *sim.engine;
+  std::vector<StageTime> engine_stages;
+  for (const SetupStage& s : engine.setup_stages()) engine_stages.push_back({s.name, s.seconds});
+  sim.stages.push_back(
+      {"engine", std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count()});
+  split_last_stage(sim.stages, engine_stages, "engine ", "engine");
   const FamilyStats& fam = engine.family_stats();
   std::printf("device     %s [%s]\n", engine.device_name().c_str(), backend_name(sim.backend));
   std::printf(
@@ -558,14 +588,22 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
   return kExitOk;
 }
 
+// "R times the stepping", or "no steps" for a run of frame 0 alone.
+std::string times_the_stepping(double seconds, double stepping) {
+  if (!(stepping > 0)) return "no steps";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.2f times the stepping", seconds / stepping);
+  return buf;
+}
+
 // The end of a run: the kernel table, the end-of-run outputs and where they are.
 void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, const LoopTimes& times,
                 const RunTimes& run) {
   const Scene& scene = sim.scene;
   std::printf(
-      "frame loop %.2f s (%.2f times the stepping): stepping %.2f s, waiting for the output thread %.2f s, "
+      "frame loop %.2f s (%s): stepping %.2f s, waiting for the output thread %.2f s, "
       "frames read back %.2f s, checks and energy %.2f s, checkpoints %.2f s\n",
-      times.total, times.total / std::max(times.steps, 1e-9), times.steps, times.drain, times.read,
+      times.total, times_the_stepping(times.total, times.steps).c_str(), times.steps, times.drain, times.read,
       times.checks, times.checkpoints);
   const int64_t steps = (scene.frames - first_frame + 1) * scene.steps_per_frame;
   std::printf("kernels (%lld steps, %s):\n", (long long)steps, backend_name(sim.backend));
@@ -585,10 +623,10 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
   std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", output.dir().c_str(),
               (long long)scene.frames + 1, output.fragment_pieces());
   std::printf(
-      "run        %.2f s (%.2f times the stepping): set-up %.2f s (scene and engine %.2f s, outputs to frame "
+      "run        %.2f s (%s): set-up %.2f s (scene and engine %.2f s, outputs to frame "
       "%lld "
       "%.2f s), frame loop %.2f s, end-of-run outputs %.2f s\n",
-      wall, wall / std::max(times.steps, 1e-9), run.engine + run.outputs, run.engine,
+      wall, times_the_stepping(wall, times.steps).c_str(), run.engine + run.outputs, run.engine,
       (long long)first_frame - 1, run.outputs, times.total, end_outputs);
 }
 
@@ -605,10 +643,14 @@ int run_command(const RunOptions& options) {
   Simulation sim = set_up_simulation(opt, resume);
   start_engine(sim, opt);
   auto t = lap(run.started, run.engine);
+  StageClock clock(&sim.stages);
   // Only rank 0 of a run over MPI ranks gets here (the others serve its engine).
   const std::unique_ptr<RunFolder> folder = claim_output_folder(sim, opt, resume);
+  clock.lap("output folder");
   write_rest_outputs(sim, folder->dir());
+  clock.lap("rest files");
   RunOutput output(sim.scene, sim.setup, *sim.engine, sim.backend, opt.blend_frames, *folder);
+  clock.lap("fragment set-up");
 
   // A fresh run writes frame 0; a resumed one restores the state after its checkpointed frame.
   const RunStart start = resume ? restore_run(sim, output, *resume) : start_fresh_run(sim, output);
@@ -616,6 +658,8 @@ int run_command(const RunOptions& options) {
   if (resume && start.first_frame > sim.scene.frames) return finish_complete_run(output, *resume);
   sim.engine->stats().reset_times();
   lap(t, run.outputs);
+  clock.lap(resume ? "restore" : "frame 0");
+  print_setup_stages(sim.stages);
 
   // From here on, SIGINT/SIGTERM ends the run after the frame with a checkpoint.
   const InterruptGuard interrupt;

@@ -1,6 +1,7 @@
 #include "host/app/shards_pattern.h"
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -148,7 +149,11 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
 
 SetupResult setup_scene_with_patterns(const Scene& scene, double scale, Backend backend) {
   SetupResult setup = setup_scene(scene, setup_options_for(scene, scale, backend));
+  const auto start = std::chrono::steady_clock::now();
   apply_shards_pattern(scene, setup, scale);
+  if (setup.pattern.bodies > 0)
+    setup.stages.push_back(
+        {"shards pattern", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
   for (const auto& [body_material, dust_material] : setup.pattern.dust_materials)
     copy_material_summary(setup.materials, body_material, dust_material, " (shards dust)");
   return setup;

@@ -28,4 +28,16 @@ class StageClock {
   std::chrono::steady_clock::time_point last_;
 };
 
+// Replaces the last stage of `stages` by what `parts` leave of it, named `rest` (left out when
+// nothing is left), and then `parts`, each named with `prefix` before its own name.
+inline void split_last_stage(std::vector<StageTime>& stages, const std::vector<StageTime>& parts,
+                             const std::string& prefix, const std::string& rest) {
+  if (stages.empty() || parts.empty()) return;
+  StageTime whole = stages.back();
+  stages.pop_back();
+  for (const StageTime& part : parts) whole.seconds -= part.seconds;
+  if (whole.seconds > 0) stages.push_back({rest, whole.seconds});
+  for (const StageTime& part : parts) stages.push_back({prefix + part.name, part.seconds});
+}
+
 }  // namespace pd

@@ -235,6 +235,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     throw SceneError(scene.path, "--scale",
                      "must be a number in (0, 1000], got " + std::to_string(options.scale));
   SetupResult result;
+  StageClock clock(&result.stages);
   SimulationInput& in = result.input;
   ParticleSet& ps = in.particles;
   Random rng(scene.seed);
@@ -275,6 +276,9 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
       const bool from_file = body.shape == "mesh" && e.path() == body.mesh_path;
       throw SceneError(scene.path, key + (from_file ? ".mesh" : ".particles"), e.what());
     }
+    // The body's particle build: its own stages, and what they leave out (the solid, the shell).
+    clock.lap(key + " particles");
+    split_last_stage(result.stages, geometry.stages, key + " ", key + " solid");
     total += int64_t(geometry.size());
     if (total > budget) throw too_many(total);
 
@@ -334,6 +338,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
              flags, group);
     }
     if (geometry.kind == ElementKind::voronoi) result.voronoi.push_back({base, std::move(geometry)});
+    clock.lap(key + " particle table");
   }
 
   result.shards = assign_shards(scene, ps, in.materials);
@@ -374,6 +379,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     in.motion.projectiles.push_back(p.path);
   }
   in.contact = scene.contact;
+  clock.lap("shards, colliders and checks");
   return result;
 }
 

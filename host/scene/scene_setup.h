@@ -9,6 +9,7 @@
 #include "host/fragments/embedded_mesh.h"
 #include "host/geometry/element_adjacency.h"
 #include "host/geometry/particle_geometry.h"
+#include "host/geometry/stage_time.h"
 #include "host/geometry/tri_mesh.h"
 #include "host/scene/scene.h"
 #include "host/scene/scene_shards.h"
@@ -58,6 +59,7 @@ struct SetupResult {
   std::vector<TriMesh> collider_meshes;  // per collider: a mesh collider's surface in its frame, else empty
   ShardReport shards;                    // [[shards]]: cells made (scene_shards.h)
   ShardsPatternReport pattern;           // [[shards]] patterns, once applied (host/app/shards_pattern.h)
+  std::vector<StageTime> stages;         // wall time of the set-up's stages, in order
 };
 
 // The [materials.NAME] table of `name` (checked by the scene loader to exist).

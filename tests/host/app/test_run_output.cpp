@@ -131,6 +131,17 @@ TEST_F(RunOutputThread, EndsWithTheFrameLoopSplit) {
   const double covered = setup + loop + end;
   EXPECT_LE(covered, wall + 4 * 0.005);
   EXPECT_GE(covered, 0.8 * wall - 4 * 0.005);
+
+  // The set-up's stages, printed before the frame loop: their sum is the set-up but for the lines
+  // printed between them; the engine's families and frame 0 among them (or in "others").
+  const size_t stages_at = log.find("set-up     ");
+  ASSERT_NE(stages_at, std::string::npos) << log;
+  double staged = 0;
+  ASSERT_EQ(std::sscanf(log.c_str() + stages_at, "set-up %lf s: ", &staged), 1) << log.substr(stages_at, 300);
+  const std::string stages = log.substr(stages_at, log.find('\n', stages_at) - stages_at);
+  EXPECT_NE(stages.find("others "), std::string::npos) << stages;
+  EXPECT_LE(staged, setup + 2 * 0.005) << stages;
+  EXPECT_GE(staged, 0.8 * setup - 2 * 0.005) << stages;
 }
 
 // A frame's file that cannot be written ends the run with the file's name, a non-zero exit and the
