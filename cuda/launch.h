@@ -461,7 +461,7 @@ void launch_stability_rate(Exec& ex, ParticlesView p, BondsView b, MaterialTable
 }
 
 // Bit k of words[w]: whether slot 32 w + k holds a broken bond (its neighbor is ~j < 0); changed[w]
-// the bits that differ from words[w] as it was (Engine::update_bonds).
+// the bits that differ from words[w] as it was (Engine::bond_changes).
 template <class Exec>
 void launch_broken_bits(Exec& ex, ArrayView<const int32_t> neighbor, ArrayView<uint32_t> words,
                         ArrayView<uint32_t> changed) {

@@ -62,6 +62,27 @@ struct BondLists {
   }
 };
 
+// What changed in an engine's bonds since a reader's previous look (Engine::bond_changes): the
+// bonds whole, or the slots whose neighbour index flipped between j and ~j (broken, or whole again
+// after a restore), slot s as bit s % 32 of word s / 32.
+struct BondChanges {
+  bool whole = true;
+  BondLists bonds;                // when whole
+  std::vector<uint32_t> flipped;  // when not
+  // Brings `into`, the reader's bonds as of its previous look, up to date (the whole bonds moved).
+  void apply_to(BondLists& into) {
+    if (whole) {
+      into = std::move(bonds);
+      return;
+    }
+    for (size_t w = 0; w < flipped.size(); ++w)
+      for (uint32_t c = flipped[w]; c != 0; c &= c - 1) {
+        int32_t& j = into.neighbor[32 * w + size_t(__builtin_ctz(c))];
+        j = ~j;
+      }
+  }
+};
+
 // Everything a run changes, for checkpoints: the state table's saved fields (cuda/state_fields.h)
 // as host vectors, named as there. Restoring it into an engine built from the same input
 // continues the run bit for bit on the same backend; the rest (reference positions, masses,
@@ -118,9 +139,20 @@ class Engine {
   virtual double time() const = 0;
   virtual void read_state(ParticleState& out) = 0;
   virtual void read_bonds(BondLists& out) = 0;
-  // Brings `bonds`, what the previous call gave, up to date: the first call reads them whole, later
-  // ones only which slots changed (one bit per slot), which is what a frame's output needs.
-  virtual void update_bonds(BondLists& bonds) { read_bonds(bonds); }
+  // What changed since the previous call, for a reader whose bonds have `slots` slots: the first
+  // call (or one whose slots are not the engine's, e.g. SIZE_MAX) gives the bonds whole, later ones
+  // only which slots flipped (one bit per slot), which is what a frame's output needs.
+  virtual void bond_changes(size_t slots, BondChanges& out) {
+    (void)slots;
+    out.whole = true;
+    read_bonds(out.bonds);
+  }
+  // Brings `bonds`, what the previous call gave, up to date (bond_changes applied).
+  void update_bonds(BondLists& bonds) {
+    BondChanges changes;
+    bond_changes(bonds.neighbor.size(), changes);
+    changes.apply_to(bonds);
+  }
   virtual int64_t broken_bonds() = 0;
   // Energy terms at the current state, and the work and released energy since the start.
   virtual Energy energy() = 0;

@@ -225,24 +225,18 @@ class EngineImpl final : public Engine {
   void read_bonds(BondLists& out) override { download_bonds(state_, out); }
 
   // The slots' broken bits as the previous call left them, on the backend; the slots whose bit
-  // changed since are flipped (j and ~j) in `bonds`.
-  void update_bonds(BondLists& bonds) override {
+  // changed since are the flipped ones.
+  void bond_changes(size_t slots, BondChanges& out) override {
     const size_t words = (state_.neighbor.size() + 31) / 32;
-    const bool first = broken_bits_.size() != words || bonds.neighbor.size() != state_.neighbor.size();
+    out.whole = broken_bits_.size() != words || slots != state_.neighbor.size();
     if (broken_bits_.size() != words) {
       broken_bits_ = mem_.template make<uint32_t>(words);
       changed_bits_ = mem_.template make<uint32_t>(words);
     }
-    if (first) read_bonds(bonds);
+    if (out.whole) read_bonds(out.bonds);
     launch_broken_bits(exec_, ArrayView<const int32_t>(view_of(state_.neighbor)), view_of(broken_bits_),
                        view_of(changed_bits_));
-    if (first) return;
-    changed_bits_.download(changed_host_);
-    for (size_t w = 0; w < words; ++w)
-      for (uint32_t c = changed_host_[w]; c != 0; c &= c - 1) {
-        int32_t& j = bonds.neighbor[32 * w + size_t(__builtin_ctz(c))];
-        j = ~j;
-      }
+    if (!out.whole) changed_bits_.download(out.flipped);
   }
 
   int64_t broken_bonds() override { return reduce_broken_bonds(exec_, bonds(), state_.intact.data()); }
@@ -639,10 +633,9 @@ class EngineImpl final : public Engine {
   bool graphs_ = false;     // the step as graphs of kGraphSteps steps (step_graphs.h)
   bool capturing_ = false;  // a graph is being recorded: no host work between the launches
   int64_t graphed_steps_ = 0;
-  DeviceArray<uint32_t, Exec> broken_bits_, changed_bits_;  // update_bonds' bits
-  std::vector<uint32_t> changed_host_;
-  int breaking_hold_ = 0;       // passes left to run with the breaking pass
-  bool pass_screened_ = false;  // the form of the pass being queued
+  DeviceArray<uint32_t, Exec> broken_bits_, changed_bits_;  // bond_changes' bits
+  int breaking_hold_ = 0;                                   // passes left to run with the breaking pass
+  bool pass_screened_ = false;                              // the form of the pass being queued
   KernelFeatures features_;
   bool body_forces_ = false;
   int64_t step_ = 0;

@@ -337,8 +337,7 @@ RunStart start_fresh_run(Simulation& sim, RunOutput& output) {
                          : "the energy at the start is not finite (kinetic " + finite_or_not(e.kinetic) +
                                ", strain " + finite_or_not(e.strain) + ", gravity " +
                                finite_or_not(e.gravity) + "): the scene's numbers are out of range");
-  output.write_frame(0, start.energy0);
-  output.drain();
+  output.write_frame(0, start.energy0);  // (its outputs made while the first frame steps)
   return start;
 }
 
@@ -551,7 +550,7 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
       return kExitInterrupted;
     }
     t = lap(t, times.steps);
-    output.wait_for_bonds();  // the last frame's fragments found (its files may still be written)
+    output.wait_for_room();  // (the output threads may still be making the frames before)
     t = lap(t, times.drain);
     if (stopped_by_non_finite(sim, frame, output.dir())) return kExitBlowUp;
     const Energy energy = engine.energy();
@@ -615,10 +614,11 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
   const double wall = std::chrono::duration<double>(lap(end, end_outputs) - run.started).count();
   const RunOutput::Times& out = output.times();
   std::printf(
-      "output threads over %lld frames: fragments found %.2f s and crack surfaces taken %.2f s on the first "
-      "(longest frame %.3f s), the frames written %.2f s on the second (longest %.3f s; the fragment files "
+      "output threads over %lld frames: fragment outputs set up %.2f s, fragments found %.2f s and crack "
+      "surfaces taken %.2f s on the first (longest frame %.3f s), the frames written %.2f s on the second "
+      "(longest %.3f s; the fragment files "
       "%.2f s beside the frame files %.2f s)\n",
-      (long long)out.frames, out.analysis, out.crack_surfaces, out.longest_analysis, out.writing,
+      (long long)out.frames, out.setup, out.analysis, out.crack_surfaces, out.longest_analysis, out.writing,
       out.longest_writing, out.fragment_files, out.frame_files);
   std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", output.dir().c_str(),
               (long long)scene.frames + 1, output.fragment_pieces());
@@ -650,7 +650,7 @@ int run_command(const RunOptions& options) {
   write_rest_outputs(sim, folder->dir());
   clock.lap("rest files");
   RunOutput output(sim.scene, sim.setup, *sim.engine, sim.backend, opt.blend_frames, *folder);
-  clock.lap("fragment set-up");
+  clock.lap("output set-up");
 
   // A fresh run writes frame 0; a resumed one restores the state after its checkpointed frame.
   const RunStart start = resume ? restore_run(sim, output, *resume) : start_fresh_run(sim, output);

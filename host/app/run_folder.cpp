@@ -92,6 +92,29 @@ bool remove_output(const std::string& dir, const std::string& relative) {
   return true;
 }
 
+// Moves `relative` out of `dir` to `aside` (on the same file system: a rename), removing the
+// folders it leaves empty on the way up (not `dir`); removes it where it cannot be moved.
+bool set_aside(const std::string& dir, const std::string& relative, const fs::path& aside) {
+  std::error_code ec;
+  const fs::path path = fs::path(dir) / relative;
+  if (fs::is_directory(fs::symlink_status(path, ec))) return false;
+  fs::rename(path, aside, ec);
+  if (ec) return remove_output(dir, relative);
+  for (fs::path parent = fs::path(relative).parent_path(); !parent.empty(); parent = parent.parent_path())
+    if (!fs::remove(fs::path(dir) / parent, ec)) break;  // (only removes an empty folder)
+  return true;
+}
+
+// The folders of files set aside in `dir`, this process's and any a killed run left.
+std::vector<fs::path> removing_folders(const std::string& dir) {
+  std::vector<fs::path> folders;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec))
+    if (e.path().filename().string().rfind(kRemovingFolderPrefix, 0) == 0 && e.is_directory(ec))
+      folders.push_back(e.path());
+  return folders;
+}
+
 // Whether the folder holds a run's outputs without a manifest (a perifrac from before manifests):
 // those files cannot be told from the user's, so the folder is refused rather than mixed.
 std::string unmanaged_run_file(const std::string& dir) {
@@ -238,10 +261,15 @@ RunFolder::RunFolder(std::string dir, FolderUse use) : dir_(std::move(dir)) {
     found_ = check_run_folder(dir_, use);
     if (use == FolderUse::kResume || !found_) return;
     const bool ended_before_first_frame = found_->frames_written < 0;
-    // Replace it: exactly the files its journal lists, then its bookkeeping.
-    size_t removed = 0;
-    for (const auto& [path, frame] : first_frames(read_journal(dir_))) removed += remove_output(dir_, path);
+    // Replace it: exactly the files its journal lists, then its bookkeeping. The files are moved
+    // aside and removed on a thread while the new run goes on: removing a long run's gigabytes
+    // took the vase's run 10 s (bench/NOTES.md).
+    const fs::path aside = fs::path(dir_) / (kRemovingFolderPrefix + std::to_string(::getpid()));
     std::error_code ec;
+    fs::create_directory(aside, ec);
+    size_t removed = 0, moved = 0;
+    for (const auto& [path, frame] : first_frames(read_journal(dir_)))
+      removed += set_aside(dir_, path, aside / std::to_string(moved++));
     fs::remove(fs::path(dir_) / kJournalFileName, ec);
     fs::remove(fs::path(dir_) / kManifestFileName, ec);
     if (!ended_before_first_frame)
@@ -252,9 +280,16 @@ RunFolder::RunFolder(std::string dir, FolderUse use) : dir_(std::move(dir)) {
     ::close(lock_fd_);
     throw;
   }
+  // The files set aside, and any a killed run left, removed beside the run.
+  if (const std::vector<fs::path> folders = removing_folders(dir_); !folders.empty())
+    remover_ = std::thread([folders] {
+      std::error_code ec;
+      for (const fs::path& f : folders) fs::remove_all(f, ec);
+    });
 }
 
 RunFolder::~RunFolder() {
+  if (remover_.joinable()) remover_.join();
   journal_.reset();
   ::close(lock_fd_);  // releases the lock; the lock file stays (removing it would race a new run)
 }

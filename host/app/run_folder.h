@@ -13,6 +13,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace pd {
@@ -20,6 +21,9 @@ namespace pd {
 inline constexpr const char* kLockFileName = "run.lock";
 inline constexpr const char* kManifestFileName = "run.manifest";
 inline constexpr const char* kJournalFileName = "run.files";
+// Where --overwrite moves the previous run's files, to be removed while the new run goes on
+// (followed by the process id; a folder left by a killed run is removed by the next).
+inline constexpr const char* kRemovingFolderPrefix = ".perifrac-removing-";
 
 // A folder that cannot be used for this run; the message names it and what to do.
 class RunFolderError : public std::runtime_error {
@@ -71,7 +75,8 @@ class RunFolder {
  public:
   // Makes `dir` and takes its lock (refusing a folder another process runs in), then checks what
   // it holds for `use`: see FolderUse. A folder whose run ended before its first frame is taken
-  // over. Throws RunFolderError naming the folder and what to do.
+  // over. Throws RunFolderError naming the folder and what to do. A run replaced moves its files
+  // aside at once; they are removed on a thread of their own, which the destructor waits for.
   RunFolder(std::string dir, FolderUse use);
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;
@@ -99,6 +104,7 @@ class RunFolder {
   std::optional<RunManifest> found_;
   RunManifest manifest_;
   std::optional<OutputJournal> journal_;
+  std::thread remover_;  // removes the files moved aside
 };
 
 }  // namespace pd

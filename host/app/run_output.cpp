@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -44,13 +45,6 @@ FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<in
   return f;
 }
 
-// The engine's bonds as built, before the first step.
-BondLists bonds_as_built(Engine& engine) {
-  BondLists bonds;
-  engine.read_bonds(bonds);
-  return bonds;
-}
-
 // The Voronoi bodies' cells, the elements of their particles.
 std::vector<VoronoiElements> voronoi_elements(const SetupResult& setup) {
   std::vector<VoronoiElements> elements;
@@ -65,6 +59,8 @@ std::vector<VoronoiElements> voronoi_elements(const SetupResult& setup) {
 struct RunOutput::Frame {
   int64_t frame = 0;
   FrameData data;
+  bool bonds_changed = false;  // frames after the first: `changes` brings the bonds to this frame
+  BondChanges changes;
   Energy energy;
   std::vector<Collider> colliders;
   std::function<void(const std::string&)> done;
@@ -75,25 +71,54 @@ struct RunOutput::Frame {
 RunOutput::RunOutput(const Scene& scene, const SetupResult& setup, Engine& engine, Backend backend,
                      int blend_frames, RunFolder& folder)
     : scene_(scene),
+      setup_(setup),
       engine_(engine),
       particles_(setup.input.particles),
       folder_(folder),
       out_(folder.dir()),
+      blend_frames_(blend_frames),
       live_(scene.render && scene.render->every > 0
                 ? std::make_unique<LiveRender>(scene, out_, backend_name(backend))
                 : nullptr),
       series_(out_, "particles"),
-      bonds_(bonds_as_built(engine)),
-      fragments_(setup.input, bonds_, {out_, blend_frames}, setup.adjacency, setup.embedded,
-                 voronoi_elements(setup)),
       energy_log_(out_ + "/energy.csv"),
       fragment_csv_(out_ + "/" + kFragmentLogFileName),
       colliders_(out_, setup.input, setup.collider_meshes, scene.write_vtk) {
-  if (const FaceLinks& links = fragments_.face_links(); links.indirect() + links.unlinked() > 0)
+  // The bonds as built (before the first step or a restore), which later frames' changes update.
+  BondChanges built;
+  engine.bond_changes(std::numeric_limits<size_t>::max(), built);
+  bonds_ = std::move(built.bonds);
+  count_ = bonds_.count;
+  slots_ = bonds_.neighbor.size();
+  // A frame's outputs, queued while the engine steps on: the frames ahead are bounded by memory.
+  const size_t frame_bytes =
+      particles_.size() * (2 * sizeof(Vec3) + sizeof(float) + sizeof(int32_t)) + slots_ / 8 + 1;
+  frames_ahead_ = std::clamp<size_t>(kOutputQueueBytes / frame_bytes, 1, kMostFramesAhead);
+  // The fragment outputs are set up on the first thread, beside frame 0 and the first steps.
+  if (!threaded_) {
+    set_up_fragments();
+    return;
+  }
+  analysing_ = std::thread([this] {
+    try {
+      set_up_fragments();
+    } catch (...) {
+      fail(std::current_exception());
+    }
+  });
+}
+
+void RunOutput::set_up_fragments() {
+  const auto start = std::chrono::steady_clock::now();
+  fragments_ =
+      std::make_unique<FragmentOutput>(setup_.input, bonds_, FragmentOutputOptions{out_, blend_frames_},
+                                       setup_.adjacency, setup_.embedded, voronoi_elements(setup_));
+  if (const FaceLinks& links = fragments_->face_links(); links.indirect() + links.unlinked() > 0)
     std::printf(
         "elements   %zu touching pairs farther apart than the horizon: %zu hold through common "
         "neighbours, %zu have no bond path (cracks from the start)\n",
         links.indirect() + links.unlinked(), links.indirect(), links.unlinked());
+  lap(start, times_.setup);
 }
 
 RunOutput::~RunOutput() {
@@ -103,56 +128,54 @@ RunOutput::~RunOutput() {
 
 void RunOutput::write_frame(int64_t frame, const Energy& energy,
                             std::function<void(const std::string&)> done) {
-  wait_for_bonds();
+  wait_for_room();
   auto job = std::make_shared<Frame>();
   job->frame = frame;
   job->energy = energy;
-  job->data = frame_data(engine_, particles_, bonds_.count, frame, state_);
-  if (frame > 0) engine_.update_bonds(bonds_);
+  job->data = frame_data(engine_, particles_, count_, frame, state_);
+  if (frame > 0) {
+    job->bonds_changed = true;
+    engine_.bond_changes(slots_, job->changes);
+  }
   job->colliders = engine_.colliders();
   job->done = std::move(done);
   if (!threaded_) {
-    analyse(*job, [] {});
+    analyse(*job);
     return write(*job);
   }
-  // The first thread: after the previous frame's analysis, this one's; the bonds are released
-  // once its fragments are found, or with the first failure (no later frame is made after one).
-  // Then, after the previous frame's writing, the second thread writes this frame.
-  auto released = std::make_shared<std::promise<void>>();
-  bonds_released_ = released->get_future();
-  analysing_ = std::thread([this, job, released, previous = std::move(analysing_)]() mutable {
+  // The first thread: after the previous frame's analysis (and the set-up), this one's, unless a
+  // frame failed (no later frame is made after one). Then, after the previous frame's writing,
+  // the second thread writes this frame.
+  auto analysed = std::make_shared<std::promise<void>>();
+  in_flight_.push_back(analysed->get_future());
+  analysing_ = std::thread([this, job, analysed, previous = std::move(analysing_)]() mutable {
     if (previous.joinable()) previous.join();
-    bool given = false;
     if (!failure()) {
       try {
-        analyse(*job, [&] {
-          released->set_value();
-          given = true;
-        });
+        analyse(*job);
       } catch (...) {
         fail(std::current_exception());
       }
     }
     if (writing_.joinable()) writing_.join();
-    const std::exception_ptr failed = failure();
-    if (!given) released->set_exception(failed);
-    if (failed) return;
-    writing_ = std::thread([this, job] {
-      try {
-        write(*job);
-      } catch (...) {
-        fail(std::current_exception());
-      }
-    });
+    if (!failure())
+      writing_ = std::thread([this, job] {
+        try {
+          write(*job);
+        } catch (...) {
+          fail(std::current_exception());
+        }
+      });
+    analysed->set_value();
   });
 }
 
-void RunOutput::analyse(Frame& job, const std::function<void()>& release_bonds) {
+void RunOutput::analyse(Frame& job) {
   const auto start = std::chrono::steady_clock::now();
-  job.stats = fragments_.analyse(job.data, bonds_);
+  if (job.bonds_changed) job.changes.apply_to(bonds_);
+  job.stats = fragments_->analyse(job.data, bonds_);
   auto t = lap(start, times_.analysis);
-  release_bonds();
-  job.files = fragments_.files_of(job.data);
+  job.files = fragments_->files_of(job.data);
   t = lap(t, times_.crack_surfaces);
   times_.longest_analysis =
       std::max(times_.longest_analysis, std::chrono::duration<double>(t - start).count());
@@ -171,7 +194,7 @@ void RunOutput::write(Frame& job) {
   });
   try {
     const auto t = std::chrono::steady_clock::now();
-    fragments_.write_files(f, job.files);
+    fragments_->write_files(f, job.files);
     lap(t, times_.fragment_files);
   } catch (...) {
     frame_files.wait();  // (it reads `job`)
@@ -204,15 +227,18 @@ std::exception_ptr RunOutput::failure() {
   return failure_;
 }
 
-void RunOutput::wait_for_bonds() {
-  if (bonds_released_.valid()) bonds_released_.get();
-  if (const std::exception_ptr e = failure()) std::rethrow_exception(e);  // a frame's writing failed
+void RunOutput::wait_for_room() {
+  while (in_flight_.size() >= frames_ahead_) {
+    in_flight_.front().wait();
+    in_flight_.pop_front();
+  }
+  if (const std::exception_ptr e = failure()) std::rethrow_exception(e);  // a frame's outputs failed
 }
 
 void RunOutput::drain() {
   if (analysing_.joinable()) analysing_.join();
   if (writing_.joinable()) writing_.join();
-  bonds_released_ = {};
+  in_flight_.clear();
   if (std::exception_ptr e = failure()) {
     failure_ = nullptr;
     std::rethrow_exception(e);
@@ -220,7 +246,8 @@ void RunOutput::drain() {
 }
 
 void RunOutput::restore(RunCheckpoint& c) {
-  fragments_.smoother().restore(std::move(c.smoother));
+  drain();  // (the fragment outputs set up)
+  fragments_->smoother().restore(std::move(c.smoother));
   colliders_.restore(c.series);
   series_.restore(std::move(c.series));
   energy_log_.restore(std::move(c.energy_log));
@@ -232,20 +259,20 @@ void RunOutput::save(RunCheckpoint& c) {
   c.energy_log = energy_log_.text();
   c.fragment_log = fragment_csv_.text();
   c.series = series_.entries();
-  c.smoother = fragments_.smoother().history();
+  c.smoother = fragments_->smoother().history();
 }
 
 void RunOutput::finish_complete_run() {
   drain();
   engine_.read_bonds(bonds_);
-  fragments_.find_components(bonds_);
-  fragments_.write_meshes();
+  fragments_->find_components(bonds_);
+  fragments_->write_meshes();
 }
 
 void RunOutput::finish() {
   drain();
   if (live_) live_->finish();
-  fragments_.write_meshes();
+  fragments_->write_meshes();
 }
 
 }  // namespace pd

@@ -1,13 +1,16 @@
 // The per-frame outputs of a run in its output folder (frame files, the VTK series, the fragment
 // outputs, the energy log and, with a [render] block, the frames rendered as they come), made in
-// a pipeline beside the engine: the frame loop reads a frame back and steps on; a first thread
-// finds the frame's fragments (the only stage that reads the bonds) and takes what its files
-// need; a second writes them while the first goes on to the next frame. Frames are written in
-// order, each file as the serial order writes it (PERIFRAC_OUTPUT_THREAD=0, for measurements).
+// a pipeline beside the engine: the frame loop reads a frame back (its particles, and which bonds
+// changed) and steps on; a first thread sets up the fragment outputs, then per frame brings its
+// own copy of the bonds up to date, finds the frame's fragments and takes what its files need; a
+// second writes them while the first goes on to the next frame. The frame loop runs up to a few
+// frames ahead of the first thread (as memory allows). Frames are written in order, each file as
+// the serial order writes it (PERIFRAC_OUTPUT_THREAD=0, for measurements).
 #pragma once
 
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <exception>
 #include <functional>
 #include <future>
@@ -41,8 +44,9 @@ std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point 
 
 class RunOutput {
  public:
-  // Sets up the fragment outputs from the engine's bonds as built (before the first step or a
-  // restore) and reports touching elements farther apart than the horizon.
+  // Reads the engine's bonds as built (before the first step or a restore), from which the fragment
+  // outputs are set up on the first thread (which reports touching elements farther apart than
+  // the horizon).
   RunOutput(const Scene& scene, const SetupResult& setup, Engine& engine, Backend backend, int blend_frames,
             RunFolder& folder);
   ~RunOutput();  // waits for the frames being made (an error of a run already failing is dropped)
@@ -51,18 +55,18 @@ class RunOutput {
 
   const std::string& dir() const { return out_; }
   RunFolder& folder() { return folder_; }
-  size_t fragment_pieces() const { return fragments_.components().count(); }
+  size_t fragment_pieces() const { return fragments_->components().count(); }  // (after finish())
 
   // Makes frame `frame`'s outputs from the engine's current state, `energy` its energy. What needs
-  // the engine happens now (the frame's particles and bonds read back, the colliders' poses
-  // copied); the fragments, files, the energy log's line, rendering, the manifest and then `done`
-  // (called with the fragment statistics' line) come on the output threads. Waits first for the
-  // previous frame's fragments (wait_for_bonds).
+  // the engine happens now (the frame's particles and bonds' changes read back, the colliders'
+  // poses copied); the fragments, files, the energy log's line, rendering, the manifest and then
+  // `done` (called with the fragment statistics' line) come on the output threads. Waits first for
+  // room in the queue (wait_for_room).
   void write_frame(int64_t frame, const Energy& energy, std::function<void(const std::string&)> done = {});
 
-  // Waits until the frame being analysed no longer reads the bonds; rethrows the failure of a
-  // frame's outputs (the first one; no later frame is made after it).
-  void wait_for_bonds();
+  // Waits while the first thread has as many frames ahead of it as the queue holds; rethrows the
+  // failure of a frame's outputs (the first one; no later frame is made after it).
+  void wait_for_room();
 
   // Waits for every frame being made; rethrows the first failure.
   void drain();
@@ -81,6 +85,7 @@ class RunOutput {
   // Where the output threads' time went over the frames made so far (read after drain()).
   struct Times {
     int64_t frames = 0;
+    double setup = 0;             // the fragment outputs set up, on the first thread before frame 0
     double analysis = 0;          // finding, fitting and splitting (the bonds held), on the first thread
     double crack_surfaces = 0;    // then taking the files' data, the crack surface built
     double writing = 0;           // each frame's writing, start to end, on the second thread
@@ -93,32 +98,42 @@ class RunOutput {
 
  private:
   struct Frame;  // a frame on its way through the output threads
-  // The frame's fragments (`release_bonds` called once they no longer need the bonds), then what
-  // its files need; on the first thread.
-  void analyse(Frame& job, const std::function<void()>& release_bonds);
+  // The fragment outputs, from the bonds as built; on the first thread.
+  void set_up_fragments();
+  // The bonds brought to the frame, its fragments, then what its files need; on the first thread.
+  void analyse(Frame& job);
   // The frame's files, the manifest's record of them, the live render and `done`; on the second.
   void write(Frame& job);
   void fail(std::exception_ptr e);
   std::exception_ptr failure();
 
+  // The queue's memory for frames ahead of the first thread, and its most frames.
+  static constexpr size_t kOutputQueueBytes = size_t(1) << 30;
+  static constexpr size_t kMostFramesAhead = 16;
+
   const Scene& scene_;
+  const SetupResult& setup_;
   Engine& engine_;
   const ParticleSet& particles_;
   RunFolder& folder_;
   std::string out_;
+  int blend_frames_ = 0;
   std::unique_ptr<LiveRender> live_;
   PvdSeries series_;
-  ParticleState state_;  // the engine's state as last read back (its memory kept for the next frame)
-  BondLists bonds_;
-  FragmentOutput fragments_;
+  ParticleState state_;         // the engine's state as last read back (its memory kept for the next frame)
+  std::vector<int32_t> count_;  // each particle's bonds as built (the frame loop's damage)
+  size_t slots_ = 0;            // bond slots as built
+  size_t frames_ahead_ = 1;     // frames the frame loop may run ahead of the first thread
+  BondLists bonds_;             // the frame being analysed's bonds (the first thread's)
+  std::unique_ptr<FragmentOutput> fragments_;  // set up on the first thread
   EnergyLog energy_log_;
   FragmentLog fragment_csv_;
   ColliderOutput colliders_;
   bool threaded_ = output_thread_wanted();
-  Times times_;                       // each field written by one thread, read after drain()
-  std::thread analysing_;             // the last frame given to analyse
-  std::thread writing_;               // the last frame given to write (set by the analysing threads)
-  std::future<void> bonds_released_;  // the last frame's fragments found (wait_for_bonds)
+  Times times_;                              // each field written by one thread, read after drain()
+  std::thread analysing_;                    // the last frame given to analyse (or the set-up)
+  std::thread writing_;                      // the last frame given to write (set by the analysing threads)
+  std::deque<std::future<void>> in_flight_;  // the frames given to analyse and not known to be done
   std::mutex failure_mutex_;
   std::exception_ptr failure_;  // the first failure of a frame's outputs
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -135,6 +136,30 @@ TEST(EngineReadBack, UpdatedBondsAreTheWholeRead) {
   e->read_bonds(whole);
   EXPECT_EQ(kept.neighbor, whole.neighbor) << "after the restore";
   EXPECT_EQ(kept.count, whole.count);
+}
+
+// Bond changes taken frame by frame and applied later, in order, to a copy of the bonds as built
+// give each frame's whole read (the output threads apply them frames behind the engine).
+TEST(EngineReadBack, BondChangesAppliedLaterGiveEachFramesBonds) {
+  const SimulationInput in = testing::pulled_apart(lattice_block(16, 8, 8, 1e-3, 2e-4), 16, 1e-3, 2);
+  auto e = make_cpu_engine(in);
+  BondChanges built;
+  e->bond_changes(std::numeric_limits<size_t>::max(), built);
+  ASSERT_TRUE(built.whole);
+  BondLists behind = built.bonds;
+  std::vector<BondChanges> changes(5);
+  std::vector<BondLists> whole(5);
+  for (int frame = 0; frame < 5; ++frame) {
+    e->advance(40);
+    e->bond_changes(behind.neighbor.size(), changes[size_t(frame)]);
+    EXPECT_FALSE(changes[size_t(frame)].whole) << "frame " << frame;
+    e->read_bonds(whole[size_t(frame)]);
+  }
+  ASSERT_NE(whole.front().neighbor, whole.back().neighbor) << "the run must break bonds between frames";
+  for (int frame = 0; frame < 5; ++frame) {
+    changes[size_t(frame)].apply_to(behind);
+    ASSERT_EQ(behind.neighbor, whole[size_t(frame)].neighbor) << "frame " << frame;
+  }
 }
 
 // The set-up's stages, in the order they run, each timed; pre-cracks and the state-based

@@ -118,6 +118,26 @@ TEST_F(RunFolderTest, OverwriteRemovesExactlyThePreviousRunsFiles) {
   EXPECT_FALSE(has("frame_00001.pfr"));
 }
 
+// The replaced run's files are moved aside at once and removed beside the new run; so is a folder
+// of files set aside by a run that was killed before it removed them.
+TEST_F(RunFolderTest, OverwriteRemovesTheFilesSetAsideByTheEnd) {
+  write_run(3);
+  std::ofstream(out_ + "/notes.txt") << "mine";
+  const std::string left = out_ + "/" + kRemovingFolderPrefix + "1";
+  ensure_directory(left + "/sub");
+  std::ofstream(left + "/sub/0") << "a killed run's";
+  {
+    RunFolder folder(out_, FolderUse::kOverwrite);
+    EXPECT_FALSE(has("frame_00001.pfr"));
+    folder.start(manifest());
+  }
+  size_t aside = 0;
+  for (const fs::directory_entry& e : fs::directory_iterator(out_))
+    aside += e.path().filename().string().rfind(kRemovingFolderPrefix, 0) == 0;
+  EXPECT_EQ(aside, 0u);
+  EXPECT_TRUE(has("notes.txt"));
+}
+
 TEST_F(RunFolderTest, ARunThatEndedBeforeItsFirstFrameIsTakenOver) {
   {
     RunFolder folder(out_, FolderUse::kNew);
