@@ -26,11 +26,11 @@ std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point 
 
 namespace {
 
-// One frame's per-particle data from the engine (`s`: memory kept from frame to frame).
-FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame,
-                     ParticleState& s) {
+// One frame's per-particle data from the engine into `f` (the memory of `f` and `s` kept from
+// frame to frame: a frame's vectors are as long as the last one's).
+void read_frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame,
+                     ParticleState& s, FrameData& f) {
   engine.read_state(s);
-  FrameData f;
   f.frame = frame;
   f.step = engine.step();
   f.time = engine.time();
@@ -40,9 +40,9 @@ FrameData frame_data(Engine& engine, const ParticleSet& ps, const std::vector<in
     f.position[i] = ps.rest[i] + s.disp[i];
     f.damage[i] = count[i] > 0 ? 1.0f - float(s.intact[i]) / float(count[i]) : 0.0f;
   }
-  f.velocity = std::move(s.vel);
-  f.body = ps.body;
-  return f;
+  std::swap(f.velocity, s.vel);  // (`s` keeps the frame's old memory for the next read)
+  f.body.assign(ps.body.begin(), ps.body.end());
+  f.component.clear();
 }
 
 // The Voronoi bodies' cells, the elements of their particles.
@@ -129,19 +129,18 @@ RunOutput::~RunOutput() {
 void RunOutput::write_frame(int64_t frame, const Energy& energy,
                             std::function<void(const std::string&)> done) {
   wait_for_room();
-  auto job = std::make_shared<Frame>();
+  std::shared_ptr<Frame> job = spare_frame();
   job->frame = frame;
   job->energy = energy;
-  job->data = frame_data(engine_, particles_, count_, frame, state_);
-  if (frame > 0) {
-    job->bonds_changed = true;
-    engine_.bond_changes(slots_, job->changes);
-  }
+  read_frame_data(engine_, particles_, count_, frame, state_, job->data);
+  job->bonds_changed = frame > 0;
+  if (job->bonds_changed) engine_.bond_changes(slots_, job->changes);
   job->colliders = engine_.colliders();
   job->done = std::move(done);
   if (!threaded_) {
     analyse(*job);
-    return write(*job);
+    write(*job);
+    return keep_spare(std::move(job));
   }
   // The first thread: after the previous frame's analysis (and the set-up), this one's, unless a
   // frame failed (no later frame is made after one). Then, after the previous frame's writing,
@@ -159,9 +158,10 @@ void RunOutput::write_frame(int64_t frame, const Energy& energy,
     }
     if (writing_.joinable()) writing_.join();
     if (!failure())
-      writing_ = std::thread([this, job] {
+      writing_ = std::thread([this, job]() mutable {
         try {
           write(*job);
+          keep_spare(std::move(job));
         } catch (...) {
           fail(std::current_exception());
         }
@@ -215,6 +215,21 @@ void RunOutput::write(Frame& job) {
   times_.writing += writing;
   times_.longest_writing = std::max(times_.longest_writing, writing);
   ++times_.frames;
+}
+
+std::shared_ptr<RunOutput::Frame> RunOutput::spare_frame() {
+  const std::lock_guard<std::mutex> lock(spare_mutex_);
+  if (spare_.empty()) return std::make_shared<Frame>();
+  std::shared_ptr<Frame> job = std::move(spare_.back());
+  spare_.pop_back();
+  return job;
+}
+
+void RunOutput::keep_spare(std::shared_ptr<Frame> job) {
+  job->done = {};
+  job->files = {};  // (the crack surface: a new one each frame)
+  const std::lock_guard<std::mutex> lock(spare_mutex_);
+  if (spare_.size() < kMostSpareFrames) spare_.push_back(std::move(job));
 }
 
 void RunOutput::fail(std::exception_ptr e) {

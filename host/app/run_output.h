@@ -104,12 +104,17 @@ class RunOutput {
   void analyse(Frame& job);
   // The frame's files, the manifest's record of them, the live render and `done`; on the second.
   void write(Frame& job);
+  // A written frame's memory for the next frame (its vectors keep their length: no new pages to
+  // fault in and clear), or a new frame; and a written frame given back, kept up to a few.
+  std::shared_ptr<Frame> spare_frame();
+  void keep_spare(std::shared_ptr<Frame> job);
   void fail(std::exception_ptr e);
   std::exception_ptr failure();
 
   // The queue's memory for frames ahead of the first thread, and its most frames.
   static constexpr size_t kOutputQueueBytes = size_t(1) << 30;
   static constexpr size_t kMostFramesAhead = 16;
+  static constexpr size_t kMostSpareFrames = 4;  // written frames kept for their memory
 
   const Scene& scene_;
   const SetupResult& setup_;
@@ -134,6 +139,8 @@ class RunOutput {
   std::thread analysing_;                    // the last frame given to analyse (or the set-up)
   std::thread writing_;                      // the last frame given to write (set by the analysing threads)
   std::deque<std::future<void>> in_flight_;  // the frames given to analyse and not known to be done
+  std::mutex spare_mutex_;
+  std::vector<std::shared_ptr<Frame>> spare_;  // written frames, their memory kept for the next
   std::mutex failure_mutex_;
   std::exception_ptr failure_;  // the first failure of a frame's outputs
 };
