@@ -259,28 +259,29 @@ RunFolder::RunFolder(std::string dir, FolderUse use) : dir_(std::move(dir)) {
     if (const size_t stale = remove_stale_temporaries(dir_))
       std::printf("output     removed %zu partial file(s) of an interrupted run\n", stale);
     found_ = check_run_folder(dir_, use);
-    if (use == FolderUse::kResume || !found_) return;
-    const bool ended_before_first_frame = found_->frames_written < 0;
-    // Replace it: exactly the files its journal lists, then its bookkeeping. The files are moved
-    // aside and removed on a thread while the new run goes on: removing a long run's gigabytes
-    // took the vase's run 10 s (bench/NOTES.md).
-    const fs::path aside = fs::path(dir_) / (kRemovingFolderPrefix + std::to_string(::getpid()));
-    std::error_code ec;
-    fs::create_directory(aside, ec);
-    size_t removed = 0, moved = 0;
-    for (const auto& [path, frame] : first_frames(read_journal(dir_)))
-      removed += set_aside(dir_, path, aside / std::to_string(moved++));
-    fs::remove(fs::path(dir_) / kJournalFileName, ec);
-    fs::remove(fs::path(dir_) / kManifestFileName, ec);
-    if (!ended_before_first_frame)
-      std::printf("output     --overwrite: removed the %zu files of the previous run in %s\n", removed,
-                  dir_.c_str());
-    found_.reset();
+    if (use != FolderUse::kResume && found_) {
+      const bool ended_before_first_frame = found_->frames_written < 0;
+      // Replace it: exactly the files its journal lists, then its bookkeeping. The files are moved
+      // aside and removed on a thread while the new run goes on: removing a long run's gigabytes
+      // took the vase's run 10 s (bench/NOTES.md).
+      const fs::path aside = fs::path(dir_) / (kRemovingFolderPrefix + std::to_string(::getpid()));
+      std::error_code ec;
+      fs::create_directory(aside, ec);
+      size_t removed = 0, moved = 0;
+      for (const auto& [path, frame] : first_frames(read_journal(dir_)))
+        removed += set_aside(dir_, path, aside / std::to_string(moved++));
+      fs::remove(fs::path(dir_) / kJournalFileName, ec);
+      fs::remove(fs::path(dir_) / kManifestFileName, ec);
+      if (!ended_before_first_frame)
+        std::printf("output     --overwrite: removed the %zu files of the previous run in %s\n", removed,
+                    dir_.c_str());
+      found_.reset();
+    }
   } catch (...) {
     ::close(lock_fd_);
     throw;
   }
-  // The files set aside, and any a killed run left, removed beside the run.
+  // The files set aside, and any a killed run left (a resumed run's too), removed beside the run.
   if (const std::vector<fs::path> folders = removing_folders(dir_); !folders.empty())
     remover_ = std::thread([folders] {
       std::error_code ec;

@@ -119,11 +119,18 @@ TEST_F(RunFolderTest, OverwriteRemovesExactlyThePreviousRunsFiles) {
 }
 
 // The replaced run's files are moved aside at once and removed beside the new run; so is a folder
-// of files set aside by a run that was killed before it removed them.
+// of files set aside by a run that was killed before it removed them, by the next run there, a
+// resumed one included.
 TEST_F(RunFolderTest, OverwriteRemovesTheFilesSetAsideByTheEnd) {
   write_run(3);
   std::ofstream(out_ + "/notes.txt") << "mine";
   const std::string left = out_ + "/" + kRemovingFolderPrefix + "1";
+  const auto set_aside = [&] {
+    size_t folders = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(out_))
+      folders += e.path().filename().string().rfind(kRemovingFolderPrefix, 0) == 0;
+    return folders;
+  };
   ensure_directory(left + "/sub");
   std::ofstream(left + "/sub/0") << "a killed run's";
   {
@@ -131,11 +138,12 @@ TEST_F(RunFolderTest, OverwriteRemovesTheFilesSetAsideByTheEnd) {
     EXPECT_FALSE(has("frame_00001.pfr"));
     folder.start(manifest());
   }
-  size_t aside = 0;
-  for (const fs::directory_entry& e : fs::directory_iterator(out_))
-    aside += e.path().filename().string().rfind(kRemovingFolderPrefix, 0) == 0;
-  EXPECT_EQ(aside, 0u);
+  EXPECT_EQ(set_aside(), 0u);
   EXPECT_TRUE(has("notes.txt"));
+  ensure_directory(left + "/sub");
+  std::ofstream(left + "/sub/0") << "a killed run's";
+  { RunFolder resumed(out_, FolderUse::kResume); }
+  EXPECT_EQ(set_aside(), 0u);
 }
 
 TEST_F(RunFolderTest, ARunThatEndedBeforeItsFirstFrameIsTakenOver) {
