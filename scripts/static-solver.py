@@ -25,6 +25,10 @@ Models:
   pals-dil        pals's dilatation with the LPS deviatoric part
   pmb, pmb-axis   bond-based, without and with the default correction (--rounds, default 3;
                   --parallel-q Q puts the factor's increase on bonds parallel to the surface)
+  pmb-moments     a factor per bond from the per-axis ones, least squares so that the bonds'
+                  stiffness at their midpoints has the interior's zeroth and first moments in every
+                  particle's window (--moments-bounds LO HI to bound them)
+--axis-scale D V scales the lps-axis factors' deviation from 1 (dilatation, deviatoric part).
 --alpha A blends a pals model's weights with the LPS's: A pals + (1 - A) lps.
 --ghosts: any model with a fictitious layer of 3 particles outside every face, whose
 displacements are extrapolated linearly along the face's normal from the two outermost layers
@@ -111,6 +115,77 @@ def axis_factors(b, weight_of, axial, power, rounds, shape=None):
     return G
 
 
+def quartic_monomials(n):
+    """The 15 monomials n_x^a n_y^b n_z^c, a + b + c = 4, of unit vectors n."""
+    return np.stack([n[:, 0] ** a * n[:, 1] ** c * n[:, 2] ** (4 - a - c)
+                     for a in range(5) for c in range(5 - a)], 1)
+
+
+def hat(coord, k, count):
+    """Particle k's window along one axis of a box of `count` cells: a hat of half-width 1 cell,
+    flat out to the box's faces at the end cells, so that the windows add up to 1 inside."""
+    x = coord - (k + 0.5)
+    w = np.maximum(0.0, 1 - np.abs(x))
+    w = np.where((k == 0) & (x < 0) & (coord >= 0), 1.0, w)
+    w = np.where((k == count - 1) & (x > 0) & (coord <= count), 1.0, w)
+    return np.where((k >= 0) & (k < count), w, 0.0)
+
+
+def moment_factors(b, kappa, start, bounds=None, order=1):
+    """pmb-moments: a factor per bond (both directions), least squares from `start`, such that the
+    bonds' stiffness kappa r^2 n n n n placed at their midpoints has, in every particle's window,
+    the interior's tensor times the window's volume and (order 1) first moment (bench/NOTES.md,
+    2026-11-29). Bounded: a damped least squares within `bounds`."""
+    dims = b.idx.max(0) + 1
+    mid = 0.5 * (b.idx[b.bi] + b.idx[b.bj]) + 0.5  # in cells, the box from 0
+    mono = quartic_monomials(b.nv) * (kappa * b.r ** 2)[:, None]
+    o = offsets()
+    ro = np.linalg.norm(o, axis=1)
+    k_of_r = dict(zip(np.round(b.r, 6), kappa))
+    T = np.sum(quartic_monomials(o / ro[:, None]) * (np.array([k_of_r[r] for r in np.round(ro, 6)]) * ro ** 2)[:, None], 0)
+    ks = [np.stack([np.floor(mid[:, a] - 0.5).astype(int), np.floor(mid[:, a] - 0.5).astype(int) + 1], 1) for a in range(3)]
+    rows, cols, vals = [], [], []
+    for corner in np.ndindex(2, 2, 2):
+        kk = [ks[a][:, corner[a]] for a in range(3)]
+        w = np.prod([hat(mid[:, a], kk[a], dims[a]) for a in range(3)], 0)
+        e = np.nonzero(w > 0)[0]
+        window = ((kk[0] * dims[1] + kk[1]) * dims[2] + kk[2])[e] * 60
+        base = w[e, None] * mono[e]
+        for a in range(-1, 3):  # the zeroth moment, then the first along x, y, z
+            part = base if a < 0 else base * (mid[e, a] - (kk[a][e] + 0.5))[:, None]
+            for c in range(15):
+                rows.append(window + 15 * (a + 1) + c)
+                cols.append(e)
+                vals.append(part[:, c])
+    A = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), (60 * b.n, b.nb))
+    xs = [np.linspace(0, d, 200 * d + 1) for d in dims]
+    moment = [[[np.trapz(hat(xs[a], k, dims[a]) * (xs[a] - k - 0.5) ** p, xs[a]) for k in range(dims[a])]
+               for p in range(2)] for a in range(3)]
+    target = np.zeros((b.n, 4, 15))
+    for a in range(-1, 3):
+        f = np.ones(b.n)
+        for c in range(3):
+            f = f * np.asarray(moment[c][1 if c == a else 0])[b.idx[:, c]]
+        target[:, a + 1] = f[:, None] * T
+    pair = np.unique(np.minimum(b.bi, b.bj) * b.n + np.maximum(b.bi, b.bj), return_inverse=True)[1]
+    P = sp.csr_matrix((np.ones(b.nb), (np.arange(b.nb), pair)), (b.nb, pair.max() + 1))
+    AP, t = (A @ P).tocsr() / np.abs(T).max(), target.ravel() / np.abs(T).max()
+    g0 = (P.T @ start) / np.asarray(P.sum(0)).ravel()
+    if not order:  # the zeroth moments' rows only
+        keep = (np.arange(60 * b.n) % 60) < 15
+        AP, t = AP[keep], t[keep]
+    if bounds:
+        from scipy.optimize import lsq_linear
+        damp = 1e-2
+        g = lsq_linear(sp.vstack([AP, damp * sp.identity(AP.shape[1])]).tocsr(), np.concatenate([t, damp * g0]),
+                       bounds=bounds, lsmr_tol="auto", max_iter=200).x
+    else:
+        g = g0 + spl.lsqr(AP, t - AP @ g0, damp=1e-3, atol=1e-10, btol=1e-10, iter_lim=20000)[0]
+    print(f"moments: residual {np.linalg.norm(t - AP @ g0):.3g} -> {np.linalg.norm(t - AP @ g):.3g}, "
+          f"factors {g.min():.3f} .. {g.max():.3f}, mean {g.mean():.3f}")
+    return P @ g
+
+
 def solve_moments(b, weight, basis, components, target):
     """Per particle, the multipliers l with sum_j weight (1 + l.basis) components = target."""
     k = basis.shape[1]
@@ -144,8 +219,11 @@ def state_weights(b, model, args):
         return lps
     if model.startswith("lps-axis"):
         G = axis_factors(b, b.r * b.bw, s["bond_sum"] / 3, 2, args.rounds or 2)
-        m = b.per_particle(omega * G * b.r ** 2 * b.bw)[b.bi]
-        wd, wv = 3 * omega * G / m, 7.5 * omega * G / m
+        scale_d, scale_v = args.axis_scale  # the factors' deviation from 1 scaled (1 1: the engine's)
+        Gd, Gv = 1 + scale_d * (G - 1), 1 + scale_v * (G - 1)
+        md = b.per_particle(omega * Gd * b.r ** 2 * b.bw)[b.bi]
+        mv = b.per_particle(omega * Gv * b.r ** 2 * b.bw)[b.bi]
+        wd, wv = 3 * omega * Gd / md, 7.5 * omega * Gv / mv
         if model == "lps-axis-dev":
             e = deviatoric_modes(b.nv)
             got = b.per_particle((wv * b.r ** 2 * b.bw)[:, None] * e ** 2, 6)
@@ -205,6 +283,9 @@ def bond_space(b, model, args, owners=None):
                 cos_j = np.sum(b.nv * normal[b.bj], 1) ** 2 * weight[b.bj]
                 shape = (1 - 0.5 * (cos_i + cos_j)) ** args.parallel_q
             G = axis_factors(b, b.r * b.bw, s["axial4"], 4, args.rounds or 3, shape)
+        if model == "pmb-moments":
+            G = moment_factors(b, c * b.bw * b.vol[b.bi] / (2 * b.r), axis_factors(b, b.r * b.bw, s["axial4"], 4, 3),
+                               args.moments_bounds, args.moments_order)
         return sp.diags(own[b.bi] * c * G * b.bw * b.vol[b.bi] / (2 * b.r)).tocsr(), E, nu
     E, nu = 70e9, 0.3
     K, mu = E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu))
@@ -417,7 +498,7 @@ def main():
     p.add_argument("problem", choices=["bar", "bending", "cantilever", "torsion", "uniform"])
     p.add_argument("--n", type=int, default=8, help="particles across")
     p.add_argument("--model", default="lps", choices=["lps", "lps-axis", "lps-axis-dev", "pals", "pals-maxent",
-                                                       "pals-odd", "pals-dil", "pmb", "pmb-axis"])
+                                                       "pals-odd", "pals-dil", "pmb", "pmb-axis", "pmb-moments"])
     p.add_argument("--rounds", type=int, default=0, help="the per-axis factors' rounds (0: the engine's)")
     p.add_argument("--alpha", type=float, default=1.0, help="pals models: A pals + (1 - A) lps")
     p.add_argument("--parallel-q", type=float, default=0.0, help="pmb-axis: the factor on bonds parallel to the surface")
@@ -426,6 +507,13 @@ def main():
     p.add_argument("--fit-order", type=int, default=1, choices=[1, 2, 3],
                    help="--ghosts fit: 2 fits quadratic terms too and extrapolates with the gradient at the "
                         "particle; 3 continues the whole quadratic field")
+    p.add_argument("--axis-scale", type=float, nargs=2, default=[1.0, 1.0], metavar=("D", "V"),
+                   help="lps-axis: the factors' deviation from 1 scaled by D in the dilatation, V in the "
+                        "deviatoric part (1 1: the engine's)")
+    p.add_argument("--moments-bounds", type=float, nargs=2, metavar=("LO", "HI"),
+                   help="pmb-moments: bound the factors (default: unbounded least squares)")
+    p.add_argument("--moments-order", type=int, default=1, choices=[0, 1],
+                   help="pmb-moments: 0 matches the zeroth moments only")
     p.add_argument("--length-over-height", type=int, default=5, help="cantilever: L / h")
     p.add_argument("--ghosts", nargs="?", const="layer", choices=["layer", "fit"],
                    help="layer: a fictitious layer outside every face; fit: each particle's own ghosts on "
