@@ -142,8 +142,10 @@ def moment_factors(b, kappa, start, bounds=None, order=1):
     o = offsets()
     ro = np.linalg.norm(o, axis=1)
     k_of_r = dict(zip(np.round(b.r, 6), kappa))
-    T = np.sum(quartic_monomials(o / ro[:, None]) * (np.array([k_of_r[r] for r in np.round(ro, 6)]) * ro ** 2)[:, None], 0)
-    ks = [np.stack([np.floor(mid[:, a] - 0.5).astype(int), np.floor(mid[:, a] - 0.5).astype(int) + 1], 1) for a in range(3)]
+    k_interior = np.array([k_of_r[r] for r in np.round(ro, 6)])
+    T = np.sum(quartic_monomials(o / ro[:, None]) * (k_interior * ro ** 2)[:, None], 0)  # an interior particle's
+    below = np.floor(mid - 0.5).astype(int)  # the window below each midpoint, per axis; the one above is + 1
+    ks = [np.stack([below[:, a], below[:, a] + 1], 1) for a in range(3)]
     rows, cols, vals = [], [], []
     for corner in np.ndindex(2, 2, 2):
         kk = [ks[a][:, corner[a]] for a in range(3)]
