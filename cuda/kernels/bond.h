@@ -18,6 +18,26 @@ PD_HD inline real volume_fraction(real r0, const Material& m) {
   return fast_divide(m.horizon + half - r0, m.spacing);
 }
 
+// The same rule taken once per particle, for bond loops with registers to hold it: a bond up to
+// `full_below` counts whole (every bond where the material has no partial volumes), else with
+// (top - r0) / lambda, the same bits as volume_fraction (test BondGeometry.PartialVolumesAsTaken).
+// The loop then tests one comparison per bond where reading the material's flag and horizon at
+// every bond took five instructions: the state-based loops +3-5% (bench/NOTES.md). The
+// bond-based ones, at 32-40 registers, keep the per-bond form.
+struct PartialVolumes {
+  real full_below, top, spacing;
+};
+
+PD_HD inline PartialVolumes partial_volumes_of(const Material& m) {
+  const real half = real(0.5) * m.spacing;
+  return {m.partial_volumes ? m.horizon - half : real(INFINITY), m.horizon + half, m.spacing};
+}
+
+PD_HD inline real volume_fraction(real r0, const PartialVolumes& v) {
+  if (r0 <= v.full_below) return real(1);
+  return fast_divide(v.top - r0, v.spacing);
+}
+
 // |y| - |xi| without cancellation: (|y|^2 - |xi|^2) / (|y| + |xi|) with
 // |y|^2 - |xi|^2 = 2 xi.eta + eta.eta. Identical bits from both ends of a bond.
 PD_HD inline real bond_elongation(Vec3 xi, Vec3 eta, real r0, real r) {
@@ -59,8 +79,11 @@ PD_HD inline T load_streaming(const T& x) {
 // springforces). 0 in runs without factors, and a kernel that does not read it leaves its load
 // out. (The strength of weakened bonds loaded ahead as well cost the 1M glass plate's explicit
 // families 2.5% in one round: it is read at its slot.)
+// The factor is held in 32 bits between its load and the visit: moving a 16-bit value between
+// the loads ahead and the visit takes extra instructions a bond (one H200, bench/NOTES.md: the
+// torus's springforces +1%, the plastic explicit lattice's step +0.7%, the vase's +0.5%).
 struct SlotAhead {
-  uint16_t surface = 0;  // BondsView::surface_bond
+  uint32_t surface = 0;  // BondsView::surface_bond
 };
 
 PD_HD inline SlotAhead slot_ahead(const BondsView& b, int64_t slot) {
@@ -105,11 +128,12 @@ struct BondGeometryOf {
   bool weak;                     // the bond may carry a strength factor (BondsView::strength)
   int32_t entry;                 // kWeighted: the bond's stencil entry
   SlotAhead ahead;               // !kWeighted: what the bond's slot stores, loaded with its index
-  PD_HD real weight(const Material& m) const {
+  template <class Rule>          // Material, or its PartialVolumes
+  PD_HD real weight(const Rule& rule) const {
     if constexpr (kWeighted)
       return volume_j;
     else
-      return volume_fraction(r0, m) * volume_j;
+      return volume_fraction(r0, rule) * volume_j;
   }
 };
 using BondGeometry = BondGeometryOf<false>;

@@ -36,6 +36,10 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
   real nearest = -real(INFINITY);  // screened pass: the largest own-end margin (bond_screen.h)
   ReleasedEnergy<kThreads> released;
   const uint16_t* row = surface_row_of(b, i);
+  // The partial-volume rule taken once (bond.h PartialVolumes) in the elastic pass: the explicit
+  // state-based lattice's springforces +3%; the plastic pass, at its 64 registers, lost 7% in a
+  // variant that took it too, and keeps the per-bond form (bench/NOTES.md, 2026-11-29).
+  const PartialVolumes volumes = partial_volumes_of(m);
   // The entry loop unrolled 8 times: +3% (elastic) to +8% (plastic) against the compiler's 2
   // (bench/NOTES.md); a plastic run's histories of both ends fetched ahead.
   constexpr int kHistory = kPlastic ? kBothHistories : kNoHistory;
@@ -75,7 +79,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
         const ForceStateCoefficients k_j = force_state_coefficients(state_j.x, state_j.y, m);
         const real t = influence<kAnisotropic>(g.xi, g.inv_r0, m) * surface_factor_of(b, slot, g, row) *
                        ((k_i.a + k_j.a) * g.e - (k_i.a * ep_ij + k_j.a * ep_ji) + (k_i.c + k_j.c) * g.r0);
-        f += (t * g.weight(m) * g.inv_r) * g.y;
+        f += (t * (kPlastic ? g.weight(m) : g.weight(volumes)) * g.inv_r) * g.y;
         return true;
       });
   if (!kBreaking && may_break<kWeak>(team.max(nearest), own_limit)) return false;

@@ -107,12 +107,13 @@ PD_HD inline DilatationPass dilatation_pass(int32_t i, const ParticlesView& p, c
   const real theta_prev = kNorm ? p.state[i].x : real(0);
   real sum = 0, s_dd = 0, s_dr = 0, s_rr = 0;
   const uint16_t* row = surface_row_of(b, i);
+  const PartialVolumes volumes = partial_volumes_of(m);  // once per particle (bond.h)
   // The entry loop unrolled 8 times: plastic init -3% time against the compiler's 2 (bench/NOTES.md);
   // the trial norm's history fetched ahead.
   constexpr int kHistory = kNorm ? kOwnHistory : kNoHistory;
   for_each_intact_bond<kLattice, 8, kHistory>(i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
     const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m) * surface_factor_of(b, slot, g, row),
-               weight = g.weight(m);
+               weight = g.weight(volumes);
     sum += omega * g.r0 * g.e * weight;
     if constexpr (kNorm) {
       const real d = g.e - b.plastic[slot] - theta_prev * g.r0 * real(1.0 / 3.0);

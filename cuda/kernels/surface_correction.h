@@ -52,7 +52,7 @@ constexpr double kSurfaceBondStep = 1.0 / 4096;
 constexpr uint16_t kSurfaceBondOne = 4096;
 
 // A stored bond factor's value (exact in float).
-PD_HD inline real surface_bond_value(uint16_t stored) {
+PD_HD inline real surface_bond_value(uint32_t stored) {
   return real(stored) * real(kSurfaceBondStep);
 }
 

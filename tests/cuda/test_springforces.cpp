@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "cuda/kernels/springforces.h"
@@ -111,6 +112,30 @@ TEST(SpringForces, PartialVolumeFraction) {
   EXPECT_FLOAT_EQ(volume_fraction(real(2.75), m), 0.75);
   m.partial_volumes = 0;
   EXPECT_FLOAT_EQ(volume_fraction(real(3.0), m), 1);
+}
+
+// The rule taken once per particle (PartialVolumes, the state-based loops) gives the per-bond
+// form's bits at every length, with partial volumes and without, at spacings whose half and
+// horizons whose sums round.
+TEST(BondGeometry, PartialVolumesAsTaken) {
+  for (const real spacing : {real(1), real(8.363e-4), real(3.3e-3) / real(3)}) {
+    for (const real over : {real(3), real(4), real(3.0001), real(2.5)}) {
+      for (const uint8_t partial : {uint8_t(0), uint8_t(1)}) {
+        Material m;
+        m.spacing = spacing;
+        m.horizon = over * spacing;
+        m.partial_volumes = partial;
+        const PartialVolumes rule = partial_volumes_of(m);
+        for (int k = 0; k <= 4000; ++k) {
+          const real r0 = real(k) * real(1.25e-3) * m.horizon;
+          const real per_bond = volume_fraction(r0, m), taken = volume_fraction(r0, rule);
+          ASSERT_EQ(std::memcmp(&per_bond, &taken, sizeof(real)), 0)
+              << "r0 " << r0 << " spacing " << spacing << " horizon " << m.horizon << " partial "
+              << int(partial);
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
