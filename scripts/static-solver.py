@@ -15,6 +15,8 @@ problems define them (host/validation/):
               G k a^4 (k = 0.14058, a square)
   uniform     every particle of the bar's body (grips included) moved by uniform strains: the
               energy over the exact
+  stable      the largest eigenvalue of a 12 x 8 x 8 block's stiffness over the uncorrected
+              model's (the stable step scales as its inverse square root), and its mode by depth
 Models:
   lps             the engine's LPS without correction
   lps-axis        with the opt-in per-axis factors (surface_correction.h, --rounds, default 2)
@@ -495,9 +497,32 @@ def uniform(args):
         print(f"uniform {args.model} {name}: energy over the exact {0.5 * u @ (H @ u) / exact:.6f}")
 
 
+def stable(args):
+    """The stable step's measure: the largest eigenvalue of the stiffness of a 12 x 8 x 8 block
+    (equal lumped masses) with the model as asked against the same model without ghosts or
+    factors, and where the eigenvector of the largest lives (its weight by depth below the
+    surface, 0 = the outer layer). dt scales as the inverse square root of the ratio."""
+    dims = (12, 8, 8)
+    b = Body(*dims, (0, 0, 0))
+    plain = argparse.Namespace(**{**vars(args), "ghosts": None, "model": args.model.split("-")[0]})
+    H0 = body_stiffness(b, dims, (0, 0, 0), plain)[0].toarray()
+    top0 = np.linalg.eigvalsh(H0)[-1]
+    H = body_stiffness(b, dims, (0, 0, 0), args)[0].toarray()
+    w, v = np.linalg.eigh(0.5 * (H + H.T))
+    depth = np.minimum.reduce([b.idx[:, a] for a in range(3)] + [np.array(dims)[a] - 1 - b.idx[:, a] for a in range(3)])
+    weight = (v[:, -1] ** 2).reshape(-1, 3).sum(1)
+    by_depth = ", ".join(f"{weight[depth == d].sum():.3f}" for d in range(int(depth.max()) + 1))
+    # Gershgorin's bound per particle (its rows' largest absolute sum) over the uncorrected's largest.
+    rows = np.abs(H).sum(1).reshape(-1, 3).max(1) / np.abs(H0).sum(1).max()
+    over = ", ".join(f"{int(np.sum((rows > 2) & (depth == d)))}" for d in range(int(depth.max()) + 1))
+    print(f"stable {args.model} ghosts={args.ghosts} fit-order={args.fit_order}: largest eigenvalue "
+          f"{w[-1] / top0:.2f} times the uncorrected (dt x {math.sqrt(top0 / w[-1]):.2f}); its mode by depth {by_depth}; "
+          f"particles whose rows pass twice the uncorrected's largest, by depth: {over} of {b.n}")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("problem", choices=["bar", "bending", "cantilever", "torsion", "uniform"])
+    p.add_argument("problem", choices=["bar", "bending", "cantilever", "torsion", "uniform", "stable"])
     p.add_argument("--n", type=int, default=8, help="particles across")
     p.add_argument("--model", default="lps", choices=["lps", "lps-axis", "lps-axis-dev", "pals", "pals-maxent",
                                                        "pals-odd", "pals-dil", "pmb", "pmb-axis", "pmb-moments"])
@@ -522,7 +547,7 @@ def main():
                         "its family's fitted linear field (see above)")
     args = p.parse_args()
     {"bar": bar, "bending": lambda a: bar(a, True), "cantilever": cantilever, "torsion": torsion,
-     "uniform": uniform}[args.problem](args)
+     "uniform": uniform, "stable": stable}[args.problem](args)
 
 
 if __name__ == "__main__":
