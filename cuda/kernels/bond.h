@@ -22,7 +22,7 @@ PD_HD inline real volume_fraction(real r0, const Material& m) {
 // `full_below` counts whole (every bond where the material has no partial volumes), else with
 // (top - r0) / lambda, the same bits as volume_fraction (test BondGeometry.PartialVolumesAsTaken).
 // The loop then tests one comparison per bond where reading the material's flag and horizon at
-// every bond took five instructions: the state-based loops +3-5% (bench/NOTES.md). The
+// every bond took five instructions: the state-based loops +3-4% (bench/NOTES.md). The
 // bond-based ones, at 32-40 registers, keep the per-bond form.
 struct PartialVolumes {
   real full_below, top, spacing;
@@ -81,7 +81,7 @@ PD_HD inline T load_streaming(const T& x) {
 // families 2.5% in one round: it is read at its slot.)
 // The factor is held in 32 bits between its load and the visit: moving a 16-bit value between
 // the loads ahead and the visit takes extra instructions a bond (one H200, bench/NOTES.md: the
-// torus's springforces +1%, the plastic explicit lattice's step +0.7%, the vase's +0.5%).
+// torus's step +1.0%, the plastic explicit lattice's +0.7%, the vase's springforces +0.6%).
 struct SlotAhead {
   uint32_t surface = 0;  // BondsView::surface_bond
 };
