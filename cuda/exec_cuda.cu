@@ -129,6 +129,14 @@ void CudaExec::abort_capture() {
   stats_ = capture_stats_;
 }
 
+void CudaExec::drop_graphs() {
+  for (cudaGraphExec_t& g : graphs_)
+    if (g) {
+      cudaGraphExecDestroy(g);
+      g = nullptr;
+    }
+}
+
 void CudaExec::launch_graph(int slot, const char* name) {
   cudaEvent_t start = begin_timing(name);
   cuda_check(cudaGraphLaunch(graphs_[slot], stream_), name);

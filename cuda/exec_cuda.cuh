@@ -191,6 +191,7 @@ class CudaExec {
   void end_capture(int slot);
   void abort_capture();
   bool has_graph(int slot) const { return graphs_[slot] != nullptr; }
+  void drop_graphs();
   void launch_graph(int slot, const char* name);
   int device_count() const;  // GPUs this process sees
   double side_seconds() const { return side_seconds_; }

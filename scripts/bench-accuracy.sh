@@ -3,7 +3,7 @@
 # delta/lambda (3, 4), precision (float build; double build with -DPERIFRAC_DOUBLE=ON), backend
 # (cpu; cuda when the binary has it and a GPU answers), dt / dt_c and the surface correction (each
 # model's default, the other way at delta = 3 lambda: off for bond-based problems, on for
-# state-based ones, and the ghost correction at 0.125 dt_c), through `perifrac validate`.
+# state-based ones, and the ghost correction at 0.3 dt_c), through `perifrac validate`.
 # Writes to bench/accuracy/ (or --out): accuracy.csv, pareto.png (error against wall time),
 # convergence.png (error against resolution) and summary.md (Pareto-optimal and recommended
 # settings per measured figure, with the device, CPU and date). Not a test: nothing is asserted.
@@ -86,7 +86,7 @@ for bin in "$BIN" ${BIN_DOUBLE:+"$BIN_DOUBLE"}; do
       run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.5 "$other"
       # The ghost correction (docs/scene-reference.md#ghost-correction) at its default dt / dt_c:
       # the elastic problems (the fracture problems' ghosts go with their first broken bonds).
-      [[ $p == crack_branching || $p == notched_bar_pmb || $p == crack_tip_pmb ]] || run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.125 ghosts
+      [[ $p == crack_branching || $p == notched_bar_pmb || $p == crack_tip_pmb ]] || run "$bin" "$backend" "$p" "${RES[$p]}" 3 0.3 ghosts
     done
   done
 done

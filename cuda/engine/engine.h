@@ -163,6 +163,14 @@ class Engine {
   // Throws std::invalid_argument, changing nothing, when the snapshot's sizes are not this
   // engine's (another scene or scale).
   virtual void restore(const EngineSnapshot& in) = 0;
+  // Puts back the per-particle fields of `in` (displacements, velocities, forces, ...) and its
+  // step and time, the bonds left as they are: for a caller that knows no bond changed since `in`
+  // was saved (the stable step's probes, cuda/engine/stable_step.h), where a whole restore would
+  // move and check every bond slot. A partitioned run restores everything.
+  virtual void restore_particles(const EngineSnapshot& in) = 0;
+  // Changes the fixed dt of the steps to come (the stable step measured on the engine itself,
+  // cuda/engine/stable_step.h, chooses it after the set-up): recorded step graphs are dropped.
+  virtual void set_time_step(double dt) = 0;
   // Stable time step from the families as built (Silling & Askari 2005, eq. 29):
   // min_i sqrt(2 rho_i / sum_j beta V_j c / |xi_j|); infinite for particles without bonds.
   virtual double critical_time_step() const = 0;

@@ -264,6 +264,20 @@ class EngineImpl final : public Engine {
   int64_t screened_passes() const override { return screened_passes_; }
   int64_t graphed_steps() const override { return graphed_steps_; }
   double critical_time_step() const override { return critical_dt_; }
+  void restore_particles(const EngineSnapshot& in) override {
+    state_.upload_saved_particles(in);
+    free_.restore(in.free_bodies);
+    step_ = in.step;
+    time_ = in.time;
+    motion_.apply(time_, step_params_);
+    pose_colliders(time_);
+    contacts_.invalidate();
+  }
+  void set_time_step(double dt) override {
+    step_params_.dt = real(dt);
+    if constexpr (Exec::kGraphs) exec_.drop_graphs();  // their launches hold the old dt
+    contacts_.invalidate();                            // its skin's reach follows dt
+  }
 
   void save(EngineSnapshot& out) override {
     out.step = step_;

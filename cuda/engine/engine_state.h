@@ -158,6 +158,23 @@ struct EngineState {
   void upload_saved(const EngineSnapshot& in) {
     for_each_saved(in, [](const char*, auto& array, const auto& host) { array.upload(host); });
   }
+  // The saved per-particle fields of `in` alone, their sizes checked (std::invalid_argument,
+  // nothing uploaded); the bond slots' fields are left as they are.
+  void upload_saved_particles(const EngineSnapshot& in) {
+    const auto check = [](const char* what, const auto& array, const auto& host) {
+      if (host.size() != array.size())
+        throw std::invalid_argument(std::string("snapshot ") + what + " has " + std::to_string(host.size()) +
+                                    " entries, the engine " + std::to_string(array.size()));
+    };
+#define PD_STATE_CHECK_PARTICLE(name, Type, length, when, saved, ...) \
+  PD_IF_SAVED(saved, check(#name, name, in.name);)
+    PD_PARTICLE_FIELDS(PD_STATE_CHECK_PARTICLE)
+#undef PD_STATE_CHECK_PARTICLE
+#define PD_STATE_UPLOAD_PARTICLE(name, Type, length, when, saved, ...) \
+  PD_IF_SAVED(saved, name.upload(in.name);)
+    PD_PARTICLE_FIELDS(PD_STATE_UPLOAD_PARTICLE)
+#undef PD_STATE_UPLOAD_PARTICLE
+  }
 
  private:
   mutable std::vector<Vec4> frame_whole_;  // read_frame's download of an xyz field, kept for the next

@@ -14,7 +14,8 @@ namespace pd {
 // The stable step with ghosts over the step without them, at most: their bonds' forces reach the
 // whole family through the fit's extrapolation (measured on lattice blocks at delta = 3 lambda,
 // both models: 1 / 3.9 by the engine's estimate, 1 / 3.2 by the stiffness's largest eigenvalue
-// in the static solver). dt = "auto" and the validation problems take it on their continuum dt_c.
+// in the static solver). The validation problems and the benchmarks take it on their continuum
+// dt_c; `perifrac run` starts from it and then measures the step on its engine (stable_step.h).
 constexpr double kGhostStableStepRatio = 0.25;
 
 // The tables of GhostView on the host, and what the set-up found.

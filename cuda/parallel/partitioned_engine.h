@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -106,6 +107,12 @@ class PartitionedEngine final : public Engine {
     snapshot_ = {};
   }
   double critical_time_step() const override { return critical_dt_; }
+  void restore_particles(const EngineSnapshot& in) override { restore(in); }
+  void set_time_step(double dt) override {
+    int64_t bits = 0;
+    std::memcpy(&bits, &dt, sizeof bits);
+    command(Op::kSetTimeStep, bits);
+  }
   size_t memory_bytes() const override { return memory_; }
   int64_t force_passes() const override { return local_->force_passes(); }
   int64_t screened_passes() const override { return local_->screened_passes(); }
@@ -185,7 +192,8 @@ class PartitionedEngine final : public Engine {
     kNonFinite,
     kSave,
     kRestore,
-    kRankStats
+    kRankStats,
+    kSetTimeStep
   };
 
   // Rank 0: every rank carries out `op` together.
@@ -227,6 +235,12 @@ class PartitionedEngine final : public Engine {
       case Op::kRankStats:
         gather_rank_stats();
         break;
+      case Op::kSetTimeStep: {
+        double dt = 0;
+        std::memcpy(&dt, &arg, sizeof dt);
+        local_->set_time_step(dt);
+        break;
+      }
       case Op::kFinish:
         break;
     }

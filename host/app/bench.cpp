@@ -1,11 +1,13 @@
 #include "host/app/bench.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -115,12 +117,14 @@ int bench_command(const BenchOptions& opt) {
   SimulationInput input;
   const auto setup_start = std::chrono::steady_clock::now();
   Scene scene;
+  double critical_dt = INFINITY;  // a scene's continuum estimate
   if (!opt.scene.empty()) {
     scene = load_scene(opt.scene, opt.overrides);
     const SetupResult setup = setup_scene_with_patterns(scene, opt.scale, backend);
     // A scene scaled past its time step would time a blow-up: refused as `perifrac run` does.
     check_time_step(scene, setup, opt.allow_unstable_dt);
     input = setup.input;
+    critical_dt = setup.critical_dt;
     workload = std::filesystem::path(opt.scene).stem().string();
   } else {
     if (!opt.overrides.empty()) throw std::invalid_argument("bench: --set needs --scene");
@@ -155,9 +159,13 @@ int bench_command(const BenchOptions& opt) {
   const double engine_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - engine_start).count();
   const FamilyStats& fam = engine->family_stats();
-  const double dt = double(input.step.dt), family_dt = engine->critical_time_step();
+  double dt = double(input.step.dt);
+  const double family_dt = engine->critical_time_step();
+  std::optional<MeasuredStep> measured;  // with ghosts, as `perifrac run` takes it
   if (!opt.scene.empty()) {
-    check_family_time_step(scene, dt, family_dt, opt.allow_unstable_dt);
+    measured = measure_ghost_step(*engine, input, scene.dt_auto, critical_dt, dt);
+    check_family_time_step(scene, dt, measured ? measured->stable : family_dt, opt.allow_unstable_dt,
+                           measured.has_value());
   } else if (dt > family_dt && !opt.allow_unstable_dt) {
     throw std::invalid_argument("bench: the lattice's dt " + std::to_string(dt) +
                                 " s exceeds the stable time step of its families, " +
@@ -187,9 +195,13 @@ int bench_command(const BenchOptions& opt) {
   std::printf("size       %zu particles, %lld bonds (mean %.1f per particle), %.1f MiB, %lld steps\n",
               input.particles.size(), (long long)fam.bonds, fam.mean,
               double(engine->memory_bytes()) / (1 << 20), (long long)opt.steps);
-  std::printf("time step  dt %.4g s = %.2f of the families' stable step%s\n", dt, dt / family_dt,
-              dt > family_dt ? " (unstable, allowed by --allow-unstable-dt)" : "");
-  std::printf("set-up     scene %.2f s, engine %.2f s\n", scene_seconds, engine_seconds);
+  const double stable_dt = measured ? measured->stable : family_dt;
+  std::printf("time step  dt %.4g s = %.2f of the %s stable step%s\n", dt, dt / stable_dt,
+              measured ? "measured (ghosts)" : "families'",
+              dt > stable_dt ? " (unstable, allowed by --allow-unstable-dt)" : "");
+  std::printf("set-up     scene %.2f s, engine %.2f s", scene_seconds, engine_seconds);
+  if (measured) std::printf(", stable step %.2f s (%d force passes)", measured->seconds, measured->passes);
+  std::printf("\n");
   const std::vector<SetupStage> stages = engine->setup_stages();
   if (!stages.empty()) {
     std::printf("set-up     engine stages:");
@@ -248,7 +260,7 @@ int bench_command(const BenchOptions& opt) {
      << ",\n  \"surface_rows\": " << fam.surface_rows << ",\n  \"bond_slots\": " << fam.slots
      << ",\n  \"steps\": " << opt.steps << ",\n  \"screened_steps\": " << screened
      << ",\n  \"graphed_steps\": " << graphed << ",\n  \"dt\": " << dt
-     << ",\n  \"dt_over_stable\": " << dt / family_dt << ",\n  \"broken_bonds\": " << broken
+     << ",\n  \"dt_over_stable\": " << dt / stable_dt << ",\n  \"broken_bonds\": " << broken
      << ",\n  \"simulated_seconds\": " << engine->time() << ",\n  \"wall_seconds\": " << wall
      << ",\n  \"setup_seconds\": {\"scene\": " << scene_seconds << ", \"engine\": " << engine_seconds
      << ", \"engine_stages\": {" << stage_json(stages) << "}}"

@@ -116,6 +116,10 @@ int validate_command(const ValidateOptions& o) {
       } catch (const MeshError& e) {
         std::fprintf(stderr, "error: validate: %s: %s\n", p->name, e.what());
         return 2;
+      } catch (const std::invalid_argument& e) {  // a --dt-fraction past the measured stable step
+        std::fprintf(stderr, "error: validate: %s at resolution %d: --dt-fraction: %s\n", p->name, res,
+                     e.what());
+        return 2;
       }
       for (const ValidationResult& r : results) {
         rows += csv_row(r, c);

@@ -5,14 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "cuda/engine/surface_ghosts.h"
+#include "host/validation/validation.h"
 
 namespace pd {
-
-// The default dt / dt_c with the ghost correction: its bonds shorten the stable step
-// (cuda/engine/surface_ghosts.h kGhostStableStepRatio), and the continuum dt_c the validation
-// problems scale does not know them.
-constexpr double kGhostDtFraction = 0.5 * kGhostStableStepRatio;
 
 struct ValidateOptions {
   std::string problem = "all";      // a name from validation_problems(), or "all"

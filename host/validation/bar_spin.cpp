@@ -51,7 +51,8 @@ std::vector<ValidationResult> bar_spin(const ValidationCase& c, const ElasticSol
   const auto& rest = in.particles.rest;
   const auto& mass = in.particles.mass;
 
-  auto engine = make_engine(c.backend, in);
+  std::string stable_note;
+  auto engine = validation_engine(c, in, stable_note);
   ParticleState s;
   auto centroid = [&](const std::vector<int>& layer, int axis) {
     double sum = 0;
@@ -95,7 +96,7 @@ std::vector<ValidationResult> bar_spin(const ValidationCase& c, const ElasticSol
       make_result(std::string(name) + "/stretch", stretch, reference),
       make_result(std::string(name) + "/angular_momentum", angular_momentum() / momentum0, 1.0)};
   return stamped(std::move(out), in, *engine, clock,
-                 std::to_string(kTurns) + " turns of " + std::to_string(turn_steps) + " steps");
+                 std::to_string(kTurns) + " turns of " + std::to_string(turn_steps) + " steps" + stable_note);
 }
 
 }  // namespace

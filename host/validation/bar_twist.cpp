@@ -63,7 +63,8 @@ std::vector<ValidationResult> bar_twist(const ValidationCase& c, const ElasticSo
     if (std::fabs(x) < 0.5 * side) gauge.push_back(int(p));
   });
 
-  auto engine = make_engine(c.backend, in);
+  std::string stable_note;
+  auto engine = validation_engine(c, in, stable_note);
   engine->advance(steps / 2);
   const int64_t chunk = std::max<int64_t>(1, (steps - steps / 2) / kSamples);
   const auto& rest = in.particles.rest;
@@ -98,7 +99,7 @@ std::vector<ValidationResult> bar_twist(const ValidationCase& c, const ElasticSo
   ValidationResult r = make_result(std::string(name) + "/twist_angle", final_torque * side / stiffness,
                                    final_torque * side / reference_stiffness);
   return stamped({r}, in, *engine, clock,
-                 "GJ_measured/GJ " + std::to_string(stiffness / reference_stiffness));
+                 "GJ_measured/GJ " + std::to_string(stiffness / reference_stiffness) + stable_note);
 }
 
 }  // namespace

@@ -108,7 +108,8 @@ std::vector<ValidationResult> cantilever(const ValidationCase& c, const ElasticS
   const double omega =
       1.875104 * 1.875104 * std::sqrt(solid.youngs * inertia / (solid.density * area)) / (length * length);
   const int64_t chunk = std::max<int64_t>(1, int64_t(2 * M_PI / omega / dt / kSamplesPerPeriod));
-  auto engine = make_engine(c.backend, in);
+  std::string stable_note;
+  auto engine = validation_engine(c, in, stable_note);
   ParticleState s;
   std::vector<double> w = {0};
   size_t peak = 0;
@@ -127,8 +128,9 @@ std::vector<ValidationResult> cantilever(const ValidationCase& c, const ElasticS
   const double mean = static_deflection(w, peak);
 
   ValidationResult r = make_result(std::string(name) + "/tip_deflection", mean, reference);
-  return stamped({r}, in, *engine, clock,
-                 "period " + std::to_string(2 * double(peak) * double(chunk) * dt * 1e3) + " ms");
+  return stamped(
+      {r}, in, *engine, clock,
+      "period " + std::to_string(2 * double(peak) * double(chunk) * dt * 1e3) + " ms" + stable_note);
 }
 
 }  // namespace

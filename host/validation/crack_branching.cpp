@@ -124,7 +124,8 @@ std::vector<ValidationResult> run_crack_branching(const ValidationCase& c) {
   in.step.dt = real(dt);
 
   // Crack tip samples, about one per millimetre of P-wave travel.
-  auto engine = make_engine(c.backend, in);
+  std::string stable_note;
+  auto engine = validation_engine(c, in, stable_note);
   BondLists bonds;
   engine->read_bonds(bonds);
   const std::vector<int32_t> count = bonds.count;
@@ -179,7 +180,7 @@ std::vector<ValidationResult> run_crack_branching(const ValidationCase& c) {
   char note[160];
   std::snprintf(note, sizeof note, "max tip speed %.0f m/s = %.2f c_R (c_R %.0f m/s); %lld cracked particles",
                 max_speed, max_speed / rayleigh, rayleigh, (long long)cracked);
-  return stamped(std::move(out), in, *engine, clock, note);
+  return stamped(std::move(out), in, *engine, clock, note + stable_note);
 }
 
 }  // namespace pd

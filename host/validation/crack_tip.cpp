@@ -92,7 +92,8 @@ std::vector<ValidationResult> run_crack_tip_pmb(const ValidationCase& c) {
 
   // K at the first break and when the crack has run 1, 2 and 4 horizons (an R-curve: a rising
   // one would hold a growing crack back).
-  auto engine = make_engine(c.backend, in);
+  std::string stable_note;
+  auto engine = validation_engine(c, in, stable_note);
   const int64_t chunk = std::max<int64_t>(1, steps / kSamples);
   double initiation = 0, grown[3] = {0, 0, 0};
   BondLists bonds;
@@ -115,7 +116,7 @@ std::vector<ValidationResult> run_crack_tip_pmb(const ValidationCase& c) {
       "s0 %.3g; %lld bonds broken; %zu particles, %d layers",
       initiation / 1e6, grown[0] / 1e6, grown[1] / 1e6, grown[2] / 1e6, toughness / 1e6, s0,
       (long long)engine->broken_bonds(), in.particles.size(), nz);
-  return stamped(std::move(out), in, *engine, clock, note);
+  return stamped(std::move(out), in, *engine, clock, note + stable_note);
 }
 
 }  // namespace pd

@@ -1,6 +1,10 @@
 #include "host/validation/lattice.h"
 
+#include <cstdio>
+#include <stdexcept>
+
 #include "cuda/engine/material.h"
+#include "cuda/engine/stable_step.h"
 
 namespace pd {
 
@@ -32,6 +36,25 @@ Material validation_material(const ElasticSolid& s, double lambda, double m,
 double validation_critical_dt(const ElasticSolid& s, double lambda, double m) {
   return s.state_based ? lps_critical_time_step(s.density, s.bulk(), s.shear(), m * lambda)
                        : pmb_critical_time_step(s.density, s.bulk(), m * lambda);
+}
+
+std::unique_ptr<Engine> validation_engine(const ValidationCase& c, const SimulationInput& in,
+                                          std::string& stable_note) {
+  auto engine = make_engine(c.backend, in);
+  stable_note.clear();
+  if (!c.surface_ghosts) return engine;
+  const double stable = measure_stable_step(*engine, in).seconds, dt = double(in.step.dt);
+  if (dt > stable) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "dt fraction %.3g exceeds the stable step measured with ghosts (allowed: at most %.3g)",
+                  c.dt_fraction, c.dt_fraction * stable / dt);
+    throw std::invalid_argument(msg);
+  }
+  char note[64];
+  std::snprintf(note, sizeof note, "; dt %.2f of the measured stable step", dt / stable);
+  stable_note = note;
+  return engine;
 }
 
 size_t add_cube(ParticleSet& ps, double x, double y, double z, double lambda, const ElasticSolid& s,

@@ -4,7 +4,7 @@
 
 #include <chrono>
 #include <cstdint>
-
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,6 +42,13 @@ Material validation_material(const ElasticSolid& s, double lambda, double m,
 
 // The continuum stable time step estimate of host/material.h for this solid.
 double validation_critical_dt(const ElasticSolid& s, double lambda, double m);
+
+// The engine of a validation run. With the ghost correction (c.surface_ghosts), whose stable step
+// the continuum estimate does not know, the step is measured on the engine
+// (cuda/engine/stable_step.h): a dt past it is refused (std::invalid_argument, with the largest
+// dt fraction allowed), and `stable_note` says what fraction of it the run's dt is.
+std::unique_ptr<Engine> validation_engine(const ValidationCase& c, const SimulationInput& in,
+                                          std::string& stable_note);
 
 // Cube centres of an nx x ny x nz block of cubes of side lambda whose low corner is `corner`;
 // calls add(i, j, k, centre) for each, x fastest.

@@ -108,7 +108,8 @@ std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c) {
     in.cuts.push_back({{{{0, y0, z0}, {0, y1, z1}, {0, y0, z1}}}, 0, -1});
   }
 
-  auto engine = make_engine(c.backend, in);
+  std::string stable_note;
+  auto engine = validation_engine(c, in, stable_note);
   const int64_t chunk = std::max<int64_t>(1, steps / kSamples);
   const double delta = m * lambda;
   double peak = 0, peak_strain = 0, first_break = 0, growth = 0;
@@ -152,7 +153,7 @@ std::vector<ValidationResult> run_notched_bar_pmb(const ValidationCase& c) {
                 growth / 1e6, s0, released,
                 broken.count > 0 ? 100.0 * double(broken.off_plane) / double(broken.count) : 0.0,
                 (long long)broken.count, nx, n, nz);
-  return stamped(std::move(out), in, *engine, clock, note);
+  return stamped(std::move(out), in, *engine, clock, note + stable_note);
 }
 
 }  // namespace pd

@@ -101,7 +101,8 @@ std::vector<ValidationResult> tension_bar(const ValidationCase& c, const Elastic
       add(scattered.position[i][0], scattered.position[i][1], scattered.position[i][2], scattered.volume[i]);
   }
 
-  auto engine = make_engine(c.backend, in);
+  std::string stable_note;
+  auto engine = validation_engine(c, in, stable_note);
   engine->advance(steps / 2);
   const int64_t chunk = std::max<int64_t>(1, (steps - steps / 2) / kSamples);
   std::vector<double> stress, axial, lateral;
@@ -136,7 +137,7 @@ std::vector<ValidationResult> tension_bar(const ValidationCase& c, const Elastic
   char note[160];
   std::snprintf(note, sizeof note, "E_measured %.4g GPa; lambda %.4g mm (W / %.2f)", modulus / 1e9,
                 lambda * 1e3, width / lambda);
-  return stamped(std::move(out), in, *engine, clock, note);
+  return stamped(std::move(out), in, *engine, clock, note + stable_note);
 }
 
 }  // namespace

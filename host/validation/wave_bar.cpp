@@ -56,7 +56,8 @@ std::vector<ValidationResult> run_wave_bar(const ValidationCase& c) {
   // Front positions while the front runs from 3 to 17 widths (clear of the grip's start-up and
   // of the far end's reflection), sampled about every lambda / 2 of travel.
   const double c0 = std::sqrt(glass.youngs / glass.density);
-  auto engine = make_engine(c.backend, in);
+  std::string stable_note;
+  auto engine = validation_engine(c, in, stable_note);
   const int64_t chunk = std::max<int64_t>(1, int64_t(0.5 * lambda / (c0 * dt)));
   std::vector<double> times, fronts, layer(static_cast<size_t>(nx));
   ParticleState s;
@@ -72,7 +73,7 @@ std::vector<ValidationResult> run_wave_bar(const ValidationCase& c) {
   const double speed = fit_slope(times.data(), fronts.data(), times.size());
 
   ValidationResult r = make_result("wave_bar/front_speed", speed, c0);
-  return stamped({r}, in, *engine, clock, std::to_string(times.size()) + " front samples");
+  return stamped({r}, in, *engine, clock, std::to_string(times.size()) + " front samples" + stable_note);
 }
 
 }  // namespace pd

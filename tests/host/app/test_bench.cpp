@@ -90,6 +90,23 @@ TEST_F(Bench, RefusesAnUnstableTimeStepUnlessAllowed) {
   EXPECT_NE(printed.find("(unstable, allowed by --allow-unstable-dt)"), std::string::npos) << printed;
 }
 
+// A scene with ghosts is timed at the step `perifrac run` takes: dt = "auto" is half the stable
+// step measured on the engine, which the JSON's dt_over_stable is taken against.
+TEST_F(Bench, TimesAGhostSceneAtHalfTheMeasuredStep) {
+  BenchOptions opt;
+  opt.scene = PERIFRAC_SOURCE_DIR "/scenes/chen_bar_twist.toml";
+  opt.scale = 0.1;
+  opt.overrides = {"materials.rubber.surface_correction=\"ghosts\""};
+  opt.warmup = 2;
+  opt.steps = 5;
+  std::string json;
+  const std::string printed = run(opt, json);
+  EXPECT_NE(printed.find("= 0.50 of the measured (ghosts) stable step"), std::string::npos) << printed;
+  std::smatch field;
+  ASSERT_TRUE(std::regex_search(json, field, std::regex(R"("dt_over_stable": ([0-9.e+-]+))"))) << json;
+  EXPECT_NEAR(std::stod(field[1].str()), 0.5, 1e-6);
+}
+
 TEST_F(Bench, ReportsNoBrokenBondForTheElasticLattice) {
   BenchOptions opt;
   opt.lattice = 10;

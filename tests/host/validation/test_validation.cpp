@@ -82,7 +82,7 @@ std::pair<std::vector<ValidationResult>, std::vector<ValidationResult>> ghost_co
     int resolution, const char* particles) {
   ValidationCase c = at(resolution, false);
   c.surface_ghosts = true;
-  c.dt_fraction = 0.125;
+  c.dt_fraction = kGhostDtFraction;
   c.particles = particles;
   auto lps = run_tension_bar_lps(c), pmb = run_tension_bar_pmb(c);
   print(lps);
