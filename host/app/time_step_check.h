@@ -1,6 +1,7 @@
 // Whether a run's time step is stable: the continuum estimate from the materials (before the
-// families exist) and the one from the particles' families (after). `perifrac run` and
-// `perifrac bench` refuse a dt past either unless allowed, naming the scene key that sets it.
+// families exist) and the one from the particles' families (after), or with ghost-corrected
+// materials the step measured on the engine. `perifrac run` and `perifrac bench` refuse a dt past
+// either unless allowed, naming the scene key that sets it.
 #pragma once
 
 #include <optional>
