@@ -227,8 +227,8 @@ void add_validate(CLI::App& app, const CommandActions& actions, std::function<in
       ->delimiter(',');
   cmd->add_option("--delta-over-lambda", validate->delta_over_lambda, "horizon in spacings (default 3)");
   cmd->add_option("--dt-fraction", validate->dt_fraction,
-                  "dt / dt_c (default 0.5; 0.125 with --surface-correction ghosts, whose bonds shorten the "
-                  "stable step)");
+                  "dt / dt_c (default 0.5; 0.3 with --surface-correction ghosts, whose bonds shorten the "
+                  "stable step: a fraction past the step measured on the engine is refused)");
   cmd->add_option("--backend", validate->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cmd->add_option("--surface-correction", validate->surface,
