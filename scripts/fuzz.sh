@@ -4,7 +4,8 @@
 #   scripts/fuzz.sh [SECONDS_PER_TARGET]        default 60; FUZZ_TARGETS="scene ply" picks targets
 # Installs clang and its libFuzzer runtime when missing (apt-get), builds tests/fuzz in build/fuzz,
 # runs each target for SECONDS on a fresh copy of its seed corpus (tests/fuzz/corpus is never
-# written) and prints a table. Exits 1 when a target crashed, hung, leaked or ran out of memory,
+# written), FUZZ_JOBS targets at a time (default: one per core; libFuzzer uses one core), and
+# prints a table. Exits 1 when a target crashed, hung, leaked or ran out of memory,
 # naming the input that did it; 2 when the tools cannot be installed. Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -71,24 +72,39 @@ cmake --build build/fuzz -j "$jobs"
 # allocations and leaks.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:symbolize=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-rows=()
-failures=()
-fuzzed=0
-for target in $targets; do
-  dict=tests/fuzz/$target.dict
+# One target for SECONDS; its exit status goes to $work/status.
+fuzz_one() {
+  local target=$1 work=build/fuzz/run/$1 dict=tests/fuzz/$1.dict status=0
   [ "$target" = scene ] && dict=tests/fuzz/toml.dict
-  work=build/fuzz/run/$target
   rm -rf "$work"
   mkdir -p "$work/corpus" "$work/artifacts"
   cp tests/fuzz/corpus/"$target"/* "$work/corpus/"
   # New inputs go to the first folder only: the copy. The regression inputs seed it too.
-  seeds=("$work/corpus")
+  local seeds=("$work/corpus")
   [ -d "tests/fuzz/regressions/$target" ] && seeds+=("tests/fuzz/regressions/$target")
-  echo "fuzz: $target for ${seconds} s (log: $work/fuzz.log)"
-  status=0
   build/fuzz/fuzz_"$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
     -print_final_stats=1 -dict="$dict" -artifact_prefix="$work/artifacts/" "${seeds[@]}" \
     >"$work/fuzz.log" 2>&1 || status=$?
+  echo "$status" >"$work/status"
+}
+running=0
+for target in $targets; do
+  echo "fuzz: $target for ${seconds} s (log: build/fuzz/run/$target/fuzz.log)"
+  fuzz_one "$target" &
+  running=$((running + 1))
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+done
+wait || true
+
+rows=()
+failures=()
+fuzzed=0
+for target in $targets; do
+  work=build/fuzz/run/$target
+  status=$(cat "$work/status" 2>/dev/null || echo "no status")
   # Final stats (printed twice after a crash): executions and rate from the last stat:: lines,
   # coverage from the last "cov: ... ft: ..." line.
   execs=$(awk '/^stat::number_of_executed_units:/ {v = $2} END {print v}' "$work/fuzz.log")
@@ -96,7 +112,7 @@ for target in $targets; do
   cov=$(grep -o 'cov: [0-9]*' "$work/fuzz.log" | tail -1 | cut -d' ' -f2)
   ft=$(grep -o 'ft: [0-9]*' "$work/fuzz.log" | tail -1 | cut -d' ' -f2)
   crashes=$(find "$work/artifacts" -type f | wc -l)
-  if [ "$status" -ne 0 ] || [ "$crashes" -gt 0 ]; then
+  if [ "$status" != 0 ] || [ "$crashes" -gt 0 ]; then
     inputs=$(find "$work/artifacts" -type f | tr '\n' ' ')
     failures+=("$target (exit $status): ${inputs:-no input saved}; see $work/fuzz.log")
     [ "$crashes" -gt 0 ] || crashes=1

@@ -207,8 +207,8 @@ TEST(Validation, NotchedPlateCrackIsSymmetricAndSubRayleigh) {
   EXPECT_GT(figure(r, "crack_branching/symmetry").measured, 0.95);
 }
 
-// The sanitizers run the code 4-5 times slower: the two fracture problems below (35 s each on two
-// cores) then run at a coarse size, for the memory checks alone.
+// The sanitizers run the code 4-5 times slower: the two fracture problems below (130-140 s each
+// on two cores) then run at a coarse size, for the memory checks alone.
 #if defined(__SANITIZE_ADDRESS__)
 constexpr bool kSanitized = true;
 #else
