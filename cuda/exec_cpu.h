@@ -12,6 +12,7 @@
 
 #include "cuda/kernel_stats.h"
 #include "cuda/pd_common.h"
+#include "cuda/read_back.h"
 
 namespace pd {
 
@@ -102,6 +103,21 @@ class CpuExec {
   }
   void synchronize() {}
   void flush_stats() {}
+
+  // A read-back beside later launches (CudaExec::read_back): here the copies are made at once.
+  class ReadEvent {
+   public:
+    void wait() const {}
+  };
+  void* allocate_host(size_t bytes) {
+    return allocate(bytes);
+  }
+  static void release_host(void* p) {
+    std::free(p);
+  }
+  void read_back(const HostCopy* copies, int n, ReadEvent&) {
+    for (int k = 0; k < n; ++k) std::memcpy(copies[k].dst, copies[k].src, copies[k].bytes);
+  }
 
   // Flags the kernels raise (raise_flag) and the host reads: flag(k) for k < kFlags;
   // mark_flags(e) after the launches that may raise them (event e < kFlagEvents), take_flags(mask,

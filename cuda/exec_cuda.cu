@@ -61,6 +61,42 @@ CudaExec::~CudaExec() {
   for (cudaGraphExec_t g : graphs_)
     if (g) cudaGraphExecDestroy(g);
   if (capture_) cudaStreamDestroy(capture_);
+  if (read_start_) cudaEventDestroy(read_start_);
+  if (reader_) cudaStreamDestroy(reader_);
+}
+
+CudaExec::ReadEvent::ReadEvent() {
+  cuda_check(cudaEventCreateWithFlags(&event_, cudaEventDisableTiming), "read-back event");
+}
+CudaExec::ReadEvent::~ReadEvent() {
+  cudaEventDestroy(event_);
+}
+void CudaExec::ReadEvent::wait() const {
+  cuda_check(cudaEventSynchronize(event_), "a frame's read-back");
+}
+
+void* CudaExec::allocate_host(size_t bytes) {
+  void* p = nullptr;
+  cuda_check(cudaHostAlloc(&p, bytes ? bytes : 1, cudaHostAllocDefault), "page-locked host memory");
+  return p;
+}
+void CudaExec::release_host(void* p) {
+  cudaFreeHost(p);
+}
+
+void CudaExec::read_back(const HostCopy* copies, int n, ReadEvent& done) {
+  if (!reader_) {
+    cuda_check(cudaStreamCreateWithFlags(&reader_, cudaStreamNonBlocking), "cudaStreamCreateWithFlags");
+    cuda_check(cudaEventCreateWithFlags(&read_start_, cudaEventDisableTiming), "read-back event");
+  }
+  cuda_check(cudaEventRecord(read_start_, stream_), "read_back");
+  cuda_check(cudaStreamWaitEvent(reader_, read_start_, 0), "read_back");
+  for (int k = 0; k < n; ++k)
+    cuda_check(
+        cudaMemcpyAsync(copies[k].dst, copies[k].src, copies[k].bytes, cudaMemcpyDeviceToHost, reader_),
+        "read_back");
+  cuda_check(cudaEventRecord(done.event(), reader_), "read_back");
+  cuda_check(cudaStreamWaitEvent(stream_, done.event(), 0), "read_back");
 }
 
 int CudaExec::device_count() const {

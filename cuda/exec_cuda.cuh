@@ -13,6 +13,7 @@
 
 #include "cuda/kernel_stats.h"
 #include "cuda/pd_common.h"
+#include "cuda/read_back.h"
 #include "cuda/team.h"
 
 namespace pd {
@@ -193,6 +194,26 @@ class CudaExec {
   bool has_graph(int slot) const { return graphs_[slot] != nullptr; }
   void drop_graphs();
   void launch_graph(int slot, const char* name);
+  // Device-to-host copies beside later launches (Engine::read_frame): read_back(copies, n, done)
+  // queues the copies into page-locked host memory (allocate_host) on a stream of their own, after
+  // the launches queued so far; later launches wait for them on the device (they could change what
+  // is being read), the host does not. done.wait() (any thread) returns once they are in host
+  // memory. An event is recorded again only after its wait.
+  class ReadEvent {
+   public:
+    ReadEvent();
+    ~ReadEvent();
+    ReadEvent(const ReadEvent&) = delete;
+    ReadEvent& operator=(const ReadEvent&) = delete;
+    void wait() const;
+    cudaEvent_t event() const { return event_; }
+
+   private:
+    cudaEvent_t event_ = nullptr;
+  };
+  void* allocate_host(size_t bytes);
+  static void release_host(void* p);
+  void read_back(const HostCopy* copies, int n, ReadEvent& done);
   int device_count() const;  // GPUs this process sees
   double side_seconds() const { return side_seconds_; }
   // Waits for the device, adds the timed launches to the stats, and reports any
@@ -224,6 +245,8 @@ class CudaExec {
   cudaEvent_t fork_ = nullptr, join_ = nullptr;
   std::vector<Pending> side_spans_;  // begin_side to end_side, resolved in flush_stats
   double side_seconds_ = 0;
+  cudaStream_t reader_ = nullptr;         // read_back's copies
+  cudaEvent_t read_start_ = nullptr;      // the main stream's launches before a read-back
   cudaStream_t capture_ = nullptr;        // where a graph's launches are recorded
   KernelStats* capture_stats_ = nullptr;  // stats_ while capturing
   cudaGraphExec_t graphs_[kGraphSlots] = {};

@@ -42,6 +42,22 @@ struct ParticleState {
 #undef PD_FRAME_MEMBER
 };
 
+// One frame field as the engine stores it (EngineState::frame_fields): `count` elements of `bytes`.
+struct FrameField {
+  const void* data = nullptr;
+  size_t count = 0, bytes = 0;
+};
+
+// f(member, xyz) for each field of a ParticleState, in the state table's order; `xyz`
+// (std::true_type) where the member is the xyz part of a stored Vec4.
+template <class F>
+void for_each_frame_member(ParticleState& s, F f) {
+#define PD_FRAME_VISIT(name, Type, length, when, saved, halo, frame) \
+  PD_IF_FRAME(frame, f(s.name, std::bool_constant<frame == kFrameXyz>{});)
+  PD_PARTICLE_FIELDS(PD_FRAME_VISIT)
+#undef PD_FRAME_VISIT
+}
+
 // Families as stored (sliced ELL, see BondsView), copied back to the host.
 struct SurfaceGhostCounts {
   int64_t ghosted = 0, thin = 0, precracked = 0;
@@ -81,6 +97,16 @@ struct BondChanges {
         j = ~j;
       }
   }
+};
+
+// A frame taken at one step and read back while the engine steps on (Engine::read_frame): finish()
+// waits for the copies and gives what read_state and bond_changes would have given at that step.
+class FrameRead {
+ public:
+  virtual ~FrameRead() = default;
+  // Fills `state` (its vectors' memory kept where their sizes hold) and, when the frame was taken
+  // with its bond changes, `changes`. Any thread; once.
+  virtual void finish(ParticleState& state, BondChanges& changes) = 0;
 };
 
 // Everything a run changes, for checkpoints: the state table's saved fields (cuda/state_fields.h)
@@ -147,6 +173,12 @@ class Engine {
     out.whole = true;
     read_bonds(out.bonds);
   }
+  // The frame at the current step: the state as read_state gives it and, with `changes`, the
+  // bonds' changes as bond_changes(slots) gives them, copied back beside the steps that follow.
+  // The engine may step on at once; only finish() waits. Read in order: a frame's changes are
+  // since the frame read before it. (This one reads at once; the backends' engines copy into
+  // page-locked memory on a stream of their own.)
+  virtual std::unique_ptr<FrameRead> read_frame(size_t slots, bool changes);
   // Brings `bonds`, what the previous call gave, up to date (bond_changes applied).
   void update_bonds(BondLists& bonds) {
     BondChanges changes;

@@ -20,6 +20,7 @@
 #include "cuda/engine/engine.h"
 #include "cuda/engine/engine_state.h"
 #include "cuda/engine/family_builder.h"
+#include "cuda/engine/frame_reads.h"
 #include "cuda/engine/free_bodies.h"
 #include "cuda/engine/step_graphs.h"
 #include "cuda/engine/surface_ghosts.h"
@@ -227,16 +228,28 @@ class EngineImpl final : public Engine {
   // The slots' broken bits as the previous call left them, on the backend; the slots whose bit
   // changed since are the flipped ones.
   void bond_changes(size_t slots, BondChanges& out) override {
+    if (!take_bond_changes(slots, out)) changed_bits_.download(out.flipped);
+  }
+
+  // Copies into a slot of page-locked memory on a stream of their own (frame_reads.h); read at
+  // once while every slot is out.
+  std::unique_ptr<FrameRead> read_frame(size_t slots, bool changes) override {
     const size_t words = (state_.neighbor.size() + 31) / 32;
-    out.whole = broken_bits_.size() != words || slots != state_.neighbor.size();
-    if (broken_bits_.size() != words) {
-      broken_bits_ = mem_.template make<uint32_t>(words);
-      changed_bits_ = mem_.template make<uint32_t>(words);
+    FrameLayout layout = frame_layout(state_.frame_fields(), changes, changes ? words : 0);
+    auto slot = frame_slots_->take(exec_, layout.bytes);
+    if (!slot) return Engine::read_frame(slots, changes);
+    std::vector<HostCopy> copies;
+    for (size_t k = 0; k < layout.fields.size(); ++k) {
+      const FrameField& f = layout.fields[k];
+      copies.push_back({static_cast<char*>(slot->host) + layout.offset[k], f.data, f.count * f.bytes});
     }
-    if (out.whole) read_bonds(out.bonds);
-    launch_broken_bits(exec_, ArrayView<const int32_t>(view_of(state_.neighbor)), view_of(broken_bits_),
-                       view_of(changed_bits_));
-    if (!out.whole) changed_bits_.download(out.flipped);
+    if (changes && !take_bond_changes(slots, layout.whole))
+      copies.push_back({static_cast<char*>(slot->host) + layout.flipped_offset, changed_bits_.data(),
+                        words * sizeof(uint32_t)});
+    copies.erase(std::remove_if(copies.begin(), copies.end(), [](const HostCopy& c) { return c.bytes == 0; }),
+                 copies.end());
+    exec_.read_back(copies.data(), int(copies.size()), slot->done);
+    return std::make_unique<SlotFrameRead<Exec>>(frame_slots_, std::move(slot), std::move(layout));
   }
 
   int64_t broken_bonds() override { return reduce_broken_bonds(exec_, bonds(), state_.intact.data()); }
@@ -347,6 +360,22 @@ class EngineImpl final : public Engine {
   }
 
  private:
+  // bond_changes' first part: the bonds whole into `out` when the reader's slots are not the
+  // engine's (or on the first call), then the broken bits brought to now on the backend, the
+  // changed ones in changed_bits_. False when the reader wants changed_bits_.
+  bool take_bond_changes(size_t slots, BondChanges& out) {
+    const size_t words = (state_.neighbor.size() + 31) / 32;
+    out.whole = broken_bits_.size() != words || slots != state_.neighbor.size();
+    if (broken_bits_.size() != words) {
+      broken_bits_ = mem_.template make<uint32_t>(words);
+      changed_bits_ = mem_.template make<uint32_t>(words);
+    }
+    if (out.whole) read_bonds(out.bonds);
+    launch_broken_bits(exec_, ArrayView<const int32_t>(view_of(state_.neighbor)), view_of(broken_bits_),
+                       view_of(changed_bits_));
+    return out.whole;
+  }
+
   // The particles the kernels of a step run over: all, or a partitioned rank's own.
   ParticlesView particles() const {
     ParticlesView p = state_.particles();
@@ -648,8 +677,9 @@ class EngineImpl final : public Engine {
   bool capturing_ = false;  // a graph is being recorded: no host work between the launches
   int64_t graphed_steps_ = 0;
   DeviceArray<uint32_t, Exec> broken_bits_, changed_bits_;  // bond_changes' bits
-  int breaking_hold_ = 0;                                   // passes left to run with the breaking pass
-  bool pass_screened_ = false;                              // the form of the pass being queued
+  std::shared_ptr<FrameReadSlots<Exec>> frame_slots_ = std::make_shared<FrameReadSlots<Exec>>();
+  int breaking_hold_ = 0;       // passes left to run with the breaking pass
+  bool pass_screened_ = false;  // the form of the pass being queued
   KernelFeatures features_;
   bool body_forces_ = false;
   int64_t step_ = 0;

@@ -132,6 +132,16 @@ struct EngineState {
 #undef PD_STATE_FRAME
   }
 
+  // The same fields' memory as stored, in the table's order (Engine::read_frame's copies).
+  std::vector<FrameField> frame_fields() const {
+    std::vector<FrameField> fields;
+#define PD_STATE_FRAME_FIELD(name, Type, length, when, saved, halo, frame) \
+  PD_IF_FRAME(frame, fields.push_back({name.data(), name.size(), sizeof(Type)});)
+    PD_PARTICLE_FIELDS(PD_STATE_FRAME_FIELD)
+#undef PD_STATE_FRAME_FIELD
+    return fields;
+  }
+
   void save(EngineSnapshot& out) {
     for_each_saved(out, [](const char*, auto& array, auto& host) { array.download(host); });
   }

@@ -544,7 +544,7 @@ struct LoopTimes {
   double steps = 0;   // advancing the engine (kernels, and the host work between them)
   double drain = 0;   // waiting for the last frame's output thread
   double checks = 0;  // the blow-up checks and the energy
-  double read = 0;    // the frame's particles and bonds read back (write_frame's own part)
+  double read = 0;    // the frames taken: their read-back started (write_frame's own part)
   double checkpoints = 0;
 };
 
@@ -623,7 +623,7 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
   const Scene& scene = sim.scene;
   std::printf(
       "frame loop %.2f s (%s): stepping %.2f s, waiting for the output thread %.2f s, "
-      "frames read back %.2f s, checks and energy %.2f s, checkpoints %.2f s\n",
+      "frames taken %.2f s, checks and energy %.2f s, checkpoints %.2f s\n",
       times.total, times_the_stepping(times.total, times.steps).c_str(), times.steps, times.drain, times.read,
       times.checks, times.checkpoints);
   const int64_t steps = (scene.frames - first_frame + 1) * scene.steps_per_frame;
@@ -636,12 +636,11 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
   const double wall = std::chrono::duration<double>(lap(end, end_outputs) - run.started).count();
   const RunOutput::Times& out = output.times();
   std::printf(
-      "output threads over %lld frames: fragment outputs set up %.2f s, fragments found %.2f s and crack "
-      "surfaces taken %.2f s on the first (longest frame %.3f s), the frames written %.2f s on the second "
-      "(longest %.3f s; the fragment files "
-      "%.2f s beside the frame files %.2f s)\n",
-      (long long)out.frames, out.setup, out.analysis, out.crack_surfaces, out.longest_analysis, out.writing,
-      out.longest_writing, out.fragment_files, out.frame_files);
+      "output threads over %lld frames: fragment outputs set up %.2f s, frames read back %.2f s, fragments "
+      "found %.2f s and crack surfaces taken %.2f s on the first (longest frame %.3f s), the frames written "
+      "%.2f s on the second (longest %.3f s; the fragment files %.2f s beside the frame files %.2f s)\n",
+      (long long)out.frames, out.setup, out.read_back, out.analysis, out.crack_surfaces, out.longest_analysis,
+      out.writing, out.longest_writing, out.fragment_files, out.frame_files);
   std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", output.dir().c_str(),
               (long long)scene.frames + 1, output.fragment_pieces());
   std::printf(

@@ -26,14 +26,10 @@ std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point 
 
 namespace {
 
-// One frame's per-particle data from the engine into `f` (the memory of `f` and `s` kept from
+// One frame's per-particle data from its state `s` into `f` (the memory of `f` and `s` kept from
 // frame to frame: a frame's vectors are as long as the last one's).
-void read_frame_data(Engine& engine, const ParticleSet& ps, const std::vector<int32_t>& count, int64_t frame,
-                     ParticleState& s, FrameData& f) {
-  engine.read_state(s);
-  f.frame = frame;
-  f.step = engine.step();
-  f.time = engine.time();
+void frame_data_from(const ParticleSet& ps, const std::vector<int32_t>& count, ParticleState& s,
+                     FrameData& f) {
   f.position.resize(ps.size());
   f.damage.resize(ps.size());
   for (size_t i = 0; i < ps.size(); ++i) {
@@ -54,10 +50,11 @@ std::vector<VoronoiElements> voronoi_elements(const SetupResult& setup) {
 
 }  // namespace
 
-// A frame on its way: read back by the frame loop, analysed on the first thread, written on the
-// second.
+// A frame on its way: taken by the frame loop (its read-back started), read and analysed on the
+// first thread, written on the second.
 struct RunOutput::Frame {
   int64_t frame = 0;
+  std::unique_ptr<FrameRead> read;  // until the first thread finishes it into `data` and `changes`
   FrameData data;
   bool bonds_changed = false;  // frames after the first: `changes` brings the bonds to this frame
   BondChanges changes;
@@ -132,9 +129,11 @@ void RunOutput::write_frame(int64_t frame, const Energy& energy,
   std::shared_ptr<Frame> job = spare_frame();
   job->frame = frame;
   job->energy = energy;
-  read_frame_data(engine_, particles_, count_, frame, state_, job->data);
+  job->data.frame = frame;
+  job->data.step = engine_.step();
+  job->data.time = engine_.time();
   job->bonds_changed = frame > 0;
-  if (job->bonds_changed) engine_.bond_changes(slots_, job->changes);
+  job->read = engine_.read_frame(slots_, job->bonds_changed);
   job->colliders = engine_.colliders();
   job->done = std::move(done);
   if (!threaded_) {
@@ -172,13 +171,17 @@ void RunOutput::write_frame(int64_t frame, const Energy& energy,
 
 void RunOutput::analyse(Frame& job) {
   const auto start = std::chrono::steady_clock::now();
+  job.read->finish(state_, job.changes);
+  job.read.reset();
+  frame_data_from(particles_, count_, state_, job.data);
+  const auto read = lap(start, times_.read_back);
   if (job.bonds_changed) job.changes.apply_to(bonds_);
   job.stats = fragments_->analyse(job.data, bonds_);
-  auto t = lap(start, times_.analysis);
+  auto t = lap(read, times_.analysis);
   job.files = fragments_->files_of(job.data);
   t = lap(t, times_.crack_surfaces);
   times_.longest_analysis =
-      std::max(times_.longest_analysis, std::chrono::duration<double>(t - start).count());
+      std::max(times_.longest_analysis, std::chrono::duration<double>(t - read).count());
 }
 
 void RunOutput::write(Frame& job) {

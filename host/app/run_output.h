@@ -86,6 +86,7 @@ class RunOutput {
   struct Times {
     int64_t frames = 0;
     double setup = 0;             // the fragment outputs set up, on the first thread before frame 0
+    double read_back = 0;         // waiting for each frame's copies and unpacking them, on the first thread
     double analysis = 0;          // finding, fitting and splitting (the bonds held), on the first thread
     double crack_surfaces = 0;    // then taking the files' data, the crack surface built
     double writing = 0;           // each frame's writing, start to end, on the second thread
@@ -125,7 +126,7 @@ class RunOutput {
   int blend_frames_ = 0;
   std::unique_ptr<LiveRender> live_;
   PvdSeries series_;
-  ParticleState state_;         // the engine's state as last read back (its memory kept for the next frame)
+  ParticleState state_;         // the last frame's state, on the first thread (its memory kept for the next)
   std::vector<int32_t> count_;  // each particle's bonds as built (the frame loop's damage)
   size_t slots_ = 0;            // bond slots as built
   size_t frames_ahead_ = 1;     // frames the frame loop may run ahead of the first thread

@@ -10,6 +10,7 @@
 #include "host/scene/scene_setup.h"
 #include "tests/support/broken_bonds.h"
 #include "tests/support/fixtures.h"
+#include "tests/support/frame_reads.h"
 #include "tests/support/require_gpu.h"
 
 namespace pd {
@@ -22,6 +23,14 @@ double relative_l2(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     den += length_squared(b[i]);
   }
   return std::sqrt(num / std::max(den, 1e-300));
+}
+
+// The GPU's frames, copied back on a stream of their own while the engine steps on, are its
+// reads made at once at their steps, bit for bit (seven frames, more than the read slots).
+TEST(GpuReadBack, FramesFinishedLaterAreTheReadsAtTheirSteps) {
+  REQUIRE_GPU();
+  const SimulationInput in = testing::pulled_apart(testing::lattice_block(16, 8, 8, 1e-3, 2e-4), 16, 1e-3, 2);
+  testing::expect_frames_read_later_as_read_at_once([&] { return make_cuda_engine(in); }, 7, 40);
 }
 
 TEST(GpuEquivalence, FamiliesAreIdentical) {

@@ -17,6 +17,7 @@
 #include "cuda/kernels/collisions.h"
 #include "cuda/kernels/family.h"
 #include "tests/support/fixtures.h"
+#include "tests/support/frame_reads.h"
 #include "tests/support/same_state.h"
 
 namespace pd {
@@ -161,6 +162,13 @@ TEST(EngineReadBack, BondChangesAppliedLaterGiveEachFramesBonds) {
     changes[size_t(frame)].apply_to(behind);
     ASSERT_EQ(behind.neighbor, whole[size_t(frame)].neighbor) << "frame " << frame;
   }
+}
+
+// Frames taken while bonds break and finished after the engine stepped on (the output threads'
+// read-back) are the reads made at once at their steps; seven frames, more than the read slots.
+TEST(EngineReadBack, FramesFinishedLaterAreTheReadsAtTheirSteps) {
+  const SimulationInput in = testing::pulled_apart(lattice_block(16, 8, 8, 1e-3, 2e-4), 16, 1e-3, 2);
+  testing::expect_frames_read_later_as_read_at_once([&] { return make_cpu_engine(in); }, 7, 40);
 }
 
 // The set-up's stages, in the order they run, each timed; pre-cracks and the state-based
