@@ -77,7 +77,12 @@ void CudaExec::ReadEvent::wait() const {
 
 void* CudaExec::allocate_host(size_t bytes) {
   void* p = nullptr;
-  cuda_check(cudaHostAlloc(&p, bytes ? bytes : 1, cudaHostAllocDefault), "page-locked host memory");
+  const cudaError_t err = cudaHostAlloc(&p, bytes ? bytes : 1, cudaHostAllocDefault);
+  if (err != cudaSuccess) {
+    cudaGetLastError();  // (not left for the next launch's check to report)
+    throw std::runtime_error("page-locked host memory of " + std::to_string(bytes) +
+                             " bytes refused: " + cudaGetErrorString(err));
+  }
   return p;
 }
 void CudaExec::release_host(void* p) {

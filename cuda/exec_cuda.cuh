@@ -211,7 +211,7 @@ class CudaExec {
    private:
     cudaEvent_t event_ = nullptr;
   };
-  void* allocate_host(size_t bytes);
+  void* allocate_host(size_t bytes);  // std::runtime_error when refused
   static void release_host(void* p);
   void read_back(const HostCopy* copies, int n, ReadEvent& done);
   int device_count() const;  // GPUs this process sees

@@ -2,10 +2,13 @@
 // table's frame fields and the bonds' changed bits are copied into host memory of a slot
 // (page-locked on the GPU, on a stream of their own), and the reader's finish() waits for them and
 // unpacks them into a ParticleState and a BondChanges, on the reader's thread. A few slots are
-// reused from frame to frame; while all are out (the readers behind), a frame is read at once.
+// reused from frame to frame (up to 1 GiB of them); while all are out (the readers behind), or
+// where page-locked memory is refused, a frame is read at once.
 #pragma once
 
+#include <algorithm>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <utility>
@@ -19,25 +22,34 @@ namespace pd {
 template <class Exec>
 class FrameReadSlots {
  public:
+  // Slots at most, and the page-locked memory they may hold together, 1 GiB unless given (at
+  // least one slot is allowed whatever its size: a frame is read into host memory of its size
+  // either way).
   static constexpr int kMostSlots = 4;
+  explicit FrameReadSlots(size_t most_bytes = size_t(1) << 30) : most_bytes_(most_bytes) {}
 
   struct Slot {
     void* host = nullptr;
     size_t bytes = 0;
     typename Exec::ReadEvent done;
-    ~Slot() {
+    ~Slot() { release(); }
+    void release() {
       if (!host) return;
       done.wait();  // (copies may still be landing in it when its reader was dropped unfinished)
       Exec::release_host(host);
+      host = nullptr;
+      bytes = 0;
     }
   };
 
-  // A slot of at least `bytes`, or null when kMostSlots are out.
+  // A slot of at least `bytes`, or null when as many are out as kMostSlots and the bytes allow,
+  // or when page-locked memory could not be had (then never again: the frames are read at once).
   std::unique_ptr<Slot> take(Exec& exec, size_t bytes) {
     std::unique_ptr<Slot> slot;
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      if (free_.empty() && out_ == kMostSlots) return nullptr;
+      const int most = int(std::clamp<size_t>(most_bytes_ / std::max<size_t>(bytes, 1), 1, kMostSlots));
+      if (refused_ || out_ >= most) return nullptr;
       ++out_;
       if (!free_.empty()) {
         slot = std::move(free_.back());
@@ -46,10 +58,16 @@ class FrameReadSlots {
     }
     if (!slot) slot = std::make_unique<Slot>();
     if (slot->bytes < bytes) {
-      if (slot->host) Exec::release_host(slot->host);
-      slot->host = nullptr;
-      slot->host = exec.allocate_host(bytes);
-      slot->bytes = bytes;
+      slot->release();
+      try {
+        slot->host = exec.allocate_host(bytes);
+        slot->bytes = bytes;
+      } catch (const std::exception&) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        refused_ = true;
+        --out_;
+        return nullptr;
+      }
     }
     return slot;
   }
@@ -61,9 +79,11 @@ class FrameReadSlots {
   }
 
  private:
+  size_t most_bytes_;
   std::mutex mutex_;
   std::vector<std::unique_ptr<Slot>> free_;
-  int out_ = 0;  // slots taken and not given back
+  int out_ = 0;           // slots taken and not given back
+  bool refused_ = false;  // page-locked memory refused once
 };
 
 // Where each part of a frame lies in its slot.

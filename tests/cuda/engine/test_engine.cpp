@@ -13,7 +13,9 @@
 #include <utility>
 
 #include "cuda/engine/engine.h"
+#include "cuda/engine/frame_reads.h"
 #include "cuda/engine/motion.h"
+#include "cuda/exec_cpu.h"
 #include "cuda/kernels/collisions.h"
 #include "cuda/kernels/family.h"
 #include "tests/support/fixtures.h"
@@ -169,6 +171,47 @@ TEST(EngineReadBack, BondChangesAppliedLaterGiveEachFramesBonds) {
 TEST(EngineReadBack, FramesFinishedLaterAreTheReadsAtTheirSteps) {
   const SimulationInput in = testing::pulled_apart(lattice_block(16, 8, 8, 1e-3, 2e-4), 16, 1e-3, 2);
   testing::expect_frames_read_later_as_read_at_once([&] { return make_cpu_engine(in); }, 7, 40);
+}
+
+// The read slots: four out at most, fewer where they would hold more than their bytes allow (one
+// always), a slot given back is taken again; once page-locked memory is refused, none.
+TEST(EngineReadBack, SlotsAreBoundedInCountAndBytes) {
+  CpuExec exec(nullptr);
+  FrameReadSlots<CpuExec> slots;
+  std::vector<std::unique_ptr<FrameReadSlots<CpuExec>::Slot>> out;
+  for (int k = 0; k < 4; ++k) out.push_back(slots.take(exec, 1000));
+  for (const auto& s : out) ASSERT_NE(s, nullptr);
+  EXPECT_EQ(slots.take(exec, 1000), nullptr);
+  slots.give_back(std::move(out.back()));
+  out.pop_back();
+  auto again = slots.take(exec, 1000);
+  ASSERT_NE(again, nullptr);
+  EXPECT_GE(again->bytes, 1000u);
+  slots.give_back(std::move(again));
+  for (auto& s : out) slots.give_back(std::move(s));
+  // With 3000 bytes allowed: two slots of 1001, one of 5000.
+  FrameReadSlots<CpuExec> small(3000);
+  auto a = small.take(exec, 1001), b = small.take(exec, 1001);
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  EXPECT_EQ(small.take(exec, 1001), nullptr);
+  small.give_back(std::move(a));
+  small.give_back(std::move(b));
+  auto big = small.take(exec, 5000);
+  ASSERT_NE(big, nullptr);
+  EXPECT_EQ(small.take(exec, 5000), nullptr);
+  small.give_back(std::move(big));
+
+  struct RefusingExec {
+    struct ReadEvent {
+      void wait() const {}
+    };
+    void* allocate_host(size_t) { throw std::runtime_error("refused"); }
+    static void release_host(void*) {}
+  } refusing;
+  FrameReadSlots<RefusingExec> none;
+  EXPECT_EQ(none.take(refusing, 1000), nullptr);
+  EXPECT_EQ(none.take(refusing, 1000), nullptr);
 }
 
 // The set-up's stages, in the order they run, each timed; pre-cracks and the state-based
