@@ -52,6 +52,16 @@ inline KernelFeatures features_of(const MaterialTable& mt, bool contact) {
   return f;
 }
 
+// What the integration kernels take on from their neighbours in the step (integrate_fused.h):
+// `init`, the bond-based init after the position update (no state-based material: its init
+// reads the partners' new positions); `gravity`, gravity alone before the velocity update (no
+// projectiles or colliders); `steps_meet`, a step's velocity update in one pass with the next
+// step's position update (nothing on the host between them: no scripted motion, free bodies or
+// moving colliders). Each gives the same bits as the kernels apart.
+struct IntegrationFusion {
+  bool init = false, gravity = false, steps_meet = false;
+};
+
 // Calls f(std::integral_constant<bool, b>...) with the runtime flags turned into types, so
 // one call site reaches every instantiation: static_bools(f, true, false) calls
 // f(std::true_type{}, std::false_type{}).

@@ -16,6 +16,7 @@
 #include "cuda/kernels/family.h"
 #include "cuda/kernels/init.h"
 #include "cuda/kernels/integrate.h"
+#include "cuda/kernels/integrate_fused.h"
 #include "cuda/kernels/plasticity.h"
 #include "cuda/kernels/springforces.h"
 #include "cuda/kernels/springforces_state.h"
@@ -394,21 +395,61 @@ void launch_bodyforces(Exec& ex, ParticlesView p, StepParams sp) {
                     [=] PD_HD(int64_t i) { body_forces<false>(int32_t(i), p, sp); });
 }
 
-// Kernels 6 and 7.
-// With contact lists (c.moved set), the update also reports a particle that left its skin.
-template <class Exec>
-void launch_position_update(Exec& ex, ParticlesView p, StepParams sp, ContactView c) {
-  if (c.moved)
-    ex.parallel_for("pd/position_update[contact]", p.n,
-                    [=] PD_HD(int64_t i) { position_update<true>(int32_t(i), p, sp, c); });
-  else
-    ex.parallel_for("pd/position_update", p.n,
-                    [=] PD_HD(int64_t i) { position_update<false>(int32_t(i), p, sp); });
+// Kernels 6 and 7, each with what the run lets it take on (integrate_fused.h): `with_init`, the
+// bond-based `init` after the position update (kernel 1); `with_gravity`, gravity alone before
+// the velocity update (kernel 5).
+// With contact lists (c.moved set), the position update also reports a particle that left its skin.
+template <bool kContact, bool kInit, class Exec>
+void launch_position_update_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, StepParams sp,
+                                    ContactView c) {
+  static const std::string name =
+      kernel_variant("pd/position_update", {{"contact", kContact}, {"init", kInit}});
+  ex.parallel_for(name.c_str(), p.n, [=] PD_HD(int64_t i) {
+    position_update_with_init<kContact, kInit>(int32_t(i), p, b, mt, sp, c);
+  });
 }
 
 template <class Exec>
-void launch_velocity_update(Exec& ex, ParticlesView p, StepParams sp) {
-  ex.parallel_for("pd/velocity_update", p.n, [=] PD_HD(int64_t i) { velocity_update(int32_t(i), p, sp); });
+void launch_position_update(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt, StepParams sp,
+                            ContactView c, bool with_init) {
+  static_bools(
+      [&](auto contact, auto init) {
+        launch_position_update_variant<decltype(contact)::value, decltype(init)::value>(ex, p, b, mt, sp, c);
+      },
+      c.moved != nullptr, with_init);
+}
+
+template <class Exec>
+void launch_velocity_update(Exec& ex, ParticlesView p, StepParams sp, bool with_gravity) {
+  if (with_gravity)
+    ex.parallel_for("pd/velocity_update[gravity]", p.n,
+                    [=] PD_HD(int64_t i) { velocity_update_with_gravity<true>(int32_t(i), p, sp); });
+  else
+    ex.parallel_for("pd/velocity_update", p.n,
+                    [=] PD_HD(int64_t i) { velocity_update_with_gravity<false>(int32_t(i), p, sp); });
+}
+
+// One step's velocity update and the next step's position update in one pass, where nothing on
+// the host falls between the two steps.
+template <bool kGravity, bool kContact, bool kInit, class Exec>
+void launch_velocity_then_position_update_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt,
+                                                  StepParams sp, ContactView c) {
+  static const std::string name = kernel_variant(
+      "pd/velocity_position_update", {{"gravity", kGravity}, {"contact", kContact}, {"init", kInit}});
+  ex.parallel_for(name.c_str(), p.n, [=] PD_HD(int64_t i) {
+    velocity_then_position_update<kGravity, kContact, kInit>(int32_t(i), p, b, mt, sp, c);
+  });
+}
+
+template <class Exec>
+void launch_velocity_then_position_update(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt,
+                                          StepParams sp, ContactView c, bool with_gravity, bool with_init) {
+  static_bools(
+      [&](auto gravity, auto contact, auto init) {
+        launch_velocity_then_position_update_variant<decltype(gravity)::value, decltype(contact)::value,
+                                                     decltype(init)::value>(ex, p, b, mt, sp, c);
+      },
+      with_gravity, c.moved != nullptr, with_init);
 }
 
 // Family build passes.

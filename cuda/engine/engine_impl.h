@@ -135,6 +135,9 @@ class EngineImpl final : public Engine {
       contacts_.allocate(mem_, state_.n, materials_, contact_rebuild == ContactRebuild::kIncremental);
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0 || !colliders_host_.empty();
+    fusion_.init = !features_.state_based;
+    fusion_.gravity = body_forces_ && step_params_.n_projectiles == 0 && colliders_host_.empty();
+    fusion_.steps_meet = !scripted_motion_ && free_.empty() && !moving_colliders_;
     colliders_ = mem_.make_from(colliders_host_);
     step_params_.colliders = view_of(colliders_);
     collider_spheres_ = mem_.template make<Vec4>(colliders_host_.size());
@@ -166,8 +169,11 @@ class EngineImpl final : public Engine {
   void advance(int64_t steps) override {
     const auto t0 = std::chrono::steady_clock::now();
     const real dt = step_params_.dt;
+    bool end_pending = false;  // the last step's velocity update waits to run with this one's position update
     for (int64_t s = 0; s < steps; ++s) {
       if (graphs_ && steps - s >= kGraphSteps) {
+        if (end_pending) end_step();
+        end_pending = false;
         run_step_graph();
         s += kGraphSteps - 1;
         continue;
@@ -179,23 +185,38 @@ class EngineImpl final : public Engine {
         free_.drift(double(dt));
       }
       if (moving_colliders_) pose_colliders(time_ + dt);
-      launch_position_update(exec_, particles(), step_params_, contact_view());
+      start_step(end_pending, contact_view());
       if (contact_) exec_.mark_flags(ContactLists<Exec>::kFlagEvent);
-      compute_forces();
+      compute_forces(fusion_);
       if (!free_.empty()) {  // ... the particles' reaction at the new state, half kick
         react_and_touch();
         free_.kick(0.5 * double(dt), step_params_.gravity);
       }
-      launch_velocity_update(exec_, particles(), step_params_);
+      end_pending = fusion_.steps_meet;
+      if (!end_pending) end_step();
       time_ += dt;
       ++step_;
     }
+    if (end_pending) end_step();
     exec_.flush_stats();
     if (halo_.active()) {
       exec_.synchronize();
       step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
   }
+
+  // A step's position update, with the step before's velocity update in the same pass where that
+  // was left pending (IntegrationFusion::steps_meet).
+  void start_step(bool after_pending_end, const ContactView& c) {
+    if (after_pending_end)
+      launch_velocity_then_position_update(exec_, particles(), bonds(), materials_, step_params_, c,
+                                           fusion_.gravity, fusion_.init);
+    else
+      launch_position_update(exec_, particles(), bonds(), materials_, step_params_, c, fusion_.init);
+  }
+
+  // A step's velocity update (with gravity, where the run fuses it).
+  void end_step() { launch_velocity_update(exec_, particles(), step_params_, fusion_.gravity); }
 
   std::vector<Collider> colliders() override {
     std::vector<Collider> now = colliders_host_;
@@ -498,8 +519,9 @@ class EngineImpl final : public Engine {
     step_params_.collider_grid.lists = {collider_grid_lists_.data(), int64_t(grid_lists_host_.size())};
   }
 
-  // Kernels 1-5: the forces at the current positions.
-  void compute_forces() {
+  // Kernels 1-5: the forces at the current positions; without `fused`'s init and gravity, which
+  // the integration kernels around it then run (IntegrationFusion).
+  void compute_forces(const IntegrationFusion& fused = {}) {
     const ParticlesView p = particles();
     const BondsView b = bonds();
     // On a partitioned rank, the ghosts' positions before `init` sums dilatations over partners
@@ -510,7 +532,7 @@ class EngineImpl final : public Engine {
     };
     if (features_.state_based)
       with_halo(init, state_.disp);
-    else
+    else if (!fused.init)
       init(all_particles(p));
     if (features_.ghosts) launch_ghost_fit(exec_, p, b, ghost_view(), materials_, ghost_threads_);
     if (features_.plastic) launch_plasticity(exec_, p, materials_);
@@ -527,7 +549,7 @@ class EngineImpl final : public Engine {
       if (refresh_contacts())
         launch_collisions(exec_, particles(), contact_view(), materials_, step_params_.contact_stiffness);
     }
-    if (body_forces_) launch_bodyforces(exec_, particles(), step_params_);
+    if (body_forces_ && !fused.gravity) launch_bodyforces(exec_, particles(), step_params_);
   }
 
   // `launch` over the own particles with the ghosts' `fields` brought up to date first: on a
@@ -616,9 +638,9 @@ class EngineImpl final : public Engine {
       exec_.begin_capture();
       try {
         for (int k = 0; k < kGraphSteps; ++k) {
-          launch_position_update(exec_, particles(), step_params_, ContactView{});
-          compute_forces();
-          launch_velocity_update(exec_, particles(), step_params_);
+          start_step(k > 0 && fusion_.steps_meet, ContactView{});
+          compute_forces(fusion_);
+          if (!fusion_.steps_meet || k == kGraphSteps - 1) end_step();
         }
       } catch (...) {
         exec_.abort_capture();
@@ -682,6 +704,7 @@ class EngineImpl final : public Engine {
   bool pass_screened_ = false;  // the form of the pass being queued
   KernelFeatures features_;
   bool body_forces_ = false;
+  IntegrationFusion fusion_;  // (kernels 1 and 5 in the integration kernels where the run allows)
   int64_t step_ = 0;
   double time_ = 0;
   double critical_dt_ = 0;

@@ -41,8 +41,10 @@ TEST_F(Profile, SmallSceneWritesRangesAndTimeline) {
     if (name.find("_profile.csv") != std::string::npos) profile = testing::read_all(e.path().string());
     if (name.find("_timeline.csv") != std::string::npos) timeline = testing::read_all(e.path().string());
   }
-  for (const char* row :
-       {"\n0,10,springforces,10,", "\n20,40,springforces,20,", "\n20,40,velocity_update,20,"})
+  // Steps run 5 at a time (the timeline's step): each 5 end with one velocity update, and the
+  // other 4 steps' velocity updates run with the next step's position update.
+  for (const char* row : {"\n0,10,springforces,10,", "\n20,40,springforces,20,", "\n20,40,velocity_update,4,",
+                          "\n20,40,velocity_position_update,16,"})
     EXPECT_NE(profile.find(row), std::string::npos) << row << " in\n" << profile;
   EXPECT_NE(timeline.find("\n35,40,springforces,"), std::string::npos) << timeline;
   EXPECT_EQ(timeline.find("\n40,"), std::string::npos) << "the timeline runs past the last range";

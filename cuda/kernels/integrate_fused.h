@@ -1,0 +1,44 @@
+// The integration kernels fused with their neighbours in the step where nothing between them
+// reads what the first writes for another particle: each fused pass runs the kernels' own
+// functions one after the other on a particle, so it gives their bits, and reads and writes the
+// particle's records once instead of two or three times (bench/NOTES.md, "The step's small
+// kernels fused").
+//   position update, then bond-based `init` (kernel 6 + 1): init reads the particle's own
+//     limits and bond counts of the last force pass and writes the strain limit beside the
+//     displacement the update has just written;
+//   gravity, then the velocity update (kernel 5 + 7): gravity alone reads the particle's mass
+//     and force (projectiles and colliders, which read positions and pushers, keep their kernel);
+//   one step's end and the next one's start (5 + 7, then 6 + 1) where the host does nothing
+//   between two steps (no scripted motion, free bodies or moving colliders): the velocity update
+//   and the next position update read the same step parameters but for the time, which neither
+//   reads.
+#pragma once
+
+#include "cuda/kernels/bodyforces.h"
+#include "cuda/kernels/init.h"
+#include "cuda/kernels/integrate.h"
+
+namespace pd {
+
+template <bool kContact, bool kInit>
+PD_HD inline void position_update_with_init(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                                            const StepParams& sp, ContactView c) {
+  position_update<kContact>(i, p, sp, c);
+  if constexpr (kInit) init_particle<false, false, kNoLattice, false>(i, p, b, mt);
+}
+
+template <bool kGravity>
+PD_HD inline void velocity_update_with_gravity(int32_t i, ParticlesView p, const StepParams& sp) {
+  if constexpr (kGravity) body_forces<false>(i, p, sp);
+  velocity_update(i, p, sp);
+}
+
+template <bool kGravity, bool kContact, bool kInit>
+PD_HD inline void velocity_then_position_update(int32_t i, ParticlesView p, BondsView b,
+                                                const MaterialTable& mt, const StepParams& sp,
+                                                ContactView c) {
+  velocity_update_with_gravity<kGravity>(i, p, sp);
+  position_update_with_init<kContact, kInit>(i, p, b, mt, sp, c);
+}
+
+}  // namespace pd
