@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstring>
 #include <new>
@@ -37,6 +38,21 @@ class CpuExec {
   void parallel_for_from(const char* name, int64_t first, int64_t n, F f) {
     if (first == 0) return parallel_for<kMinBlocks>(name, n, f);
     parallel_for<kMinBlocks>(name, n, [&](int64_t k) { f(first + k); });
+  }
+
+  // Phase k runs f_k(i) for i in [0, n[k]), all of it before phase k + 1 (CudaExec: in one
+  // launch); counted and timed as one launch.
+  template <class... F>
+  void parallel_phases(const char* name, const std::array<int64_t, sizeof...(F)>& n, F... f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    size_t k = 0;
+    const auto run = [&](auto& phase) {
+      const int64_t count = n[k++];
+#pragma omp parallel for schedule(static)
+      for (int64_t i = 0; i < count; ++i) phase(i);
+    };
+    (run(f), ...);
+    record(name, t0);
   }
 
   // Sum of f(i) over [0, n) for any type with +: per-thread partial sums over static

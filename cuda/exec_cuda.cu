@@ -199,6 +199,18 @@ void CudaExec::describe(KernelStat* s, const void* kernel) {
   s->occupancy = double(blocks_per_sm * kBlockSize) / double(max_threads_per_sm);
 }
 
+int64_t CudaExec::resident_blocks(const void* kernel) const {
+  int device = 0, sms = 0, per_sm = 0, cooperative = 0;
+  cuda_check(cudaGetDevice(&device), "cudaGetDevice");
+  cuda_check(cudaDeviceGetAttribute(&cooperative, cudaDevAttrCooperativeLaunch, device),
+             "cudaDeviceGetAttribute");
+  if (!cooperative) throw std::runtime_error("the GPU does not support cooperative launches");
+  cuda_check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "cudaDeviceGetAttribute");
+  cuda_check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, kBlockSize, 0),
+             "cudaOccupancyMaxActiveBlocksPerMultiprocessor");
+  return std::max<int64_t>(int64_t(sms) * per_sm, 1);
+}
+
 cudaEvent_t CudaExec::take_event() {
   if (!free_events_.empty()) {
     cudaEvent_t e = free_events_.back();

@@ -3,8 +3,11 @@
 // scans and reductions use CUB.
 #pragma once
 
+#include <cooperative_groups.h>
 #include <cuda_runtime.h>
 
+#include <algorithm>
+#include <array>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_reduce.cuh>
 #include <stdexcept>
@@ -62,6 +65,27 @@ __global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks > 0 ? kMinBlocks : 
   const uint32_t team_mask = (kThreads == 32 ? ~0u : (1u << kThreads) - 1u)
                              << ((threadIdx.x & 31u) & ~uint32_t(kThreads - 1));
   f(first + t, Team<kThreads>{lane, team_mask});
+}
+
+// Phases of one cooperative launch (CudaExec::parallel_phases): each thread strides over phase
+// k's items, then the whole grid waits for the others before phase k + 1.
+template <size_t kPhases>
+struct PhaseCounts {
+  int64_t n[kPhases];
+};
+
+template <class... F>
+__global__ void parallel_phases_kernel(PhaseCounts<sizeof...(F)> counts, F... f) {
+  const cooperative_groups::grid_group grid = cooperative_groups::this_grid();
+  const int64_t first = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const int64_t stride = int64_t(gridDim.x) * blockDim.x;
+  size_t k = 0;
+  const auto run = [&](auto& phase) {
+    if (k > 0) grid.sync();
+    for (int64_t i = first; i < counts.n[k]; i += stride) phase(i);
+    ++k;
+  };
+  (run(f), ...);
 }
 
 template <class T, class F>
@@ -131,6 +155,29 @@ class CudaExec {
     cudaEvent_t start = begin_timing(name);
     parallel_for_team_kernel<kThreads, kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
     cuda_check(cudaGetLastError(), name);
+    end_timing(name, start);
+  }
+
+  // Phase k runs f_k(i) for i in [0, n[k]), all of it before phase k + 1: one cooperative launch
+  // of as many blocks as the largest phase needs and the GPU holds at once, a grid-wide barrier
+  // between the phases. For chains of small passes whose launches cost more than their work
+  // (bench/NOTES.md: the contact lists' relisting rounds).
+  template <class... F>
+  void parallel_phases(const char* name, const std::array<int64_t, sizeof...(F)>& n, F... f) {
+    const int64_t most = *std::max_element(n.begin(), n.end());
+    if (most <= 0) return;
+    const void* kernel = reinterpret_cast<const void*>(&parallel_phases_kernel<F...>);
+    KernelStat* s = stats_ ? &stats_->entry(name) : nullptr;
+    if (s && s->registers < 0) describe(s, kernel);
+    static const int64_t resident = resident_blocks(kernel);  // (per instantiation: one device per process)
+    const int64_t blocks = std::min((most + kBlockSize - 1) / kBlockSize, resident);
+    PhaseCounts<sizeof...(F)> counts;
+    for (size_t k = 0; k < n.size(); ++k) counts.n[k] = n[k];
+    void* args[] = {&counts, &f...};
+    cudaEvent_t start = begin_timing(name);
+    cuda_check(
+        cudaLaunchCooperativeKernel(kernel, dim3(unsigned(blocks)), dim3(kBlockSize), args, 0, stream_),
+        name);
     end_timing(name, start);
   }
 
@@ -226,7 +273,8 @@ class CudaExec {
     cudaEvent_t start, stop;
   };
   void describe(KernelStat* s, const void* kernel);
-  cudaEvent_t begin_timing(const char* name);  // counts the launch; an event where it is timed
+  int64_t resident_blocks(const void* kernel) const;  // blocks of `kernel` the GPU holds at once
+  cudaEvent_t begin_timing(const char* name);         // counts the launch; an event where it is timed
   void end_timing(const char* name, cudaEvent_t start);
   cudaEvent_t take_event();
   void* scratch(int slot, size_t bytes);

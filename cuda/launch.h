@@ -269,16 +269,16 @@ template <class Exec>
 void launch_relist_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c, RelistView r,
                             MaterialTable mt, real quarter_max, int32_t round, int32_t* rebuild,
                             int32_t* pairs) {
-  ex.parallel_for("pd/contact_relist", c.movers.size,
-                  [=] PD_HD(int64_t t) { relist_mover(int32_t(t), p, h, c, r, mt, round, rebuild); });
-  ex.parallel_for("pd/contact_relist_gather", c.movers.size * kRelistLanes,
-                  [=] PD_HD(int64_t g) { gather_mover(int32_t(g), h, c, r, quarter_max); });
-  ex.parallel_for("pd/contact_relist_finish", c.movers.size,
-                  [=] PD_HD(int64_t t) { finish_mover(int32_t(t), p, c, r, round, rebuild, pairs); });
-  ex.parallel_for("pd/contact_relist_add", r.link.size / 2,
-                  [=] PD_HD(int64_t q) { add_link(int32_t(q), c, r, rebuild); });
-  ex.parallel_for("pd/contact_relist_sort", r.link.size / 2,
-                  [=] PD_HD(int64_t q) { sort_linked(int32_t(q), p, c, r); });
+  // The five passes in one launch (a grid-wide barrier between them on the GPU): a round is
+  // launch-bound (tens of movers), and five launches cost it 29 us on the vase (bench/NOTES.md).
+  const int64_t movers = c.movers.size, links = r.link.size / 2;
+  ex.parallel_phases(
+      "pd/contact_relist", {movers, movers * kRelistLanes, movers, links, links},
+      [=] PD_HD(int64_t t) { relist_mover(int32_t(t), p, h, c, r, mt, round, rebuild); },
+      [=] PD_HD(int64_t g) { gather_mover(int32_t(g), h, c, r, quarter_max); },
+      [=] PD_HD(int64_t t) { finish_mover(int32_t(t), p, c, r, round, rebuild, pairs); },
+      [=] PD_HD(int64_t q) { add_link(int32_t(q), c, r, rebuild); },
+      [=] PD_HD(int64_t q) { sort_linked(int32_t(q), p, c, r); });
 }
 
 // After a full build of the lists: no particle relisted.
