@@ -170,9 +170,10 @@ void launch_plasticity(Exec& ex, ParticlesView p, MaterialTable mt) {
   ex.parallel_for("pd/plasticity", p.n, [=] PD_HD(int64_t i) { yield_test(int32_t(i), p, mt); });
 }
 
-// The ghost surface correction (surface_ghosts.h): the fits after `init`, the ghost bonds' forces
-// after `springforces` (`threads` per particle: team.h), and each ghosted particle's liveness
-// from its bonds (set-up, restore).
+// The ghost surface correction (surface_ghosts.h): the fits after `init` and the partners' shares
+// pushed, the ghost bonds' forces after `springforces` (`threads` per particle: team.h), each
+// ghosted particle's liveness
+// from its bonds (set-up, restore), and the slots' mirror rows (set-up).
 template <int kThreads, class Exec>
 void launch_ghost_fit_variant(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
   if constexpr (kThreads == 1)
@@ -183,14 +184,23 @@ void launch_ghost_fit_variant(Exec& ex, ParticlesView p, BondsView b, GhostView 
         [=] PD_HD(int64_t k, const Team<kThreads>& team) { ghost_fit(int32_t(k), p, b, g, mt, team); });
 }
 template <int kThreads, class Exec>
-void launch_ghost_forces_variant(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
+void launch_ghost_push_variant(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
+  if constexpr (kThreads == 1)
+    ex.parallel_for("pd/ghost_push", g.n, [=] PD_HD(int64_t k) { ghost_push(int32_t(k), p, b, g, mt); });
+  else
+    ex.template parallel_for_team<kThreads>(
+        "pd/ghost_push", 0, g.n,
+        [=] PD_HD(int64_t k, const Team<kThreads>& team) { ghost_push(int32_t(k), p, b, g, mt, team); });
+}
+template <int kThreads, class Exec>
+void launch_ghost_forces_variant(Exec& ex, ParticlesView p, BondsView b, GhostView g) {
   if constexpr (kThreads == 1)
     ex.parallel_for("pd/ghost_forces", g.receivers.size,
-                    [=] PD_HD(int64_t r) { ghost_forces(int32_t(r), p, b, g, mt); });
+                    [=] PD_HD(int64_t r) { ghost_forces(int32_t(r), p, b, g); });
   else
     ex.template parallel_for_team<kThreads>(
         "pd/ghost_forces", 0, g.receivers.size,
-        [=] PD_HD(int64_t r, const Team<kThreads>& team) { ghost_forces(int32_t(r), p, b, g, mt, team); });
+        [=] PD_HD(int64_t r, const Team<kThreads>& team) { ghost_forces(int32_t(r), p, b, g, team); });
 }
 template <class Exec>
 void launch_ghost_fit(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt,
@@ -199,15 +209,30 @@ void launch_ghost_fit(Exec& ex, ParticlesView p, BondsView b, GhostView g, Mater
       threads, [&](auto lanes) { launch_ghost_fit_variant<decltype(lanes)::value>(ex, p, b, g, mt); });
 }
 template <class Exec>
-void launch_ghost_forces(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt,
-                         int threads = 1) {
+void launch_ghost_push(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt,
+                       int threads = 1) {
   with_bond_threads<Exec>(
-      threads, [&](auto lanes) { launch_ghost_forces_variant<decltype(lanes)::value>(ex, p, b, g, mt); });
+      threads, [&](auto lanes) { launch_ghost_push_variant<decltype(lanes)::value>(ex, p, b, g, mt); });
+}
+template <class Exec>
+void launch_ghost_forces(Exec& ex, ParticlesView p, BondsView b, GhostView g, int threads = 1) {
+  with_bond_threads<Exec>(
+      threads, [&](auto lanes) { launch_ghost_forces_variant<decltype(lanes)::value>(ex, p, b, g); });
+}
+template <class Exec>
+void launch_ghost_drops(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {
+  ex.parallel_for("pd/ghost_drops", g.n, [=] PD_HD(int64_t k) { ghost_drops(int32_t(k), p, b, g, mt); });
 }
 template <class Exec>
 void launch_ghost_liveness(Exec& ex, BondsView b, GhostView g) {
   ex.parallel_for("family/ghost_liveness", g.n, [=] PD_HD(int64_t k) { ghost_liveness(int32_t(k), b, g); });
 }
+template <class Exec>
+void launch_ghost_mirror(Exec& ex, BondsView b, GhostView g, int32_t particles, int32_t* mirror) {
+  ex.parallel_for("family/ghost_mirror", particles,
+                  [=] PD_HD(int64_t i) { ghost_mirror(int32_t(i), b, g, mirror); });
+}
+
 template <class Exec>
 void launch_ghost_weighted_volume(Exec& ex, ParticlesView p, GhostView g) {
   ex.parallel_for("family/ghost_weighted_volume", g.n,

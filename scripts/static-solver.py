@@ -25,6 +25,8 @@ Models:
   pals-maxent     the same constraints met by exp(l.g) weights (never negative)
   pals-odd        pals with the dilatation's odd moments also zero (16 multipliers)
   pals-dil        pals's dilatation with the LPS deviatoric part
+  pals-dil-axis   pals's dilatation with the per-axis factors on the deviatoric part alone
+                  (--axis-scale's V scales their deviation from 1)
   pmb, pmb-axis   bond-based, without and with the default correction (--rounds, default 3;
                   --parallel-q Q puts the factor's increase on bonds parallel to the surface)
   pmb-moments     a factor per bond from the per-axis ones, least squares so that the bonds'
@@ -251,7 +253,13 @@ def state_weights(b, model, args):
                                      np.concatenate([h, cubic], 1), np.concatenate([t_d, np.zeros(10)]))
         else:
             wd = wd0 * solve_moments(b, wd0 * b.r ** 2 * b.bw, g, h, t_d)
-        wv = lps[1] if model == "pals-dil" else wv0 * solve_moments(b, wv0 * b.r ** 2 * b.bw, q, q, t_v)
+        if model == "pals-dil-axis":  # the per-axis factors on the deviatoric part alone
+            G = 1 + args.axis_scale[1] * (axis_factors(b, b.r * b.bw, s["bond_sum"] / 3, 2, args.rounds or 2) - 1)
+            wv = 7.5 * omega * G / b.per_particle(omega * G * b.r ** 2 * b.bw)[b.bi]
+        elif model == "pals-dil":
+            wv = lps[1]
+        else:
+            wv = wv0 * solve_moments(b, wv0 * b.r ** 2 * b.bw, q, q, t_v)
     a = args.alpha
     return a * wd + (1 - a) * lps[0], a * wv + (1 - a) * lps[1]
 
@@ -524,7 +532,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("problem", choices=["bar", "bending", "cantilever", "torsion", "uniform", "stable"])
     p.add_argument("--n", type=int, default=8, help="particles across")
-    p.add_argument("--model", default="lps", choices=["lps", "lps-axis", "lps-axis-dev", "pals", "pals-maxent",
+    p.add_argument("--model", default="lps", choices=["lps", "lps-axis", "lps-axis-dev", "pals", "pals-maxent", "pals-dil-axis",
                                                        "pals-odd", "pals-dil", "pmb", "pmb-axis", "pmb-moments"])
     p.add_argument("--rounds", type=int, default=0, help="the per-axis factors' rounds (0: the engine's)")
     p.add_argument("--alpha", type=float, default=1.0, help="pals models: A pals + (1 - A) lps")

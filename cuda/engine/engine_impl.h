@@ -433,7 +433,7 @@ class EngineImpl final : public Engine {
   void set_up_ghosts(const ParticleSet& ps, const BondLists& uncut, const std::vector<int32_t>& cut_count,
                      std::vector<double>& rate) {
     GhostTables t = pd::surface_ghosts(ps, materials_, uncut, cut_count);
-    check_ghost_memory(t, backend());
+    check_ghost_memory(t, int64_t(state_.neighbor.size()), backend());
     surface_ghosts_.particle = mem_.make_from(t.particle);
     surface_ghosts_.of = mem_.make_from(t.of);
     surface_ghosts_.inverse = mem_.make_from(t.inverse);
@@ -442,10 +442,14 @@ class EngineImpl final : public Engine {
     surface_ghosts_.first = mem_.make_from(t.first);
     surface_ghosts_.offset = mem_.make_from(t.offset);
     surface_ghosts_.receivers = mem_.make_from(t.receivers);
+    surface_ghosts_.push_first = mem_.make_from(t.push_first);
+    surface_ghosts_.mirror = mem_.template make<int32_t>(state_.neighbor.size());
     surface_ghosts_.pull = mem_.template make_zeroed<real>(size_t(t.size()) * kGhostPull);
+    surface_ghosts_.push = mem_.template make_zeroed<Vec4>(size_t(t.push_first.back()));
     surface_ghosts_.live = mem_.template make_zeroed<uint8_t>(size_t(t.size()));
     ghost_counts_ = {t.size(), t.thin, t.precracked, t.linear};
     rate = std::move(t.stability_rate);
+    launch_ghost_mirror(exec_, bonds(), ghost_view(), owned_, surface_ghosts_.mirror.data());
     launch_ghost_liveness(exec_, bonds(), ghost_view());
   }
 
@@ -460,7 +464,10 @@ class EngineImpl final : public Engine {
     v.first = view_of(surface_ghosts_.first);
     v.offset = view_of(surface_ghosts_.offset);
     v.receivers = view_of(surface_ghosts_.receivers);
+    v.push_first = view_of(surface_ghosts_.push_first);
+    v.mirror = view_of(surface_ghosts_.mirror);
     v.pull = view_of(surface_ghosts_.pull);
+    v.push = view_of(surface_ghosts_.push);
     v.live = view_of(surface_ghosts_.live);
     return v;
   }
@@ -534,14 +541,22 @@ class EngineImpl final : public Engine {
       with_halo(init, state_.disp);
     else if (!fused.init)
       init(all_particles(p));
-    if (features_.ghosts) launch_ghost_fit(exec_, p, b, ghost_view(), materials_, ghost_threads_);
+    if (features_.ghosts) {
+      launch_ghost_fit(exec_, p, b, ghost_view(), materials_, ghost_threads_);
+      launch_ghost_push(exec_, p, b, ghost_view(), materials_, ghost_threads_);
+    }
     if (features_.plastic) launch_plasticity(exec_, p, materials_);
     const auto springforces = [&](ParticleRange r) { queue_springforces(p, b, r); };
     if (features_.state_based)
       with_halo(springforces, state_.disp, state_.state);
     else
       with_halo(springforces, state_.disp);
-    if (features_.ghosts) launch_ghost_forces(exec_, p, b, ghost_view(), materials_, ghost_threads_);
+    // (The gather reads a 4-byte row and a 16-byte share a bond, as springforces reads its
+    // partners: its lanes are springforces'.)
+    if (features_.ghosts) {
+      launch_ghost_forces(exec_, p, b, ghost_view(), bond_threads_);
+      launch_ghost_drops(exec_, p, b, ghost_view(), materials_);
+    }
     take_broke_flags();
     // (After a contact build that brought in contact ghosts the state may have moved: the views
     // are taken again.)
@@ -664,9 +679,9 @@ class EngineImpl final : public Engine {
   // The ghost surface correction's tables (set_up_ghosts), and its counts: ghosted particles,
   // and those left without ghosts (thin families, pre-cracks).
   struct GhostArrays {
-    DeviceArray<int32_t, Exec> particle, of, first, receivers;
+    DeviceArray<int32_t, Exec> particle, of, first, receivers, push_first, mirror;
     DeviceArray<real, Exec> inverse, moment, inv_mw, pull;
-    DeviceArray<Vec4, Exec> offset;
+    DeviceArray<Vec4, Exec> offset, push;
     DeviceArray<uint8_t, Exec> live;
   } surface_ghosts_;
   SurfaceGhostCounts ghost_counts_;

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "cuda/engine/memory_budget.h"
 #include "cuda/kernels/family.h"
@@ -223,6 +224,8 @@ GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const
   t.of.assign(size_t(n), -1);
   t.stability_rate.assign(size_t(n), 0.0);
   t.first.push_back(0);
+  t.push_first.push_back(0);
+  int64_t pushed = 0;
   std::vector<uint8_t> receives(size_t(n), 0);
   for (int32_t i = 0; i < n; ++i) {
     GhostRow& r = rows[size_t(i)];
@@ -237,6 +240,13 @@ GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const
     t.inv_mw.push_back(r.inv_mw);
     t.offset.insert(t.offset.end(), r.offset.begin(), r.offset.end());
     t.first.push_back(int32_t(t.offset.size()));
+    pushed += cut_count[size_t(i)];  // (a ghosted particle lost no bond to a cut)
+    if (pushed > std::numeric_limits<int32_t>::max())
+      throw ResourceError("the ghost surface correction holds at most 2^31 - 1 bonds of ghosted particles (" +
+                          std::to_string(t.size()) +
+                          " ghosted so far); set the materials' surface_correction to true (the factors) "
+                          "or false, or lower --scale or the particle count");
+    t.push_first.push_back(int32_t(pushed));
     for (const auto& [j, rate] : r.rate) {
       t.stability_rate[size_t(j)] += rate / double(ps.mass[size_t(j)]);
       receives[size_t(j)] = 1;
@@ -248,15 +258,17 @@ GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const
   return t;
 }
 
-double ghost_table_bytes(const GhostTables& t) {
+double ghost_table_bytes(const GhostTables& t, int64_t slots) {
   const auto bytes = [](const auto& v) { return double(v.size()) * double(sizeof(v[0])); };
-  return bytes(t.particle) + bytes(t.of) + bytes(t.first) + bytes(t.receivers) + bytes(t.inverse) +
-         bytes(t.moment) + bytes(t.inv_mw) + bytes(t.offset) +
-         double(t.size()) * (kGhostPull * sizeof(real) + sizeof(uint8_t));  // pull, live
+  return bytes(t.particle) + bytes(t.of) + bytes(t.first) + bytes(t.receivers) + bytes(t.push_first) +
+         bytes(t.inverse) + bytes(t.moment) + bytes(t.inv_mw) + bytes(t.offset) +
+         double(t.size()) * (kGhostPull * sizeof(real) + sizeof(uint8_t)) +  // pull, live
+         double(t.push_first.back()) * double(sizeof(Vec4)) +                // push
+         double(slots) * double(sizeof(int32_t));                            // mirror
 }
 
-void check_ghost_memory(const GhostTables& t, Backend backend) {
-  const double need = ghost_table_bytes(t), free = double(backend_available_bytes(backend));
+void check_ghost_memory(const GhostTables& t, int64_t slots, Backend backend) {
+  const double need = ghost_table_bytes(t, slots), free = double(backend_available_bytes(backend));
   if (need <= free) return;
   const bool gpu = backend == Backend::kCuda;
   throw ResourceError(

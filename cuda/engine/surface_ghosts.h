@@ -21,6 +21,7 @@ constexpr double kGhostStableStepRatio = 0.25;
 // The tables of GhostView on the host, and what the set-up found.
 struct GhostTables {
   std::vector<int32_t> particle, of, first, receivers;
+  std::vector<int32_t> push_first;  // each ghosted particle's bonds' rows of the push table (GhostView)
   std::vector<real> inverse, moment, inv_mw;
   std::vector<Vec4> offset;
   // Per particle, the ghost bonds' share of its stability rate (cuda/kernels/family.h
@@ -44,11 +45,12 @@ GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const
                            const std::vector<int32_t>& cut_count);
 
 // The backend memory the tables take as the engine holds them (GhostView's arrays, this step's
-// scratch included). A body of many thin parts can have most particles ghosted, at ~1-2 KB each.
-double ghost_table_bytes(const GhostTables& t);
+// push table and a mirror row for each of the families' `slots` included). A body of many thin
+// parts can have most particles ghosted, at ~2-4 KB each.
+double ghost_table_bytes(const GhostTables& t, int64_t slots);
 
 // Refuses the tables with a clear message (ResourceError) where `backend` has not the memory
 // for them free, before they are allocated.
-void check_ghost_memory(const GhostTables& t, Backend backend);
+void check_ghost_memory(const GhostTables& t, int64_t slots, Backend backend);
 
 }  // namespace pd

@@ -13,9 +13,12 @@
 //   f_k -= M_i p(xi_k) w_k,  f_i += M_i sum_k p(xi_k) w_k,  M_i = (sum_o g_o p(xi_o)^T) A_i^-1,
 // which sums to zero and, W being invariant under rotations, exerts no torque: momentum and
 // angular momentum are kept, and the forces come from an energy.
-// Per step: `ghost_fit` after `init` (the fit, the ghosts' stretches, theta_i completed, M_i),
-// `ghost_forces` after `springforces` (each particle near a surface gathers its ghosted partners'
-// M and its own). On the GPU both run a team of lanes per particle (cuda/team.h): the lanes split
+// Per step: `ghost_fit` after `init` (the fit, the ghosts' stretches, theta_i completed, M_i and
+// M_i s_i), `ghost_push` (each partner's share M_i p(xi_k) w_k written to the bond's row of the push
+// table), `ghost_forces` after `springforces` (each particle near a surface adds its own M_i s_i
+// and takes off, through its bonds' mirror rows, the shares its ghosted partners pushed to it: 16
+// bytes a bond, where reading each partner's M took 112 and the basis again). On the GPU the fit
+// and the push run a team of lanes per ghosted particle (cuda/team.h): the lanes split
 // the family's bonds and the ghosts and add their partial sums in the team's fixed tree; Team<1>
 // (the CPU, or PERIFRAC_BOND_THREADS=1) is one thread per particle. A particle's ghosts are dropped for good
 // once any of its bonds is broken (its fit would reach across the crack): it is then an uncorrected particle
@@ -24,6 +27,7 @@
 #pragma once
 
 #include "cuda/kernels/bond.h"
+#include "cuda/kernels/family.h"
 #include "cuda/kernels/springforces.h"
 #include "cuda/kernels/state_based.h"
 #include "cuda/team.h"
@@ -34,20 +38,28 @@ constexpr int kGhostBasis = 9;
 // Floats of scratch per ghosted particle: M (3 x 9), M s (3), pad; 128 bytes, so that a row's
 // 16-byte loads stay aligned.
 constexpr int kGhostPull = 32;
+// GhostView::live of a ghosted particle one of whose bonds broke in this step's force pass, until
+// ghost_drops drops its ghosts.
+constexpr uint8_t kGhostsGoing = 2;
 
 // The ghosted particles' tables (built at set-up, cuda/engine/surface_ghosts.h).
 struct GhostView {
-  int32_t n = 0;                       // ghosted particles
-  ArrayView<const int32_t> particle;   // [n] the particle
-  ArrayView<const int32_t> of;         // [particles] its row here, or -1
-  ArrayView<const real> inverse;       // [n x 81] A^-1, row major
-  ArrayView<const real> moment;        // [n x 9] A^-1 sum_k w_k p(xi_k), over the family
-  ArrayView<const real> inv_mw;        // [n] LPS: 1 / m over the family and the ghosts (the interior's)
-  ArrayView<const int32_t> first;      // [n + 1] the particle's ghosts in `offset`
-  ArrayView<const Vec4> offset;        // xyz: a ghost bond's reference vector; w: its weight beta V_o
-  ArrayView<const int32_t> receivers;  // particles that are ghosted or bond to one
-  ArrayView<real> pull;                // [n x kGhostPull] this step's M and M s
-  ArrayView<uint8_t> live;             // [n] 1 while every bond of the particle holds
+  int32_t n = 0;                        // ghosted particles
+  ArrayView<const int32_t> particle;    // [n] the particle
+  ArrayView<const int32_t> of;          // [particles] its row here, or -1
+  ArrayView<const real> inverse;        // [n x 81] A^-1, row major
+  ArrayView<const real> moment;         // [n x 9] A^-1 sum_k w_k p(xi_k), over the family
+  ArrayView<const real> inv_mw;         // [n] LPS: 1 / m over the family and the ghosts (the interior's)
+  ArrayView<const int32_t> first;       // [n + 1] the particle's ghosts in `offset`
+  ArrayView<const Vec4> offset;         // xyz: a ghost bond's reference vector; w: its weight beta V_o
+  ArrayView<const int32_t> receivers;   // particles that are ghosted or bond to one
+  ArrayView<const int32_t> push_first;  // [n + 1] the particle's bonds' rows in `push`, in family order
+  ArrayView<const int32_t> mirror;      // [bond slots] the row of `push` where the slot's partner, if
+                                        // ghosted, puts this end's share (ghost_mirror), else -1
+  ArrayView<real> pull;                 // [n x kGhostPull] this step's M and M s
+  ArrayView<Vec4> push;                 // xyz: this step's share of the ghosted particle's bond k
+  ArrayView<uint8_t> live;              // [n] 1 while every bond of the particle holds (kGhostsGoing
+                                        // between ghost_forces and ghost_drops once one broke)
 };
 
 // p(xi) with xi in units of delta.
@@ -81,6 +93,32 @@ PD_HD inline void times_inverse(const real* x, int32_t g, const GhostView& gv, r
     }
 }
 
+// The same over a team, every lane ending with all of out: lane l sums the columns l, l +
+// kSize, ... of the three rows (each entry's sum in times_inverse's order, so the same bits), and
+// the lanes pass them round, where each lane summing all 27 took 243 multiply-adds.
+template <class TeamT>
+PD_HD inline void times_inverse(const real* x, int32_t g, const GhostView& gv, real* out, const TeamT& team) {
+  if constexpr (TeamT::kSize == 1) {
+    times_inverse(x, g, gv, out);
+  } else {
+    constexpr int kRounds = (kGhostBasis + TeamT::kSize - 1) / TeamT::kSize;
+    const real* inv = gv.inverse.data() + int64_t(g) * kGhostBasis * kGhostBasis;
+    real mine[kRounds][3];
+    for (int r = 0; r < kRounds; ++r) {
+      const int col = r * TeamT::kSize + team.lane();
+      const int a = col < kGhostBasis ? col : kGhostBasis - 1;  // (lanes past the last repeat it)
+      for (int c = 0; c < 3; ++c) {
+        real s = 0;
+        for (int q = 0; q < kGhostBasis; ++q) s += x[c * kGhostBasis + q] * inv[q * kGhostBasis + a];
+        mine[r][c] = s;
+      }
+    }
+    for (int a = 0; a < kGhostBasis; ++a)
+      for (int c = 0; c < 3; ++c)
+        out[c * kGhostBasis + a] = team.from(a % TeamT::kSize, mine[a / TeamT::kSize][c]);
+  }
+}
+
 // One ghosted particle's fitted field: C = D A^-1 (3 x 9), row major.
 struct GhostFit {
   real c[3 * kGhostBasis];
@@ -110,7 +148,7 @@ PD_HD inline GhostFit fit_ghost_field(int32_t g, int32_t i, const ParticlesView&
   if constexpr (TeamT::kSize > 1)
     for (int a = 0; a < 3 * kGhostBasis; ++a) d[a] = team.sum(d[a]);
   GhostFit f;
-  times_inverse(d, g, gv, f.c);
+  times_inverse(d, g, gv, f.c, team);
   return f;
 }
 
@@ -210,9 +248,11 @@ PD_HD inline void ghost_fit(int32_t g, ParticlesView p, BondsView b, GhostView g
   }
   if constexpr (TeamT::kSize > 1)
     for (int a = 0; a < 3 * kGhostBasis; ++a) q_sum[a] = team.sum(q_sum[a]);
-  if (!team.leader()) return;
   // M = Q A^-1, and M s with s = sum_k w_k p(xi_k) (the particle's own force)
-  times_inverse(q_sum, g, gv, pull);
+  real mq[3 * kGhostBasis];
+  times_inverse(q_sum, g, gv, mq, team);
+  if (!team.leader()) return;
+  for (int a = 0; a < 3 * kGhostBasis; ++a) pull[a] = mq[a];
   // M s = Q (A^-1 s), A^-1 s fixed at set-up (s = sum_k w_k p(xi_k) over the intact family)
   const real* t = gv.moment.data() + int64_t(g) * kGhostBasis;
   Vec3 own{0, 0, 0};
@@ -224,6 +264,43 @@ PD_HD inline void ghost_fit(int32_t g, ParticlesView p, BondsView b, GhostView g
   pull[27] = own.x;
   pull[28] = own.y;
   pull[29] = own.z;
+}
+
+// Kernel `ghost_push`, after `ghost_fit`: each partner k's share w_k M p(xi_k) of ghosted particle
+// g's ghost bonds' forces (xi_k from g's particle to k), which ghost_forces takes off k's force; 0
+// once g's ghosts are dropped (its M is 0).
+template <class TeamT = Team<1>>
+PD_HD inline void ghost_push(int32_t g, ParticlesView p, BondsView b, GhostView gv, const MaterialTable& mt,
+                             const TeamT& team = {}) {
+  const int32_t i = gv.particle[g];
+  const int32_t first = gv.push_first[g], count = gv.push_first[g + 1] - first;
+  // M in seven 16-byte loads (a float each would take 27 load instructions).
+  real mq[28];
+  const Vec4* rows = reinterpret_cast<const Vec4*>(gv.pull.data() + int64_t(g) * kGhostPull);
+  for (int v = 0; v < 7; ++v) {
+    const Vec4 r4 = rows[v];
+    mq[4 * v] = r4.x;
+    mq[4 * v + 1] = r4.y;
+    mq[4 * v + 2] = r4.z;
+    mq[4 * v + 3] = r4.w;
+  }
+  const Material& m = mt.m[p.material[i]];
+  const real inv_delta = real(1) / m.horizon;
+  const Vec3 rest_i = xyz(p.rest[i]);
+  for (int32_t k = team.lane(); k < count; k += TeamT::kSize) {
+    const Vec4 rest_k = p.rest[bond_partner(b.neighbor[b.slot(i, k)])];
+    const Vec3 xi = xyz(rest_k) - rest_i;
+    const real w = ghost_fit_weight(length(xi), rest_k.w, m);
+    real q[kGhostBasis];
+    ghost_basis(xi, inv_delta, q);
+    Vec3 pk{0, 0, 0};
+    for (int a = 0; a < kGhostBasis; ++a) {
+      pk.x += mq[a] * q[a];
+      pk.y += mq[kGhostBasis + a] * q[a];
+      pk.z += mq[2 * kGhostBasis + a] * q[a];
+    }
+    gv.push[first + k] = with_w(w * pk, 0);
+  }
 }
 
 // A ghosted particle one of whose bonds broke in this step's force pass loses its ghosts (after
@@ -252,10 +329,10 @@ PD_HD inline void drop_ghosts(int32_t g, int32_t i, ParticlesView p, BondsView b
 }
 
 // Kernel `ghost_forces`, after `springforces`: receiver r's share of the ghost bonds' forces,
-// its own ghosts' and those of each ghosted partner (every bond, including one broken in this
-// step's force pass: the partner's fit still took it), added to its force.
+// its own ghosts' and those its ghosted partners pushed to it (every bond, including one broken
+// in this step's force pass: the partner's fit still took it), added to its force.
 template <class TeamT = Team<1>>
-PD_HD inline void ghost_forces(int32_t r, ParticlesView p, BondsView b, GhostView gv, const MaterialTable& mt,
+PD_HD inline void ghost_forces(int32_t r, ParticlesView p, BondsView b, GhostView gv,
                                const TeamT& team = {}) {
   const int32_t i = gv.receivers[r];
   Vec3 f{0, 0, 0};
@@ -264,36 +341,13 @@ PD_HD inline void ghost_forces(int32_t r, ParticlesView p, BondsView b, GhostVie
     const real* pull = gv.pull.data() + int64_t(own) * kGhostPull;
     f = {pull[27], pull[28], pull[29]};
   }
-  const Vec4 rest_i = p.rest[i];
   bool intact = true;
+  const int64_t first_slot = b.slot(i, 0);
   for (int32_t k = team.lane(); k < b.count[i]; k += TeamT::kSize) {
-    const int32_t nb = b.neighbor[b.slot(i, k)];
-    intact = intact && bond_intact(nb);
-    const int32_t j = bond_partner(nb);
-    const int32_t g = gv.of[j];
-    if (g < 0) continue;
-    // M_j in seven 16-byte loads (a float each would take 27 load instructions per bond).
-    real pull[28];
-    const Vec4* rows = reinterpret_cast<const Vec4*>(gv.pull.data() + int64_t(g) * kGhostPull);
-    for (int v = 0; v < 7; ++v) {
-      const Vec4 r4 = rows[v];
-      pull[4 * v] = r4.x;
-      pull[4 * v + 1] = r4.y;
-      pull[4 * v + 2] = r4.z;
-      pull[4 * v + 3] = r4.w;
-    }
-    const Material& m = mt.m[p.material[j]];
-    const Vec3 xi = xyz(rest_i) - xyz(p.rest[j]);  // from j's side
-    const real w = ghost_fit_weight(length(xi), rest_i.w, m);
-    real q[kGhostBasis];
-    ghost_basis(xi, real(1) / m.horizon, q);
-    Vec3 pj{0, 0, 0};
-    for (int a = 0; a < kGhostBasis; ++a) {
-      pj.x += pull[a] * q[a];
-      pj.y += pull[kGhostBasis + a] * q[a];
-      pj.z += pull[2 * kGhostBasis + a] * q[a];
-    }
-    f -= w * pj;
+    const int64_t slot = first_slot + int64_t(k) * kSliceWidth;
+    if (own >= 0) intact = intact && bond_intact(b.neighbor[slot]);
+    const int32_t row = gv.mirror[slot];
+    if (row >= 0) f -= xyz(gv.push[row]);
   }
   if constexpr (TeamT::kSize > 1) {
     f = team.sum(f);
@@ -301,7 +355,27 @@ PD_HD inline void ghost_forces(int32_t r, ParticlesView p, BondsView b, GhostVie
   }
   if (!team.leader()) return;
   p.force[i] += f;
-  if (own >= 0 && !intact && gv.live[own]) drop_ghosts(own, i, p, b, gv, mt);
+  if (own >= 0 && !intact && gv.live[own]) gv.live[own] = kGhostsGoing;
+}
+
+// Kernel `ghost_drops`, after `ghost_forces`: the particles that lost a bond in this step drop their
+// ghosts (drop_ghosts). Its own kernel: drop_ghosts' fit and energies inlined into ghost_forces held
+// that gather at 72-128 registers for a path it rarely takes.
+PD_HD inline void ghost_drops(int32_t g, ParticlesView p, BondsView b, GhostView gv,
+                              const MaterialTable& mt) {
+  if (gv.live[g] == kGhostsGoing) drop_ghosts(g, gv.particle[g], p, b, gv, mt);
+}
+
+// Set-up, after the push table's rows (GhostView::push_first): each slot of particle i gets the
+// row where its partner, if ghosted, pushes i's share (families are symmetric and in ascending
+// partner order: family.h position_in_family), else -1.
+PD_HD inline void ghost_mirror(int32_t i, const BondsView& b, const GhostView& gv, int32_t* mirror) {
+  for (int32_t k = 0; k < b.count[i]; ++k) {
+    const int64_t slot = b.slot(i, k);
+    const int32_t j = bond_partner(b.neighbor[slot]), g = gv.of[j];
+    const int32_t q = g < 0 ? -1 : position_in_family(b, j, i);
+    mirror[slot] = q < 0 ? -1 : gv.push_first[g] + q;
+  }
 }
 
 // The ghost bonds' energy of ghosted particle g (0 once its ghosts are dropped).

@@ -274,7 +274,8 @@ TEST(SurfaceGhosts, TablesThatDoNotFitAreRefused) {
   const auto fits = make_cpu_engine(in);
   const SurfaceGhostCounts counts = fits->surface_ghosts();
   EXPECT_EQ(counts.ghosted, 12 * 12 * 4);
-  // ~1.5 KB of tables per ghosted particle here against ~0.3 KB of bond slots: a cap between.
+  // ~4 KB of tables per ghosted particle here (the push table and the mirror rows ~2.5 KB of
+  // them) against ~0.3 KB of bond slots: a cap between.
   const testing::ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", "0.4");
   try {
     make_cpu_engine(in);
