@@ -171,8 +171,8 @@ void launch_plasticity(Exec& ex, ParticlesView p, MaterialTable mt) {
 }
 
 // The ghost surface correction (surface_ghosts.h): the fits after `init` and the partners' shares
-// pushed, the ghost bonds' forces after `springforces` (`threads` per particle: team.h), each
-// ghosted particle's liveness
+// pushed, the ghost bonds' forces after `springforces` (`threads` per particle: team.h) and the
+// ghosts dropped where a bond broke, each ghosted particle's liveness
 // from its bonds (set-up, restore), and the slots' mirror rows (set-up).
 template <int kThreads, class Exec>
 void launch_ghost_fit_variant(Exec& ex, ParticlesView p, BondsView b, GhostView g, MaterialTable mt) {

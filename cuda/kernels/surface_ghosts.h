@@ -17,7 +17,8 @@
 // M_i s_i), `ghost_push` (each partner's share M_i p(xi_k) w_k written to the bond's row of the push
 // table), `ghost_forces` after `springforces` (each particle near a surface adds its own M_i s_i
 // and takes off, through its bonds' mirror rows, the shares its ghosted partners pushed to it: 16
-// bytes a bond, where reading each partner's M took 112 and the basis again). On the GPU the fit
+// bytes a bond, where reading each partner's M took 112 and the basis again), `ghost_drops` (the
+// particles that lost a bond in this step drop their ghosts). On the GPU the fit
 // and the push run a team of lanes per ghosted particle (cuda/team.h): the lanes split
 // the family's bonds and the ghosts and add their partial sums in the team's fixed tree; Team<1>
 // (the CPU, or PERIFRAC_BOND_THREADS=1) is one thread per particle. A particle's ghosts are dropped for good
