@@ -138,9 +138,10 @@ constexpr int bond_threads_for(int64_t particles, bool mesh_filled, int requeste
   return threads;
 }
 
-// The lanes per ghosted particle of the ghost fit and push (surface_ghosts.h; the gather,
-// ghost_forces, takes springforces' lanes), from their count: each particle's fit walks its family
-// and its ghosts with 27 sums in registers. Swept on an H200
+// The lanes per particle of the ghost kernels (surface_ghosts.h), from the ghosted particles'
+// count: each particle's fit walks its family and its ghosts with 27 sums in registers. (The
+// gather from pushed shares on springforces' lanes instead: one thread a particle on the 380k
+// twisted bar 0.32 ms against 0.19 ms with 8 lanes; bench/NOTES.md, 2026-11-30.) Swept on an H200
 // (bench/NOTES.md, "Teams for the ghost kernels"; both kernels per step, ms): the twisted bar's
 // 119k ghosted particles 1 lane 1.17, 4 1.22, 8 1.11, 16 1.75, 32 2.36; the vase's 134k 1.04,
 // 1.15, 0.85, 1.43, 1.87; the small twisted bar's 3.8k 0.33 on one lane, 0.065 on 32. So 8 lanes,

@@ -551,10 +551,8 @@ class EngineImpl final : public Engine {
       with_halo(springforces, state_.disp, state_.state);
     else
       with_halo(springforces, state_.disp);
-    // (The gather reads a 4-byte row and a 16-byte share a bond, as springforces reads its
-    // partners: its lanes are springforces'.)
     if (features_.ghosts) {
-      launch_ghost_forces(exec_, p, b, ghost_view(), bond_threads_);
+      launch_ghost_forces(exec_, p, b, ghost_view(), ghost_threads_);
       launch_ghost_drops(exec_, p, b, ghost_view(), materials_);
     }
     take_broke_flags();
