@@ -170,6 +170,12 @@ void launch_plasticity(Exec& ex, ParticlesView p, MaterialTable mt) {
   ex.parallel_for("pd/plasticity", p.n, [=] PD_HD(int64_t i) { yield_test(int32_t(i), p, mt); });
 }
 
+// Blocks of 256 `ghost_fit`'s team launches keep resident per SM: 4 caps it at 64 registers (96
+// unbounded, occupancy 0.25 -> 0.5): the fit 0.39 -> 0.27 ms on Chen's twisted bar at --scale 100
+// and 0.42 -> 0.31 ms on the gallery's vase with ghosts, 3 blocks (80 registers) 0.30 / 0.32 (one
+// H200, bench/NOTES.md, 2026-11-30). One thread per particle (forced) stays unbounded.
+constexpr int kGhostFitBlocks = 4;
+
 // The ghost surface correction (surface_ghosts.h): the fits after `init` and the partners' shares
 // pushed, the ghost bonds' forces after `springforces` (`threads` per particle: team.h) and the
 // ghosts dropped where a bond broke, each ghosted particle's liveness
@@ -179,7 +185,7 @@ void launch_ghost_fit_variant(Exec& ex, ParticlesView p, BondsView b, GhostView 
   if constexpr (kThreads == 1)
     ex.parallel_for("pd/ghost_fit", g.n, [=] PD_HD(int64_t k) { ghost_fit(int32_t(k), p, b, g, mt); });
   else
-    ex.template parallel_for_team<kThreads>(
+    ex.template parallel_for_team<kThreads, kGhostFitBlocks>(
         "pd/ghost_fit", 0, g.n,
         [=] PD_HD(int64_t k, const Team<kThreads>& team) { ghost_fit(int32_t(k), p, b, g, mt, team); });
 }
