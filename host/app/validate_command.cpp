@@ -77,6 +77,21 @@ int validate_command(const ValidateOptions& o) {
         return 2;
       }
   }
+  if (o.traction_mpa) {
+    if (!(*o.traction_mpa > 0 && *o.traction_mpa < 1e6)) {
+      std::fprintf(stderr, "error: validate: --traction %g (allowed: a traction in MPa, > 0)\n",
+                   *o.traction_mpa);
+      return 2;
+    }
+    for (const ValidationProblem* p : selected)
+      if (std::string(p->name) != "crack_branching") {
+        std::fprintf(stderr,
+                     "error: validate: --traction: problem '%s' takes no traction (allowed: --problem "
+                     "crack_branching)\n",
+                     p->name);
+        return 2;
+      }
+  }
   if (!(o.delta_over_lambda >= 1) || !(o.dt_fraction >= 0)) {
     std::fprintf(stderr, "error: validate: need --delta-over-lambda >= 1 and --dt-fraction > 0\n");
     return 2;
@@ -97,6 +112,7 @@ int validate_command(const ValidateOptions& o) {
   if (!note.empty() && !o.quiet) std::printf("backend    %s\n", note.c_str());
   c.delta_over_lambda = o.delta_over_lambda;
   c.particles = o.particles;
+  c.traction = o.traction_mpa.value_or(0) * 1e6;
   c.dt_fraction = o.dt_fraction > 0 ? o.dt_fraction : o.surface == "ghosts" ? kGhostDtFraction : 0.5;
   if (o.surface == "ghosts") {
     c.surface_correction = false;

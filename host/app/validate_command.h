@@ -2,6 +2,7 @@
 // one line per measured figure and appends the rows to a CSV file.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,9 @@ struct ValidateOptions {
   std::string backend = "cpu";      // "cpu" | "cuda" | "auto"
   std::string surface = "default";  // surface correction: "default" (each model's) | "on" | "off" | "ghosts"
   std::string particles = "grid";   // "grid" | "voronoi" | "tets" (ValidationCase::particles)
-  std::string csv;                  // rows appended here (header first when the file is new); "" = none
-  bool quiet = false;               // no per-row lines on stdout
+  std::optional<double> traction_mpa;  // crack_branching's edge traction [MPa]; none: its 3.04
+  std::string csv;                     // rows appended here (header first when the file is new); "" = none
+  bool quiet = false;                  // no per-row lines on stdout
 };
 
 // The CSV header (bench/accuracy/accuracy.csv).

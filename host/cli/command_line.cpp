@@ -239,6 +239,10 @@ void add_validate(CLI::App& app, const CommandActions& actions, std::function<in
                   "grid | voronoi | tets: the bar's particles (default grid; voronoi and tets in the tension "
                   "bars only)")
       ->check(CLI::IsMember({"grid", "voronoi", "tets"}));
+  cmd->add_option(
+      "--traction", validate->traction_mpa,
+      "crack_branching only: the step traction on the plate's edges in MPa (default 3.04, 0.35 E s0 at "
+      "delta = 3 mm, the same at every resolution)");
   cmd->add_option("--csv", validate->csv, "append rows to this CSV");
   cmd->add_flag("--quiet", validate->quiet, "no per-row output");
   on_parsed(cmd, chosen, [&actions, validate] { return actions.validate(*validate); });

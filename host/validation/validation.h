@@ -34,6 +34,9 @@ struct ValidationCase {
   // (ValidationProblem::scattered), the same solid filled with "voronoi" cells or TetGen "tets"
   // of about the grid's spacing, lambda then their median nearest-neighbour distance.
   std::string particles = "grid";
+  // crack_branching: the step traction on the plate's edges [Pa]; 0: its default, 3.04 MPa
+  // (docs/validation.md).
+  double traction = 0;
 };
 
 // One measured figure of one run.
