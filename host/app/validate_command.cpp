@@ -79,7 +79,7 @@ int validate_command(const ValidateOptions& o) {
   }
   if (o.traction_mpa) {
     if (!(*o.traction_mpa > 0 && *o.traction_mpa < 1e6)) {
-      std::fprintf(stderr, "error: validate: --traction %g (allowed: a traction in MPa, > 0)\n",
+      std::fprintf(stderr, "error: validate: --traction %g (allowed: a traction in MPa, > 0 and < 1e6)\n",
                    *o.traction_mpa);
       return 2;
     }
