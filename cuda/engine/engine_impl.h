@@ -115,7 +115,7 @@ class EngineImpl final : public Engine {
         throw std::runtime_error(
             "the ghost surface correction (surface_correction = \"ghosts\") runs on one rank; "
             "run without --ranks or use surface_correction = true");
-      set_up_ghosts(in.particles, uncut, bonds_on_host().count, ghost_rate);
+      set_up_ghosts(in.particles, in.body_solids.get(), uncut, bonds_on_host().count, ghost_rate);
       ghost_threads_ = ghost_threads_for(ghost_counts_.ghosted, requested_bond_threads(in));
       uncut = BondLists();
       end_stage("surface ghosts");
@@ -428,11 +428,11 @@ class EngineImpl final : public Engine {
   }
 
   // The ghost surface correction's tables (cuda/engine/surface_ghosts.h) from the families as
-  // built, before cuts, and their sizes after (`cut_count`); `rate` gets the ghost bonds' share of
-  // each particle's stability rate.
-  void set_up_ghosts(const ParticleSet& ps, const BondLists& uncut, const std::vector<int32_t>& cut_count,
-                     std::vector<double>& rate) {
-    GhostTables t = pd::surface_ghosts(ps, materials_, uncut, cut_count);
+  // built, before cuts, and their sizes after (`cut_count`), with the scattered bodies' `solids`
+  // where the host knows them; `rate` gets the ghost bonds' share of each particle's stability rate.
+  void set_up_ghosts(const ParticleSet& ps, const BodySolids* solids, const BondLists& uncut,
+                     const std::vector<int32_t>& cut_count, std::vector<double>& rate) {
+    GhostTables t = pd::surface_ghosts(ps, materials_, uncut, cut_count, solids);
     check_ghost_memory(t, int64_t(state_.neighbor.size()), backend());
     surface_ghosts_.particle = mem_.make_from(t.particle);
     surface_ghosts_.of = mem_.make_from(t.of);

@@ -2,8 +2,10 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
+#include "cuda/engine/body_solids.h"
 #include "cuda/engine/cut_triangle.h"
 #include "cuda/engine/motion.h"
 #include "cuda/views.h"
@@ -61,6 +63,9 @@ struct SimulationInput {
   // Bonds weakened to their ends' shard strength, as bond_key pairs in ascending order (a
   // [[shards]] pattern: the cracks of an earlier run, bond_cuts.h); empty in most scenes.
   std::vector<uint64_t> face_bonds;
+  // The solids of scattered bodies, where the ghost surface correction asks which stencil points
+  // lie outside (body_solids.h); null or without a body: the ghost set-up's own rule.
+  std::shared_ptr<const BodySolids> body_solids;
   bool contact = false;          // launch `collection` and `collisions`
   bool lattice_families = true;  // box-grid bodies find partners by offset (lattice_families.h)
   BondScreen screen = BondScreen::kAuto;

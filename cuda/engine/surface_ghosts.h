@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cuda/engine/body_solids.h"
 #include "cuda/engine/engine.h"
 #include "cuda/kernels/surface_ghosts.h"
 
@@ -39,10 +40,10 @@ struct GhostTables {
 // a surface of the body, as for the factors: surface_correction.h). A stencil offset of the material's
 // lattice (spacing lambda, out to its family radius) is missing where no partner lies within 0.75 lambda of
 // it: exact on a grid, whose partners sit on the offsets and whose points outside the body lie a spacing or
-// more from any particle; for scattered particles (tets, Voronoi cells) a stencil point is taken as outside
-// the body where no particle is near it.
+// more from any particle; for scattered particles (tets, Voronoi cells) a stencil point is outside the body
+// where `solids` knows the body's solid and the point lies outside it, else where no particle is near it.
 GhostTables surface_ghosts(const ParticleSet& ps, const MaterialTable& mt, const BondLists& bonds,
-                           const std::vector<int32_t>& cut_count);
+                           const std::vector<int32_t>& cut_count, const BodySolids* solids = nullptr);
 
 // The backend memory the tables take as the engine holds them (GhostView's arrays, this step's
 // push table and a mirror row for each of the families' `slots` included). A body of many thin

@@ -19,6 +19,7 @@
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/random.h"
 #include "host/geometry/shapes.h"
+#include "host/geometry/tet_body_solids.h"
 #include "host/geometry/tet_particles.h"
 #include "host/geometry/voronoi_particles.h"
 #include "host/scene/collider_setup.h"
@@ -247,6 +248,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   // Bodies: one material table entry per body (a material's horizon depends on the spacing).
   int64_t total = 0;
   std::vector<std::pair<int32_t, int32_t>> adjacency_pairs;
+  auto tet_solids = std::make_shared<TetBodySolids>();  // the ghost correction's tet bodies
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     const SceneBody& body = scene.bodies[b];
     const std::string key = "bodies[" + std::to_string(b) + "]";
@@ -310,7 +312,10 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
         if (int32_t(i) < geometry.adjacency.neighbor[size_t(k)])
           adjacency_pairs.emplace_back(base + int32_t(i), base + geometry.adjacency.neighbor[size_t(k)]);
     result.all_cubes = result.all_cubes && geometry.kind == ElementKind::cube;
-    if (geometry.kind == ElementKind::tet) result.embedded.append(geometry.tets, base);
+    if (geometry.kind == ElementKind::tet) {
+      result.embedded.append(geometry.tets, base);
+      if (in.materials.m[mat].ghost_correction) tet_solids->add(int32_t(b), geometry.tets);
+    }
 
     // Particles: volume from the element, mass = density x volume; anchors by rest position
     // (the last anchor holding a particle wins).
@@ -341,6 +346,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     clock.lap(key + " particle table");
   }
 
+  if (!tet_solids->empty()) in.body_solids = std::move(tet_solids);
   result.shards = assign_shards(scene, ps, in.materials);
   for (const auto& [body_material, zone_material] : result.shards.zone_materials)
     copy_material_summary(result.materials, body_material, zone_material, " (shards zone)");

@@ -19,11 +19,13 @@
 // times the particles' median nearest-neighbour distance, as in a scene (scene_setup.cpp).
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "host/geometry/shapes.h"
+#include "host/geometry/tet_body_solids.h"
 #include "host/geometry/tet_particles.h"
 #include "host/geometry/voronoi_particles.h"
 #include "host/validation/lattice.h"
@@ -99,6 +101,11 @@ std::vector<ValidationResult> tension_bar(const ValidationCase& c, const Elastic
   } else {
     for (size_t i = 0; i < scattered.size(); ++i)
       add(scattered.position[i][0], scattered.position[i][1], scattered.position[i][2], scattered.volume[i]);
+    if (scattered.kind == ElementKind::tet && c.surface_ghosts) {  // as a scene's tet body (scene_setup.cpp)
+      auto solids = std::make_shared<TetBodySolids>();
+      solids->add(0, scattered.tets);
+      in.body_solids = std::move(solids);
+    }
   }
 
   std::string stable_note;
