@@ -173,6 +173,23 @@ case_ "command line" "[[shards]] dust_hold without a pattern" 2 "shards\[0\]\.du
 "$BIN" "${P[@]}" s.toml --out o8 >/dev/null 2>&1 && rm -f o8/crack_mesh_*
 case_ "command line" "render --surface mesh of a run without crack meshes" 2 "no o8/crack_mesh_00000.ply" "$BIN" render o8 --surface mesh --width 32 --height 32
 
+# Limits: what would hang, run for nothing or overflow a count
+mkdir -p slow-tetgen && printf '#!/bin/sh\nexec sleep 60\n' >slow-tetgen/tetgen && chmod +x slow-tetgen/tetgen
+scene tets.toml '[[bodies]]\nname = "ball"\nmaterial = "glass"\nshape = "sphere"\nradius = 0.01\ncenter = [0.1, 0, 0]\nspacing = 0.004\nparticles = "tets"\n'
+case_ "limits" "a TetGen run that does not end: stopped" 2 "was stopped after 1 s" \
+  env PATH="$PWD/slow-tetgen:$PATH" PERIFRAC_TETGEN_SECONDS=1 PERIFRAC_TET_CACHE=off "$BIN" "${P[@]}" tets.toml --out l1
+scene stiff.toml '[[colliders]]\nshape = "sphere"\nradius = 0.01\ncenter = [0, 0.2, 0]\nstiffness = 1e300\n'
+case_ "limits" "a collider stiffness that leaves no stable step" 2 "colliders: the colliders' contact" "$BIN" "${P[@]}" stiff.toml --out l2
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >sheet.obj
+scene cell.toml '[[colliders]]\nshape = "mesh"\nmesh = "sheet.obj"\ncenter = [0, 0.2, 0]\ncell = 1e-9\n'
+case_ "limits" "a mesh collider's distance grid of 1e27 nodes" 2 "colliders\[0\]\.cell" "$BIN" "${P[@]}" cell.toml --out l3
+sed 's/^spacing = 0.002/spacing = 0.002\ncenter = [1e4, 0, 0]/' s.toml >far.toml
+case_ "limits" "a body 1e4 m from the origin (float positions)" 2 "bodies\[0\]\.center" "$BIN" "${P[@]}" far.toml --out l4
+case_ "limits" "run --checkpoint-minutes nan" 2 "--checkpoint-minutes" "$BIN" "${P[@]}" s.toml --checkpoint-minutes nan --out l5
+case_ "limits" "validate --dt-fraction 50" 2 "--dt-fraction" "$BIN" validate --problem wave_bar --dt-fraction 50
+case_ "limits" "validate --resolution 100000" 2 "resolution 100000" "$BIN" validate --problem wave_bar --resolution 100000
+case_ "limits" "bench-geometry --tet-quality 0.5" 2 "--tet-quality" "$BIN" bench-geometry --tet-quality 0.5
+
 # Scene smells
 scene anchor.toml '[[anchors]]\nbox_min = [1, 1, 1]\nbox_max = [2, 2, 2]\n'
 case_ "scene smell" "an anchor box holding no particle" 0 "warning: anchors\[0\]: its box holds no particle" "$BIN" "${P[@]}" anchor.toml --frames 0 --out s1

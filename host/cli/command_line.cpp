@@ -1,5 +1,6 @@
 #include "host/cli/command_line.h"
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -11,6 +12,24 @@
 namespace pd {
 
 namespace {
+
+// A finite number in [lo, hi]: CLI::Range lets NaN through (no comparison holds for it) and
+// CLI::NonNegativeNumber prints its bound as 300 digits. `allowed` says what is, in the message.
+CLI::Validator finite_in(double lo, double hi, const std::string& allowed) {
+  return CLI::Validator(
+      [lo, hi, allowed](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
+          return "value out of range (allowed: " + allowed + ")";  // (the value itself may be NaN)
+        return {};
+      },
+      allowed);
+}
+
+// Each element of a number list (camera points): finite.
+CLI::Validator finite_number() {
+  return finite_in(-1e300, 1e300, "finite numbers");
+}
 
 // Makes `action` what *chosen runs once the whole command line is parsed and checked.
 void on_parsed(CLI::App* cmd, std::function<int()>* chosen, std::function<int()> action) {
@@ -39,14 +58,14 @@ void add_run(CLI::App& app, const CommandActions& actions, std::function<int()>*
                 "listed families for box-grid bodies too (what lattice families save, bench/NOTES.md)");
   cmd->add_option("--blend-frames", run->blend_frames,
                   "blend a split fragment's transform over N frames (0: off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1000000));
   CLI::Option* every = cmd->add_option("--checkpoint-every", run->checkpoint_every,
                                        "write a checkpoint every N frames (0: off)")
-                           ->check(CLI::NonNegativeNumber);
+                           ->check(CLI::Range(int64_t(0), kMaxFrames));
   CLI::Option* minutes =
       cmd->add_option("--checkpoint-minutes", run->checkpoint_minutes,
                       "write a checkpoint every M minutes of wall time (0: off; default 10)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(finite_in(0, 1e6, "0 (off) or minutes up to 1e6"));
   CLI::Option* resume =
       cmd->add_option("--resume", run->resume, "continue the run in this output folder from its checkpoint");
   cmd->add_flag("--overwrite", run->overwrite,
@@ -72,7 +91,8 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
   cmd->add_option("--scale", bench->scale, "scene particle-count factor");
   cmd->add_option("--set", bench->overrides, "KEY=VALUE: change one scene key (repeatable)");
   cmd->add_option("--lattice", bench->lattice, "lattice particles per side");
-  cmd->add_option("--horizon", bench->horizon, "lattice delta / lambda");
+  cmd->add_option("--horizon", bench->horizon, "lattice delta / lambda")
+      ->check(finite_in(1, 20, "a horizon of 1 to 20 spacings"));
   cmd->add_flag("--contact", bench->contact, "lattice: include collection + collisions");
   cmd->add_flag(
       "--explicit-families", bench->explicit_families,
@@ -126,11 +146,14 @@ void add_bench_render(CLI::App& app, const CommandActions& actions, std::functio
                   "also time the two-level prototype with about this many moved fragments (0: no)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--kd-intersect-cost", bench->kd_intersect_cost,
-                  "kd-tree SAH intersection cost (default 80)");
+                  "kd-tree SAH intersection cost (default 80)")
+      ->check(finite_in(1e-3, 1e6, "a cost from 1e-3 to 1e6"));
   cmd->add_option("--kd-max-depth", bench->kd_max_depth,
-                  "kd-tree depth limit (default round(8 + 1.3 log2 N))");
+                  "kd-tree depth limit (default round(8 + 1.3 log2 N))")
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--kd-leaf-prims", bench->kd_leaf_prims,
-                  "nodes with at most this many primitives become leaves (default 1)");
+                  "nodes with at most this many primitives become leaves (default 1)")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--keep-hidden", bench->keep_hidden,
                 "put the tetrahedra no ray can reach first in the kd-tree too");
   cmd->add_option("--out", bench->out, "results folder");
@@ -149,12 +172,23 @@ void add_bench_geometry(CLI::App& app, const CommandActions& actions, std::funct
       ->check(CLI::IsMember({"grid", "tets", "shell", "voronoi"}));
   cmd->add_option("--count", geometry->count, "wanted particles (sets the spacing)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--spacing", geometry->spacing, "the spacing in m (overrides --count)");
-  cmd->add_option("--tet-quality", geometry->tet_quality, "TetGen -q bound; 0 = no quality refinement");
+  cmd->add_option("--spacing", geometry->spacing, "the spacing in m (overrides --count)")
+      ->check(finite_in(1e-6, 1e3, "a spacing from 1e-6 to 1e3 m"));
+  cmd->add_option("--tet-quality", geometry->tet_quality, "TetGen -q bound; 0 = no quality refinement")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {  // as the scene key tet_quality
+            double q = -1;
+            if (CLI::detail::lexical_cast(text, q) && (q == 0 || (q >= 1.1 && q <= 10))) return {};
+            return "Value " + text +
+                   " is out of range (allowed: 0, no quality refinement, or a radius-edge "
+                   "bound in [1.1, 10])";
+          },
+          "0 or [1.1, 10]"));
   cmd->add_flag("--tet-keep-surface", geometry->tet_keep_surface,
                 "TetGen -Y: no points added on the surface");
   cmd->add_option("--shell-thickness", geometry->shell_thickness, "vase wall / shell depth in m");
-  cmd->add_option("--threads", geometry->threads, "threads of the parallel stages (0: default)");
+  cmd->add_option("--threads", geometry->threads, "threads of the parallel stages (0: default)")
+      ->check(CLI::Range(0, 4096));
   cmd->add_option("--seed", geometry->seed, "Poisson-disk seed");
   cmd->add_option("--csv", geometry->csv, "append a row to this CSV file");
   on_parsed(cmd, chosen, [&actions, geometry] { return actions.bench_geometry(*geometry); });
@@ -185,11 +219,11 @@ void add_bench_fragments(CLI::App& app, const CommandActions& actions, std::func
   cmd->add_option("--count", fragments->count, "wanted particles")
       ->check(CLI::Range(int64_t(8), int64_t(1) << 30));
   cmd->add_option("--horizon", fragments->horizon, "delta / lambda (0: 3 for grid and voronoi, 1.5 for tets)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_in(0, 20, "0 (the default) or a horizon up to 20 spacings"));
   cmd->add_option("--blocks", fragments->blocks, "the cut state has blocks^3 fragments")
       ->check(CLI::Range(2, 100));
   cmd->add_option("--frames", fragments->frames, "timed frames per state")->check(CLI::Range(2, 1000));
-  cmd->add_option("--threads", fragments->threads, "OpenMP threads (0: default)");
+  cmd->add_option("--threads", fragments->threads, "OpenMP threads (0: default)")->check(CLI::Range(0, 4096));
   cmd->add_option("--out", fragments->out, "folder for the files (default: a temporary one, removed)");
   cmd->add_option("--csv", fragments->csv, "append rows to this CSV file");
   on_parsed(cmd, chosen, [&actions, fragments] { return actions.bench_fragments(*fragments); });
@@ -225,10 +259,12 @@ void add_validate(CLI::App& app, const CommandActions& actions, std::function<in
   cmd->add_option("--resolution", validate->resolutions,
                   "particles across, e.g. 4,6,8 (default: each problem's sweep)")
       ->delimiter(',');
-  cmd->add_option("--delta-over-lambda", validate->delta_over_lambda, "horizon in spacings (default 3)");
+  cmd->add_option("--delta-over-lambda", validate->delta_over_lambda, "horizon in spacings (default 3)")
+      ->check(finite_in(1, 10, "a horizon of 1 to 10 spacings"));
   cmd->add_option("--dt-fraction", validate->dt_fraction,
                   "dt / dt_c (default 0.5; 0.3 with --surface-correction ghosts, whose bonds shorten the "
-                  "stable step: a fraction past the step measured on the engine is refused)");
+                  "stable step: a fraction past the step measured on the engine is refused)")
+      ->check(finite_in(1e-6, 1, "a fraction of the critical step dt_c, > 0 and at most 1"));
   cmd->add_option("--backend", validate->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cmd->add_option("--surface-correction", validate->surface,
@@ -265,10 +301,12 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
   cmd->add_option("--height", o.height, "image height")->check(CLI::Range(16, 16384));
   cmd->add_option("--spp", o.spp, "samples per pixel")->check(CLI::Range(1, 1024));
   cmd->add_option("--eye", render->eye, "camera position x,y,z (default: a 3/4 view of the rest box)")
+      ->check(finite_number())
       ->delimiter(',')
       ->expected(3);
   cmd->add_option("--look-at", render->look_at,
                   "point the camera looks at x,y,z (default: the rest box centre)")
+      ->check(finite_number())
       ->delimiter(',')
       ->expected(3);
   cmd->add_option("--vfov", o.vfov_degrees, "vertical field of view in degrees")
@@ -316,8 +354,10 @@ void add_compare(CLI::App& app, const CommandActions& actions, std::function<int
   CLI::App* cmd = app.add_subcommand("compare", "compare two output folders frame by frame");
   cmd->add_option("a", compare->a, "first output folder")->required();
   cmd->add_option("b", compare->b, "second output folder")->required();
-  cmd->add_option("--position-tolerance", compare->position_tolerance, "relative L2 of displacements");
-  cmd->add_option("--damage-tolerance", compare->damage_tolerance, "mean absolute damage difference");
+  cmd->add_option("--position-tolerance", compare->position_tolerance, "relative L2 of displacements")
+      ->check(finite_in(0, 1e6, "a tolerance >= 0"));
+  cmd->add_option("--damage-tolerance", compare->damage_tolerance, "mean absolute damage difference")
+      ->check(finite_in(0, 1, "a tolerance from 0 to 1"));
   on_parsed(cmd, chosen, [&actions, compare] { return actions.compare(*compare); });
 }
 

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <exception>
 #include <functional>
+#include <new>
+#include <stdexcept>
 #include <string>
 
 #include "cuda/engine/engine.h"
@@ -39,6 +41,17 @@ int report_errors(const std::function<int()>& action) {
     return kExitRuntime;
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitUsage;
+  } catch (const std::bad_alloc&) {  // (what a check before an allocation did not foresee)
+    std::fprintf(stderr,
+                 "error: out of memory: the command needs more host memory than is free (allowed: a "
+                 "larger spacing, a smaller --scale, --resolution or --lattice, or a machine with "
+                 "more memory)\n");
+    return kExitUsage;
+  } catch (const std::length_error&) {
+    std::fprintf(stderr,
+                 "error: out of memory: the command asked for an array larger than any machine holds "
+                 "(allowed: a larger spacing or cell, a smaller --scale, --resolution or --lattice)\n");
     return kExitUsage;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

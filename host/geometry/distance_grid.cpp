@@ -1,6 +1,7 @@
 #include "host/geometry/distance_grid.h"
 
 #include <cmath>
+#include <limits>
 
 #include "host/geometry/inside_test.h"
 #include "host/geometry/mesh_distance.h"
@@ -18,8 +19,11 @@ std::array<int32_t, 3> grid_dims(const Box3d& box, double cell, double margin) {
 }  // namespace
 
 int64_t distance_grid_nodes(const TriMesh& mesh, double cell, double margin) {
-  const std::array<int32_t, 3> d = grid_dims(bounds(mesh), cell, margin);
-  return int64_t(d[0]) * d[1] * d[2];
+  // Counted in floating point: a tiny cell's counts overflow the grid's 32-bit dimensions.
+  const Box3d box = bounds(mesh);
+  double nodes = 1;
+  for (int a = 0; a < 3; ++a) nodes *= std::ceil((box.hi[a] - box.lo[a] + 2 * margin) / cell) + 1;
+  return nodes < 9e18 ? int64_t(nodes) : std::numeric_limits<int64_t>::max();
 }
 
 DistanceGrid distance_grid(const TriMesh& mesh, bool closed, double cell, double margin) {

@@ -1,6 +1,7 @@
 #include "host/geometry/grid_particles.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "host/geometry/box_grid.h"
 #include "host/geometry/inside_test.h"
@@ -42,11 +43,13 @@ void finish_cubes(ParticleGeometry& g, double spacing, const std::vector<int32_t
 void check_particle_budget(double volume, double particle_volume, int64_t max_particles,
                            const std::string& name, const std::string& what) {
   const double estimate = volume / particle_volume;
-  if (estimate > double(max_particles))
-    throw MeshError(name, "the solid (volume " + std::to_string(volume) + " m^3) would need about " +
-                              std::to_string(int64_t(estimate)) + " particles at " + what +
-                              " (allowed: at most " + std::to_string(max_particles) +
+  if (estimate > double(max_particles)) {
+    char text[96];  // (%g: a mesh scaled by 1e20 has a volume of 60 digits and a count past int64)
+    std::snprintf(text, sizeof text, "the solid (volume %.4g m^3) would need about %.4g particles at ",
+                  volume, estimate);
+    throw MeshError(name, text + what + " (allowed: at most " + std::to_string(max_particles) +
                               " particles per body; use a larger spacing or a smaller mesh scale)");
+  }
 }
 
 ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t max_particles,

@@ -5,7 +5,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
+#include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -14,6 +18,7 @@
 #include <iterator>
 #include <optional>
 #include <sstream>
+#include <thread>
 #include <utility>
 
 #include "host/geometry/tet_cache.h"
@@ -77,8 +82,17 @@ void write_nodes(const std::vector<Vec3d>& points, const std::string& path) {
   if (!out) throw std::runtime_error("cannot write " + path);
 }
 
-// Runs argv with stdout and stderr to `log`; returns the exit status (-1 if it did not run).
-int run_program(const std::vector<std::string>& argv, const std::string& log) {
+// What TetGen needs, for its failures' messages: a shell's inner surface is the mesh moved inward
+// by shell_thickness, which crosses itself where the thickness passes the mesh's own.
+const std::string kTetgenAllowed =
+    "(allowed: a closed mesh without self-intersections; for particles = \"shell\", a shell_thickness "
+    "below the mesh's own thickness and radii of curvature)";
+
+constexpr int kStopped = -2;  // run_program: the program ran past its time and was killed
+
+// Runs argv with stdout and stderr to `log`; returns the exit status (-1 if it did not run,
+// kStopped if it ran past `seconds` and was killed).
+int run_program(const std::vector<std::string>& argv, const std::string& log, double seconds) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -91,9 +105,33 @@ int run_program(const std::vector<std::string>& argv, const std::string& log) {
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) return -1;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds) {
+      kill(pid, SIGKILL);
+      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      return kStopped;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// How long TetGen may run: two minutes and 0.2 ms for each tet the volume bound allows (TetGen
+// takes 10-20 us a tet: the vase at Levine's size, 577,199 tets, in 5-12 s), or the seconds in
+// PERIFRAC_TETGEN_SECONDS. A solid whose surface crosses itself (a shell thicker than its mesh)
+// can keep TetGen busy for ever.
+double tetgen_seconds(const TriMesh& surface, const TetgenOptions& options) {
+  if (const char* given = std::getenv("PERIFRAC_TETGEN_SECONDS")) {
+    const double s = std::atof(given);
+    if (s > 0) return s;
+  }
+  const double tets = options.max_volume > 0 ? std::fabs(signed_volume(surface)) / options.max_volume : 0;
+  return 120 + 2e-4 * tets;
 }
 
 // The last non-empty lines of a log, joined on one line.
@@ -213,12 +251,15 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
       return std::move(*kept);
     }
   }
-  const int status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"));
+  const double seconds = tetgen_seconds(surface, options);
+  const int status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"), seconds);
   clock.lap("tetgen " + switches);
+  if (status == kStopped)
+    throw MeshError(name, "tetgen " + switches + " was stopped after " + std::to_string(int(seconds)) +
+                              " s without a result " + kTetgenAllowed);
   if (status != 0)
     throw MeshError(name, "tetgen " + switches + " failed (exit status " + std::to_string(status) +
-                              "): " + log_tail(dir.file("tetgen.log")) +
-                              " (allowed: a closed mesh without self-intersections)");
+                              "): " + log_tail(dir.file("tetgen.log")) + " " + kTetgenAllowed);
 
   TetMesh mesh;
   mesh.vertices = read_table<Vec3d>(dir.file("in.1.node"), 3, name);

@@ -64,16 +64,21 @@ struct MeshCollider {
 MeshCollider mesh_collider(const SceneCollider& sc, const std::string& key, const Scene& scene,
                            ColliderScript& script) {
   MeshCollider out;
-  TriMesh mesh = read_mesh(sc.mesh_path);
-  for (Vec3d& v : mesh.vertices) v = sc.scale * v;
+  TriMesh mesh;
   bool closed = true;
-  try {
-    TriMesh checked = mesh;
-    check_solid(checked, sc.mesh_path, {});
-    mesh = std::move(checked);
+  try {  // a broken file is named with the scene and its key, as a body's mesh is
+    mesh = read_mesh(sc.mesh_path);
+    for (Vec3d& v : mesh.vertices) v = sc.scale * v;
+    try {
+      TriMesh checked = mesh;
+      check_solid(checked, sc.mesh_path, {});
+      mesh = std::move(checked);
+    } catch (const MeshError& e) {
+      if (std::string(e.what()).find("the mesh is open") == std::string::npos) throw;
+      closed = false;
+    }
   } catch (const MeshError& e) {
-    if (std::string(e.what()).find("the mesh is open") == std::string::npos) throw;
-    closed = false;
+    throw SceneError(scene.path, key + ".mesh", e.what());
   }
   const bool free = sc.mass || sc.density;
   if (free && !closed)
@@ -142,11 +147,14 @@ void add_mesh_collider(const SceneCollider& sc, const std::string& key, const Sc
   for (real v : in.particles.volume) largest = std::max(largest, std::cbrt(double(v)));
   const double margin = 0.5 * largest + 2 * cell;
   const int64_t nodes = distance_grid_nodes(m.mesh, cell, margin);
-  if (nodes > kMaxGridNodes)
+  if (nodes > kMaxGridNodes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", cell);
     throw SceneError(scene.path, key + ".cell",
-                     "a grid spacing of " + std::to_string(cell) + " m gives the mesh's distance grid " +
+                     std::string("a grid spacing of ") + text + " m gives the mesh's distance grid " +
                          std::to_string(nodes) + " nodes (allowed: at most " + std::to_string(kMaxGridNodes) +
                          " nodes: a larger cell)");
+  }
   const DistanceGrid grid = distance_grid(m.mesh, m.closed, cell, margin);
   c.grid_origin = to_real(grid.origin);
   c.grid_cell = real(grid.cell);

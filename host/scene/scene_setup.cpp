@@ -231,6 +231,10 @@ double body_solid_edge(const SceneBody& body, double spacing) {
   return tets ? 2 * spacing : spacing;
 }
 
+// How far from the origin, in spacings, a body may reach (float positions: 1e5 spacings out their
+// rounding is 1% of a spacing).
+constexpr double kMaxSpacingsFromOrigin = 1e5;
+
 SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale) || options.scale > 1e3)
     throw SceneError(scene.path, "--scale",
@@ -299,6 +303,20 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     // distance the contact distance, so a body never collides with itself at rest.
     const bool cubes = geometry.kind == ElementKind::cube;
     const double lambda = cubes ? spacing : median_nearest_distance(geometry);
+    // Positions are floats: 1e5 spacings from the origin they are a spacing's 1% off, and the
+    // families change (a lattice 1e6 spacings out gains a fifth of its bonds).
+    double farthest = 0;
+    for (const Vec3d& x : geometry.position)
+      farthest = std::max({farthest, std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])});
+    if (farthest > kMaxSpacingsFromOrigin * lambda) {
+      char text[160];
+      std::snprintf(text, sizeof text, "the body reaches %.3g m from the origin, %.3g of its spacings",
+                    farthest, farthest / lambda);
+      throw SceneError(scene.path, key + ".center",
+                       std::string(text) +
+                           " (allowed: at most 1e5 spacings, where float positions still "
+                           "hold the particles' spacing; move the scene to the origin)");
+    }
     in.materials.m[in.materials.count++] =
         derive_material(sm, lambda, cubes ? spacing : geometry.min_distance, summary);
     result.critical_dt = b == 0 ? summary.critical_dt : std::fmin(result.critical_dt, summary.critical_dt);
@@ -361,7 +379,16 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   check_physical_ranges(scene, result);
   std::vector<double> material_dt;
   for (const MaterialSummary& m : result.materials) material_dt.push_back(m.critical_dt);
-  result.critical_dt = std::fmin(result.critical_dt, colliders_critical_dt(in, material_dt));
+  const double collider_dt = colliders_critical_dt(in, material_dt);
+  if (!(collider_dt >= 1e-15)) {  // (the scene key dt's lower bound: a clock that no longer advances)
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", collider_dt);
+    throw SceneError(
+        scene.path, "colliders",
+        std::string("the colliders' contact makes the stable time step ") + text +
+            " s (allowed: a collider stiffness, speed and mass that keep it at 1e-15 s or more)");
+  }
+  result.critical_dt = std::fmin(result.critical_dt, collider_dt);
 
   // Step parameters.
   StepParams& sp = in.step;

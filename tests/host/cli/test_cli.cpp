@@ -136,15 +136,20 @@ TEST_F(Cli, TooStiffColliderIsRefused) {
 
 // Collider mistakes through the binary: each one `error:` line naming the scene and the key, exit 2,
 // before any work: an open mesh as a free body (it has no inside, so no mass), a negative mass,
-// an unknown shape.
+// an unknown shape, a mesh file with no faces, a distance grid too fine to hold, a stiffness that
+// leaves no stable time step.
 TEST_F(Cli, ColliderMistakesAreOneLine) {
   std::ofstream(dir_ / "sheet.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir_ / "points.obj") << "v 0 0 0\nv 1 0 0\n";  // no faces
   const struct {
     std::string collider, key;
   } cases[] = {
       {"shape = \"mesh\"\nmesh = \"sheet.obj\"\ncenter = [0, 0.2, 0]\ndensity = 1000.0\n", "colliders[0]"},
       {"shape = \"sphere\"\nradius = 0.01\ncenter = [0, 0.2, 0]\nmass = -1.0\n", "colliders[0].mass"},
       {"shape = \"cone\"\ncenter = [0, 0.2, 0]\n", "colliders[0].shape"},
+      {"shape = \"mesh\"\nmesh = \"points.obj\"\ncenter = [0, 0.2, 0]\n", "colliders[0].mesh"},
+      {"shape = \"mesh\"\nmesh = \"sheet.obj\"\ncenter = [0, 0.2, 0]\ncell = 1e-9\n", "colliders[0].cell"},
+      {"shape = \"sphere\"\nradius = 0.01\ncenter = [0, 0.2, 0]\nstiffness = 1e300\n", "colliders"},
   };
   for (const auto& c : cases) {
     const Result r = run_perifrac("run " + scene(kGoodBody, "[[colliders]]\n" + c.collider) +
@@ -170,6 +175,17 @@ TEST_F(Cli, AutomaticTimeStep) {
       << r.output;
 }
 
+// A body so far from the origin that float positions lose its spacing: refused, naming the body.
+TEST_F(Cli, BodyFarFromTheOriginIsRefused) {
+  const Result r = run_perifrac("run " + scene(std::string(kGoodBody) + "center = [1e4, 0, 0]\n") +
+                                " --backend cpu --out " + out());
+  expect_scene_error(r, "bodies[0].center");
+  EXPECT_EQ(run_perifrac("run " + scene(std::string(kGoodBody) + "center = [10, 0, 0]\n") +
+                         " --backend cpu --out " + out())
+                .exit_code,
+            0);
+}
+
 TEST_F(Cli, MissingSceneFile) {
   const Result r = run_perifrac("run " + (dir_ / "nope.toml").string() + " --out " + out());
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -178,9 +194,20 @@ TEST_F(Cli, MissingSceneFile) {
 
 TEST_F(Cli, BadOptionValues) {
   // Command-line mistakes: one line starting "error:" that names the option, exit code 2.
-  for (const std::string& args : {"run " + scene(kGoodBody) + " --backend gpu", std::string("run"),
-                                  "run " + scene(kGoodBody) + " --frames x", std::string("frobnicate"),
-                                  "run " + scene(kGoodBody) + " --no-such-option"}) {
+  // Numbers out of range, NaN included, and values that would run without end or for nothing.
+  for (const std::string& args :
+       {"run " + scene(kGoodBody) + " --backend gpu", std::string("run"),
+        "run " + scene(kGoodBody) + " --frames x", std::string("frobnicate"),
+        "run " + scene(kGoodBody) + " --no-such-option",
+        "run " + scene(kGoodBody) + " --checkpoint-minutes nan",
+        "run " + scene(kGoodBody) + " --checkpoint-every -1",
+        std::string("validate --problem wave_bar --delta-over-lambda 1e9"),
+        std::string("validate --problem wave_bar --dt-fraction 50"),
+        std::string("validate --problem wave_bar --dt-fraction 0"),
+        std::string("validate --problem wave_bar --resolution 100000"), std::string("bench --horizon nan"),
+        std::string("bench-geometry --tet-quality 0.5"), std::string("bench-geometry --spacing nan"),
+        std::string("bench-render --kd-max-depth -3"), std::string("compare a b --position-tolerance -1"),
+        std::string("render d --eye nan,0,0")}) {
     const Result bad = run_perifrac(args);
     EXPECT_EQ(bad.exit_code, 2) << args << "\n" << bad.output;
     EXPECT_EQ(bad.output.rfind("error: ", 0), 0u) << args << "\n" << bad.output;
