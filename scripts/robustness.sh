@@ -189,6 +189,8 @@ case_ "limits" "run --checkpoint-minutes nan" 2 "--checkpoint-minutes" "$BIN" "$
 case_ "limits" "validate --dt-fraction 50" 2 "--dt-fraction" "$BIN" validate --problem wave_bar --dt-fraction 50
 case_ "limits" "validate --resolution 100000" 2 "resolution 100000" "$BIN" validate --problem wave_bar --resolution 100000
 case_ "limits" "bench-geometry --tet-quality 0.5" 2 "--tet-quality" "$BIN" bench-geometry --tet-quality 0.5
+scene speck.toml '[[bodies]]\nname = "speck"\nmaterial = "glass"\nshape = "sphere"\nradius = 0.001\ncenter = [0.1, 0, 0]\nspacing = 0.005\n'
+case_ "limits" "a sphere smaller than its spacing" 2 "bodies\[1\]\.spacing: the body holds no particle" "$BIN" "${P[@]}" speck.toml --out l6
 
 # Scene smells
 scene anchor.toml '[[anchors]]\nbox_min = [1, 1, 1]\nbox_max = [2, 2, 2]\n'

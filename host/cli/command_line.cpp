@@ -133,7 +133,8 @@ void add_bench_render(CLI::App& app, const CommandActions& actions, std::functio
       "bench-render", "time the raytracer on a synthetic scene (kd-tree build, rays/s, Embree baseline)");
   cmd->add_option("--scene", bench->scene, "slab (tetrahedra) | cubes | turned-cubes")
       ->check(CLI::IsMember({"slab", "cubes", "turned-cubes"}));
-  cmd->add_option("--count", bench->count, "primitives wanted")->check(CLI::PositiveNumber);
+  cmd->add_option("--count", bench->count, "primitives wanted")
+      ->check(CLI::Range(int64_t(1), int64_t(1) << 31));
   cmd->add_option("--width", bench->width, "image width")->check(CLI::Range(16, 16384));
   cmd->add_option("--height", bench->height, "image height")->check(CLI::Range(16, 16384));
   cmd->add_option("--spp", bench->spp, "samples per pixel")->check(CLI::Range(1, 1024));
@@ -144,7 +145,7 @@ void add_bench_render(CLI::App& app, const CommandActions& actions, std::functio
   cmd->add_flag("!--no-embree", bench->embree, "skip the Embree baseline");
   cmd->add_option("--fragments", bench->fragments,
                   "also time the two-level prototype with about this many moved fragments (0: no)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1 << 24));
   cmd->add_option("--kd-intersect-cost", bench->kd_intersect_cost,
                   "kd-tree SAH intersection cost (default 80)")
       ->check(finite_in(1e-3, 1e6, "a cost from 1e-3 to 1e6"));
@@ -171,7 +172,7 @@ void add_bench_geometry(CLI::App& app, const CommandActions& actions, std::funct
   cmd->add_option("--particles", geometry->particles, "grid | tets | shell | voronoi")
       ->check(CLI::IsMember({"grid", "tets", "shell", "voronoi"}));
   cmd->add_option("--count", geometry->count, "wanted particles (sets the spacing)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(int64_t(1), int64_t(1) << 31));
   cmd->add_option("--spacing", geometry->spacing, "the spacing in m (overrides --count)")
       ->check(finite_in(1e-6, 1e3, "a spacing from 1e-6 to 1e3 m"));
   cmd->add_option("--tet-quality", geometry->tet_quality, "TetGen -q bound; 0 = no quality refinement")
@@ -204,7 +205,7 @@ void add_shapes(CLI::App& app, const CommandActions& actions, std::function<int(
   cmd->add_option("--format", shapes->format, "obj | ply | stl")->check(CLI::IsMember({"obj", "ply", "stl"}));
   cmd->add_option("--edge", shapes->edge,
                   "vertex spacing of curved surfaces in m (default: the body's spacing)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(1e-6, 1e3, "an edge from 1e-6 to 1e3 m"));
   cmd->add_option("--set", shapes->overrides, "KEY=VALUE: change one scene key (repeatable)");
   on_parsed(cmd, chosen, [&actions, shapes] { return actions.shapes(*shapes); });
 }
@@ -237,9 +238,9 @@ void add_profile(CLI::App& app, const CommandActions& actions, std::function<int
   cmd->add_option("scene", profile->scene, "scene file (TOML)")->required();
   cmd->add_option("--ranges", profile->ranges, "step ranges A:B,C:D (default: 5 equal ranges)");
   cmd->add_option("--steps", profile->steps, "steps to run (default: to the last range's end)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(int64_t(1), int64_t(1) << 40));
   cmd->add_option("--timeline", profile->timeline, "timeline resolution in steps (default: ~100 points)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(int64_t(0), int64_t(1) << 40));
   cmd->add_option("--scale", profile->scale, "scene particle-count factor");
   cmd->add_option("--backend", profile->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
@@ -330,7 +331,7 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
   cmd->add_flag("!--no-movie", o.movie, "no movie.mp4 even when ffmpeg is on PATH");
   cmd->add_option("--frames", o.frames, "frame numbers to render, e.g. 20,60 (default: all; no movie)")
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(int64_t(0), kMaxFrames));
   // What the command line gave, noted when parsing ends; the rest comes from the run's scene's
   // [render] block, if any (render_frames).
   cmd->parse_complete_callback([render, cmd] {

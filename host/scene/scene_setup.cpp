@@ -282,6 +282,13 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
       const bool from_file = body.shape == "mesh" && e.path() == body.mesh_path;
       throw SceneError(scene.path, key + (from_file ? ".mesh" : ".particles"), e.what());
     }
+    if (geometry.size() == 0) {  // (a box says so when counted; a sphere or a mesh finds it here)
+      char text[96];
+      std::snprintf(text, sizeof text, "the body holds no particle at a spacing of %.3g m", spacing);
+      throw SceneError(
+          scene.path, key + ".spacing",
+          std::string(text) + " (allowed: a spacing smaller than the body, or a larger --scale)");
+    }
     // The body's particle build: its own stages, and what they leave out (the solid, the shell).
     clock.lap(key + " particles");
     split_last_stage(result.stages, geometry.stages, key + " ", key + " solid");

@@ -113,6 +113,22 @@ TEST(Validation, GhostCorrectedVoronoiBarsMeetTheTargets) {
   EXPECT_LT(figure(pmb, "tension_bar_pmb_voronoi/elongation").rel_error, 0.03);
 }
 
+// Tets, at the horizon of 4 lambda the vase takes: the ghost set-up asks the tets' own solid which
+// stencil points lie outside the body. The state-based bar 4 across comes out 5.8% stiff (9.5% when
+// a stencil point far from every tet centroid counted as outside, which put ghosts inside the
+// body), and 2.4% at 8 across, issue 29's target (measured on the GPU; docs/validation.md).
+TEST(Validation, GhostCorrectedTetBarTakesGhostsOutsideItsSolid) {
+  ValidationCase c = at(4, false);
+  c.delta_over_lambda = 4;
+  c.surface_ghosts = true;
+  c.dt_fraction = kGhostDtFraction;
+  c.particles = "tets";
+  const auto lps = run_tension_bar_lps(c);
+  print(lps);
+  EXPECT_LT(figure(lps, "tension_bar_lps_tets/elongation").rel_error, 0.065);
+  EXPECT_LT(std::fabs(figure(lps, "tension_bar_lps_tets/poisson").measured - 0.3), 0.025);
+}
+
 // State-based bar: same bounds; nu converges to the input 0.3, not to PMB's 1/4.
 TEST(Validation, TensionBarLpsConvergesToInputPoisson) {
   const auto coarse = run_tension_bar_lps(at(4)), fine = run_tension_bar_lps(at(6));
