@@ -189,6 +189,12 @@ case_ "limits" "run --checkpoint-minutes nan" 2 "--checkpoint-minutes" "$BIN" "$
 case_ "limits" "validate --dt-fraction 50" 2 "--dt-fraction" "$BIN" validate --problem wave_bar --dt-fraction 50
 case_ "limits" "validate --resolution 100000" 2 "resolution 100000" "$BIN" validate --problem wave_bar --resolution 100000
 case_ "limits" "bench-geometry --tet-quality 0.5" 2 "--tet-quality" "$BIN" bench-geometry --tet-quality 0.5
+scene spin.toml '[[anchors]]\nbox_min = [-1, -1, -1]\nbox_max = [1, 1, 1]\nangular_velocity = [1e30, 0, 0]\n'
+case_ "finite output" "an anchor spinning past the speed of light: the anchor named" 2 "anchors\[0\]" "$BIN" "${P[@]}" spin.toml --out l7
+scene push.toml '[[projectiles]]\ncenter = [0, 0.1, 0]\nvelocity = [0, -1, 0]\nradius = 0.005\nstrength = 1e300\n'
+case_ "finite output" "a projectile strength of 1e300" 2 "projectiles\[0\]\.strength" "$BIN" "${P[@]}" push.toml --out l8
+scene hard.toml '[contact]\nenabled = true\nstiffness = 1e300\n'
+case_ "finite output" "a contact stiffness of 1e300" 2 "contact\.stiffness" "$BIN" "${P[@]}" hard.toml --out l9
 scene speck.toml '[[bodies]]\nname = "speck"\nmaterial = "glass"\nshape = "sphere"\nradius = 0.001\ncenter = [0.1, 0, 0]\nspacing = 0.005\n'
 case_ "limits" "a sphere smaller than its spacing" 2 "bodies\[1\]\.spacing: the body holds no particle" "$BIN" "${P[@]}" speck.toml --out l6
 

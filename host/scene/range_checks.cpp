@@ -55,8 +55,17 @@ void check_body_particles(const Scene& scene, const SetupResult& setup) {
                            " to " + format(kRealMax) + " kg)");
     const Vec3& v = ps.velocity[i];
     const double speed2 = double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z;
+    // An anchored particle moves as its anchor says (velocity and spin about the pivot).
+    const bool anchored = (ps.flags[i] & kAnchored) != 0;
+    const std::string velocity_key = anchored ? "anchors[" + std::to_string(ps.anchor[i]) + "]"
+                                              : "bodies[" + std::to_string(b) + "].velocity";
+    if (anchored && !(speed2 < kSpeedOfLight * kSpeedOfLight))
+      throw SceneError(scene.path, velocity_key,
+                       "its velocity and angular_velocity move a particle of body '" + body.name + "' at " +
+                           format(std::sqrt(speed2)) + " m/s, not below the speed of light (allowed: below " +
+                           format(kSpeedOfLight) + " m/s)");
     if (!(0.5 * mass * speed2 <= kRealMax))
-      throw SceneError(scene.path, "bodies[" + std::to_string(b) + "].velocity",
+      throw SceneError(scene.path, velocity_key,
                        "a particle of body '" + body.name + "' (mass " + format(mass) + " kg) moving at " +
                            format(std::sqrt(speed2)) + " m/s has a kinetic energy of " +
                            format(0.5 * mass * speed2) + " J, beyond a " + kPrecision +
@@ -96,6 +105,16 @@ void check_physical_ranges(const Scene& scene, const SetupResult& setup) {
     check_speed(scene, "projectiles[" + std::to_string(p) + "].velocity", scene.projectiles[p].velocity);
   for (size_t c = 0; c < scene.colliders.size(); ++c)
     check_speed(scene, "colliders[" + std::to_string(c) + "].velocity", scene.colliders[c].velocity);
+  // Pushes the kernels hold as `real`: a projectile's strength (eq. 7) and the contact stiffness.
+  for (size_t p = 0; p < scene.projectiles.size(); ++p)
+    if (!(scene.projectiles[p].strength <= kRealMax))
+      throw SceneError(scene.path, "projectiles[" + std::to_string(p) + "].strength",
+                       "a strength of " + format(scene.projectiles[p].strength) + " Pa is beyond a " +
+                           kPrecision + " number (allowed: up to " + format(kRealMax) + " Pa)");
+  if (!(scene.contact_stiffness <= kRealMax))
+    throw SceneError(scene.path, "contact.stiffness",
+                     "a stiffness of " + format(scene.contact_stiffness) + " Pa is beyond a " + kPrecision +
+                         " number (allowed: up to " + format(kRealMax) + " Pa)");
   check_body_particles(scene, setup);
   check_materials(scene, setup);
 }
