@@ -70,7 +70,8 @@ PD_HD inline real chen_extension_limit(real tau, real damage, const Material& m)
   return tau * ((real(1) + m.damage_alpha * damage) * m.horizon);
 }
 
-// m_i over the initial family (all bonds intact), once at set-up; state[i].y holds 1/m_i.
+// m_i over the initial family (all bonds intact), once at set-up; state[i].y holds 1/m_i, and 0
+// for a particle without a family (a body of one particle), which then has no dilatation or force.
 PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   real sum = 0;
@@ -81,7 +82,7 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
     sum += influence(xi, real(1) / r0, m) * surface_bond_at(b, b.slot(i, k)) * r0 * r0 *
            volume_fraction(r0, m) * p.volume(j);
   }
-  p.state[i].y = real(1) / sum;
+  p.state[i].y = sum > real(0) ? real(1) / sum : real(0);
 }
 
 // What `init` sums over particle i's intact bonds: theta_i, and for plastic materials (kPlastic)

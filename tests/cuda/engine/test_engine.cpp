@@ -58,8 +58,23 @@ std::vector<std::vector<int32_t>> brute_force_families(const SimulationInput& in
   return out;
 }
 
+// A state-based body of one particle has no family (m = 0): it moves without force, its state
+// finite, where 1/m once made its dilatation and energy NaN.
+TEST(Engine, StateBasedParticleWithoutFamilyStaysFinite) {
+  SimulationInput in = testing::state_block(1, 1, 1, 1e-3, 0.5, false);
+  in.particles.velocity[0] = {1, 0, 0};
+  auto e = make_cpu_engine(in);
+  e->advance(5);
+  EXPECT_LT(e->first_non_finite(), 0);
+  const Energy energy = e->energy();
+  EXPECT_TRUE(std::isfinite(energy.balance()));
+  EXPECT_EQ(energy.strain, 0.0);
+  EXPECT_GT(energy.kinetic, 0.0);
+}
+
 // delta = 3 lambda: 122 neighbours within delta; 178 whose cubes overlap the horizon sphere
 // (distance <= delta + lambda/2) with partial volumes.
+
 TEST(EngineFamilies, LatticeInteriorNeighbourCounts) {
   for (bool partial : {false, true}) {
     auto in = lattice_block(9, 9, 9, 1e-3);
