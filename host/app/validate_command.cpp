@@ -106,6 +106,7 @@ int validate_command(const ValidateOptions& o) {
                    kMaxResolution);
       return 2;
     }
+  if (!o.csv.empty()) append_csv(o.csv, "");  // the header now: an unwritable path fails before the work
   std::string note;
   ValidationCase c;
   try {

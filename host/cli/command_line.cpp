@@ -26,6 +26,13 @@ CLI::Validator finite_in(double lo, double hi, const std::string& allowed) {
       allowed);
 }
 
+// A folder or file name: not empty (an empty --out would quietly mean the default).
+CLI::Validator non_empty() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string { return text.empty() ? "an empty name (allowed: a path)" : ""; },
+      "PATH");
+}
+
 // Each element of a number list (camera points): finite.
 CLI::Validator finite_number() {
   return finite_in(-1e300, 1e300, "finite numbers");
@@ -50,7 +57,7 @@ void add_run(CLI::App& app, const CommandActions& actions, std::function<int()>*
       ->check(CLI::Range(int64_t(0), kMaxFrames));
   cmd->add_option("--steps-per-frame", run->steps_per_frame, "steps per frame (default: the scene's)")
       ->check(CLI::Range(int64_t(1), kMaxStepsPerFrame));
-  cmd->add_option("--out", run->out, "output folder (default: out/<scene name>)");
+  cmd->add_option("--out", run->out, "output folder (default: out/<scene name>)")->check(non_empty());
   CLI::Option* scale =
       cmd->add_option("--scale", run->scale, "particle-count factor, e.g. 0.05 for a small CPU run");
   cmd->add_flag("--allow-unstable-dt", run->allow_unstable_dt, "run even if dt exceeds the stable time step");
@@ -122,7 +129,7 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
   cmd->add_option("--warmup", bench->warmup, "untimed steps first");
   cmd->add_flag("--allow-unstable-dt", bench->allow_unstable_dt,
                 "time the steps even if dt exceeds the stable time step");
-  cmd->add_option("--out", bench->out, "results folder");
+  cmd->add_option("--out", bench->out, "results folder")->check(non_empty());
   on_parsed(cmd, chosen, [&actions, bench] { return actions.bench(*bench); });
 }
 
@@ -157,7 +164,7 @@ void add_bench_render(CLI::App& app, const CommandActions& actions, std::functio
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--keep-hidden", bench->keep_hidden,
                 "put the tetrahedra no ray can reach first in the kd-tree too");
-  cmd->add_option("--out", bench->out, "results folder");
+  cmd->add_option("--out", bench->out, "results folder")->check(non_empty());
   on_parsed(cmd, chosen, [&actions, bench] { return actions.bench_render(*bench); });
 }
 
@@ -191,7 +198,7 @@ void add_bench_geometry(CLI::App& app, const CommandActions& actions, std::funct
   cmd->add_option("--threads", geometry->threads, "threads of the parallel stages (0: default)")
       ->check(CLI::Range(0, 4096));
   cmd->add_option("--seed", geometry->seed, "Poisson-disk seed");
-  cmd->add_option("--csv", geometry->csv, "append a row to this CSV file");
+  cmd->add_option("--csv", geometry->csv, "append a row to this CSV file")->check(non_empty());
   on_parsed(cmd, chosen, [&actions, geometry] { return actions.bench_geometry(*geometry); });
 }
 
@@ -201,7 +208,7 @@ void add_shapes(CLI::App& app, const CommandActions& actions, std::function<int(
   CLI::App* cmd = app.add_subcommand(
       "shapes", "write each body's solid (procedural shape or checked mesh) as a mesh file");
   cmd->add_option("scene", shapes->scene, "scene file (.toml)")->required();
-  cmd->add_option("--out", shapes->out, "folder for the files (default: shapes)");
+  cmd->add_option("--out", shapes->out, "folder for the files (default: shapes)")->check(non_empty());
   cmd->add_option("--format", shapes->format, "obj | ply | stl")->check(CLI::IsMember({"obj", "ply", "stl"}));
   cmd->add_option("--edge", shapes->edge,
                   "vertex spacing of curved surfaces in m (default: the body's spacing)")
@@ -225,8 +232,9 @@ void add_bench_fragments(CLI::App& app, const CommandActions& actions, std::func
       ->check(CLI::Range(2, 100));
   cmd->add_option("--frames", fragments->frames, "timed frames per state")->check(CLI::Range(2, 1000));
   cmd->add_option("--threads", fragments->threads, "OpenMP threads (0: default)")->check(CLI::Range(0, 4096));
-  cmd->add_option("--out", fragments->out, "folder for the files (default: a temporary one, removed)");
-  cmd->add_option("--csv", fragments->csv, "append rows to this CSV file");
+  cmd->add_option("--out", fragments->out, "folder for the files (default: a temporary one, removed)")
+      ->check(non_empty());
+  cmd->add_option("--csv", fragments->csv, "append rows to this CSV file")->check(non_empty());
   on_parsed(cmd, chosen, [&actions, fragments] { return actions.bench_fragments(*fragments); });
 }
 
@@ -244,7 +252,7 @@ void add_profile(CLI::App& app, const CommandActions& actions, std::function<int
   cmd->add_option("--scale", profile->scale, "scene particle-count factor");
   cmd->add_option("--backend", profile->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
-  cmd->add_option("--out", profile->out, "results folder");
+  cmd->add_option("--out", profile->out, "results folder")->check(non_empty());
   on_parsed(cmd, chosen, [&actions, profile] { return actions.profile(*profile); });
 }
 
@@ -280,7 +288,7 @@ void add_validate(CLI::App& app, const CommandActions& actions, std::function<in
       "--traction", validate->traction_mpa,
       "crack_branching only: the step traction on the plate's edges in MPa (default 3.04, 0.35 E s0 at "
       "delta = 3 mm, the same at every resolution)");
-  cmd->add_option("--csv", validate->csv, "append rows to this CSV");
+  cmd->add_option("--csv", validate->csv, "append rows to this CSV")->check(non_empty());
   cmd->add_flag("--quiet", validate->quiet, "no per-row output");
   on_parsed(cmd, chosen, [&actions, validate] { return actions.validate(*validate); });
 }
@@ -296,7 +304,7 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
   RenderOptions& o = render->options;
   CLI::App* cmd = app.add_subcommand("render", "render a run's frames to PNG (DIR/render/)");
   cmd->add_option("dir", o.dir, "output folder of `perifrac run`")->required();
-  cmd->add_option("--out", o.out, "image folder (default: DIR/render)");
+  cmd->add_option("--out", o.out, "image folder (default: DIR/render)")->check(non_empty());
   cmd->add_option("--backend", o.backend, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cmd->add_option("--width", o.width, "image width")->check(CLI::Range(16, 16384));
   cmd->add_option("--height", o.height, "image height")->check(CLI::Range(16, 16384));
