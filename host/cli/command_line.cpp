@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "host/geometry/tetgen.h"
 #include "host/scene/scene.h"
 
 namespace pd {
@@ -186,10 +187,8 @@ void add_bench_geometry(CLI::App& app, const CommandActions& actions, std::funct
       ->check(CLI::Validator(
           [](std::string& text) -> std::string {  // as the scene key tet_quality
             double q = -1;
-            if (CLI::detail::lexical_cast(text, q) && (q == 0 || (q >= 1.1 && q <= 10))) return {};
-            return "Value " + text +
-                   " is out of range (allowed: 0, no quality refinement, or a radius-edge "
-                   "bound in [1.1, 10])";
+            if (CLI::detail::lexical_cast(text, q) && tet_quality_allowed(q)) return {};
+            return std::string("value out of range (allowed: ") + kTetQualityAllowed + ")";
           },
           "0 or [1.1, 10]"));
   cmd->add_flag("--tet-keep-surface", geometry->tet_keep_surface,

@@ -11,6 +11,13 @@
 
 namespace pd {
 
+// TetGen's -q bound as scenes (tet_quality) and bench-geometry take it: 0 (no quality refinement)
+// or a radius-edge bound in [1.1, 10] (below, TetGen may refine without end).
+constexpr const char* kTetQualityAllowed = "0 (no quality refinement) or a radius-edge bound in [1.1, 10]";
+inline bool tet_quality_allowed(double q) {
+  return q == 0 || (q >= 1.1 && q <= 10);
+}
+
 struct TetgenOptions {
   double quality = 1.414;     // -q: bound on the radius-edge ratio of the tets; 0 = no quality refinement
   double max_volume = 0;      // -a: bound on each tet's volume [m^3]; 0 = none

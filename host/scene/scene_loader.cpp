@@ -28,6 +28,7 @@
 
 #include "cuda/views.h"
 #include "host/geometry/shapes.h"
+#include "host/geometry/tetgen.h"
 #include "host/io/input_file.h"
 #include "host/scene/scene.h"
 #include "render/looks.h"
@@ -814,10 +815,9 @@ void parse_particle_switches(const TableReader& r, SceneBody& b) {
     if (r.has(key) && !shell)
       r.fail(key, "only for particles = \"shell\"", "no shell key with particles = " + quoted(b.particles));
   if (r.has("tet_quality")) {
-    const Bounds quality{0, 10, false, false,
-                         "0 (no quality refinement) or a radius-edge bound in [1.1, 10]"};
+    const Bounds quality{0, 10, false, false, kTetQualityAllowed};
     r.number("tet_quality", b.tet_quality, quality);
-    if (b.tet_quality != 0 && b.tet_quality < 1.1)
+    if (!tet_quality_allowed(b.tet_quality))
       r.fail("tet_quality", number_text(b.tet_quality) + " is out of range", quality.describe());
   }
   double volume = 0;
