@@ -98,7 +98,8 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
   cmd->add_option("--scene", bench->scene, "scene file; default: a synthetic lattice cube");
   cmd->add_option("--scale", bench->scale, "scene particle-count factor");
   cmd->add_option("--set", bench->overrides, "KEY=VALUE: change one scene key (repeatable)");
-  cmd->add_option("--lattice", bench->lattice, "lattice particles per side");
+  cmd->add_option("--lattice", bench->lattice, "lattice particles per side")
+      ->check(CLI::Range(int64_t(4), int64_t(1000)));
   cmd->add_option("--horizon", bench->horizon, "lattice delta / lambda")
       ->check(finite_in(1, 20, "a horizon of 1 to 20 spacings"));
   cmd->add_flag("--contact", bench->contact, "lattice: include collection + collisions");
@@ -126,8 +127,9 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
       ->check(CLI::IsMember({"bond_based", "state_based", "plastic", "anisotropic"}));
   cmd->add_option("--backend", bench->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
-  cmd->add_option("--steps", bench->steps, "timed steps");
-  cmd->add_option("--warmup", bench->warmup, "untimed steps first");
+  cmd->add_option("--steps", bench->steps, "timed steps")->check(CLI::Range(int64_t(1), int64_t(1) << 40));
+  cmd->add_option("--warmup", bench->warmup, "untimed steps first")
+      ->check(CLI::Range(int64_t(0), int64_t(1) << 40));
   cmd->add_flag("--allow-unstable-dt", bench->allow_unstable_dt,
                 "time the steps even if dt exceeds the stable time step");
   cmd->add_option("--out", bench->out, "results folder")->check(non_empty());
