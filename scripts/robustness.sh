@@ -191,6 +191,7 @@ case_ "limits" "validate --resolution 100000" 2 "resolution 100000" "$BIN" valid
 case_ "limits" "bench-geometry --tet-quality 0.5" 2 "--tet-quality" "$BIN" bench-geometry --tet-quality 0.5
 case_ "limits" "run --out '' (an empty folder name)" 2 "--out: an empty name" "$BIN" "${P[@]}" s.toml --out ''
 case_ "limits" "validate --csv into /proc: refused before the work" 4 "cannot write '/proc/x.csv'" "$BIN" validate --problem wave_bar --resolution 4 --csv /proc/x.csv
+case_ "limits" "bench-geometry --csv into /proc: refused before the work" 4 "cannot write /proc/x.csv" "$BIN" bench-geometry --shape sphere --particles grid --count 1000 --csv /proc/x.csv
 scene spin.toml '[[anchors]]\nbox_min = [-1, -1, -1]\nbox_max = [1, 1, 1]\nangular_velocity = [1e30, 0, 0]\n'
 case_ "finite output" "an anchor spinning past the speed of light: the anchor named" 2 "anchors\[0\]" "$BIN" "${P[@]}" spin.toml --out l7
 scene push.toml '[[projectiles]]\ncenter = [0, 0.1, 0]\nvelocity = [0, -1, 0]\nradius = 0.005\nstrength = 1e300\n'

@@ -67,12 +67,19 @@ void check_options(const GeometryBenchOptions& o) {
     throw std::invalid_argument("bench-geometry: --shape mesh needs --mesh FILE");
 }
 
-// Appends one row to the CSV file of --csv (a header first when it is new).
+// The CSV file of --csv with its header when it is new, before the work: an unwritable path
+// fails at once.
+void start_csv(const std::string& path) {
+  const bool fresh = !std::filesystem::exists(path);
+  std::ofstream out(path, std::ios::app);
+  if (fresh) out << "date,revision,cores,threads,shape,particles,count,spacing,volume_error,total_s,stages\n";
+  if (!out) throw std::runtime_error("bench-geometry: cannot write " + path);
+}
+
+// Appends one row to the CSV file of --csv (start_csv wrote its header).
 void append_csv_row(const GeometryBenchOptions& o, int threads, size_t particles, double spacing,
                     double error, double total, const std::vector<StageTime>& stages) {
-  const bool fresh = !std::filesystem::exists(o.csv);
   std::ofstream out(o.csv, std::ios::app);
-  if (fresh) out << "date,revision,cores,threads,shape,particles,count,spacing,volume_error,total_s,stages\n";
   out << utc_now("%Y-%m-%dT%H:%M:%SZ") << ',' << git_revision() << ',' << std::thread::hardware_concurrency()
       << ',' << threads << ','
       << (o.shape == "mesh" ? std::filesystem::path(o.mesh).filename().string() : o.shape) << ','
@@ -87,6 +94,7 @@ void append_csv_row(const GeometryBenchOptions& o, int threads, size_t particles
 
 int bench_geometry_command(const GeometryBenchOptions& o) {
   check_options(o);
+  if (!o.csv.empty()) start_csv(o.csv);
   const std::string& kind = o.particles;
   if (o.threads > 0) omp_set_num_threads(o.threads);
   const int threads = omp_get_max_threads();
