@@ -1,11 +1,14 @@
 #include "cuda/engine/bond_threads.h"
 
+#include <algorithm>
 #include <cstdlib>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
 #include "cuda/engine/lattice_families.h"
 #include "cuda/team.h"
+#include "cuda/views.h"
 
 namespace pd {
 
@@ -31,6 +34,28 @@ int bond_threads_of(const SimulationInput& in) {
   // are as even as the lattice's, and one thread per particle beats 4 lanes there by 10-14% at 1M.
   const int64_t regular = box_grid_particles(in.particles);
   return bond_threads_for(n, 2 * (n - regular) > n, 0);
+}
+
+std::vector<int32_t> balanced_particle_order(const std::vector<int32_t>& count, int window) {
+  if (window <= 1) return {};
+  std::vector<int32_t> order(count.size());
+  std::iota(order.begin(), order.end(), 0);
+  for (size_t first = 0; first < order.size(); first += size_t(window)) {
+    const auto end = order.begin() + std::min(order.size(), first + size_t(window));
+    std::stable_sort(order.begin() + first, end, [&](int32_t a, int32_t b) { return count[a] > count[b]; });
+  }
+  return order;
+}
+
+int balance_window() {
+  const char* v = std::getenv("PERIFRAC_BALANCE_WINDOW");
+  if (!v || !*v) return kSliceWidth;
+  const std::string s = v;
+  const bool digits = s.size() <= 7 && s.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits)
+    throw std::invalid_argument("environment PERIFRAC_BALANCE_WINDOW='" + s +
+                                "': allowed is a count of particles, 0 to 9999999 (0 or 1: off)");
+  return std::atoi(v);
 }
 
 }  // namespace pd

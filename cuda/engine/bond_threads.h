@@ -3,6 +3,9 @@
 // run sums a particle's bonds in the same order as one rank.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "cuda/engine/particle_set.h"
 
 namespace pd {
@@ -16,5 +19,17 @@ int requested_bond_threads(const SimulationInput& in);
 // particle count and whether most of its particles are mesh-filled (not in box-grid bodies, whose
 // families are even whether read by lattice offset or from explicit lists).
 int bond_threads_of(const SimulationInput& in);
+
+// The order in which a team launch visits explicit families (ParticleRange::ids): within each
+// window of `window` consecutive particles, longest family first (ties by index). A warp's time is
+// its longest family's, so warps of like counts idle fewer lanes. The window is a slice of the
+// families' slots (kSliceWidth particles, whose slots share 128-byte rows): wider windows scatter
+// a warp's rows and partners and lose more than the lanes gain (bench/NOTES.md). Every particle's
+// sums are its own, in its own order: the same bits in any order. window <= 1: none (empty).
+std::vector<int32_t> balanced_particle_order(const std::vector<int32_t>& count, int window);
+
+// The window the run's team launches use: PERIFRAC_BALANCE_WINDOW where set (0 or 1: off),
+// else kSliceWidth. std::invalid_argument names a bad value.
+int balance_window();
 
 }  // namespace pd

@@ -109,6 +109,13 @@ class EngineImpl final : public Engine {
     if (features_.surface_factors && !lattice_.empty())
       upload_surface_rows(mem_, state_, lattice_, family_, bonds_on_host());
     end_stage("lattice tables");
+    // Bond-based only: the state-based passes' dilatation loop lost 4-10% so ordered (bench/NOTES.md).
+    // (A partitioned rank launches ranges of its own.)
+    const int balance = balance_window();  // (a bad PERIFRAC_BALANCE_WINDOW fails on the CPU too)
+    if (Exec::kDevice && !rank && !features_.lattice && !features_.state_based && bond_threads_ > 1) {
+      const std::vector<int32_t> order = balanced_particle_order(bonds_on_host().count, balance);
+      if (!order.empty()) balanced_ids_ = mem_.make_from(order);
+    }
     std::vector<double> ghost_rate;
     if (features_.ghosts) {
       if (rank)
@@ -570,7 +577,7 @@ class EngineImpl final : public Engine {
   // travels, then the boundary's.
   template <class Launch, class... T>
   void with_halo(const Launch& launch, DeviceArray<T, Exec>&... fields) {
-    if (!halo_.active()) return launch(ParticleRange{0, owned_});
+    if (!halo_.active()) return launch(ParticleRange{0, owned_, balanced_ids_.data()});
     halo_.start(fields...);
     if (overlap_) launch(ParticleRange{0, interior_});
     halo_.finish();
@@ -706,6 +713,9 @@ class EngineImpl final : public Engine {
   BondScreen screen_ = BondScreen::kAuto;
   int bond_threads_ = 1;   // per particle in the GPU's bond loops (cuda/team.h)
   int ghost_threads_ = 1;  // per ghosted particle in the ghost kernels (team.h ghost_threads_for)
+  // The order of the bond loops' team launches over explicit families (balanced_particle_order;
+  // empty: by index).
+  DeviceArray<int32_t, Exec> balanced_ids_;
   int64_t force_passes_ = 0, screened_passes_ = 0;
   int64_t flag_units_ = 0;  // force passes and graphs of passes queued (their broke flags' parity)
   bool graphs_ = false;     // the step as graphs of kGraphSteps steps (step_graphs.h)

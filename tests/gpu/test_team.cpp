@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "tests/support/broken_bonds.h"
 #include "tests/support/fixtures.h"
@@ -103,6 +104,36 @@ TEST(GpuTeam, StateBasedPlasticListed) {
   auto in = testing::pulled_apart(testing::state_block(32, 16, 16, kLambda, 2e-4, true), 32, kLambda, 2);
   in.lattice_families = false;
   expect_teams_follow_one_thread(in, 200);
+}
+
+// Bond-based team launches over explicit families visit the particles longest family first
+// within each slice (bond_threads.h balanced_particle_order); a particle's sums are its own, so
+// the run gives the bits of the launch in index order (PERIFRAC_BALANCE_WINDOW=0), bonds
+// breaking, weakened or not.
+TEST(GpuTeam, BalancedOrderGivesTheBitsOfTheIndexOrder) {
+  REQUIRE_GPU();
+  auto bond = testing::pulled_apart(testing::lattice_block(32, 16, 16, kLambda, 2e-4, 0.2), 32, kLambda, 2);
+  auto weak = testing::pulled_apart(testing::lattice_block(32, 16, 16, kLambda, 4e-4, 0.2), 32, kLambda, 2);
+  testing::weaken_plane(weak, 16 * kLambda, 0.5);
+  for (SimulationInput* in : {&bond, &weak})
+    for (int threads : {4, 8}) {
+      SCOPED_TRACE(threads);
+      in->bond_threads = threads;
+      setenv("PERIFRAC_BALANCE_WINDOW", "0", 1);
+      auto by_index = make_cuda_engine(*in);
+      unsetenv("PERIFRAC_BALANCE_WINDOW");
+      auto balanced = make_cuda_engine(*in);
+      by_index->advance(200);
+      balanced->advance(200);
+      ParticleState a, b;
+      by_index->read_state(a);
+      balanced->read_state(b);
+      const auto broken = testing::broken_bond_set(*by_index);
+      EXPECT_GT(broken.size(), 100u) << "the bar must break";
+      EXPECT_TRUE(testing::same_bits(a.disp, b.disp));
+      EXPECT_TRUE(testing::same_bits(a.force, b.force));
+      EXPECT_EQ(broken, testing::broken_bond_set(*balanced));
+    }
 }
 
 // The screened and breaking passes give the same bits with teams too (cuda/kernels/bond_screen.h).

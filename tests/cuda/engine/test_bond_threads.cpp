@@ -7,8 +7,10 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "cuda/team.h"
+#include "cuda/views.h"
 #include "tests/support/fixtures.h"
 
 namespace pd {
@@ -56,6 +58,30 @@ TEST(BondThreads, ChosenFromTheParticleCountAndTheFamilies) {
   EXPECT_EQ(bond_threads_of(grid), 4);
   grid.bond_threads = 1;
   EXPECT_EQ(bond_threads_of(grid), 1);
+}
+
+TEST(BondThreads, BalancedOrderSortsEachWindowLongestFamilyFirst) {
+  const std::vector<int32_t> count = {3, 9, 9, 1, 5, 7, 2, 8, 4, 6};
+  EXPECT_TRUE(balanced_particle_order(count, 0).empty());
+  EXPECT_TRUE(balanced_particle_order(count, 1).empty());
+  // Windows [0, 4), [4, 8), [8, 10): longest first, ties by index.
+  EXPECT_EQ(balanced_particle_order(count, 4), (std::vector<int32_t>{1, 2, 0, 3, 7, 5, 4, 6, 9, 8}));
+  const std::vector<int32_t> whole = balanced_particle_order(count, 64);
+  EXPECT_EQ(whole, (std::vector<int32_t>{1, 2, 7, 5, 9, 4, 8, 0, 6, 3}));
+}
+
+TEST(BondThreads, BalanceWindowFromTheEnvironment) {
+  unsetenv("PERIFRAC_BALANCE_WINDOW");
+  EXPECT_EQ(balance_window(), kSliceWidth);
+  setenv("PERIFRAC_BALANCE_WINDOW", "0", 1);
+  EXPECT_EQ(balance_window(), 0);
+  setenv("PERIFRAC_BALANCE_WINDOW", "256", 1);
+  EXPECT_EQ(balance_window(), 256);
+  for (const char* bad : {"x", "-1", "1e3", "12345678"}) {
+    setenv("PERIFRAC_BALANCE_WINDOW", bad, 1);
+    EXPECT_THROW(balance_window(), std::invalid_argument) << bad;
+  }
+  unsetenv("PERIFRAC_BALANCE_WINDOW");
 }
 
 }  // namespace
