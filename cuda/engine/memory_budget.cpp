@@ -30,9 +30,10 @@ size_t capped(const char* variable, size_t bytes) {
 // Per particle, beyond the state table's arrays (cuda/state_fields.h, a state-based run's): the
 // contact hash (keys, ids, sorted copies: 16 B; sorted records: 16 B; bins: up to 4 per particle
 // x 8 B), the contact lists (origin 16 B, length 4 B, room for 8 partners of 4 B), their
-// relisting (a particle's latest node and last round: 8 B) and the slice bookkeeping.
+// relisting (a particle's latest node and last round: 8 B), the slice bookkeeping and the bond
+// loops' balanced launch order (4 B; bond_threads.h).
 constexpr double kEngineParticleBytes =
-    field_bytes<kParticles>(FieldNeeds{true, false, false}) + 16 + 16 + 32 + 16 + 4 + 32 + 8 + 8;
+    field_bytes<kParticles>(FieldNeeds{true, false, false}) + 16 + 16 + 32 + 16 + 4 + 32 + 8 + 8 + 4;
 // Sliced-ELL padding: slices of 32 particles are as long as their longest family.
 constexpr double kEllPadding = 1.15;
 
