@@ -79,7 +79,8 @@ enum FieldFrame { kFrameNone, kFrameAll, kFrameXyz };
   X(ledger, Ledger, kParticles, kForAll, kSaved, kHaloNone, kFrameNone)                              \
   /* x theta_i (dilatation, set by `init`); y 1/m_i, m_i = sum_j omega |xi|^2 beta V_j over the  */  \
   /* initial family; z phi_i = 1 - intact/initial bonds of the last step (damage, set by `init`); */ \
-  /* w (plastic materials) the trial deviatoric norm |t^d| that `plasticity` tests (`init`)       */ \
+  /* w (plastic materials) the trial deviatoric norm |t^d| that `plasticity` tests (`init`),  */     \
+  /* then its return-mapping factor s, +inf if it never flowed (reads_plastic_history) */            \
   X(state, Vec4, kParticles, kForStateBased, kSaved, kHaloStep, kFrameNone)                          \
   /* the surface correction's factors along x, y, z (set-up, surface_correction.h)              */   \
   X(surface_factor, Vec3, kParticles, kForSurface, kDerived, kHaloSetup, kFrameNone)                 \

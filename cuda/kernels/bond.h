@@ -139,6 +139,18 @@ struct BondGeometryOf {
 using BondGeometry = BondGeometryOf<false>;
 using LatticeBondGeometry = BondGeometryOf<true>;
 
+// A plastic visitor's e^p at a slot, 0 without loading it where `read` is false (the particle has
+// none: reads_plastic_history, state_based.h). Lattice bonds only: listed loops load it anyway
+// (a zero there), where the load made conditional cost the plastic explicit lattice's passes 6-8%
+// (one H200, bench/NOTES.md).
+template <class History, class Geometry>
+PD_HD inline real plastic_at(const History& history, int64_t slot, bool read, const Geometry&) {
+  if constexpr (std::is_same_v<Geometry, LatticeBondGeometry>)
+    return read ? history[slot] : real(0);
+  else
+    return history[slot];
+}
+
 PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, Vec4 disp_j,
                                         SlotAhead ahead = {}) {
   BondGeometry g;
@@ -257,22 +269,34 @@ PD_HD inline int32_t bit_count(uint32_t x) {
 #endif
 }
 
+// Whether x holds in any thread of the warp that runs this together (on the CPU: x).
+PD_HD inline bool warp_any(bool x) {
+#if defined(__CUDA_ARCH__)
+  return __any_sync(__activemask(), x);
+#else
+  return x;
+#endif
+}
+
 // Visitors that read plastic histories (kHistory), one thread per particle: the histories' rows
 // of a word's bonds fetched ahead into L2. A warp's particles share a slice (kSliceWidth = 32),
 // whose row k (bond k of each) is one line of each history array; lane t fetches row k0 + t, so
 // the warp asks for the word's rows at once where each bond would otherwise wait for its two rows
 // from DRAM in turn (a visit may store into them, which keeps the compiler from loading ahead).
 // Measured on the plastic lattice (H200, bench/NOTES.md): springforces +5%, the step +6%.
+// fetch: whether any particle of the warp reads its histories (warp_any).
 template <int kHistory, int kThreads>
-PD_HD inline void prefetch_history_rows(int32_t i, int32_t k0, uint32_t present, const BondsView& b) {
+PD_HD inline void prefetch_history_rows(int32_t i, int32_t k0, uint32_t present, const BondsView& b,
+                                        bool fetch) {
 #if defined(__CUDA_ARCH__)
   if constexpr (kHistory != kNoHistory && kThreads == 1) {
     const int32_t lane = int32_t(threadIdx.x % 32);
+    if (!fetch) return;
     if (lane >= bit_count(present)) return;
     prefetch_history<kHistory>(b, b.slot(i, k0 + lane));
   }
 #else
-  (void)i, (void)k0, (void)present, (void)b;
+  (void)i, (void)k0, (void)present, (void)b, (void)fetch;
 #endif
 }
 
@@ -285,11 +309,11 @@ PD_HD inline void prefetch_history_rows(int32_t i, int32_t k0, uint32_t present,
 // times, chosen per kernel as measured (bench/NOTES.md; 2 is what the compiler picks alone). A
 // team's lane visits entries lane, lane + kThreads, ... of each word and counts the intact bonds
 // among those. kHistory (HistoryReads): the plastic histories the visitor reads, fetched ahead
-// (prefetch_history_rows).
+// (prefetch_history_rows) where any particle of the warp reads them (fetch_histories).
 template <int kLattice, int kUnroll, int kHistory, int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
                                                   const BondsView& b, const Team<kThreads>& team,
-                                                  Visit& visit) {
+                                                  Visit& visit, bool fetch_histories) {
   constexpr int kEntries = 32 / kThreads;                                                 // per lane and word
   [[maybe_unused]] constexpr int kEntryUnroll = kUnroll < kEntries ? kUnroll : kEntries;  // (GPU pragma)
   const LatticeView& l = b.lattice;
@@ -299,12 +323,13 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
   const int64_t first_slot = b.slot(i, 0);
   int32_t k0 = 0;  // present bonds in the words before this one
   int32_t holding = 0;
+  const bool fetch_rows = kHistory != kNoHistory && warp_any(fetch_histories);
   for (int32_t w0 = 0; w0 < st.size; w0 += 32) {
     const int64_t word = int64_t(w0 / 32) * b.n + i;
     const uint32_t present = l.present[word];
     uint32_t intact = l.intact[word];
     const uint32_t weak = l.weak ? l.weak[word] : 0u;
-    prefetch_history_rows<kHistory, kThreads>(i, k0, present, b);
+    prefetch_history_rows<kHistory, kThreads>(i, k0, present, b, fetch_rows);
     // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
     PD_UNROLL(kEntryUnroll)
     for (int32_t r = 0; r < kEntries; ++r) {
@@ -334,13 +359,17 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
 // lattice families are walked (kNoLattice: every family is read from its list, and the lattice
 // loop is not compiled in); kUnroll and kHistory as for_each_intact_lattice_bond. With a team
 // (team.h), each lane visits its share of the bonds and the count returned is the whole team's.
+// fetch_histories: false where the visitor reads none of the particle's histories (the lattice
+// loop's fetches of kHistory left out where no particle of the warp reads them).
 template <int kLattice = kLatticeListed, int kUnroll = 2, int kHistory = kNoHistory, int kThreads = 1,
           class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
-                                          const Team<kThreads>& team, Visit&& visit) {
+                                          const Team<kThreads>& team, Visit&& visit,
+                                          bool fetch_histories = true) {
   const int32_t stencil = kLattice != kNoLattice && b.lattice.stencil ? b.lattice.stencil[i] : -1;
   if (kLattice != kNoLattice && stencil >= 0)
-    return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll, kHistory>(i, stencil, p, b, team, visit));
+    return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll, kHistory>(i, stencil, p, b, team, visit,
+                                                                              fetch_histories));
   return team.sum(for_each_intact_listed_bond<kHistory>(i, p, b, team, visit));
 }
 template <int kLattice = kLatticeListed, int kUnroll = 2, class Visit>

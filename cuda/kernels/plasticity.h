@@ -38,10 +38,14 @@ PD_HD inline real returned_plastic_extension(real e, real r0, real theta, real s
   return out;
 }
 
-// Per particle: the trial norm `init` left in state.w becomes the factor s.
+// Per particle: the trial norm `init` left in state.w becomes the factor s; a particle that has
+// never flowed (its norm's sign bit set by `init`) and does not flow now gets +infinity instead
+// of 1 (reads_plastic_history, state_based.h).
 PD_HD inline void yield_test(int32_t i, ParticlesView p, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
-  if (m.plastic) p.state[i].w = yield_scale(p.state[i].w, m);
+  if (!m.plastic) return;
+  const real trial = p.state[i].w, scale = yield_scale(std::fabs(trial), m);
+  p.state[i].w = std::signbit(trial) && scale == real(1) ? real(INFINITY) : scale;
 }
 
 // The mirror of every bond end's e^p at the partner's slot, from the history (after a restore).

@@ -31,6 +31,7 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
   const real limit_i = chen_extension_limit(tau_i, phi_i, m);
   const real own_limit = m.chen_fracture ? limit_i : tau_i;  // the screened pass's L
   const bool flows = kPlastic && kProject && m.plastic;      // state.w holds the return mapping's factor
+  const bool history_i = kPlastic && reads_plastic_history(state_i, m);
   Vec3 f{0, 0, 0};
   real smin = real(INFINITY);
   real nearest = -real(INFINITY);  // screened pass: the largest own-end margin (bond_screen.h)
@@ -43,11 +44,13 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
   // The entry loop unrolled 8 times: +3% (elastic) to +8% (plastic) against the compiler's 2
   // (bench/NOTES.md); a plastic run's histories of both ends fetched ahead.
   constexpr int kHistory = kPlastic ? kBothHistories : kNoHistory;
-  const int32_t intact =
-      for_each_intact_bond<kLattice, 8, kHistory>(i, p, b, team, [&](int64_t slot, int32_t j, const auto& g) {
+  const int32_t intact = for_each_intact_bond<kLattice, 8, kHistory>(
+      i, p, b, team,
+      [&](int64_t slot, int32_t j, const auto& g) {
         const Vec4 state_j = p.state[j];
-        real ep_ij = kPlastic ? b.plastic[slot] : real(0);
-        real ep_ji = kPlastic ? b.plastic_mirror[slot] : real(0);
+        real ep_ij = kPlastic ? plastic_at(b.plastic, slot, history_i, g) : real(0);
+        real ep_ji =
+            kPlastic ? plastic_at(b.plastic_mirror, slot, reads_plastic_history(state_j, m), g) : real(0);
         if (flows && state_i.w < real(1)) {
           ep_ij = returned_plastic_extension(g.e, g.r0, theta_i, state_i.w, ep_ij, m);
           b.plastic[slot] = ep_ij;
@@ -81,7 +84,8 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
                        ((k_i.a + k_j.a) * g.e - (k_i.a * ep_ij + k_j.a * ep_ji) + (k_i.c + k_j.c) * g.r0);
         f += (t * (kPlastic ? g.weight(m) : g.weight(volumes)) * g.inv_r) * g.y;
         return true;
-      });
+      },
+      history_i);
   if (!kBreaking && may_break<kWeak>(team.max(nearest), own_limit)) return false;
   if constexpr (kBreaking) released.settle(p, i, team);
   write_bond_forces(i, p, vol_i * team.sum(f), team.min(smin), intact,

@@ -72,6 +72,7 @@ PD_HD inline real chen_extension_limit(real tau, real damage, const Material& m)
 
 // m_i over the initial family (all bonds intact), once at set-up; state[i].y holds 1/m_i, and 0
 // for a particle without a family (a body of one particle), which then has no dilatation or force.
+// A plastic particle starts without plastic extension: state[i].w marks it so (reads_plastic_history).
 PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
   const Material& m = mt.m[p.material[i]];
   real sum = 0;
@@ -83,6 +84,18 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
            volume_fraction(r0, m) * p.volume(j);
   }
   p.state[i].y = sum > real(0) ? real(1) / sum : real(0);
+  if (m.plastic) p.state[i].w = real(INFINITY);
+}
+
+// Whether a particle's own e^p (BondsView::plastic at its slots) may be other than zero: not for
+// elastic materials, nor for a plastic particle that has never flowed, which `plasticity` marks
+// with +infinity in state.w where a non-flowing particle has the factor 1 (plasticity.h
+// yield_test). From `plasticity` to the next step's `init` state.w holds that mark or the factor;
+// `init` reads it before writing the trial norm. Where it is false, `init` and `springforces` take
+// the particle's e^p as 0 without reading them: the same bits (e - 0 is e), and in a scene whose
+// flow stays near an impact most of the history is never read.
+PD_HD inline bool reads_plastic_history(const Vec4& state, const Material& m) {
+  return m.plastic && state.w != real(INFINITY);
 }
 
 // What `init` sums over particle i's intact bonds: theta_i, and for plastic materials (kPlastic)
@@ -98,32 +111,38 @@ PD_HD inline void weighted_volume(int32_t i, ParticlesView p, BondsView b, const
 // square root: the squared norm overflows float for stiff metals at fine spacing.
 struct DilatationPass {
   real theta;
-  real trial_norm;  // |t^d| (kPlastic, plastic materials), else 0
+  real trial_norm;  // |t^d| (kPlastic, plastic materials), else 0; negative (-0 for 0) where the
+                    // particle has never flowed (reads_plastic_history false), as `plasticity` reads it
 };
 
 // One pass, with (kNorm) or without the trial norm; a team's lanes sum their shares, then the team's.
 template <bool kAnisotropic, int kLattice, bool kNorm, int kThreads>
 PD_HD inline DilatationPass dilatation_pass(int32_t i, const ParticlesView& p, const BondsView& b,
                                             const Material& m, const Team<kThreads>& team) {
-  const real theta_prev = kNorm ? p.state[i].x : real(0);
+  const Vec4 state_i = kNorm ? p.state[i] : Vec4{};
+  const real theta_prev = state_i.x;
+  const bool history = kNorm && reads_plastic_history(state_i, m);
   real sum = 0, s_dd = 0, s_dr = 0, s_rr = 0;
   const uint16_t* row = surface_row_of(b, i);
   const PartialVolumes volumes = partial_volumes_of(m);  // once per particle (bond.h)
   // The entry loop unrolled 8 times: plastic init -3% time against the compiler's 2 (bench/NOTES.md);
   // the trial norm's history fetched ahead.
   constexpr int kHistory = kNorm ? kOwnHistory : kNoHistory;
-  for_each_intact_bond<kLattice, 8, kHistory>(i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
-    const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m) * surface_factor_of(b, slot, g, row),
-               weight = g.weight(volumes);
-    sum += omega * g.r0 * g.e * weight;
-    if constexpr (kNorm) {
-      const real d = g.e - b.plastic[slot] - theta_prev * g.r0 * real(1.0 / 3.0);
-      const real ww = omega * omega * weight;
-      s_dd += ww * d * d;
-      s_dr += ww * d * g.r0;
-      s_rr += ww * g.r0 * g.r0;
-    }
-  });
+  for_each_intact_bond<kLattice, 8, kHistory>(
+      i, p, b, team,
+      [&](int64_t slot, int32_t, const auto& g) {
+        const real omega = influence<kAnisotropic>(g.xi, g.inv_r0, m) * surface_factor_of(b, slot, g, row),
+                   weight = g.weight(volumes);
+        sum += omega * g.r0 * g.e * weight;
+        if constexpr (kNorm) {
+          const real d = g.e - plastic_at(b.plastic, slot, history, g) - theta_prev * g.r0 * real(1.0 / 3.0);
+          const real ww = omega * omega * weight;
+          s_dd += ww * d * d;
+          s_dr += ww * d * g.r0;
+          s_rr += ww * g.r0 * g.r0;
+        }
+      },
+      history);
   sum = team.sum(sum);
   if constexpr (kNorm) {
     s_dd = team.sum(s_dd);
@@ -136,6 +155,7 @@ PD_HD inline DilatationPass dilatation_pass(int32_t i, const ParticlesView& p, c
     const real shift = out.theta - theta_prev, alpha = real(15) * m.shear_modulus * inv_mw;
     const real norm2 = s_dd - real(2.0 / 3.0) * shift * s_dr + real(1.0 / 9.0) * shift * shift * s_rr;
     out.trial_norm = alpha * std::sqrt(norm2 > real(0) ? norm2 : real(0));
+    if (!history) out.trial_norm = -out.trial_norm;
   }
   return out;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "cuda/engine/engine.h"
@@ -83,6 +84,7 @@ TEST(Plasticity, BothEndsOfEveryBondFollowTheReturnMappingAndStayMirrored) {
                    real(1)};
   }
   for (size_t s = 0; s < blk.plastic.size(); ++s) blk.plastic[s] = real(1e-7 * (rng.uniform() - 0.5));
+  for (Vec4& s : blk.state) s.w = real(1);  // particles that have flowed before: their histories are read
   const BondsView b = blk.bonds();
   for (int32_t i = 0; i < b.n; ++i)
     for (int32_t k = 0; k < b.count[i]; ++k) blk.mirror[blk.partner_slot(i, k)] = blk.plastic[b.slot(i, k)];
@@ -131,6 +133,71 @@ TEST(Plasticity, BothEndsOfEveryBondFollowTheReturnMappingAndStayMirrored) {
   EXPECT_EQ(blk.mirror, mirrored);
 }
 
+// A particle that has never flowed carries the mark +infinity in state.w from `plasticity` to the
+// next `init` (reads_plastic_history, state_based.h), and `init` and `springforces` then read none
+// of its history. On a block sheared more at one end than at the other, where about half the
+// particles yield: the marks stay on exactly the particles that never flowed (their histories all
+// zero), and after three steps every number has the bits of the same steps with no particle
+// marked (every history read).
+TEST(Plasticity, ParticlesThatNeverFlowedSkipTheirHistoriesWithTheSameBits) {
+  PlasticBlock marked;
+  for (const Vec4& s : marked.state) ASSERT_EQ(s.w, real(INFINITY));  // set-up: no plastic extension
+  PlasticBlock read_all = marked;
+  for (Vec4& s : read_all.state) s.w = real(1);
+  const size_t n = marked.rest.size();
+  real x_min = marked.rest[0].x, x_max = x_min;
+  for (const Vec4& x : marked.rest) x_min = std::min(x_min, x.x), x_max = std::max(x_max, x.x);
+  // A shear growing from 0 at one end to `amount` at the other: the far part of the block yields.
+  auto shear = [&](PlasticBlock& blk, double amount) {
+    for (size_t i = 0; i < n; ++i) {
+      const Vec4 x = blk.rest[i];
+      blk.disp[i] = {real(amount * (x.x - x_min) / (x_max - x_min) * x.y), 0, 0, real(1)};
+    }
+  };
+  std::vector<bool> flowed(n, false);
+  for (double amount : {0.002, 0.0025, 0.003}) {
+    shear(marked, amount);
+    shear(read_all, amount);
+    marked.step();
+    read_all.step();
+    for (size_t i = 0; i < n; ++i) flowed[i] = flowed[i] || marked.state[i].w < real(1);
+  }
+  const BondsView b = marked.bonds();
+  size_t never = 0;
+  for (int32_t i = 0; i < b.n; ++i) {
+    if (flowed[size_t(i)]) {
+      EXPECT_NE(marked.state[size_t(i)].w, real(INFINITY)) << i;
+      EXPECT_EQ(marked.state[size_t(i)].w, read_all.state[size_t(i)].w) << i;
+      continue;
+    }
+    ++never;
+    EXPECT_EQ(marked.state[size_t(i)].w, real(INFINITY)) << i;
+    EXPECT_EQ(read_all.state[size_t(i)].w, real(1)) << i;
+    for (int32_t k = 0; k < b.count[i]; ++k) EXPECT_EQ(marked.plastic[size_t(b.slot(i, k))], real(0)) << i;
+  }
+  EXPECT_GT(never, n / 5);
+  EXPECT_LT(never, n * 4 / 5);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec4 a = marked.state[i], c = read_all.state[i];
+    ASSERT_TRUE(a.x == c.x && a.y == c.y && a.z == c.z) << i;
+    const Vec3 f = marked.force[i], g = read_all.force[i];
+    ASSERT_TRUE(f.x == g.x && f.y == g.y && f.z == g.z) << i;
+  }
+  EXPECT_EQ(marked.plastic, read_all.plastic);
+  EXPECT_EQ(marked.mirror, read_all.mirror);
+}
+
+// The history's load (bond.h plastic_at): a lattice bond of a particle without plastic extension
+// takes 0 without reading (an empty view here: a read would fail), a listed bond loads its slot.
+TEST(Plasticity, LatticeBondsOfParticlesWithoutHistoryReadNone) {
+  std::vector<real> history{real(0.25)};
+  const ArrayView<real> one = view_of(history), none{};
+  EXPECT_EQ(plastic_at(one, 0, true, LatticeBondGeometry{}), real(0.25));
+  EXPECT_EQ(plastic_at(none, 5, false, LatticeBondGeometry{}), real(0));
+  EXPECT_EQ(plastic_at(one, 0, false, BondGeometry{}), real(0.25));
+  EXPECT_EQ(plastic_at(one, 0, true, BondGeometry{}), real(0.25));
+}
+
 TEST(Plasticity, YieldTestKeepsElasticParticlesAndScalesYieldingOnes) {
   Material m;
   m.plastic = 1;
@@ -138,6 +205,24 @@ TEST(Plasticity, YieldTestKeepsElasticParticlesAndScalesYieldingOnes) {
   EXPECT_EQ(yield_scale(real(3), m), real(1));
   EXPECT_EQ(yield_scale(real(4), m), real(1));
   EXPECT_FLOAT_EQ(yield_scale(real(8), m), real(0.5));
+  // yield_test: a particle that has never flowed (the norm's sign bit) keeps its mark unless it
+  // yields; one that has keeps the factor 1.
+  testing::ParticleArrays one;
+  one.state.assign(1, Vec4{0, 0, 0, 0});
+  one.material.assign(1, 0);
+  MaterialTable table;
+  table.count = 1;
+  table.m[0] = m;
+  const std::pair<real, real> cases[] = {{-real(0), real(INFINITY)},
+                                         {-real(3), real(INFINITY)},
+                                         {real(3), real(1)},
+                                         {-real(8), real(0.5)},
+                                         {real(8), real(0.5)}};
+  for (const auto& [trial, expected] : cases) {
+    one.state[0].w = trial;
+    yield_test(0, one.view(), table);
+    EXPECT_EQ(one.state[0].w, expected) << trial;
+  }
   // Chen's cap: |e^p| <= gamma |xi|.
   m.plastic_limit = real(0.01);
   EXPECT_FLOAT_EQ(returned_plastic_extension(real(1), real(2), real(0), real(0.5), real(0), m), real(0.02));
