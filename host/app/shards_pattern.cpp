@@ -147,16 +147,20 @@ void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale) 
   in.face_bonds = std::move(faces);  // the patterns are all that list faces
 }
 
-SetupResult setup_scene_with_patterns(const Scene& scene, double scale, Backend backend) {
-  SetupResult setup = setup_scene(scene, setup_options_for(scene, scale, backend));
+SetupResult setup_scene_with_patterns(const Scene& scene, const SetupOptions& options) {
+  SetupResult setup = setup_scene(scene, options);
   const auto start = std::chrono::steady_clock::now();
-  apply_shards_pattern(scene, setup, scale);
+  apply_shards_pattern(scene, setup, options.scale);
   if (setup.pattern.bodies > 0)
     setup.stages.push_back(
         {"shards pattern", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
   for (const auto& [body_material, dust_material] : setup.pattern.dust_materials)
     copy_material_summary(setup.materials, body_material, dust_material, " (shards dust)");
   return setup;
+}
+
+SetupResult setup_scene_with_patterns(const Scene& scene, double scale, Backend backend) {
+  return setup_scene_with_patterns(scene, setup_options_for(scene, scale, backend));
 }
 
 }  // namespace pd

@@ -23,6 +23,7 @@ namespace pd {
 void apply_shards_pattern(const Scene& scene, SetupResult& setup, double scale);
 
 // setup_scene with the patterns applied: the set-up of `perifrac run`, `bench` and `profile`.
+SetupResult setup_scene_with_patterns(const Scene& scene, const SetupOptions& options);
 SetupResult setup_scene_with_patterns(const Scene& scene, double scale, Backend backend);
 
 }  // namespace pd

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <utility>
 
 namespace pd {
 namespace {
@@ -30,19 +30,22 @@ std::vector<int32_t> morton_order(const std::vector<Vec3d>& points) {
   double extent = 0;
   for (int a = 0; a < 3; ++a) extent = std::fmax(extent, box.hi[a] - box.lo[a]);
   const double scale = extent > 0 ? cells / extent : 0;
-  std::vector<uint64_t> key(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
+  // (code, index) pairs sorted: the codes' order, ties in index order, without the indirect
+  // comparisons of sorting indices by their codes.
+  const int64_t n = int64_t(points.size());
+  std::vector<std::pair<uint64_t, int32_t>> keyed(points.size());
+#pragma omp parallel for schedule(static)
+  for (int64_t i = 0; i < n; ++i) {
     uint64_t code = 0;
     for (int a = 0; a < 3; ++a) {
-      const double cell = std::floor((points[i][a] - box.lo[a]) * scale);
+      const double cell = std::floor((points[size_t(i)][a] - box.lo[a]) * scale);
       code |= spread_bits(uint64_t(std::clamp(cell, 0.0, cells))) << a;
     }
-    key[i] = code;
+    keyed[size_t(i)] = {code, int32_t(i)};
   }
+  std::sort(keyed.begin(), keyed.end());
   std::vector<int32_t> order(points.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int32_t a, int32_t b) { return key[size_t(a)] < key[size_t(b)]; });
+  for (size_t k = 0; k < keyed.size(); ++k) order[k] = keyed[k].second;
   return order;
 }
 

@@ -38,11 +38,14 @@ void reorder_particles(ParticleGeometry& g, const std::vector<int32_t>& order) {
   g.volume = permuted(g.volume, order);
   if (!g.mass.empty()) g.mass = permuted(g.mass, order);
   if (!g.lambda.empty()) g.lambda = permuted(g.lambda, order);
-  // Each list stays sorted: the lists were sorted by old index, and are re-sorted by new.
-  reorder_csr(g.adjacency.offset, g.adjacency.neighbor, order, renumber);
-  for (size_t i = 0; i < g.adjacency.size(); ++i)
-    std::sort(g.adjacency.neighbor.begin() + g.adjacency.offset[i],
-              g.adjacency.neighbor.begin() + g.adjacency.offset[i + 1]);
+  // Each list stays sorted: the lists were sorted by old index, and are re-sorted by new. (A
+  // geometry without its adjacency yet, as tet_particles orders it, has none to move.)
+  if (g.adjacency.size() == order.size()) {
+    reorder_csr(g.adjacency.offset, g.adjacency.neighbor, order, renumber);
+    for (size_t i = 0; i < g.adjacency.size(); ++i)
+      std::sort(g.adjacency.neighbor.begin() + g.adjacency.offset[i],
+                g.adjacency.neighbor.begin() + g.adjacency.offset[i + 1]);
+  }
   g.tets.tets = permuted(g.tets.tets, order);
   g.tets.neighbors = permuted(g.tets.neighbors, order);
   for (auto& across : g.tets.neighbors)

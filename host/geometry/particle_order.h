@@ -13,7 +13,8 @@
 namespace pd {
 
 // The tet particles of `g` rearranged so that particle k is the old particle order[k]: positions,
-// volumes, masses, nearest distances, the adjacency and the tets with their neighbours follow.
+// volumes, masses, nearest distances, the adjacency (where it has been built) and the tets with
+// their neighbours follow.
 void reorder_particles(ParticleGeometry& g, const std::vector<int32_t>& order);
 
 }  // namespace pd

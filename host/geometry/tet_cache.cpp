@@ -23,9 +23,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr char kMagic[8] = {'P', 'F', 'T', 'E', 'T', 'S', '0', '1'};
+constexpr char kMagic[8] = {'P', 'F', 'T', 'E', 'T', 'S', '0', '2'};
 constexpr uint64_t kSecondBasis = 0x84222325cbf29ce4ull;  // the second hash's start (another basis)
-constexpr size_t kCounts = 4;                             // vertices, tets, neighbours, faces
+constexpr size_t kCounts = 3;                             // vertices, tets, neighbours
 constexpr size_t kHeaderBytes = sizeof kMagic + 8 * (2 + kCounts);
 
 template <class T>
@@ -117,22 +117,19 @@ std::optional<TetMesh> TetCache::load() const {
   uint64_t count[kCounts];
   for (uint64_t& c : count) c = get<uint64_t>(bytes, at);
   const uint64_t payload = count[0] * sizeof(Vec3d) + count[1] * sizeof(std::array<int32_t, 4>) +
-                           count[2] * sizeof(std::array<int32_t, 4>) +
-                           count[3] * sizeof(std::array<int32_t, 3>);
+                           count[2] * sizeof(std::array<int32_t, 4>);
   // (Counts past the file's size are refused before any allocation.)
   if (count[0] > bytes.size() || count[1] > bytes.size() || count[2] > bytes.size() ||
-      count[3] > bytes.size() || bytes.size() != kHeaderBytes + payload)
+      bytes.size() != kHeaderBytes + payload)
     return std::nullopt;
   if (fnv1a(std::string_view(bytes).substr(kHeaderBytes)) != payload_sum) return std::nullopt;
   TetMesh mesh;
   mesh.vertices.resize(count[0]);
   mesh.tets.resize(count[1]);
   mesh.neighbors.resize(count[2]);
-  mesh.boundary_faces.resize(count[3]);
   get_all(bytes, at, mesh.vertices);
   get_all(bytes, at, mesh.tets);
   get_all(bytes, at, mesh.neighbors);
-  get_all(bytes, at, mesh.boundary_faces);
   std::error_code ec;
   fs::last_write_time(path_, fs::file_time_type::clock::now(), ec);  // used now: trimmed last
   return mesh;
@@ -143,12 +140,11 @@ void TetCache::store(const TetMesh& mesh) const {
   put_all(payload, mesh.vertices);
   put_all(payload, mesh.tets);
   put_all(payload, mesh.neighbors);
-  put_all(payload, mesh.boundary_faces);
   std::string bytes(kMagic, sizeof kMagic);
   put_bytes(bytes, check_);
   put_bytes(bytes, fnv1a(payload));
-  for (uint64_t c : {uint64_t(mesh.vertices.size()), uint64_t(mesh.tets.size()),
-                     uint64_t(mesh.neighbors.size()), uint64_t(mesh.boundary_faces.size())})
+  for (uint64_t c :
+       {uint64_t(mesh.vertices.size()), uint64_t(mesh.tets.size()), uint64_t(mesh.neighbors.size())})
     put_bytes(bytes, c);
   bytes += payload;
   // Written beside the entry and renamed into place: a reader sees the whole entry or none.

@@ -35,45 +35,71 @@ void share_flat_tet_volumes(const TetMesh& mesh, std::vector<double>& volume) {
   }
 }
 
+// The particles' adjacency: each tet's face neighbours, sorted (the relation is symmetric, as
+// the mesh's faces are shared by two tets or lie on its surface).
+ElementAdjacency face_adjacency(const TetMesh& mesh) {
+  const int64_t n = int64_t(mesh.tets.size());
+  ElementAdjacency adj;
+  adj.offset.assign(size_t(n) + 1, 0);
+  for (int64_t t = 0; t < n; ++t) {
+    int64_t count = 0;
+    for (int32_t other : mesh.neighbors[size_t(t)]) count += other >= 0;
+    adj.offset[size_t(t) + 1] = adj.offset[size_t(t)] + count;
+  }
+  adj.neighbor.resize(size_t(adj.offset[size_t(n)]));
+#pragma omp parallel for schedule(static)
+  for (int64_t t = 0; t < n; ++t) {
+    int32_t* row = adj.neighbor.data() + adj.offset[size_t(t)];
+    int32_t m = 0;
+    for (int32_t other : mesh.neighbors[size_t(t)])
+      if (other >= 0) row[m++] = other;
+    std::sort(row, row + m);
+  }
+  return adj;
+}
+
 }  // namespace
 
 ParticleGeometry tet_particles(TetMesh mesh) {
   ParticleGeometry g;
   StageClock clock(&g.stages);
   g.kind = ElementKind::tet;
-  const size_t n = mesh.tets.size();
-  g.position.resize(n);
-  g.volume.resize(n);
-  std::vector<std::pair<int32_t, int32_t>> pairs;
-  pairs.reserve(2 * n);
-  for (size_t t = 0; t < n; ++t) {
-    g.position[t] = mesh.barycenter(t);
-    g.volume[t] = mesh.volume(t);
-    for (int32_t other : mesh.neighbors[t])
-      if (other >= 0) pairs.emplace_back(int32_t(t), other);
+  const int64_t n = int64_t(mesh.tets.size());
+  g.position.resize(size_t(n));
+  g.volume.resize(size_t(n));
+#pragma omp parallel for schedule(static)
+  for (int64_t t = 0; t < n; ++t) {
+    g.position[size_t(t)] = mesh.barycenter(size_t(t));
+    g.volume[size_t(t)] = mesh.volume(size_t(t));
   }
   share_flat_tet_volumes(mesh, g.volume);
-  g.adjacency = adjacency_from_pairs(n, std::move(pairs));
   g.tets = std::move(mesh);
+  // In curve order first, then the adjacency from the renumbered neighbours.
   reorder_particles(g, morton_order(g.position));
+  g.adjacency = face_adjacency(g.tets);
   clock.lap("tet particles + adjacency, in curve order");
   compute_lambda(g);
   clock.lap("nearest distances");
   return g;
 }
 
-ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& options, int64_t max_particles,
-                               const std::string& name) {
-  if (options.max_volume > 0)
-    check_particle_budget(signed_volume(solid), options.max_volume, max_particles, name,
-                          "tet volumes of at most " + std::to_string(options.max_volume) + " m^3");
+ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& options,
+                               const ParticleLimit& max_particles, const std::string& name) {
   std::vector<StageTime> stages;
   TetgenOptions timed = options;
   if (!timed.stages) timed.stages = &stages;
+  // The volume bound's count against the limit, beside TetGen (which it stops when over).
+  timed.while_running = [&] {
+    if (options.while_running) options.while_running();
+    if (options.max_volume > 0)
+      check_particle_budget(signed_volume(solid), options.max_volume, max_particles(), name,
+                            "tet volumes of at most " + std::to_string(options.max_volume) + " m^3");
+  };
   TetMesh mesh = tetrahedralize(solid, timed, name);
-  if (int64_t(mesh.tets.size()) > max_particles)
+  if (int64_t(mesh.tets.size()) > max_particles())
     throw MeshError(name, "TetGen made " + std::to_string(mesh.tets.size()) + " tets (allowed: at most " +
-                              std::to_string(max_particles) + " particles per body; raise the volume bound)");
+                              std::to_string(max_particles()) +
+                              " particles per body; raise the volume bound)");
   ParticleGeometry g = tet_particles(std::move(mesh));
   if (timed.stages == &stages) g.stages.insert(g.stages.begin(), stages.begin(), stages.end());
   return g;
@@ -136,7 +162,7 @@ int scaled_shell_layers(int layers, double spacing_factor) {
 }
 
 ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,
-                                 int64_t max_particles, const std::string& name) {
+                                 const ParticleLimit& max_particles, const std::string& name) {
   FattenedShell shell = fattened_shell(surface, thickness, layers);
   options.extra_points = std::move(shell.layer_points);
   return tet_particles(shell.solid, options, max_particles, name);

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <utility>
 
 #include "host/geometry/particle_geometry.h"
 #include "host/geometry/tetgen.h"
@@ -15,10 +17,24 @@ namespace pd {
 // curve: curve_order.h). A flat tet (no volume) shares its largest face neighbour's volume.
 ParticleGeometry tet_particles(TetMesh mesh);
 
+// The most particles a body may have: a number, or one found where first asked for (a run finds
+// its budget, the GPU's free memory, which starts its driver, on a thread of its own while
+// TetGen runs).
+class ParticleLimit {
+ public:
+  ParticleLimit(int64_t count) : find_([count] { return count; }) {}  // NOLINT: a count is a limit
+  explicit ParticleLimit(std::function<int64_t()> find) : find_(std::move(find)) {}
+  int64_t operator()() const { return find_(); }
+
+ private:
+  std::function<int64_t()> find_;
+};
+
 // TetGen on the closed solid, then tet_particles. MeshError naming `name` when the volume bound
-// allows more than max_particles tets, or TetGen made more.
-ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& options, int64_t max_particles,
-                               const std::string& name);
+// allows more than max_particles tets (checked once TetGen has started, which it stops), or
+// TetGen made more.
+ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& options,
+                               const ParticleLimit& max_particles, const std::string& name);
 
 // The solid between a surface and its copy moved `thickness` inward along the vertex normals
 // (lengthened at creases so the depth holds from every adjacent face),
@@ -38,6 +54,6 @@ int scaled_shell_layers(int layers, double spacing_factor);
 
 // Tets of the fattened shell of `surface` (an open sheet such as vase_sheet(), or a closed mesh).
 ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,
-                                 int64_t max_particles, const std::string& name);
+                                 const ParticleLimit& max_particles, const std::string& name);
 
 }  // namespace pd

@@ -15,6 +15,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <future>
 #include <iterator>
 #include <optional>
 #include <sstream>
@@ -91,8 +93,10 @@ const std::string kTetgenAllowed =
 constexpr int kStopped = -2;  // run_program: the program ran past its time and was killed
 
 // Runs argv with stdout and stderr to `log`; returns the exit status (-1 if it did not run,
-// kStopped if it ran past `seconds` and was killed).
-int run_program(const std::vector<std::string>& argv, const std::string& log, double seconds) {
+// kStopped if it ran past `seconds` and was killed). `while_running` (if set) is called once the
+// program has started; when it throws, the program is killed and the exception goes on.
+int run_program(const std::vector<std::string>& argv, const std::string& log, double seconds,
+                const std::function<void()>& while_running) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -105,6 +109,16 @@ int run_program(const std::vector<std::string>& argv, const std::string& log, do
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
   int status = 0;
+  if (while_running) {
+    try {
+      while_running();
+    } catch (...) {
+      kill(pid, SIGKILL);
+      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      throw;
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   for (;;) {
     const pid_t done = waitpid(pid, &status, WNOHANG);
@@ -220,7 +234,10 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
   write_smesh(surface, dir.file("in.smesh"));
 
   // Switches: PLC, [keep the surface,] quality, volume bound, inserted points, no mesh
-  // optimization, neighbours, faces, 0-based, quiet. TetGen 1.5's optimization (flips and
+  // optimization, 0-based, no .face or .edge file, quiet. The face neighbours are found here from
+  // the tets (face_neighbors) rather than written by TetGen as .neigh and read back: on the vase
+  // at Levine's size (577k tets) TetGen's output took 0.73 s with them and 0.31 s without
+  // (bench/NOTES.md). TetGen 1.5's optimization (flips and
   // smoothing after the refinement, on by default) breaks the -a bound: on spot.obj with
   // a = 2e-5 it left 11 tets up to 1.42 a. Without it the bound holds and TetGen is ~10% faster.
   std::string switches = "-p";
@@ -238,7 +255,7 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
     write_nodes(options.extra_points, dir.file("in.a.node"));
     switches += "i";
   }
-  switches += "O0nzQ";
+  switches += "O0zFQ";
   clock.lap("tetgen input files");
   // The cache (tet_cache.h), unless the caller wants TetGen's own files in its folder.
   std::optional<TetCache> cache;
@@ -248,11 +265,13 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
     cache.emplace(folder, input);
     if (std::optional<TetMesh> kept = cache->load()) {
       clock.lap("tets from the cache");
+      if (options.while_running) options.while_running();
       return std::move(*kept);
     }
   }
   const double seconds = tetgen_seconds(surface, options);
-  const int status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"), seconds);
+  const int status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"), seconds,
+                                 options.while_running);
   clock.lap("tetgen " + switches);
   if (status == kStopped)
     throw MeshError(name, "tetgen " + switches + " was stopped after " + std::to_string(int(seconds)) +
@@ -261,19 +280,23 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
     throw MeshError(name, "tetgen " + switches + " failed (exit status " + std::to_string(status) +
                               "): " + log_tail(dir.file("tetgen.log")) + " " + kTetgenAllowed);
 
+  // The vertices read on a thread of their own beside the tets.
   TetMesh mesh;
-  mesh.vertices = read_table<Vec3d>(dir.file("in.1.node"), 3, name);
+  auto vertices =
+      std::async(std::launch::async, [&] { return read_table<Vec3d>(dir.file("in.1.node"), 3, name); });
   mesh.tets = read_table<std::array<int32_t, 4>>(dir.file("in.1.ele"), 4, name);
-  mesh.neighbors = read_table<std::array<int32_t, 4>>(dir.file("in.1.neigh"), 4, name);
-  mesh.boundary_faces = read_table<std::array<int32_t, 3>>(dir.file("in.1.face"), 3, name);
-  if (mesh.tets.empty() || mesh.neighbors.size() != mesh.tets.size())
+  mesh.vertices = vertices.get();
+  if (mesh.tets.empty())
     throw MeshError(name, "tetgen produced no tetrahedra (allowed: a solid of non-zero volume)");
-  // Positive orientation; neighbour k stays opposite corner k.
+  for (const auto& tet : mesh.tets)
+    for (int32_t v : tet)
+      if (v < 0 || size_t(v) >= mesh.vertices.size())
+        throw MeshError(name, "tetgen's in.1.ele names vertex " + std::to_string(v) + " of " +
+                                  std::to_string(mesh.vertices.size()) + " (allowed: a tetgen that works)");
+  // Positive orientation, then the neighbour opposite each corner.
   for (size_t t = 0; t < mesh.tets.size(); ++t)
-    if (mesh.volume(t) < 0) {
-      std::swap(mesh.tets[t][0], mesh.tets[t][1]);
-      std::swap(mesh.neighbors[t][0], mesh.neighbors[t][1]);
-    }
+    if (mesh.volume(t) < 0) std::swap(mesh.tets[t][0], mesh.tets[t][1]);
+  mesh.neighbors = face_neighbors(mesh.tets, mesh.vertices.size());
   clock.lap("tetgen output files");
   if (cache) cache->store(mesh);
   return mesh;

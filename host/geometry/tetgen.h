@@ -2,6 +2,7 @@
 // process on files: it is never linked, so its licence does not extend to perifrac.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,13 +26,16 @@ struct TetgenOptions {
   std::vector<Vec3d> extra_points;  // -i: points to insert (inside the solid)
   std::string work_dir;  // where the .smesh and output files go; empty = a temporary folder, removed after
   std::vector<StageTime>* stages = nullptr;  // when set, gets the time of writing, TetGen and reading
+  // Called once TetGen has started (or its tets come from the cache), for work that may overlap
+  // it: a check that throws stops TetGen, and its exception goes on.
+  std::function<void()> while_running;
 };
 
 // The path of the tetgen program on PATH, or empty.
 std::string find_tetgen();
 
 // Tetrahedralizes the closed, outward mesh `surface` (checked by check_solid) with
-// `tetgen -p[Y][q][a][i]O0nzQ` (O0: see tetgen.cpp). Throws MeshError (naming `name`) when tetgen is missing
+// `tetgen -p[Y][q][a][i]O0zFQ` (O0: see tetgen.cpp). Throws MeshError (naming `name`) when tetgen is missing
 // — with the install command — or fails, quoting its last message.
 TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, const std::string& name);
 

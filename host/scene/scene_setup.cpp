@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <future>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "cuda/engine/bond_cuts.h"
@@ -146,15 +148,16 @@ ParticleGeometry body_lattice_particles(const SceneBody& body, double spacing, i
   return lattice(bounds(solid), [&](const Vec3d& p) { return inside.inside(p); });
 }
 
+// The limit is asked for before the particles are made, but for tets once TetGen has started.
 ParticleGeometry body_particles(const SceneBody& body, double spacing, double spacing_factor, uint64_t seed,
-                                int64_t max_particles, const std::string& key) {
-  if (body.lattice_origin) return body_lattice_particles(body, spacing, max_particles, key);
+                                const ParticleLimit& max_particles, const std::string& key) {
+  if (body.lattice_origin) return body_lattice_particles(body, spacing, max_particles(), key);
   if ((body.shape == "box" || body.shape == "plate") && body.particles == "grid")
     return box_grid_particles(body.center, body.size, spacing);
   const TriMesh solid = body_solid(body, body_solid_edge(body, spacing), key);
   const std::string name = body.shape == "mesh" ? body.mesh_path : key;
-  if (body.particles == "grid") return grid_particles(solid, spacing, max_particles, name);
-  if (body.particles == "voronoi") return voronoi_particles(solid, spacing, seed, max_particles, name);
+  if (body.particles == "grid") return grid_particles(solid, spacing, max_particles(), name);
+  if (body.particles == "voronoi") return voronoi_particles(solid, spacing, seed, max_particles(), name);
   TetgenOptions options;
   options.quality = body.tet_quality;
   options.keep_surface = body.tet_keep_surface;
@@ -249,6 +252,17 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   in.cuts = crack_triangles(scene);
   const auto regions = region_tests(scene);
 
+  // The particle budget, taken where first needed (a pending one is found beside the first tet
+  // body's TetGen: setup_options_later).
+  std::optional<ParticleBudget> found;
+  const auto budget_now = [&]() -> const ParticleBudget& {
+    if (!found)
+      found = options.pending_budget.valid() ? options.pending_budget.get()
+                                             : ParticleBudget{options.max_particles, options.budget_why};
+    return *found;
+  };
+  const auto max_now = [&] { return std::min(kMaxSceneParticles, budget_now().max_particles); };
+
   // Bodies: one material table entry per body (a material's horizon depends on the spacing).
   int64_t total = 0;
   std::vector<std::pair<int32_t, int32_t>> adjacency_pairs;
@@ -260,24 +274,24 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
       throw SceneError(scene.path, key,
                        "too many bodies (allowed: at most " + std::to_string(kMaxMaterials) + ")");
     const double spacing = body.spacing * spacing_factor;
-    const int64_t budget = std::min(kMaxSceneParticles, options.max_particles);
     auto too_many = [&](int64_t count) {
-      return SceneError(
-          scene.path, key + ".spacing",
-          "the scene would have " + std::to_string(count) + " particles (allowed: at most " +
-              std::to_string(budget) +
-              (options.budget_why.empty() || budget == kMaxSceneParticles ? std::string()
-                                                                          : ", " + options.budget_why) +
-              "; use a larger spacing or a smaller --scale)");
+      const int64_t budget = max_now();
+      const std::string& why = budget_now().why;
+      return SceneError(scene.path, key + ".spacing",
+                        "the scene would have " + std::to_string(count) + " particles (allowed: at most " +
+                            std::to_string(budget) +
+                            (why.empty() || budget == kMaxSceneParticles ? std::string() : ", " + why) +
+                            "; use a larger spacing or a smaller --scale)");
     };
     if ((body.shape == "box" || body.shape == "plate") && body.particles == "grid") {
       // Counted before the particles are made.
       const auto n = box_grid_counts(body.size, spacing);
-      if (total + n[0] * n[1] * n[2] > budget) throw too_many(total + n[0] * n[1] * n[2]);
+      if (total + n[0] * n[1] * n[2] > max_now()) throw too_many(total + n[0] * n[1] * n[2]);
     }
     ParticleGeometry geometry;
     try {
-      geometry = body_particles(body, spacing, spacing_factor, scene.seed + b, budget - total, key);
+      geometry = body_particles(body, spacing, spacing_factor, scene.seed + b,
+                                ParticleLimit([&] { return max_now() - total; }), key);
     } catch (const MeshError& e) {
       const bool from_file = body.shape == "mesh" && e.path() == body.mesh_path;
       throw SceneError(scene.path, key + (from_file ? ".mesh" : ".particles"), e.what());
@@ -293,7 +307,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     clock.lap(key + " particles");
     split_last_stage(result.stages, geometry.stages, key + " ", key + " solid");
     total += int64_t(geometry.size());
-    if (total > budget) throw too_many(total);
+    if (total > max_now()) throw too_many(total);
 
     const SceneMaterial& sm = find_material(scene, body.material);
     if (b > 0 && sm.model != find_material(scene, scene.bodies[0].material).model)
@@ -430,7 +444,10 @@ void copy_material_summary(std::vector<MaterialSummary>& materials, uint16_t fro
   materials[to].body += suffix;
 }
 
-SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend) {
+namespace {
+
+// The budget of a run of `scene` on `backend` (setup_options_for).
+ParticleBudget scene_budget(const Scene& scene, Backend backend) {
   double horizon = 1;
   bool plastic = false, surface = false;
   for (const SceneMaterial& m : scene.materials) {
@@ -442,9 +459,24 @@ SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend
   const ParticleBudget budget =
       world ? particle_budget(backend, horizon, plastic, surface, world->size(), world->local_size())
             : particle_budget(backend, horizon, plastic, surface);
+  return budget;
+}
+
+}  // namespace
+
+SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend) {
+  const ParticleBudget budget = scene_budget(scene, backend);
   SetupOptions o(scale);
   o.max_particles = budget.max_particles;
   o.budget_why = budget.why;
+  return o;
+}
+
+SetupOptions setup_options_later(const Scene& scene, double scale, std::shared_future<Backend> backend) {
+  SetupOptions o(scale);
+  o.pending_budget = std::async(std::launch::async, [&scene, backend] {
+                       return scene_budget(scene, backend.get());
+                     }).share();
   return o;
 }
 

@@ -1,10 +1,12 @@
 // Turns a validated scene into particles and kernel parameters for an engine.
 #pragma once
 
+#include <future>
 #include <string>
 #include <vector>
 
 #include "cuda/engine/engine.h"
+#include "cuda/engine/memory_budget.h"
 #include "cuda/engine/particle_set.h"
 #include "host/fragments/embedded_mesh.h"
 #include "host/geometry/element_adjacency.h"
@@ -31,6 +33,9 @@ struct SetupOptions {
   // made, with `budget_why` saying where the limit comes from.
   int64_t max_particles = kMaxSceneParticles;
   std::string budget_why;
+  // A budget still being found (setup_options_later): where valid, setup_scene takes the budget
+  // from it where first needed instead of the two fields above.
+  std::shared_future<ParticleBudget> pending_budget;
 };
 
 // What the setup derived, for the start-up report.
@@ -90,5 +95,9 @@ void copy_material_summary(std::vector<MaterialSummary>& materials, uint16_t fro
 // Options for a run on `backend`: the particle budget (memory_budget.h) follows from the
 // machine's free memory, the largest horizon and whether a material is plastic.
 SetupOptions setup_options_for(const Scene& scene, double scale, Backend backend);
+// The same, the backend and the budget found on a thread of their own (on a GPU the probe starts
+// its driver, 0.2-0.3 s) while the set-up goes on, and waited for where first needed: for a tet
+// body once its TetGen has started. `scene` must outlive the options.
+SetupOptions setup_options_later(const Scene& scene, double scale, std::shared_future<Backend> backend);
 
 }  // namespace pd

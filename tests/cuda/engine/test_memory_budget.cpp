@@ -10,7 +10,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <future>
 
+#include "host/geometry/tetgen.h"
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
 #include "tests/support/fixtures.h"
@@ -91,6 +93,46 @@ TEST(MemoryBudget, OversizedSceneIsRefusedBeforeItsParticlesAreMade) {
     EXPECT_NE(m.find("free host memory"), std::string::npos) << m;
   }
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0.5);
+}
+
+// The budget found on a thread of its own (setup_options_later, as `perifrac run` sets up): the
+// same refusal; a tet body's comes once its TetGen has started, which it stops.
+TEST(MemoryBudget, ABudgetFoundBesideTheSetUpRefusesTheSame) {
+  const ScopedEnv cap("PERIFRAC_HOST_MEMORY_MB", "20");
+  const Scene box = parse_scene(
+      "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+      "[[bodies]]\nmaterial = \"glass\"\nsize = [0.1, 0.1, 0.1]\nspacing = 0.001\n",
+      "big.toml");
+  std::promise<Backend> cpu;
+  cpu.set_value(Backend::kCpu);
+  const std::shared_future<Backend> backend = cpu.get_future().share();
+  try {
+    setup_scene(box, setup_options_later(box, 1, backend));
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("bodies[0].spacing"), std::string::npos) << m;
+    EXPECT_NE(m.find("1000000 particles"), std::string::npos) << m;
+    EXPECT_NE(m.find("free host memory"), std::string::npos) << m;
+  }
+  if (find_tetgen().empty()) GTEST_SKIP() << "tetgen is not installed (the tet body's refusal not checked)";
+  const Scene tets = parse_scene(
+      "[materials.glass]\ndensity = 2200.0\nbulk_modulus = 32.81e9\nstrain_limit = 5e-4\n"
+      "[[bodies]]\nmaterial = \"glass\"\nshape = \"sphere\"\nradius = 0.1\nspacing = 0.0005\n"
+      "particles = \"tets\"\n",
+      "fine.toml");
+  const ScopedEnv no_cache("PERIFRAC_TET_CACHE", "off");
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    setup_scene(tets, setup_options_later(tets, 1, backend));
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("bodies[0].particles"), std::string::npos) << m;
+    EXPECT_NE(m.find("would need about"), std::string::npos) << m;
+  }
+  // (TetGen at this volume bound, 16 million tets, would run for minutes.)
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5);
 }
 
 // The engine's exact check: families counted, then refused before the bond arrays exist.

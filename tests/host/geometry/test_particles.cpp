@@ -15,6 +15,7 @@
 #include "host/geometry/mesh_check.h"
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/shapes.h"
+#include "host/geometry/tet_body_solids.h"
 #include "host/geometry/tet_particles.h"
 #include "host/geometry/voronoi_particles.h"
 #include "tests/host/geometry/geometry_fixtures.h"
@@ -121,11 +122,14 @@ TEST(TetParticles, SphereVolumeIsExact) {
   for (size_t t = 0; t < g.size(); ++t) ASSERT_LE(g.volume[t], 0.001 * (1 + 1e-9));
   expect_inside(sphere, g);
   expect_symmetric(g.adjacency);
-  // Every tet has 4 face neighbours but those on the surface.
-  size_t boundary = 0;
-  for (const auto& nb : g.tets.neighbors)
-    for (int32_t t : nb) boundary += t < 0;
-  EXPECT_EQ(boundary, g.tets.boundary_faces.size());
+  // Every tet has 4 face neighbours but those on the surface, which closes: each of its edges
+  // bounds two of its triangles.
+  const TriMesh boundary = tet_boundary(g.tets);
+  EXPECT_GT(boundary.triangles.size(), 0u);
+  std::map<std::pair<int32_t, int32_t>, int> edge_uses;
+  for (const Triangle& t : boundary.triangles)
+    for (int c = 0; c < 3; ++c) ++edge_uses[{std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3])}];
+  for (const auto& [edge, uses] : edge_uses) ASSERT_EQ(uses, 2) << edge.first << "-" << edge.second;
 }
 
 // A flat tet (four coplanar corners) shares the volume of its face neighbour: both particles get
@@ -168,13 +172,13 @@ TEST(TetParticles, KeepSurfaceLeavesTheSurfaceTriangles) {
   options.max_volume = 0.002;
   options.keep_surface = true;
   const ParticleGeometry kept = tet_particles(sphere, options, kBudget, "sphere");
-  EXPECT_EQ(kept.tets.boundary_faces.size(), sphere.triangles.size());
+  EXPECT_EQ(tet_boundary(kept.tets).triangles.size(), sphere.triangles.size());
   EXPECT_NEAR(kept.total_volume(), signed_volume(sphere), 1e-5 * signed_volume(sphere));
   for (size_t t = 0; t < kept.size(); ++t) ASSERT_LE(kept.volume[t], 0.002 * (1 + 1e-9));
   expect_symmetric(kept.adjacency);
   options.keep_surface = false;
   const ParticleGeometry split = tet_particles(sphere, options, kBudget, "sphere");
-  EXPECT_GT(split.tets.boundary_faces.size(), sphere.triangles.size());
+  EXPECT_GT(tet_boundary(split.tets).triangles.size(), sphere.triangles.size());
 }
 
 // Barycentres against TetGen's own files, read here independently: each particle's tet is one

@@ -26,7 +26,6 @@ TetMesh two_tets(double shift) {
   m.vertices = {{shift, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
   m.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
   m.neighbors = {{1, -1, -1, -1}, {-1, -1, -1, 0}};
-  m.boundary_faces = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 4}, {1, 3, 4}, {2, 3, 4}};
   return m;
 }
 
@@ -34,7 +33,6 @@ void expect_same(const TetMesh& a, const TetMesh& b) {
   EXPECT_EQ(a.vertices, b.vertices);
   EXPECT_EQ(a.tets, b.tets);
   EXPECT_EQ(a.neighbors, b.neighbors);
-  EXPECT_EQ(a.boundary_faces, b.boundary_faces);
 }
 
 // Sets an environment variable for one test, restoring it after.

@@ -1,5 +1,5 @@
 // TetGen as an external program: a run that does not end is stopped, with a message that says
-// what TetGen needs, instead of hanging the scene's set-up.
+// what TetGen needs, instead of hanging the scene's set-up; a check made beside it that fails stops it.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include <unistd.h>
 
@@ -19,20 +20,33 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(Tetgen, ARunPastItsTimeIsStoppedWithAMessage) {
-  // A `tetgen` that never finishes, first on PATH.
-  const fs::path dir = fs::temp_directory_path() / ("perifrac-test-tetgen-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  {
-    std::ofstream script(dir / "tetgen");
-    script << "#!/bin/sh\nexec sleep 60\n";
+// A `tetgen` that never finishes, first on PATH while the object lives; its folder removed after.
+class NeverEndingTetgen {
+ public:
+  explicit NeverEndingTetgen(const std::string& name)
+      : dir_(fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()))),
+        old_path_(std::getenv("PATH") ? std::getenv("PATH") : "") {
+    fs::create_directories(dir_);
+    {
+      std::ofstream script(dir_ / "tetgen");
+      script << "#!/bin/sh\nexec sleep 60\n";
+    }
+    fs::permissions(dir_ / "tetgen", fs::perms::owner_all);
+    setenv("PATH", (dir_.string() + ":" + old_path_).c_str(), 1);
   }
-  fs::permissions(dir / "tetgen", fs::perms::owner_all);
-  const std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
-  setenv("PATH", (dir.string() + ":" + old_path).c_str(), 1);
-  testing::ScopedEnv limit("PERIFRAC_TETGEN_SECONDS", "1");
-  TetgenOptions options;
-  options.work_dir = (dir / "work").string();  // no cache
+  ~NeverEndingTetgen() {
+    setenv("PATH", old_path_.c_str(), 1);
+    fs::remove_all(dir_);
+  }
+  std::string work_dir() const { return (dir_ / "work").string(); }  // (a work folder: no cache)
+
+ private:
+  fs::path dir_;
+  std::string old_path_;
+};
+
+// TetGen on a box with `options`: its error message (empty if none) and the seconds it took.
+std::pair<std::string, double> tetrahedralize_box(const TetgenOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::string message;
   try {
@@ -40,12 +54,35 @@ TEST(Tetgen, ARunPastItsTimeIsStoppedWithAMessage) {
   } catch (const MeshError& e) {
     message = e.what();
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  setenv("PATH", old_path.c_str(), 1);
-  fs::remove_all(dir);
+  return {message, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+}
+
+TEST(Tetgen, ARunPastItsTimeIsStoppedWithAMessage) {
+  const NeverEndingTetgen tetgen("perifrac-test-tetgen");
+  testing::ScopedEnv limit("PERIFRAC_TETGEN_SECONDS", "1");
+  TetgenOptions options;
+  options.work_dir = tetgen.work_dir();
+  const auto [message, seconds] = tetrahedralize_box(options);
   EXPECT_NE(message.find("box.obj"), std::string::npos) << message;
   EXPECT_NE(message.find("was stopped after 1 s"), std::string::npos) << message;
   EXPECT_NE(message.find("shell_thickness"), std::string::npos) << message;
+  EXPECT_LT(seconds, 10);
+}
+
+// A check that overlaps TetGen (TetgenOptions::while_running, the particle budget found on a
+// thread of its own) and fails stops TetGen at once, its own message going on.
+TEST(Tetgen, AFailedCheckWhileRunningStopsIt) {
+  const NeverEndingTetgen tetgen("perifrac-test-tetgen-check");
+  TetgenOptions options;
+  options.work_dir = tetgen.work_dir();
+  bool checked = false;
+  options.while_running = [&] {
+    checked = true;
+    throw MeshError("box.obj", "over the budget");
+  };
+  const auto [message, seconds] = tetrahedralize_box(options);
+  EXPECT_TRUE(checked);
+  EXPECT_NE(message.find("over the budget"), std::string::npos) << message;
   EXPECT_LT(seconds, 10);
 }
 
