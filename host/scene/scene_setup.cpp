@@ -456,10 +456,8 @@ ParticleBudget scene_budget(const Scene& scene, Backend backend) {
     surface = surface || m.surface_correction.value_or(m.model == "bond_based");
   }
   const auto world = world_comm();  // a run split over MPI ranks budgets per rank
-  const ParticleBudget budget =
-      world ? particle_budget(backend, horizon, plastic, surface, world->size(), world->local_size())
-            : particle_budget(backend, horizon, plastic, surface);
-  return budget;
+  return world ? particle_budget(backend, horizon, plastic, surface, world->size(), world->local_size())
+               : particle_budget(backend, horizon, plastic, surface);
 }
 
 }  // namespace
