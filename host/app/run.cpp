@@ -649,11 +649,15 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
   double end_outputs = 0;
   const double wall = std::chrono::duration<double>(lap(end, end_outputs) - run.started).count();
   const RunOutput::Times& out = output.times();
+  const FragmentOutput::AnalysisTimes& found = output.analysis_times();
   std::printf(
       "output threads over %lld frames: fragment outputs set up %.2f s, frames read back %.2f s, fragments "
-      "found %.2f s and crack surfaces taken %.2f s on the first (longest frame %.3f s), the frames written "
-      "%.2f s on the second (longest %.3f s; the fragment files %.2f s beside the frame files %.2f s)\n",
-      (long long)out.frames, out.setup, out.read_back, out.analysis, out.crack_surfaces, out.longest_analysis,
+      "found %.2f s (components %.2f, fits %.2f, crack mesh %.2f, blending %.2f, statistics %.2f s) and "
+      "crack "
+      "surfaces taken %.2f s on the first (longest frame %.3f s), the frames written %.2f s on the second "
+      "(longest %.3f s; the fragment files %.2f s beside the frame files %.2f s)\n",
+      (long long)out.frames, out.setup, out.read_back, out.analysis, found.components, found.fits,
+      found.crack_mesh, found.blending, found.statistics, out.crack_surfaces, out.longest_analysis,
       out.writing, out.longest_writing, out.fragment_files, out.frame_files);
   std::printf("output     %s (%lld frames; %zu fragment pieces in fragments.obj)\n", output.dir().c_str(),
               (long long)scene.frames + 1, output.fragment_pieces());

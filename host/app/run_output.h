@@ -56,6 +56,8 @@ class RunOutput {
   const std::string& dir() const { return out_; }
   RunFolder& folder() { return folder_; }
   size_t fragment_pieces() const { return fragments_->components().count(); }  // (after finish())
+  // The fragments' analysis by stage (after drain()).
+  const FragmentOutput::AnalysisTimes& analysis_times() const { return fragments_->analysis_times(); }
 
   // Makes frame `frame`'s outputs from the engine's current state, `energy` its energy. What needs
   // the engine happens now (the frame's particles and bonds' changes read back, the colliders'

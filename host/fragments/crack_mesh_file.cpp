@@ -24,10 +24,10 @@ std::string crack_mesh_file_name(int64_t frame, std::string_view extension) {
 }
 
 void write_crack_obj(const std::string& path, const CrackSurface& s, const std::string& comment) {
-  std::string text =
-      "# perifrac crack mesh: " + comment +
-      "\n# the original surface (g surface) and the crack surfaces (g crack), docs/fragments.md\n";
-  text += format_lines(s.vertices.size(), [&](std::string& out, size_t v) {
+  std::vector<std::string> text{"# perifrac crack mesh: " + comment +
+                                "\n# the original surface (g surface) and the crack surfaces (g crack), "
+                                "docs/fragments.md\n"};
+  append_lines(text, s.vertices.size(), [&](std::string& out, size_t v) {
     out += 'v';
     for (double x : s.vertices[v]) append_coordinate(out, x);
     out += '\n';
@@ -35,17 +35,17 @@ void write_crack_obj(const std::string& path, const CrackSurface& s, const std::
   // The original surface, then the cracks, each under its group and material name.
   std::vector<size_t> faces;
   for (uint8_t crack = 0; crack < 2; ++crack) {
-    text += crack ? "g crack\nusemtl crack\n" : "g surface\nusemtl surface\n";
+    text.emplace_back(crack ? "g crack\nusemtl crack\n" : "g surface\nusemtl surface\n");
     faces.clear();
     for (size_t f = 0; f < s.triangles.size(); ++f)
       if (s.crack[f] == crack) faces.push_back(f);
-    text += format_lines(faces.size(), [&](std::string& out, size_t k) {
+    append_lines(text, faces.size(), [&](std::string& out, size_t k) {
       out += 'f';
       for (int32_t v : s.triangles[faces[k]]) append_index(out, v + 1);
       out += '\n';
     });
   }
-  write_file_atomic(path, text);
+  write_parts_atomic(path, text);
 }
 
 // Binary output copies floats and ints as they are in memory.

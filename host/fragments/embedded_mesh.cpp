@@ -1,6 +1,7 @@
 #include "host/fragments/embedded_mesh.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,13 @@ bool adjacent(const ElementAdjacency& adj, int32_t a, int32_t b) {
   for (int64_t k = adj.offset[size_t(a)]; k < adj.offset[size_t(a) + 1]; ++k)
     if (adj.neighbor[size_t(k)] == b) return true;
   return false;
+}
+
+// at = min(at, v), atomically (threads may lower it at once).
+void lower_to(int32_t& at, int32_t v) {
+  int32_t seen = __atomic_load_n(&at, __ATOMIC_RELAXED);
+  while (v < seen && !__atomic_compare_exchange_n(&at, &seen, v, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+  }
 }
 
 Vec3d to_vec3d(const Vec3& v) {
@@ -298,37 +306,86 @@ void EmbeddedMesh::split(int32_t v) {
 }
 
 void EmbeddedMesh::surface(CrackSurface& out) const {
-  out.vertices.clear();
-  out.triangles.clear();
-  out.crack.clear();
-  out.particle.clear();
   // Faces on the object's surface, then opened crack faces (each side as its own polygon), outward
   // from their element, as fans owned by the element's particle; vertices numbered in order of
   // first use. (Faces are stored element by element, so the walk over elements is the walk over
-  // faces.)
-  std::vector<int32_t> index(position_.size(), -1);
-  auto vertex = [&](int32_t corner) {
-    const size_t copy = size_t(corner_copy_[size_t(corner)]);
-    if (index[copy] < 0) {
-      index[copy] = int32_t(out.vertices.size());
-      out.vertices.push_back(position_[copy]);
-    }
-    return index[copy];
+  // faces.) The walk runs in parallel over blocks of elements, in four passes that give the serial
+  // walk's surface: (1) each block counts its triangles, whose running sum places them; (2) each
+  // block writes its triangles with the copies' own numbers and marks, per copy, the first block
+  // that uses it; (3) each block numbers the copies it uses first, in the order it meets them, and
+  // the blocks' counts in order give the numbers' bases; (4) the triangles are renumbered.
+  constexpr size_t kBlock = 1024;  // elements
+  const size_t ne = complex_.size(), blocks = (ne + kBlock - 1) / kBlock, units = 2 * blocks;
+  // Unit u walks block u % blocks for the original surface (u < blocks) or the opened cracks.
+  const auto drawn = [&](size_t u, size_t f) {
+    const int64_t p = face_pair_[f];
+    return u >= blocks ? p >= 0 && pair_state_[size_t(p)] == 2 : p < 0;
   };
-  for (uint8_t crack = 0; crack < 2; ++crack)
-    for (size_t e = 0; e < complex_.size(); ++e)
-      for (size_t f = size_t(complex_.face_start[e]); f < size_t(complex_.face_start[e + 1]); ++f) {
-        const int64_t p = face_pair_[f];
-        if (crack ? p < 0 || pair_state_[size_t(p)] != 2 : p >= 0) continue;
-        const int64_t b = complex_.face_corner_start[f], end = complex_.face_corner_start[f + 1];
-        const int32_t first = vertex(complex_.face_corner[size_t(b)]);
-        for (int64_t k = b + 1; k + 1 < end; ++k) {
-          const int32_t second = vertex(complex_.face_corner[size_t(k)]);
-          out.triangles.push_back({first, second, vertex(complex_.face_corner[size_t(k + 1)])});
-          out.crack.push_back(crack);
-          out.particle.push_back(complex_.particle[e]);
-        }
+  const auto faces_of = [&](size_t u, auto&& visit) {
+    const size_t first = (u % blocks) * kBlock, last = std::min(ne, first + kBlock);
+    for (size_t e = first; e < last; ++e)
+      for (size_t f = size_t(complex_.face_start[e]); f < size_t(complex_.face_start[e + 1]); ++f)
+        if (drawn(u, f)) visit(e, f);
+  };
+  std::vector<size_t> placed(units + 1, 0);  // (1) each unit's first triangle
+#pragma omp parallel for schedule(dynamic, 4)
+  for (size_t u = 0; u < units; ++u)
+    faces_of(u, [&](size_t, size_t f) {
+      placed[u + 1] += size_t(complex_.face_corner_start[f + 1] - complex_.face_corner_start[f] - 2);
+    });
+  std::partial_sum(placed.begin(), placed.end(), placed.begin());
+  const size_t nt = placed[units];
+  out.triangles.resize(nt);
+  out.crack.resize(nt);
+  out.particle.resize(nt);
+
+  // (2) Triangles in copies; each copy's first unit (an atomic minimum).
+  std::vector<int32_t> first_unit(position_.size(), std::numeric_limits<int32_t>::max());
+#pragma omp parallel for schedule(dynamic, 4)
+  for (size_t u = 0; u < units; ++u) {
+    size_t t = placed[u];
+    const auto use = [&](int64_t corner) {
+      const int32_t copy = corner_copy_[size_t(corner)];
+      lower_to(first_unit[size_t(copy)], int32_t(u));
+      return copy;
+    };
+    faces_of(u, [&](size_t e, size_t f) {
+      const int64_t b = complex_.face_corner_start[f], end = complex_.face_corner_start[f + 1];
+      const int32_t first = use(complex_.face_corner[size_t(b)]);
+      for (int64_t k = b + 1; k + 1 < end; ++k, ++t) {
+        out.triangles[t] = {first, use(complex_.face_corner[size_t(k)]),
+                            use(complex_.face_corner[size_t(k + 1)])};
+        out.crack[t] = uint8_t(u >= blocks);
+        out.particle[t] = complex_.particle[e];
       }
+    });
+  }
+
+  // (3) Each unit numbers the copies it uses first, in the order of its triangles' corners (the
+  // order the serial walk meets them), as -2 - its number until the unit's base is known; only that
+  // unit writes those copies' entries (-1: not numbered yet).
+  std::vector<int32_t> number(position_.size(), -1);
+  std::vector<size_t> numbered(units + 1, 0);
+#pragma omp parallel for schedule(dynamic, 4)
+  for (size_t u = 0; u < units; ++u)
+    for (size_t t = placed[u]; t < placed[u + 1]; ++t)
+      for (const int32_t copy : out.triangles[t])
+        if (first_unit[size_t(copy)] == int32_t(u) && number[size_t(copy)] == -1)
+          number[size_t(copy)] = -2 - int32_t(numbered[u + 1]++);
+  std::partial_sum(numbered.begin(), numbered.end(), numbered.begin());
+  out.vertices.resize(numbered[units]);
+  // (4) The bases added and the vertices placed, then the triangles renumbered.
+#pragma omp parallel for schedule(dynamic, 4)
+  for (size_t u = 0; u < units; ++u)
+    for (size_t t = placed[u]; t < placed[u + 1]; ++t)
+      for (const int32_t copy : out.triangles[t])
+        if (int32_t& n = number[size_t(copy)]; first_unit[size_t(copy)] == int32_t(u) && n < -1) {
+          n = int32_t(numbered[u]) - 2 - n;
+          out.vertices[size_t(n)] = position_[size_t(copy)];
+        }
+#pragma omp parallel for schedule(static)
+  for (size_t t = 0; t < nt; ++t)
+    for (int32_t& v : out.triangles[t]) v = number[size_t(v)];
 }
 
 CrackSurface EmbeddedMesh::surface() const {

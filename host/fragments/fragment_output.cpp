@@ -1,5 +1,6 @@
 #include "host/fragments/fragment_output.h"
 
+#include <chrono>
 #include <cstdio>
 #include <future>
 #include <stdexcept>
@@ -39,14 +40,27 @@ ComponentStats FragmentOutput::analyse(FrameData& f, const BondLists& bonds) {
   if (f.size() != rest_.size())
     throw std::invalid_argument("FragmentOutput::analyse: the frame has " + std::to_string(f.size()) +
                                 " particles, the run " + std::to_string(rest_.size()));
+  // Each stage's time added to times_ as it ends.
+  auto t = std::chrono::steady_clock::now();
+  const auto lap = [&t](double& into) {
+    const auto now = std::chrono::steady_clock::now();
+    into += std::chrono::duration<double>(now - t).count();
+    t = now;
+  };
   // Components, then one rigid fit per component, blended across splits.
   finder_.find(bonds, components_);
   f.component = components_.id;
+  lap(times_.components);
   align_fragments(components_, rest_, f.position, mass_, fragments_);
+  lap(times_.fits);
   // The embedded mesh: split along this frame's cracks, placed by the particles and the fits.
   if (options_.crack_meshes) embedded_.update(bonds, f.position, components_, fragments_);
+  lap(times_.crack_mesh);
   smoother_.apply(components_, rest_, f.position, mass_, fragments_);
-  return component_stats(components_, mass_, &bonds);
+  lap(times_.blending);
+  ComponentStats stats = component_stats(components_, mass_, &bonds);
+  lap(times_.statistics);
+  return stats;
 }
 
 FragmentFiles FragmentOutput::files_of(const FrameData& f) const {

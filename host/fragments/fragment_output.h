@@ -72,6 +72,12 @@ class FragmentOutput {
   // last frame finishes its end-of-run outputs with this (no frame is processed again).
   void find_components(const BondLists& bonds) { finder_.find(bonds, components_); }
 
+  // Where analyse() has spent its time over the frames so far [s].
+  struct AnalysisTimes {
+    double components = 0, fits = 0, crack_mesh = 0, blending = 0, statistics = 0;
+  };
+  const AnalysisTimes& analysis_times() const { return times_; }
+
   const Components& components() const { return components_; }
   FragmentSmoother& smoother() { return smoother_; }
   const std::vector<Fragment>& fragments() const { return fragments_; }
@@ -90,6 +96,7 @@ class FragmentOutput {
   std::vector<Fragment> fragments_;
   EmbeddedMesh embedded_;
   CrackSurface crack_surface_;  // the last one process() wrote
+  AnalysisTimes times_;
 };
 
 }  // namespace pd

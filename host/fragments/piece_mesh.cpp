@@ -47,10 +47,10 @@ FragmentMesh fragment_pieces(const ElementComplex& complex, const Components& c)
 
 void write_obj(const std::string& path, const FragmentMesh& mesh) {
   // Per object: its name, its vertices, its polygons (1-based indices into all vertices).
-  std::string text =
+  std::vector<std::string> text{
       "# perifrac fragment surfaces in rest space [m], one object per fragment;\n"
-      "# fragments_NNNNN.pfg holds each fragment's transform per frame (docs/fragments.md)\n";
-  text += format_lines(mesh.objects(), [&](std::string& out, size_t o) {
+      "# fragments_NNNNN.pfg holds each fragment's transform per frame (docs/fragments.md)\n"};
+  append_lines(text, mesh.objects(), [&](std::string& out, size_t o) {
     out += "o fragment_" + std::to_string(mesh.ids[o]) + "\n";
     for (int64_t v = mesh.vertex_start[o]; v < mesh.vertex_start[o + 1]; ++v) {
       out += 'v';
@@ -64,7 +64,7 @@ void write_obj(const std::string& path, const FragmentMesh& mesh) {
       out += '\n';
     }
   });
-  write_file_atomic(path, text);
+  write_parts_atomic(path, text);
 }
 
 }  // namespace pd

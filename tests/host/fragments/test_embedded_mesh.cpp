@@ -6,6 +6,7 @@
 #include "host/fragments/embedded_mesh.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <filesystem>
@@ -230,6 +231,45 @@ TEST(EmbeddedMesh, VertexOnTwoCutsSplitsIntoFourCopies) {
     EXPECT_NEAR(std::accumulate(volumes.begin(), volumes.end(), 0.0), 32 * kSide * kSide * kSide,
                 1e-6 * 32 * kSide * kSide * kSide);
   }
+}
+
+// The surface of a block cut into 64 pieces, walked in parallel blocks of elements, is the serial
+// walk's: the original surface's triangles, then the cracks', each group in element order; vertices
+// numbered in order of first use, each used; the same with one thread as with all; closed pieces.
+TEST(EmbeddedMesh, ShatteredSurfaceIsTheWalkInElementOrder) {
+  const int n = 12;  // 10,368 tets: ten blocks of the walk on each side
+  Block b = tet_block(n, n, n);
+  for (int axis = 0; axis < 3; ++axis)
+    for (int at = 3; at < n; at += 3) cut(b.bonds, b.in.particles.rest, axis, at * kSide);
+  b.update();
+  const CrackSurface s = b.mesh->surface();
+  ASSERT_EQ(s.crack.size(), s.triangles.size());
+  ASSERT_EQ(s.particle.size(), s.triangles.size());
+  EXPECT_EQ(s.crack_count(), size_t(2 * 2 * 3 * 3 * n * n));  // 9 planes, two sides, 2 tets a square
+  int32_t next = 0;                                           // the first vertex not yet used
+  for (size_t t = 0; t < s.triangles.size(); ++t) {
+    if (t > 0) {
+      ASSERT_GE(s.crack[t], s.crack[t - 1]) << "triangle " << t;
+      if (s.crack[t] == s.crack[t - 1]) {
+        ASSERT_GE(s.particle[t], s.particle[t - 1]) << "triangle " << t;
+      }
+    }
+    for (const int32_t v : s.triangles[t]) {
+      ASSERT_LE(v, next) << "triangle " << t;
+      next += v == next;
+    }
+  }
+  EXPECT_EQ(size_t(next), s.vertices.size());
+  EXPECT_EQ(testing::closed_piece_volumes(s).size(), 64u);
+
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const CrackSurface one = b.mesh->surface();
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one.vertices, s.vertices);
+  EXPECT_EQ(one.triangles, s.triangles);
+  EXPECT_EQ(one.crack, s.crack);
+  EXPECT_EQ(one.particle, s.particle);
 }
 
 // A crack face whose tets still meet around all its edges separates nothing: it stays in the
