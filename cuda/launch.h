@@ -11,6 +11,7 @@
 #include "cuda/kernels/bodyforces.h"
 #include "cuda/kernels/collection.h"
 #include "cuda/kernels/collisions.h"
+#include "cuda/kernels/contact_frame.h"
 #include "cuda/kernels/contact_relist.h"
 #include "cuda/kernels/energy.h"
 #include "cuda/kernels/family.h"
@@ -310,6 +311,13 @@ void launch_relist_contacts(Exec& ex, ParticlesView p, HashView h, ContactView c
       [=] PD_HD(int64_t t) { finish_mover(int32_t(t), p, c, r, round, rebuild, pairs); },
       [=] PD_HD(int64_t q) { add_link(int32_t(q), c, r, rebuild); },
       [=] PD_HD(int64_t q) { sort_linked(int32_t(q), p, c, r); });
+}
+
+// The contact lists' frame (contact_frame.h): the particles' velocities and their squares summed.
+template <class Exec>
+VelocityMoments reduce_velocity_moments(Exec& ex, ParticlesView p) {
+  return ex.template reduce_sum<VelocityMoments>(
+      "pd/contact_frame", p.n, [=] PD_HD(int64_t i) { return velocity_moments_of(p.vel[i]); });
 }
 
 // After a full build of the lists: no particle relisted.

@@ -133,13 +133,16 @@ struct HashView {
 struct ContactView {
   int32_t n = 0;
   int32_t capacity = 0;
-  real base = 0;               // skin of a particle at rest [m]
-  real per_speed = 0;          // skin per unit speed [s]
-  real cap = 0;                // largest skin [m]
-  ArrayView<int32_t> count;    // partners of each particle (above capacity: the list overflowed)
-  ArrayView<int32_t> partner;  // capacity x n partner indices
-  ArrayView<Vec4> origin;      // xyz: each particle's displacement at its list's build; w: its skin
-  int32_t* moved = nullptr;    // set to 1 by any particle that moved farther than 0.9 of its skin
+  real base = 0;                 // skin of a particle at rest [m]
+  real per_speed = 0;            // skin per unit speed [s]
+  real cap = 0;                  // largest skin [m]
+  ArrayView<int32_t> count;      // partners of each particle (above capacity: the list overflowed)
+  ArrayView<int32_t> partner;    // capacity x n partner indices
+  ArrayView<Vec4> origin;        // xyz: each particle's displacement at its list's build, less the
+                                 // frame's shift then (contact_frame.h); w: its skin
+  Vec3 shift{0, 0, 0};           // the lists' frame's displacement since their full build
+  Vec3 frame_velocity{0, 0, 0};  // and its velocity now
+  int32_t* moved = nullptr;      // set to 1 by any particle that moved farther than 0.9 of its skin
   // The particles that raised `moved` since the last refresh (the first movers.size of them) and
   // how many did: the lists rebuilt for them alone where they are few (contact_relist.h).
   ArrayView<int32_t> movers;

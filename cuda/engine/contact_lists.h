@@ -1,10 +1,14 @@
 // Contact lists (cuda/kernels/collisions.h): per particle, the particles within its contact
 // reach plus both skins, rebuilt whenever a particle has left its skin since its list's build
 // (position_update raises the flag and names the movers): where few did, their lists alone
-// (contact_relist.h), else every list through a spatial hash over current positions.
+// (contact_relist.h), else every list through a spatial hash over current positions. The skins
+// are kept in a frame chosen at each full build, at rest or moving with the particles
+// (contact_frame.h).
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 
@@ -29,8 +33,11 @@ class ContactLists {
   // The hash they are built from, with cells twice the reach of two particles at rest (contact
   // distance plus their skins), its sorted records, and the lists.
   // incremental: the movers' lists rebuilt alone where they can be (the forces are the same).
-  void allocate(DeviceMemory<Exec>& mem, int32_t n, const MaterialTable& materials, bool incremental = true) {
+  // gravity: the acceleration every free particle shares (the moving frame's).
+  void allocate(DeviceMemory<Exec>& mem, int32_t n, const MaterialTable& materials, bool incremental = true,
+                Vec3 gravity = {0, 0, 0}) {
     n_ = n;
+    gravity_ = {double(gravity.x), double(gravity.y), double(gravity.z)};
     real spacing = 0;
     for (int m = 0; m < materials.count; ++m) spacing = std::max(spacing, materials.m[m].contact_spacing);
     const double contact_distance = 0.5 * double(spacing);
@@ -56,7 +63,8 @@ class ContactLists {
   // of the largest skins (a partitioned run's contact ghosts lie within it of a rank's own).
   double reach() const { return reach_; }
 
-  ContactView view(Exec& exec, real dt) const {
+  // The lists' view for positions at time `now` (the frame's shift since the full build).
+  ContactView view(Exec& exec, real dt, double now) const {
     ContactView c;
     c.n = n_;
     c.capacity = int32_t(partner_.size() / size_t(n_));
@@ -70,17 +78,25 @@ class ContactLists {
     c.movers = view_of(movers_);
     c.mover_count = counters_.data();
     c.crowded = exec.flag(kFlagCrowded);
+    const double tau = now - built_at_;
+    const auto shift = [&](size_t a) {
+      return real(frame_velocity_[a] * tau + 0.5 * frame_acceleration_[a] * tau * tau);
+    };
+    const auto velocity = [&](size_t a) { return real(frame_velocity_[a] + frame_acceleration_[a] * tau); };
+    c.shift = {shift(0), shift(1), shift(2)};
+    c.frame_velocity = {velocity(0), velocity(1), velocity(2)};
     return c;
   }
 
-  // Builds the lists at the current positions if a particle has left its skin since its list's
-  // build, or if there are none yet: the movers' alone where that can be done (relist), else all.
-  // A list that overflows its room doubles the room of all and builds again. Returns whether some
-  // list is not empty (else `collisions` need not run).
+  // Builds the lists at the current positions (those of time `now`) if a particle has left its
+  // skin since its list's build, or if there are none yet: the movers' alone where that can be
+  // done (relist), else all, in the frame that keeps them longer (choose_frame). A list that
+  // overflows its room doubles the room of all and builds again. Returns whether some list is not
+  // empty (else `collisions` need not run).
   // In a partitioned run (`world` given) every rank builds when any particle has moved, and
   // `gather_ghosts` first brings in the other ranks' particles within reach, returning the view of
-  // every particle the rank then holds: the lists are built over them all.
-  bool refresh(DeviceMemory<Exec>& mem, ParticlesView p, const MaterialTable& materials, real dt,
+  // every particle the rank then holds: the lists are built over them all, in the frame at rest.
+  bool refresh(DeviceMemory<Exec>& mem, ParticlesView p, const MaterialTable& materials, real dt, double now,
                Comm* world = nullptr, const std::function<ParticlesView()>& gather_ghosts = {}) {
     Exec& exec = mem.exec();
     const uint32_t raised_by_moves = exec.take_flags(kContactFlagMask, kFlagEvent);
@@ -90,15 +106,17 @@ class ContactLists {
     // More movers than a round keeps (a body in free fall moves all at once): straight to the full
     // build, without the round that would find as much.
     const bool crowded = raised_by_moves & (1u << kFlagCrowded);
-    if (built_ && incremental_ && !world && !crowded && relist(exec, p, materials, dt)) return pairs_;
+    if (built_ && incremental_ && !world && !crowded && relist(exec, p, materials, dt, now)) return pairs_;
     if (gather_ghosts) {
       p = gather_ghosts();
       if (p.n != n_) size_lists(mem, p.n, room_);
     }
+    choose_frame(exec, p, world == nullptr);
+    built_at_ = now;
     launch_reset_bins(exec, "pd/collection_reset", hash_.view(true));
     launch_collection<true>(exec, "pd/collection", p, hash_.view(false), hash_.view(true), materials);
     for (;;) {
-      launch_build_contacts(exec, p, hash_.view(true), view(exec, dt), materials, quarter_max_,
+      launch_build_contacts(exec, p, hash_.view(true), view(exec, dt, now), materials, quarter_max_,
                             exec.flag(kFlagOverflow), exec.flag(kFlagPairs));
       exec.mark_flags(kFlagEvent);
       const uint32_t raised = exec.take_flags(kContactFlagMask, kFlagEvent);
@@ -154,16 +172,29 @@ class ContactLists {
   // The movers' lists rebuilt alone (contact_relist.h), the movers and the pairs linked cleared
   // for the next round; false where that cannot be done (more relistings than kept, a list past
   // its room): then all are built.
-  bool relist(Exec& exec, ParticlesView p, const MaterialTable& materials, real dt) {
+  bool relist(Exec& exec, ParticlesView p, const MaterialTable& materials, real dt, double now) {
     ++round_;
-    launch_relist_contacts(exec, p, hash_.view(true), view(exec, dt), relist_view(), materials, quarter_max_,
-                           round_, exec.flag(kFlagOverflow), exec.flag(kFlagPairs));
+    launch_relist_contacts(exec, p, hash_.view(true), view(exec, dt, now), relist_view(), materials,
+                           quarter_max_, round_, exec.flag(kFlagOverflow), exec.flag(kFlagPairs));
     exec.fill_bytes(counters_.data(), 0, 2 * sizeof(int32_t));
     exec.mark_flags(kFlagEvent);
     const uint32_t raised = exec.take_flags(kContactFlagMask, kFlagEvent);
     if (raised & (1u << kFlagOverflow)) return false;
     pairs_ = pairs_ || (raised & (1u << kFlagPairs));
     return true;
+  }
+
+  // The frame of the lists about to be built (contact_frame.h): moving with the particles' mean
+  // velocity and the gravity where they move together (`may_move`: a run of one rank; a
+  // partitioned run keeps the frame at rest, which its ranks need not agree on), else at rest.
+  void choose_frame(Exec& exec, const ParticlesView& p, bool may_move) {
+    frame_velocity_ = {0, 0, 0};
+    frame_acceleration_ = {0, 0, 0};
+    if (!may_move || p.n == 0) return;
+    const VelocityMoments m = reduce_velocity_moments(exec, p);
+    if (!moving_frame_wins(m, p.n)) return;
+    frame_velocity_ = {m.x / p.n, m.y / p.n, m.z / p.n};
+    frame_acceleration_ = gravity_;
   }
 
   RelistView relist_view() const {
@@ -190,6 +221,9 @@ class ContactLists {
   double reach_ = 0;
   bool built_ = false;
   bool pairs_ = false;  // some list is not empty
+  // The lists' frame: velocity and acceleration at the last full build (zero: at rest), its time.
+  std::array<double, 3> frame_velocity_{}, frame_acceleration_{}, gravity_{};
+  double built_at_ = 0;
   bool incremental_ = true;
   int32_t round_ = 0;  // rounds of relisting so far
   DeviceArray<Vec4, Exec> origin_;

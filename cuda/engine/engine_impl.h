@@ -144,7 +144,8 @@ class EngineImpl final : public Engine {
       end_stage("state-based");
     }
     if (contact_)
-      contacts_.allocate(mem_, state_.n, materials_, contact_rebuild == ContactRebuild::kIncremental);
+      contacts_.allocate(mem_, state_.n, materials_, contact_rebuild == ContactRebuild::kIncremental,
+                         step_params_.gravity);
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0 || !colliders_host_.empty();
     fusion_.init = !features_.state_based;
@@ -197,6 +198,7 @@ class EngineImpl final : public Engine {
         free_.drift(double(dt));
       }
       if (moving_colliders_) pose_colliders(time_ + dt);
+      positions_time_ = time_ + dt;
       start_step(end_pending, contact_view());
       if (contact_) exec_.mark_flags(ContactLists<Exec>::kFlagEvent);
       compute_forces(fusion_);
@@ -315,6 +317,7 @@ class EngineImpl final : public Engine {
     free_.restore(in.free_bodies);
     step_ = in.step;
     time_ = in.time;
+    positions_time_ = time_;
     motion_.apply(time_, step_params_);
     pose_colliders(time_);
     contacts_.invalidate();
@@ -338,6 +341,7 @@ class EngineImpl final : public Engine {
     if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
     step_ = in.step;
     time_ = in.time;
+    positions_time_ = time_;
     motion_.apply(time_, step_params_);
     pose_colliders(time_);
     state_.upload_saved(in);
@@ -384,6 +388,7 @@ class EngineImpl final : public Engine {
     if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
     step_ = in.step;
     time_ = in.time;
+    positions_time_ = time_;
     motion_.apply(time_, step_params_);
     pose_colliders(time_);
     state_.upload_saved(in);
@@ -422,7 +427,9 @@ class EngineImpl final : public Engine {
     return b;
   }
   // The contact lists' view, or an empty one in a run without contact.
-  ContactView contact_view() { return contact_ ? contacts_.view(exec_, step_params_.dt) : ContactView{}; }
+  ContactView contact_view() {
+    return contact_ ? contacts_.view(exec_, step_params_.dt, positions_time_) : ContactView{};
+  }
 
   // Set-up of the surface correction (before the state-based weighted volumes, which take the
   // bonds' factors): the factors from the families as built, before cuts (on a
@@ -592,8 +599,9 @@ class EngineImpl final : public Engine {
   // The contact lists at the current positions (ContactLists::refresh); on a partitioned rank
   // with the contact ghosts gathered first, their skins from their velocities.
   bool refresh_contacts() {
-    if (!halo_.active()) return contacts_.refresh(mem_, particles(), materials_, step_params_.dt);
-    return contacts_.refresh(mem_, particles(), materials_, step_params_.dt, world_, [&] {
+    if (!halo_.active())
+      return contacts_.refresh(mem_, particles(), materials_, step_params_.dt, positions_time_);
+    return contacts_.refresh(mem_, particles(), materials_, step_params_.dt, positions_time_, world_, [&] {
       halo_.exchange(state_.vel);
       ghosts_.gather(mem_, state_, halo_, contacts_.reach());
       return state_.particles();
@@ -650,6 +658,7 @@ class EngineImpl final : public Engine {
       if (!exec_.has_graph(slot)) record_step_graph(slot);
       exec_.launch_graph(slot, kStepGraphStat);
       for (int k = 0; k < kGraphSteps; ++k) time_ += step_params_.dt;
+      positions_time_ = time_;
       step_params_.time = real(time_);
       step_ += kGraphSteps;
       graphed_steps_ += kGraphSteps;
@@ -735,6 +744,9 @@ class EngineImpl final : public Engine {
   IntegrationFusion fusion_;  // (kernels 1 and 5 in the integration kernels where the run allows)
   int64_t step_ = 0;
   double time_ = 0;
+  // The time of the positions the kernels see: time_, or within a step of `advance` the step's end
+  // from its position update on (the contact lists' frame is a function of it).
+  double positions_time_ = 0;
   double critical_dt_ = 0;
   FamilyStats family_;
   int32_t owned_ = 0;        // particles the step kernels run over (ParticlesView::n)

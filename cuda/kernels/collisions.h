@@ -65,9 +65,9 @@ PD_HD inline void for_each_contact_candidate(int32_t s, HashView h, real skin, V
 }
 
 // A particle's skin for the lists built now: what it travels in kContactStepsAhead steps at
-// velocity v, between the skin at rest and the cap.
+// velocity v relative to the lists' frame (contact_frame.h), between the skin at rest and the cap.
 PD_HD inline real contact_skin(Vec3 v, const ContactView& c) {
-  return std::fmin(c.cap, std::fmax(c.base, length(v) * c.per_speed));
+  return std::fmin(c.cap, std::fmax(c.base, length(v - c.frame_velocity) * c.per_speed));
 }
 
 // Adds j to particle i's list (past its room: raises `overflow`, and the engine builds again
@@ -92,7 +92,7 @@ PD_HD inline void build_contacts(int32_t s, ParticlesView p, HashView h, Contact
     ++count;
   });
   c.count[i] = count;
-  c.origin[i] = with_w(xyz(p.disp[i]), contact_skin(p.vel[i], c));
+  c.origin[i] = with_w(xyz(p.disp[i]) - c.shift, contact_skin(p.vel[i], c));
   if (count == 0) return;
   raise_flag(pairs);
   if (count > c.capacity) raise_flag(overflow);
@@ -173,11 +173,12 @@ PD_HD inline void collision_forces(int32_t i, ParticlesView p, ContactView c, co
   p.force[i] = p.force[i] + f;
 }
 
-// Whether displacement u has moved farther than kContactTrigger of the particle's skin from where
-// the lists were built (origin: displacement, skin; a non-finite u counts as moved).
-PD_HD inline bool left_contact_skin(Vec4 u, Vec4 origin) {
+// Whether displacement u, less the lists' frame's shift since their build, has moved farther than
+// kContactTrigger of the particle's skin from where its list was built (origin: displacement less
+// the shift then, skin; a non-finite u counts as moved).
+PD_HD inline bool left_contact_skin(Vec4 u, Vec4 origin, Vec3 shift) {
   const real trigger = real(kContactTrigger) * origin.w;
-  return !(length_squared(xyz(u) - xyz(origin)) <= trigger * trigger);
+  return !(length_squared(xyz(u) - shift - xyz(origin)) <= trigger * trigger);
 }
 
 // A particle that left its skin: raises `moved` and joins the movers (each counted, the first

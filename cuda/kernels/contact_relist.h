@@ -70,13 +70,13 @@ PD_HD inline void relist_mover(int32_t t, ParticlesView p, HashView h, ContactVi
     return;
   }
   const real skin = contact_skin(p.vel[f], c);
-  const Vec4 record = with_w(p.position(f), contact_quarter(f, p, mt));
+  const Vec4 record = with_w(p.position(f) - c.shift, contact_quarter(f, p, mt));  // in the lists' frame
   r.id[e] = f;
   r.record[e] = record;
   r.skin[e] = skin;
   r.round[e] = round;
   r.entry[f] = e + 1;
-  c.origin[f] = with_w(xyz(p.disp[f]), skin);
+  c.origin[f] = with_w(xyz(p.disp[f]) - c.shift, skin);
   c.count[f] = 0;
   r.next[e] = atomic_exchange(&r.head[cell_bin(cell_of(xyz(record), h.inv_cell), h.bins)], e);
 }

@@ -40,7 +40,7 @@ PD_HD inline void position_update(int32_t i, ParticlesView p, const StepParams& 
   }
   p.disp[i] = u;
   if constexpr (kContact)
-    if (left_contact_skin(u, c.origin[i])) report_mover(i, c);
+    if (left_contact_skin(u, c.origin[i], c.shift)) report_mover(i, c);
 }
 
 // An anchor holds its particle against the force on it: it does work -f.v dt on the body.

@@ -181,15 +181,21 @@ TEST(Collisions, ContactListsHoldEveryPairWithinReachInOrder) {
 }
 
 // A particle leaves its skin past kContactTrigger of it, in any direction; a non-finite
-// displacement counts as having left.
+// displacement counts as having left. In a moving frame (contact_frame.h) the distance is taken
+// after the frame's shift: a particle that moved with the frame has not left, one that stayed
+// behind has.
 TEST(Collisions, LeavingTheSkinIsDetected) {
   const real skin = real(1e-4 / kContactTrigger);  // moves up to 1e-4 keep the lists
   const Vec4 origin{real(1e-3), real(-2e-3), 0, skin};
-  EXPECT_FALSE(left_contact_skin(origin, origin));
-  EXPECT_FALSE(left_contact_skin({real(1e-3 + 0.9e-4), real(-2e-3), 0, 0}, origin));
-  EXPECT_TRUE(left_contact_skin({real(1e-3), real(-2e-3 - 1.1e-4), 0, 0}, origin));
-  EXPECT_TRUE(left_contact_skin({real(1e-3 + 0.6e-4), real(-2e-3), real(0.9e-4), 0}, origin));
-  EXPECT_TRUE(left_contact_skin({std::numeric_limits<real>::quiet_NaN(), 0, 0, 0}, origin));
+  const Vec3 still{0, 0, 0};
+  EXPECT_FALSE(left_contact_skin(origin, origin, still));
+  EXPECT_FALSE(left_contact_skin({real(1e-3 + 0.9e-4), real(-2e-3), 0, 0}, origin, still));
+  EXPECT_TRUE(left_contact_skin({real(1e-3), real(-2e-3 - 1.1e-4), 0, 0}, origin, still));
+  EXPECT_TRUE(left_contact_skin({real(1e-3 + 0.6e-4), real(-2e-3), real(0.9e-4), 0}, origin, still));
+  EXPECT_TRUE(left_contact_skin({std::numeric_limits<real>::quiet_NaN(), 0, 0, 0}, origin, still));
+  const Vec3 shift{0, real(-5e-3), 0};
+  EXPECT_FALSE(left_contact_skin({real(1e-3 + 0.9e-4), real(-7e-3), 0, 0}, origin, shift));
+  EXPECT_TRUE(left_contact_skin(origin, origin, shift));
 }
 
 // A particle's skin: the rest skin up to the speed that covers it, then proportional to the
@@ -203,6 +209,9 @@ TEST(Collisions, SkinGrowsWithSpeedUpToTheCap) {
   EXPECT_EQ(contact_skin({real(5), 0, 0}, c), c.base);
   EXPECT_FLOAT_EQ(contact_skin({0, real(-20), 0}, c), real(2e-4));
   EXPECT_EQ(contact_skin({real(300), 0, 0}, c), c.cap);
+  c.frame_velocity = {0, real(-20), 0};  // the speed relative to the lists' frame counts
+  EXPECT_EQ(contact_skin({0, real(-20), 0}, c), c.base);
+  EXPECT_FLOAT_EQ(contact_skin({0, 0, 0}, c), real(2e-4));
 }
 
 // A block of 4 x 4 x 4 cells, wherever it lies (negative coordinates too), fills 64 consecutive

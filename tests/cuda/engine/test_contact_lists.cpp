@@ -42,7 +42,7 @@ MaterialTable spacing_table() {
 
 // Particle i's list as built.
 std::vector<int32_t> list_of(const ContactLists<CpuExec>& lists, CpuExec& exec, int32_t i) {
-  const ContactView c = lists.view(exec, real(1e-7));
+  const ContactView c = lists.view(exec, real(1e-7), 0.0);
   std::vector<int32_t> list;
   for (int32_t k = 0; k < c.count[i]; ++k) list.push_back(c.partner[c.slot(i, k)]);
   return list;
@@ -80,7 +80,7 @@ TEST(ContactLists, BuildEveryPairWithinReachInBuffersLargerThanTheCount) {
   testing::ParticleArrays particles = cloud(500, 40);
   lists.size_lists(mem, 500, kContactCapacity);
   EXPECT_EQ(mem.bytes(), before);
-  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, real(1e-7)));
+  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, real(1e-7), 0.0));
   EXPECT_GT(mem.bytes(), before);
   for (int32_t i = 0; i < 460; ++i)
     EXPECT_EQ(list_of(lists, exec, i), std::vector<int32_t>{i ^ 1}) << "particle " << i;
@@ -103,13 +103,13 @@ TEST(ContactLists, RelistAMoverNamedTwiceOnce) {
   ContactLists<CpuExec> lists;
   lists.allocate(mem, 500, mt);
   testing::ParticleArrays particles = cloud(500, 0);
-  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, dt));
+  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, dt, 0.0));
   // Particle 0 (at 0, its twin at 0.5) moves to 2.7 spacings: beside the next twins, at 3 and 3.5.
   particles.disp[0] = {real(2.7) * kSpacing, 0, 0, 0};
-  const ContactView c = lists.view(exec, dt);
+  const ContactView c = lists.view(exec, dt, 0.0);
   report_mover(0, c);
   report_mover(0, c);
-  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, dt));
+  ASSERT_TRUE(lists.refresh(mem, particles.view(), mt, dt, 0.0));
   // Relisted, not built again: the twin it left still lists it (beyond reach, an exact zero).
   EXPECT_EQ(list_of(lists, exec, 1), std::vector<int32_t>{0});
   EXPECT_EQ(list_of(lists, exec, 0), (std::vector<int32_t>{2, 3}));

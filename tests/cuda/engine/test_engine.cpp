@@ -397,20 +397,24 @@ TEST(EngineDeterminism, TwoRunsAreBitIdentical) {
 // With a contact spacing of 3 lambda the lists outgrow their first room and are built again.
 // few_fast: the cloud drifts at 1 m/s but for every 40th particle at 60 m/s, so that the builds
 // are set off by a few particles at a time, whose lists are rebuilt alone (contact_relist.h).
+// drift, gravity: a velocity every particle has besides, and a gravity; then the lists are kept in
+// the frame that moves with the cloud (contact_frame.h).
 void expect_list_forces_equal_all_pairs(double contact_spacing, double stiffness, bool few_fast = false,
-                                        ContactRebuild rebuild = ContactRebuild::kIncremental) {
+                                        ContactRebuild rebuild = ContactRebuild::kIncremental,
+                                        Vec3 drift = {0, 0, 0}, real gravity = 0) {
   auto in = lattice_block(8, 8, 8, 1e-3, 1e-3, 0.9, 13);
   in.materials.m[0].contact_spacing = real(contact_spacing);
   Random rng(29);
   for (size_t i = 0; i < in.particles.size(); ++i) {
     in.particles.body[i] = int32_t(i);
     const double speed = !few_fast ? 30 : i % 40 == 0 ? 60 : 1;
-    in.particles.velocity[i] = {real(speed * rng.normal()), real(speed * rng.normal()),
-                                real(speed * rng.normal())};
+    in.particles.velocity[i] =
+        Vec3{real(speed * rng.normal()), real(speed * rng.normal()), real(speed * rng.normal())} + drift;
   }
   in.contact = true;
   in.contact_rebuild = rebuild;
   in.step.contact_stiffness = real(stiffness);
+  in.step.gravity = {0, -gravity, 0};
   auto e = make_cpu_engine(in);
   const real rc = real(0.5) * in.materials.m[0].contact_spacing;
   int checked = 0, touching = 0;
@@ -421,14 +425,21 @@ void expect_list_forces_equal_all_pairs(double contact_spacing, double stiffness
     e->read_state(s);
     std::vector<Vec3> x(s.disp.size());
     for (size_t i = 0; i < x.size(); ++i) x[i] = in.particles.rest[i] + s.disp[i];
-    for (size_t i = 0; i < x.size(); ++i) {
-      Vec3 f{0, 0, 0};
+    std::vector<Vec3> contact(x.size(), Vec3{0, 0, 0});
+    for (size_t i = 0; i < x.size(); ++i)
       for (size_t j = 0; j < x.size(); ++j)
-        if (j != i) f += contact_force(x[i], x[j], rc, in.step.contact_stiffness);
+        if (j != i) contact[i] += contact_force(x[i], x[j], rc, in.step.contact_stiffness);
+    // The weight, added after the contact force: the force on a particle that touches nothing
+    // (the particles' masses are equal).
+    Vec3 weight{0, 0, 0};
+    for (size_t i = 0; i < x.size(); ++i)
+      if (contact[i].x == 0 && contact[i].y == 0 && contact[i].z == 0) weight = s.force[i];
+    for (size_t i = 0; i < x.size(); ++i) {
+      const Vec3 f = contact[i] + weight;
       ASSERT_EQ(s.force[i].x, f.x) << "particle " << i << " after " << e->step() << " steps";
       ASSERT_EQ(s.force[i].y, f.y);
       ASSERT_EQ(s.force[i].z, f.z);
-      touching += f.x != 0 || f.y != 0 || f.z != 0;
+      touching += contact[i].x != 0 || contact[i].y != 0 || contact[i].z != 0;
       ++checked;
     }
   }
@@ -449,6 +460,9 @@ void expect_list_forces_equal_all_pairs(double contact_spacing, double stiffness
   if (rebuild == ContactRebuild::kFull) {
     EXPECT_EQ(relisted, 0);
   }
+  if (drift.x != 0) {  // at rest every particle would leave its skin every 32 steps
+    EXPECT_LT(builds, 3);
+  }
 }
 
 TEST(EngineContact, ListForcesEqualTheSumOverAllPairs) {
@@ -468,21 +482,39 @@ TEST(EngineContact, FullBuildsGiveTheForcesOfAllPairs) {
   expect_list_forces_equal_all_pairs(1e-3, 1e8, true, ContactRebuild::kFull);
 }
 
-// A body in free fall leaves all its skins at once: more movers than a relisting round keeps
-// (max(256, n / 512)), so every build is a full one, with no round tried first.
+// The cloud of the few fast movers flying at 200 m/s under a gravity of 2e5 m/s^2 (it travels 10
+// spacings, and falls farther than a skin at rest, in the run): its lists are kept in the frame
+// that moves with it, built once or twice where at rest all of them would leave their skins every
+// 32 steps, and give the forces of all pairs to the last bit, the relisted movers' too.
+TEST(EngineContact, ListsInAMovingFrameGiveTheForcesOfAllPairs) {
+  expect_list_forces_equal_all_pairs(1e-3, 1e8, true, ContactRebuild::kIncremental, {200, 0, 0}, real(2e5));
+  expect_list_forces_equal_all_pairs(1e-3, 1e8, true, ContactRebuild::kFull, {0, 0, -200}, real(2e5));
+}
+
+// A body flying apart leaves all its skins at once, in the frame at rest and in the moving one
+// alike: more movers than a relisting round keeps (max(256, n / 512)), so every build is a full
+// one, with no round tried first. The same body in free fall keeps its lists in the moving frame
+// (contact_frame.h): built once.
 TEST(EngineContact, ACrowdOfMoversGoesStraightToTheFullBuild) {
-  auto in = lattice_block(8, 8, 8, 1e-3);  // out of contact with each other: one velocity for all
-  for (size_t i = 0; i < in.particles.size(); ++i) {
-    in.particles.body[i] = int32_t(i);
-    in.particles.velocity[i] = {0, 0, real(-30)};
+  for (const bool bursting : {true, false}) {
+    auto in = lattice_block(8, 8, 8, 1e-3);  // out of contact with each other
+    for (size_t i = 0; i < in.particles.size(); ++i) {
+      in.particles.body[i] = int32_t(i);
+      const Vec3 out = in.particles.rest[i] - Vec3{real(3.5e-3), real(3.5e-3), real(3.5e-3)};
+      in.particles.velocity[i] = bursting ? (real(30) / length(out)) * out : Vec3{0, 0, real(-30)};
+    }
+    in.contact = true;
+    in.step.contact_stiffness = real(1e8);
+    in.step.gravity = {0, 0, real(-9.81)};
+    auto e = make_cpu_engine(in);
+    e->advance(200);
+    const int64_t builds = e->stats().entry("pd/contact_build").launches;
+    if (bursting)
+      EXPECT_GT(builds, 3);  // the skins were left again and again
+    else
+      EXPECT_EQ(builds, 1);
+    EXPECT_EQ(e->stats().entry("pd/contact_relist").launches, 0);
   }
-  in.contact = true;
-  in.step.contact_stiffness = real(1e8);
-  auto e = make_cpu_engine(in);
-  e->advance(200);
-  const int64_t builds = e->stats().entry("pd/contact_build").launches;
-  EXPECT_GT(builds, 3);  // the skins were left again and again
-  EXPECT_EQ(e->stats().entry("pd/contact_relist").launches, 0);
 }
 
 // The same run with the movers' lists rebuilt alone and with every list built at every build:
