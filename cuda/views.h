@@ -354,6 +354,10 @@ struct StepParams {
   Vec3 gravity{0, 0, 0};
   uint8_t floor_enabled = 0;
   real floor_height = 0;  // floor is the plane y = floor_height (y is up)
+  // No particle's reference y is below it (-infinity where the engine does not know): a
+  // particle whose displacement keeps it above the floor from there is not read further
+  // (below_floor, integrate.h).
+  real lowest_rest_y = -INFINITY;
   real restitution = 1;
   real contact_stiffness = 0;  // K_c [Pa]
   int32_t n_projectiles = 0;

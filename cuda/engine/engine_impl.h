@@ -146,6 +146,14 @@ class EngineImpl final : public Engine {
     if (contact_)
       contacts_.allocate(mem_, state_.n, materials_, contact_rebuild == ContactRebuild::kIncremental,
                          step_params_.gravity);
+    // The velocity update's floor test reads a particle's reference position only below this
+    // (below_floor). A partitioned rank's contact ghosts arrive later with positions of their
+    // own: it keeps -infinity, reading every one as before.
+    if (!rank) {
+      real lowest = real(INFINITY);
+      for (const Vec3& x : in.particles.rest) lowest = std::min(lowest, x.y);
+      step_params_.lowest_rest_y = lowest;
+    }
     body_forces_ = step_params_.n_projectiles > 0 || step_params_.gravity.x != 0 ||
                    step_params_.gravity.y != 0 || step_params_.gravity.z != 0 || !colliders_host_.empty();
     fusion_.init = !features_.state_based;

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include "cuda/kernels/bodyforces.h"
 #include "cuda/kernels/integrate.h"
@@ -121,6 +122,47 @@ TEST(BodyForces, GravityAloneMatchesTheFullKernelBitForBit) {
   body_forces<false>(0, p, sp);
   EXPECT_EQ(std::memcmp(&full, &force, sizeof(Vec3)), 0);
   EXPECT_FLOAT_EQ(force.y, start.y + real(-9.81) / one.inv_mass);
+}
+
+// The floor test with a bound on the reference positions gives the test on the position, and
+// reads no reference position where the displacement keeps the particle above the floor.
+TEST(BodyForces, FloorTestReadsTheRestPositionOnlyWhereTheDisplacementCouldReachTheFloor) {
+  OneParticle one;
+  const ParticlesView p = one.view();
+  StepParams sp;
+  sp.floor_enabled = 1;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform;
+  int below = 0, above = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const real y = real(normal(rng) * 0.1), u = real(normal(rng) * 1e-2);
+    one.rest = {0, y, 0, 1};
+    one.disp = {0, u, 0, 1};
+    // Floors at, just beside and around the position, and bounds at the rest position or below.
+    const real at = y + u;
+    const real floors[] = {at, std::nextafter(at, real(1)), std::nextafter(at, real(-1)),
+                           real(normal(rng) * 0.1)};
+    sp.floor_height = floors[k % 4];
+    sp.lowest_rest_y = k % 3 == 0 ? y : y - real(uniform(rng) * 0.05);
+    const bool expected = p.position(0).y < sp.floor_height;
+    EXPECT_EQ(below_floor(0, p, sp), expected) << k;
+    sp.lowest_rest_y = -INFINITY;
+    EXPECT_EQ(below_floor(0, p, sp), expected) << k;
+    (expected ? below : above) += 1;
+  }
+  EXPECT_GT(below, 1000);
+  EXPECT_GT(above, 1000);
+  // Above the floor from the bound: the reference position is not read (a NaN there is not seen).
+  one.rest = {0, real(NAN), 0, 1};
+  one.disp = {0, real(0.5), 0, 1};
+  sp.floor_height = 0;
+  sp.lowest_rest_y = real(-0.25);
+  EXPECT_FALSE(below_floor(0, p, sp));
+  one.disp = {0, real(0.1), 0, 1};  // within the bound's reach: read (NaN is not below)
+  EXPECT_FALSE(below_floor(0, p, sp));
+  one.rest = {0, real(-0.2), 0, 1};
+  EXPECT_TRUE(below_floor(0, p, sp));
 }
 
 }  // namespace
