@@ -469,13 +469,15 @@ void launch_velocity_update(Exec& ex, ParticlesView p, StepParams sp, bool with_
 }
 
 // One step's velocity update and the next step's position update in one pass, where nothing on
-// the host falls between the two steps.
+// the host falls between the two steps. Six blocks of 256 resident (at most 40 registers, 45-48
+// without): the pass 2-4% faster on the vase, the torus, the 1M plate and the explicit lattice;
+// at eight (32 registers) the vase's and the torus's 5% slower (one H200, bench/NOTES.md).
 template <bool kGravity, bool kContact, bool kInit, class Exec>
 void launch_velocity_then_position_update_variant(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt,
                                                   StepParams sp, ContactView c) {
   static const std::string name = kernel_variant(
       "pd/velocity_position_update", {{"gravity", kGravity}, {"contact", kContact}, {"init", kInit}});
-  ex.parallel_for(name.c_str(), p.n, [=] PD_HD(int64_t i) {
+  ex.template parallel_for<6>(name.c_str(), p.n, [=] PD_HD(int64_t i) {
     velocity_then_position_update<kGravity, kContact, kInit>(int32_t(i), p, b, mt, sp, c);
   });
 }
