@@ -343,21 +343,7 @@ class EngineImpl final : public Engine {
     out.free_bodies = free_.saved();
   }
 
-  void restore(const EngineSnapshot& in) override {
-    state_.check_sizes(in);
-    free_.restore(in.free_bodies);
-    if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
-    step_ = in.step;
-    time_ = in.time;
-    positions_time_ = time_;
-    motion_.apply(time_, step_params_);
-    pose_colliders(time_);
-    state_.upload_saved(in);
-    if (!lattice_.empty()) lattice_.intact.upload(lattice_.tables.intact);
-    if (features_.plastic) launch_mirror_plastic(exec_, bonds());
-    if (features_.ghosts) launch_ghost_liveness(exec_, bonds(), ghost_view());
-    contacts_.invalidate();
-  }
+  void restore(const EngineSnapshot& in) override { restore_state(in, nullptr); }
 
   // A partitioned rank's part of the collective calls (cuda/parallel/partitioned_engine.h).
   int32_t owned() const { return owned_; }
@@ -391,6 +377,13 @@ class EngineImpl final : public Engine {
   }
   // A restore whose plastic mirror (the partners' history, not all held here) comes with it.
   void restore_with_mirror(const EngineSnapshot& in, const std::vector<real>& plastic_mirror) {
+    restore_state(in, &plastic_mirror);
+  }
+
+ private:
+  // restore's work: the plastic mirror uploaded where it comes with the snapshot, else derived
+  // from the history.
+  void restore_state(const EngineSnapshot& in, const std::vector<real>* plastic_mirror) {
     state_.check_sizes(in);
     free_.restore(in.free_bodies);
     if (!lattice_.empty()) refresh_lattice_after_restore(state_, in.neighbor, lattice_);
@@ -400,12 +393,17 @@ class EngineImpl final : public Engine {
     motion_.apply(time_, step_params_);
     pose_colliders(time_);
     state_.upload_saved(in);
-    if (features_.plastic) state_.plastic_mirror.upload(plastic_mirror);
     if (!lattice_.empty()) lattice_.intact.upload(lattice_.tables.intact);
+    if (features_.plastic) {
+      if (plastic_mirror)
+        state_.plastic_mirror.upload(*plastic_mirror);
+      else
+        launch_mirror_plastic(exec_, bonds());
+    }
+    if (features_.ghosts) launch_ghost_liveness(exec_, bonds(), ghost_view());
     contacts_.invalidate();
   }
 
- private:
   // bond_changes' first part: the bonds whole into `out` when the reader's slots are not the
   // engine's (or on the first call), then the broken bits brought to now on the backend, the
   // changed ones in changed_bits_. False when the reader wants changed_bits_.
