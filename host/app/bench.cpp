@@ -22,6 +22,7 @@
 #include "host/app/shards_pattern.h"
 #include "host/app/time_step_check.h"
 #include "host/io/atomic_file.h"
+#include "host/io/json_text.h"
 #include "host/scene/scene_setup.h"
 
 namespace pd {
@@ -87,15 +88,6 @@ SimulationInput lattice_input(const BenchOptions& opt) {
   in.step.contact_stiffness = real(1e8);
   in.contact = opt.contact;
   return in;
-}
-
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    o += c;
-  }
-  return o;
 }
 
 // "name": seconds, ... of the engine's set-up stages.

@@ -16,6 +16,7 @@
 #include "host/app/provenance.h"
 #include "host/app/run.h"
 #include "host/io/atomic_file.h"
+#include "host/io/json_text.h"
 #include "render/renderer.h"
 #include "render/tet_lattice.h"
 #include "render/traverse.h"
@@ -73,15 +74,6 @@ BenchScene make_bench_scene(const RenderBenchOptions& o) {
                   " (" + std::to_string(b.nx) + " x " + std::to_string(b.ny) + " x " + std::to_string(b.nz) +
                   ")";
   return b;
-}
-
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    o += c;
-  }
-  return o;
 }
 
 // The primary rays of the view traced without shading on the host (the renderer's short-stack
