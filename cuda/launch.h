@@ -522,9 +522,10 @@ void launch_surface_factor(Exec& ex, ParticlesView p, BondsView b, MaterialTable
 }
 
 template <class Exec>
-void launch_surface_bond_factors(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt) {
+void launch_surface_bond_factors(Exec& ex, ParticlesView p, BondsView b, MaterialTable mt,
+                                 bool fold = false) {
   ex.parallel_for("family/surface_bond", p.n,
-                  [=] PD_HD(int64_t i) { surface_bond_factors(int32_t(i), p, b, mt); });
+                  [=] PD_HD(int64_t i) { surface_bond_factors(int32_t(i), p, b, mt, fold); });
 }
 
 // State-based set-up: weighted volumes.

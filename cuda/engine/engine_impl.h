@@ -137,6 +137,9 @@ class EngineImpl final : public Engine {
     for (const Collider& c : colliders_host_)  // (the indent law's stiffness grows with the depth: not here)
       if (c.law == kLawPenalty) collider_stiffness = std::max(collider_stiffness, double(c.stiffness));
     critical_dt_ = stable_time_step(mem_, particles(), bonds(), materials_, collider_stiffness, ghost_rate);
+    // The listed bond-based particles' factors with their partial volumes folded in, now that
+    // nothing reads the plain ones (surface_correction.h folds_partial_volume).
+    if (features_.surface_factors) launch_surface_bond_factors(exec_, particles(), bonds(), materials_, true);
     end_stage("stable step");
     if (features_.state_based) {
       set_up_state_based();

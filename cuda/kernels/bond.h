@@ -86,9 +86,12 @@ struct SlotAhead {
   uint32_t surface = 0;  // BondsView::surface_bond
 };
 
+// kFactors: the caller knows the run has factors (the bond-based kSurface passes), and the load
+// goes without the test of the array at every bond (two instructions a bond; bench/NOTES.md).
+template <bool kFactors = false>
 PD_HD inline SlotAhead slot_ahead(const BondsView& b, int64_t slot) {
   SlotAhead a;
-  if (b.surface_bond) a.surface = load_streaming(b.surface_bond[slot]);
+  if (kFactors || b.surface_bond) a.surface = load_streaming(b.surface_bond[slot]);
   return a;
 }
 
@@ -201,8 +204,8 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geomet
 // bonds it found intact. kHistory (HistoryReads): the plastic histories the visitor reads, fetched
 // into L2 with the next index (prefetch_history: the plastic explicit lattice's step +12%). Slots
 // are counted from the family's first (H200, bench/NOTES.md: springforces +7-11% on the vase,
-// the torus and the explicit lattices).
-template <int kHistory, int kThreads, class Visit>
+// the torus and the explicit lattices). kFactors: slot_ahead's.
+template <int kHistory, bool kFactors, int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                                  const Team<kThreads>& team, Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
@@ -218,7 +221,7 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
   if (first < count) {
     const int64_t slot = first_slot + int64_t(first) * kSliceWidth;
     next = load_streaming(b.neighbor[slot]);
-    next_ahead = slot_ahead(b, slot);
+    next_ahead = slot_ahead<kFactors>(b, slot);
   }
   PD_BOND_LOOP
   for (int32_t k = first; k < count; k += kThreads) {
@@ -228,7 +231,7 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
     if (k + kThreads < count) {
       const int64_t next_slot = slot + kStride;
       next = load_streaming(b.neighbor[next_slot]);
-      next_ahead = slot_ahead(b, next_slot);
+      next_ahead = slot_ahead<kFactors>(b, next_slot);
       prefetch_history<kHistory>(b, next_slot);
     }
     if (!bond_intact(j)) continue;
@@ -360,9 +363,10 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
 // loop is not compiled in); kUnroll and kHistory as for_each_intact_lattice_bond. With a team
 // (team.h), each lane visits its share of the bonds and the count returned is the whole team's.
 // fetch_histories: false where the visitor reads none of the particle's histories (the lattice
-// loop's fetches of kHistory left out where no particle of the warp reads them).
-template <int kLattice = kLatticeListed, int kUnroll = 2, int kHistory = kNoHistory, int kThreads = 1,
-          class Visit>
+// loop's fetches of kHistory left out where no particle of the warp reads them). kFactors: the
+// run has surface factors, known at compile time (slot_ahead).
+template <int kLattice = kLatticeListed, int kUnroll = 2, int kHistory = kNoHistory, bool kFactors = false,
+          int kThreads = 1, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                           const Team<kThreads>& team, Visit&& visit,
                                           bool fetch_histories = true) {
@@ -370,7 +374,7 @@ PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, con
   if (kLattice != kNoLattice && stencil >= 0)
     return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll, kHistory>(i, stencil, p, b, team, visit,
                                                                               fetch_histories));
-  return team.sum(for_each_intact_listed_bond<kHistory>(i, p, b, team, visit));
+  return team.sum(for_each_intact_listed_bond<kHistory, kFactors>(i, p, b, team, visit));
 }
 template <int kLattice = kLatticeListed, int kUnroll = 2, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,

@@ -45,7 +45,7 @@ PD_HD inline double strain_energy(int32_t i, const ParticlesView& p, const Bonds
       const real ep = b.plastic ? b.plastic[slot] : real(0);
       sum += double(lps_bond_energy(g, si.x, si.y, ep, vol_i, m, surface_bond_at(b, slot)));
     } else {
-      const real weight = g.weight(m) * surface_bond_at(b, slot);
+      const real weight = pmb_bond_weight_at(g, m, b, slot);
       sum += double(pmb_bond_energy(g.e * g.inv_r0, g.r0, vol_i, weight, m));
     }
   });

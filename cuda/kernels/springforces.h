@@ -3,7 +3,7 @@
 // bond when s > w max(tau'_i, tau'_j) (w the bond's strength, 1 unless the scene weakens
 // bonds; both ends decide identically, so momentum is kept);
 // record the minimum stretch for eq. 5; accumulate f_i = sum_j c g_ij s V_i V_j beta_ij y/|y|
-// (g_ij the surface correction's factor, 1 without it).
+// (g_ij the surface correction's factor, 1 without it; beta_ij V_j g_ij: surface_bond_weight).
 #pragma once
 
 #include <cmath>
@@ -20,18 +20,36 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, co
   return real(0.25) * m.micromodulus * s * s * r0 * vol_i * weight_j;
 }
 
-// A bond's weight beta V_j times the surface correction's factor on its micromodulus
-// (surface_correction.h): a lattice bond's from its particle's row of factors per stencil entry
-// (`row`, surface_row_of), a listed bond's from its slot, loaded ahead (SlotAhead); the weight
-// alone without the correction (kSurface false), at no cost.
+// A bond's weight beta V_j times the surface correction's factor g on its micromodulus
+// (surface_correction.h), in units of kWeightUnit<kSurface>: a lattice bond's beta V_j from its
+// stencil entry and g from its particle's row of factors per stencil entry (`row`,
+// surface_row_of), a listed bond's V_j times its slot's g beta, loaded ahead (SlotAhead;
+// folds_partial_volume); beta V_j alone without the correction (kSurface false), at no cost.
+// With the correction the stored factor's step 2^-12 is left out of every bond and the force
+// pass applies it to its sum after the loop: a power of two, so the same bits, and one
+// instruction a bond fewer (bench/NOTES.md).
+template <bool kSurface>
+constexpr real kWeightUnit = kSurface ? real(kSurfaceBondStep) : real(1);
+
 template <bool kSurface, class Geometry>
-PD_HD inline real surface_bond_weight(real weight, const Geometry& g, const uint16_t* row) {
+PD_HD inline real surface_bond_weight(const Geometry& g, const Material& m, const uint16_t* row) {
   if constexpr (!kSurface)
-    return weight;
+    return g.weight(m);
   else if constexpr (std::is_same_v<Geometry, LatticeBondGeometry>)
-    return weight * surface_bond_value(row[g.entry]);
+    return g.weight(m) * real(row[g.entry]);
   else
-    return weight * surface_bond_value(g.ahead.surface);
+    return g.volume_j * real(g.ahead.surface);
+}
+
+// The same weight where a bond's factor is read at its slot (the energy, once per frame): 1
+// without factors, and a listed bond's slot holding g beta.
+template <class Geometry>
+PD_HD inline real pmb_bond_weight_at(const Geometry& g, const Material& m, const BondsView& b, int64_t slot) {
+  if (!b.surface_bond) return g.weight(m);
+  if constexpr (std::is_same_v<Geometry, LatticeBondGeometry>)
+    return g.weight(m) * surface_bond_value(b.surface_bond[slot]);
+  else
+    return g.volume_j * surface_bond_value(b.surface_bond[slot]);
 }
 
 // The entry loop unrolled 8 times where bonds may be weakened, as the compiler picks (2) else
@@ -46,16 +64,16 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
                                 int32_t* broke, const Team<kThreads>& team = {}) {
   const Material& m = mt.m[p.material[i]];
   const real vol_i = p.volume(i), tau_i = p.strain_limit(i);
-  Vec3 f{0, 0, 0};  // sum over the intact bonds of s beta V_j y/|y| (c V_i applied once at the end)
+  Vec3 f{0, 0, 0};  // sum over the intact bonds of s beta V_j g y/|y| (c V_i applied once at the end)
   real smin = real(INFINITY);
   ReleasedEnergy<kThreads> released;
   const uint16_t* row = surface_row_of<kSurface>(b, i);
-  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
+  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>, kNoHistory, kSurface>(
       i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
-        const real weight = surface_bond_weight<kSurface>(g.weight(m), g, row);
+        const real weight = surface_bond_weight<kSurface>(g, m, row);
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
-          released.add(p, i, double(pmb_bond_energy(s, g.r0, vol_i, weight, m)));
+          released.add(p, i, double(pmb_bond_energy(s, g.r0, vol_i, weight * kWeightUnit<kSurface>, m)));
           if (kRaiseInBranch<kWeak>) raise_flag(broke);
           return false;  // broken: for_each_intact_bond records it
         }
@@ -64,8 +82,8 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
         return true;
       });
   released.settle(p, i, team);
-  write_bond_forces(i, p, (m.micromodulus * vol_i) * team.sum(f), team.min(smin), intact,
-                    kRaiseInBranch<kWeak> ? nullptr : broke, team);
+  write_bond_forces(i, p, (m.micromodulus * vol_i) * (team.sum(f) * kWeightUnit<kSurface>), team.min(smin),
+                    intact, kRaiseInBranch<kWeak> ? nullptr : broke, team);
 }
 
 // The screened pass (bond_screen.h): the same sums with no breaking path, and after the loop
@@ -87,17 +105,18 @@ PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b
   real smin = real(INFINITY);
   real nearest = -real(INFINITY);  // the largest s - w tau_i (s alone without weakened bonds)
   const uint16_t* row = surface_row_of<kSurface>(b, i);
-  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>>(
+  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>, kNoHistory, kSurface>(
       i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         nearest = max_of(nearest, kWeak ? s - bond_strength<kWeak>(b, slot, g) * tau_early : s);
         smin = min_of(s, smin);
-        f += (s * surface_bond_weight<kSurface>(g.weight(m), g, row) * g.inv_r) * g.y;
+        f += (s * surface_bond_weight<kSurface>(g, m, row) * g.inv_r) * g.y;
       });
   if (may_break<kWeak>(team.max(nearest), kEarly ? tau_early : p.strain_limit(i)))
     return spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke, team);
-  write_bond_forces(i, p, (m.micromodulus * (kEarly ? vol_early : p.volume(i))) * team.sum(f), team.min(smin),
-                    intact, nullptr, team);
+  write_bond_forces(
+      i, p, (m.micromodulus * (kEarly ? vol_early : p.volume(i))) * (team.sum(f) * kWeightUnit<kSurface>),
+      team.min(smin), intact, nullptr, team);
 }
 
 }  // namespace pd

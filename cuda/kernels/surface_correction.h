@@ -107,31 +107,47 @@ PD_HD inline void update_surface_factor(int32_t i, ParticlesView p, BondsView b,
   p.surface_factor[i] = {real(g[0]), real(g[1]), real(g[2])};
 }
 
-// The factor on a bond along xi between particles with factors gi and gj (componentwise), as
-// stored.
-PD_HD inline uint16_t surface_bond_factor(Vec3 xi, Vec3 gi, Vec3 gj) {
+// The factor on a bond along xi between particles with factors gi and gj (componentwise), times
+// `scale` (the partial volume where it is folded in, below), as stored.
+PD_HD inline uint16_t surface_bond_factor(Vec3 xi, Vec3 gi, Vec3 gj, real scale = real(1)) {
   const real gx = real(0.5) * (gi.x + gj.x), gy = real(0.5) * (gi.y + gj.y), gz = real(0.5) * (gi.z + gj.z);
   const real sum = xi.x * xi.x / (gx * gx) + xi.y * xi.y / (gy * gy) + xi.z * xi.z / (gz * gz);
-  const double g = double(std::sqrt(dot(xi, xi) / sum)) / kSurfaceBondStep;
+  const double g = double(std::sqrt(dot(xi, xi) / sum)) * double(scale) / kSurfaceBondStep;
   return uint16_t(g < 65535.0 ? std::floor(g + 0.5) : 65535.0);
 }
 
+// Whether particle i's slots hold its bonds' factors with their partial volumes folded in, g beta
+// (once the set-up has folded them, surface_bond_factors): a bond-based particle walked from its
+// list (no lattice stencil). Its force loop then reads the product and takes the partial-volume
+// rule at no bond (where the material has partial volumes off, as PMB has by default, the rule's
+// test alone: bench/NOTES.md, the vase's springforces +2.5%, the torus's +4%); a lattice bond's
+// stencil entry carries beta V_j already, and state-based loops take beta once per particle.
+PD_HD inline bool folds_partial_volume(int32_t i, const BondsView& b, const Material& m) {
+  return m.model != kStateBased && !(b.lattice.stencil && b.lattice.stencil[i] >= 0);
+}
+
 // Set-up, second pass (every particle's factors known, ghosts' included): each bond's factor at
-// its slot.
-PD_HD inline void surface_bond_factors(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt) {
+// its slot; with `fold` (the set-up's last pass, after every reader of the plain factors:
+// the rounds, the lattice rows, the stable step), times the bond's partial volume where
+// folds_partial_volume. Where beta is 1 (no partial volumes, or a bond within delta - lambda/2)
+// the stored value is the plain factor's.
+PD_HD inline void surface_bond_factors(int32_t i, ParticlesView p, BondsView b, const MaterialTable& mt,
+                                       bool fold = false) {
   const Material& m = mt.m[p.material[i]];
+  const bool folds = fold && folds_partial_volume(i, b, m);
   const Vec3 x_i = xyz(p.rest[i]);
   for (int32_t k = 0; k < b.count[i]; ++k) {
     const int32_t j = bond_partner(b.neighbor[b.slot(i, k)]);
-    b.surface_bond[b.slot(i, k)] = surface_bond_factor(set_up_bond_vector(x_i, xyz(p.rest[j]), m),
-                                                       p.surface_factor[i], p.surface_factor[j]);
+    const Vec3 xi = set_up_bond_vector(x_i, xyz(p.rest[j]), m);
+    const real beta = folds ? volume_fraction(length(xi), m) : real(1);
+    b.surface_bond[b.slot(i, k)] = surface_bond_factor(xi, p.surface_factor[i], p.surface_factor[j], beta);
   }
 }
 
 // The factor on the bond at `slot`, 1 where the run has no factors (then exactly the uncorrected
 // bits): set-up, the energy, and the energy a breaking state-based bond releases (the force and
 // dilatation kernels use surface_factor_of below, bond-based forces springforces.h's
-// compile-time form).
+// compile-time form). A listed bond-based particle's slot holds g beta (folds_partial_volume).
 PD_HD inline real surface_bond_at(const BondsView& b, int64_t slot) {
   return b.surface_bond ? surface_bond_value(b.surface_bond[slot]) : real(1);
 }

@@ -166,8 +166,11 @@ Response stretched_response(SimulationInput in, int steps) {
 }
 
 // A lattice body with the correction against the same body with explicit families: the first
-// has rows of factors, far fewer than particles, the second none; both give the same response.
-void expect_rows_hold_the_slots_factors(const SimulationInput& lattice) {
+// has rows of factors, far fewer than particles, the second none; both give the same response, the
+// strain energy within `energy_tolerance` (relative), each force within `force_tolerance` of the
+// largest.
+void expect_rows_hold_the_slots_factors(const SimulationInput& lattice, double energy_tolerance = 1e-5,
+                                        double force_tolerance = 1e-4) {
   const int64_t rows = make_cpu_engine(lattice)->family_stats().surface_rows;
   std::printf("  %lld rows of factors for %zu particles\n", (long long)rows, lattice.particles.size());
   EXPECT_GT(rows, 0);
@@ -177,21 +180,27 @@ void expect_rows_hold_the_slots_factors(const SimulationInput& lattice) {
   EXPECT_EQ(make_cpu_engine(listed)->family_stats().surface_rows, 0);
   const Response a = stretched_response(lattice, 10), b = stretched_response(listed, 10);
   std::printf("  strain energy: lattice rows %.7e J, slots %.7e J\n", a.strain, b.strain);
-  EXPECT_NEAR(a.strain / b.strain, 1.0, 1e-5);
+  EXPECT_NEAR(a.strain / b.strain, 1.0, energy_tolerance);
   double worst = 0, largest = 0;
   for (size_t i = 0; i < a.force.size(); ++i) {
     worst = std::fmax(worst, double(length(a.force[i] - b.force[i])));
     largest = std::fmax(largest, double(length(b.force[i])));
   }
-  EXPECT_LT(worst, 1e-4 * largest);
+  std::printf("  largest force difference %.2e of the largest force\n", worst / largest);
+  EXPECT_LT(worst, force_tolerance * largest);
 }
 
 // Lattice particles read their bonds' factors from rows of a table, one per class of particles
 // placed alike relative to the faces, explicit families at their slots: both give the same
-// response (to the float rounding of the stencil's bond vectors against the positions'
-// differences, measured 1e-7), and a long block has far fewer rows than particles.
+// response, and a long block has far fewer rows than particles. The glass has partial volumes,
+// which a lattice bond takes from its stencil entry and a listed one from its slot, where its
+// factor is stored times its partial volume (surface_correction.h folds_partial_volume) in the
+// same steps of 2^-12: a bond's g beta is at least about 1/2 (beta falls to 1/2 at |xi| = delta,
+// the family's edge), so the step moves it by at most 2^-13 / (1/2) = 2.4e-4 of itself, and a sum
+// of bonds' energies by as much (measured 7e-6); a force, a difference of bonds' pulls, by that
+// share of their magnitudes, about ten times its own at the faces (measured 6e-5 of the largest).
 TEST(SurfaceCorrection, LatticeRowsHoldTheBondsFactors) {
-  expect_rows_hold_the_slots_factors(block(120, 8, 6, true));
+  expect_rows_hold_the_slots_factors(block(120, 8, 6, true), 2.4e-4, 2.4e-3);
 }
 
 // The state-based kernels read a lattice bond's factor from the same rows (the stored bits of its
