@@ -24,6 +24,9 @@ class CpuExec {
 
   explicit CpuExec(KernelStats* stats) : stats_(stats) {}
 
+  // The GPU's threads per block of team launches (CudaExec::set_team_block); no meaning here.
+  void set_team_block(int) {}
+
   // kMinBlocks: the GPU backend's occupancy hint (CudaExec::parallel_for); no meaning here.
   template <int kMinBlocks = 0, class F>
   void parallel_for(const char* name, int64_t n, F f) {

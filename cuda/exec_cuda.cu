@@ -184,19 +184,19 @@ void CudaExec::launch_graph(int slot, const char* name) {
   end_timing(name, start);
 }
 
-void CudaExec::describe(KernelStat* s, const void* kernel) {
+void CudaExec::describe(KernelStat* s, const void* kernel, int block) {
   cudaFuncAttributes attr{};
   cuda_check(cudaFuncGetAttributes(&attr, kernel), "cudaFuncGetAttributes");
   int blocks_per_sm = 0;
-  cuda_check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, kernel, kBlockSize, 0),
+  cuda_check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, kernel, block, 0),
              "cudaOccupancyMaxActiveBlocksPerMultiprocessor");
   int device = 0, max_threads_per_sm = 0;
   cuda_check(cudaGetDevice(&device), "cudaGetDevice");
   cuda_check(cudaDeviceGetAttribute(&max_threads_per_sm, cudaDevAttrMaxThreadsPerMultiProcessor, device),
              "cudaDeviceGetAttribute");
   s->registers = attr.numRegs;
-  s->block_size = kBlockSize;
-  s->occupancy = double(blocks_per_sm * kBlockSize) / double(max_threads_per_sm);
+  s->block_size = block;
+  s->occupancy = double(blocks_per_sm * block) / double(max_threads_per_sm);
 }
 
 int64_t CudaExec::resident_blocks(const void* kernel) const {

@@ -100,6 +100,12 @@ class CudaExec {
   static constexpr int kBlockSize = kCudaBlockSize;
 
   explicit CudaExec(KernelStats* stats);
+
+  // Threads per block of the team launches: kBlockSize, or 128 (team.h team_block_for). The same
+  // kernels (their register bound is for kBlockSize, which any smaller block keeps) and the same
+  // bits: a team's sums are its own and a launch's particles its own, whatever the blocks.
+  void set_team_block(int threads) { team_block_ = threads; }
+  int team_block() const { return team_block_; }
   ~CudaExec();
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
@@ -143,17 +149,20 @@ class CudaExec {
   }
 
   // f(i, team) for i in [first, first + n), each i run by a team of kThreads > 1 threads
-  // (team.h; the CPU backend has one thread per item, and launches of Team<1> use parallel_for).
+  // (team.h; the CPU backend has one thread per item, and launches of Team<1> use parallel_for),
+  // in blocks of team_block() threads.
   template <int kThreads, int kMinBlocks = 0, class F>
   void parallel_for_team(const char* name, int64_t first, int64_t n, F f) {
     static_assert(kThreads > 1);
     if (n <= 0) return;
     KernelStat* s = stats_ ? &stats_->entry(name) : nullptr;
     if (s && s->registers < 0)
-      describe(s, reinterpret_cast<const void*>(&parallel_for_team_kernel<kThreads, kMinBlocks, F>));
-    const int64_t blocks = (n * kThreads + kBlockSize - 1) / kBlockSize;
+      describe(s, reinterpret_cast<const void*>(&parallel_for_team_kernel<kThreads, kMinBlocks, F>),
+               team_block_);
+    const int64_t blocks = (n * kThreads + team_block_ - 1) / team_block_;
     cudaEvent_t start = begin_timing(name);
-    parallel_for_team_kernel<kThreads, kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
+    parallel_for_team_kernel<kThreads, kMinBlocks>
+        <<<unsigned(blocks), team_block_, 0, stream_>>>(first, n, f);
     cuda_check(cudaGetLastError(), name);
     end_timing(name, start);
   }
@@ -272,7 +281,7 @@ class CudaExec {
     const char* name;
     cudaEvent_t start, stop;
   };
-  void describe(KernelStat* s, const void* kernel);
+  void describe(KernelStat* s, const void* kernel, int block = kBlockSize);
   int64_t resident_blocks(const void* kernel) const;  // blocks of `kernel` the GPU holds at once
   cudaEvent_t begin_timing(const char* name);         // counts the launch; an event where it is timed
   void end_timing(const char* name, cudaEvent_t start);
@@ -280,6 +289,7 @@ class CudaExec {
   void* scratch(int slot, size_t bytes);
 
   KernelStats* stats_;
+  int team_block_ = kBlockSize;
   std::vector<Pending> pending_;
   std::vector<cudaEvent_t> free_events_;
   void* scratch_[3] = {nullptr, nullptr, nullptr};

@@ -138,6 +138,22 @@ constexpr int bond_threads_for(int64_t particles, bool mesh_filled, int requeste
   return threads;
 }
 
+// Threads per block of a run's team launches (CudaExec::set_team_block): 128 where bond-based
+// teams walk mesh-filled families of under kShortLaneBonds bonds a lane on average, else 256,
+// every other launch's. Short loops finish unevenly, and smaller blocks let an SM start new work
+// where half the warps of a block of 256 would still hold it; long ones lose from the partners
+// of a warp's neighbours spread over more blocks. Swept on an H200 (bench/NOTES.md, "Team
+// launches in blocks of 128"), springforces: the vase (75 bonds a particle, 4 lanes: 19 a lane)
+// +1.8%, the gallery's vase (75, 8 lanes: 9) +1.7%, the torus of Voronoi cells at --scale 5
+// (531, 8 lanes: 66) +1.5%, at Levine's size (531, 4 lanes: 133) -2.6%. State-based runs keep 256:
+// their force and dilatation passes went -1.2 to +4.2% by scene. `requested` > 0
+// (PERIFRAC_TEAM_BLOCK) forces a size.
+constexpr double kShortLaneBonds = 100;
+constexpr int team_block_for(bool mesh_filled, bool state_based, double bonds_per_lane, int requested) {
+  if (requested > 0) return requested;
+  return mesh_filled && !state_based && bonds_per_lane < kShortLaneBonds ? 128 : 256;
+}
+
 // The lanes per particle of the ghost kernels (surface_ghosts.h), from the ghosted particles'
 // count: each particle's fit walks its family and its ghosts with 27 sums in registers. (The
 // gather from pushed shares on springforces' lanes instead: one thread a particle on the 380k

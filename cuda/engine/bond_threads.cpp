@@ -26,14 +26,34 @@ int requested_bond_threads(const SimulationInput& in) {
   return threads;
 }
 
+// Whether most of the run's particles are mesh-filled. Box grids count as regular with explicit
+// families too (--explicit-families): their families are as even as the lattice's, and one thread
+// per particle beats 4 lanes there by 10-14% at 1M.
+static bool mesh_filled(const SimulationInput& in) {
+  const int64_t n = int64_t(in.particles.size());
+  return 2 * (n - box_grid_particles(in.particles)) > n;
+}
+
 int bond_threads_of(const SimulationInput& in) {
   const int requested = requested_bond_threads(in);
   if (requested > 0) return requested;
-  const int64_t n = int64_t(in.particles.size());
-  // Box grids count as regular with explicit families too (--explicit-families): their families
-  // are as even as the lattice's, and one thread per particle beats 4 lanes there by 10-14% at 1M.
-  const int64_t regular = box_grid_particles(in.particles);
-  return bond_threads_for(n, 2 * (n - regular) > n, 0);
+  return bond_threads_for(int64_t(in.particles.size()), mesh_filled(in), 0);
+}
+
+int requested_team_block() {
+  const char* v = std::getenv("PERIFRAC_TEAM_BLOCK");
+  if (!v || !*v) return 0;
+  const std::string s = v;
+  if (s != "0" && s != "128" && s != "256")
+    throw std::invalid_argument("environment PERIFRAC_TEAM_BLOCK='" + s +
+                                "': allowed are 128, 256 (threads per block) and 0 (chosen from the scene)");
+  return std::atoi(v);
+}
+
+int team_block_of(const SimulationInput& in, bool state_based, double mean_bonds, int lanes) {
+  const int requested = requested_team_block();
+  if (requested > 0) return requested;
+  return team_block_for(mesh_filled(in), state_based, mean_bonds / std::max(lanes, 1), 0);
 }
 
 std::vector<int32_t> balanced_particle_order(const std::vector<int32_t>& count, int window) {

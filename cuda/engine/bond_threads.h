@@ -20,6 +20,13 @@ int requested_bond_threads(const SimulationInput& in);
 // families are even whether read by lattice offset or from explicit lists).
 int bond_threads_of(const SimulationInput& in);
 
+// The threads per block of the run's team launches: PERIFRAC_TEAM_BLOCK where set (128 or 256;
+// 0: chosen), else team_block_for from whether most particles are mesh-filled, whether the run
+// has state-based materials and its families' mean bond count over its `lanes` per particle.
+// std::invalid_argument names a bad value.
+int requested_team_block();
+int team_block_of(const SimulationInput& in, bool state_based, double mean_bonds, int lanes);
+
 // The order in which a team launch visits explicit families (ParticleRange::ids): within each
 // window of `window` consecutive particles, longest family first (ties by index). A warp's time is
 // its longest family's, so warps of like counts idle fewer lanes. The window is a slice of the

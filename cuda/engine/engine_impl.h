@@ -75,6 +75,7 @@ class EngineImpl final : public Engine {
     }
     end_stage("upload");
     build_families(mem_, state_, owned_, materials_, features_, backend(), family_);
+    exec_.set_team_block(team_block_of(in, features_.state_based, family_.mean, bond_threads_));
     end_stage("families");
     // The surface correction's factors come from the families before the pre-cracks: a crack is
     // not a surface of the body (none formed in the run is either; docs/validation.md,

@@ -106,6 +106,31 @@ TEST(GpuTeam, StateBasedPlasticListed) {
   expect_teams_follow_one_thread(in, 200);
 }
 
+// Runs `in` 200 steps on two engines made with the environment's `var` at `first` and at
+// `second` (null: unset) and expects the same bits and broken bonds, the bar breaking.
+void expect_the_same_run_with(const SimulationInput& in, const char* var, const char* first,
+                              const char* second) {
+  auto make = [&](const char* value) {
+    if (value)
+      setenv(var, value, 1);
+    else
+      unsetenv(var);
+    auto engine = make_cuda_engine(in);
+    unsetenv(var);
+    engine->advance(200);
+    return engine;
+  };
+  auto one = make(first), other = make(second);
+  ParticleState a, b;
+  one->read_state(a);
+  other->read_state(b);
+  const auto broken = testing::broken_bond_set(*one);
+  EXPECT_GT(broken.size(), 100u) << "the bar must break";
+  EXPECT_TRUE(testing::same_bits(a.disp, b.disp));
+  EXPECT_TRUE(testing::same_bits(a.force, b.force));
+  EXPECT_EQ(broken, testing::broken_bond_set(*other));
+}
+
 // Bond-based team launches over explicit families visit the particles longest family first
 // within each slice (bond_threads.h balanced_particle_order); a particle's sums are its own, so
 // the run gives the bits of the launch in index order (PERIFRAC_BALANCE_WINDOW=0), bonds
@@ -119,21 +144,20 @@ TEST(GpuTeam, BalancedOrderGivesTheBitsOfTheIndexOrder) {
     for (int threads : {4, 8}) {
       SCOPED_TRACE(threads);
       in->bond_threads = threads;
-      setenv("PERIFRAC_BALANCE_WINDOW", "0", 1);
-      auto by_index = make_cuda_engine(*in);
-      unsetenv("PERIFRAC_BALANCE_WINDOW");
-      auto balanced = make_cuda_engine(*in);
-      by_index->advance(200);
-      balanced->advance(200);
-      ParticleState a, b;
-      by_index->read_state(a);
-      balanced->read_state(b);
-      const auto broken = testing::broken_bond_set(*by_index);
-      EXPECT_GT(broken.size(), 100u) << "the bar must break";
-      EXPECT_TRUE(testing::same_bits(a.disp, b.disp));
-      EXPECT_TRUE(testing::same_bits(a.force, b.force));
-      EXPECT_EQ(broken, testing::broken_bond_set(*balanced));
+      expect_the_same_run_with(*in, "PERIFRAC_BALANCE_WINDOW", "0", nullptr);
     }
+}
+
+// Team launches in blocks of 128 threads (team.h team_block_for) give the bits of blocks of 256:
+// the blocks decide only where each team runs.
+TEST(GpuTeam, BlocksOf128GiveTheBitsOfBlocksOf256) {
+  REQUIRE_GPU();
+  auto in = testing::pulled_apart(testing::lattice_block(32, 16, 16, kLambda, 2e-4, 0.2), 32, kLambda, 2);
+  for (int threads : {4, 8}) {
+    SCOPED_TRACE(threads);
+    in.bond_threads = threads;
+    expect_the_same_run_with(in, "PERIFRAC_TEAM_BLOCK", "256", "128");
+  }
 }
 
 // The screened and breaking passes give the same bits with teams too (cuda/kernels/bond_screen.h).

@@ -60,6 +60,38 @@ TEST(BondThreads, ChosenFromTheParticleCountAndTheFamilies) {
   EXPECT_EQ(bond_threads_of(grid), 1);
 }
 
+// Team launches in blocks of 128 where bond-based teams walk short mesh-filled families, else
+// 256; the environment forces a size, and names what it allows where it is bad.
+TEST(BondThreads, TeamBlockFromTheFamiliesOrTheEnvironment) {
+  unsetenv("PERIFRAC_TEAM_BLOCK");
+  SimulationInput grid, jittered;
+  grid.particles = testing::lattice_block(16, 16, 16, kLambda, 1e-4).particles;
+  jittered.particles = testing::lattice_block(16, 16, 16, kLambda, 1e-4, 0.2).particles;
+  EXPECT_EQ(team_block_of(jittered, false, 75, 4), 128);   // the vase's families, 19 bonds a lane
+  EXPECT_EQ(team_block_of(jittered, false, 531, 8), 128);  // the torus's at 8 lanes, 66 a lane
+  EXPECT_EQ(team_block_of(jittered, false, 531, 4), 256);  // at 4 lanes, 133 a lane
+  EXPECT_EQ(team_block_of(jittered, false, 4 * kShortLaneBonds, 4), 256);  // at the bound
+  EXPECT_EQ(team_block_of(jittered, true, 75, 8), 256);                    // state-based
+  EXPECT_EQ(team_block_of(grid, false, 75, 4), 256);                       // a box grid's even families
+  setenv("PERIFRAC_TEAM_BLOCK", "128", 1);
+  EXPECT_EQ(team_block_of(grid, true, 531, 4), 128);
+  setenv("PERIFRAC_TEAM_BLOCK", "0", 1);
+  EXPECT_EQ(team_block_of(jittered, false, 75, 4), 128);
+  for (const char* bad : {"64", "512", "x", "-128", "1280"}) {
+    setenv("PERIFRAC_TEAM_BLOCK", bad, 1);
+    try {
+      team_block_of(jittered, false, 75, 4);
+      ADD_FAILURE() << bad << " threads per block accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("PERIFRAC_TEAM_BLOCK='" + std::string(bad) + "'"),
+                std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("allowed are 128, 256"), std::string::npos) << e.what();
+    }
+  }
+  unsetenv("PERIFRAC_TEAM_BLOCK");
+}
+
 TEST(BondThreads, BalancedOrderSortsEachWindowLongestFamilyFirst) {
   const std::vector<int32_t> count = {3, 9, 9, 1, 5, 7, 2, 8, 4, 6};
   EXPECT_TRUE(balanced_particle_order(count, 0).empty());
