@@ -105,7 +105,6 @@ class CudaExec {
   // kernels (their register bound is for kBlockSize, which any smaller block keeps) and the same
   // bits: a team's sums are its own and a launch's particles its own, whatever the blocks.
   void set_team_block(int threads) { team_block_ = threads; }
-  int team_block() const { return team_block_; }
   ~CudaExec();
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
@@ -150,7 +149,7 @@ class CudaExec {
 
   // f(i, team) for i in [first, first + n), each i run by a team of kThreads > 1 threads
   // (team.h; the CPU backend has one thread per item, and launches of Team<1> use parallel_for),
-  // in blocks of team_block() threads.
+  // in blocks of set_team_block's threads.
   template <int kThreads, int kMinBlocks = 0, class F>
   void parallel_for_team(const char* name, int64_t first, int64_t n, F f) {
     static_assert(kThreads > 1);
