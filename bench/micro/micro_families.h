@@ -203,7 +203,8 @@ __device__ __forceinline__ void finish(int i, Bond acc, float4* force, int lane)
 }
 
 // The particles: a run's frame (`points.ply DELTA LAMBDA`) or a lattice (`--lattice N`: N^3
-// particles at spacing 1 mm, delta 3.015 lambda). False where the arguments or the file are bad.
+// particles at spacing 1 mm, delta 3.015 lambda). False where the arguments (the usage printed) or
+// the file are bad.
 struct Input {
   std::vector<float> pos;
   float delta = 0, spacing = 0;
@@ -211,7 +212,10 @@ struct Input {
 };
 
 static bool read_input(int argc, char** argv, Input& in) {
-  if (argc < 3 || (std::string(argv[1]) != "--lattice" && argc < 4)) return false;
+  if (argc < 3 || (std::string(argv[1]) != "--lattice" && argc < 4)) {
+    std::fprintf(stderr, "usage: %s points.ply DELTA LAMBDA | %s --lattice N\n", argv[0], argv[0]);
+    return false;
+  }
   if (std::string(argv[1]) == "--lattice") {
     const int m = std::atoi(argv[2]);
     in.spacing = 1e-3f;

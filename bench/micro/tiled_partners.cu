@@ -107,10 +107,7 @@ __global__ void __launch_bounds__(256) tiled_kernel(View v) {
 
 int main(int argc, char** argv) {
   Input in;
-  if (!read_input(argc, argv, in)) {
-    std::fprintf(stderr, "usage: tiled_partners points.ply DELTA LAMBDA | tiled_partners --lattice N\n");
-    return 2;
-  }
+  if (!read_input(argc, argv, in)) return 2;
   const std::vector<float>& pos = in.pos;
   const float delta = in.delta, spacing = in.spacing;
   const std::string& what = in.what;
