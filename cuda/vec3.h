@@ -87,6 +87,52 @@ PD_HD inline double fast_divide(double a, double b) {
   return a / b;
 }
 
+// A product and a multiply-add whose rounding is written out on the GPU. nvcc fuses a product
+// into the add that takes it where it likes, and which of two products it fuses into their sum
+// follows the code around them: an edit that left a bond loop's arithmetic alone made it fuse
+// the other length's product into |y| + |xi| and moved the vase's impact by an ulp, and then
+// everything after it (bench/NOTES.md, "The vase's impact on the GPU"). The bond geometry takes
+// these, which fix the choice; the CPU computes the plain expressions, as before (its default
+// build has no FMA).
+PD_HD inline float pinned_product(float a, float b) {
+#if defined(__CUDA_ARCH__)
+  return __fmul_rn(a, b);
+#else
+  return a * b;
+#endif
+}
+PD_HD inline double pinned_product(double a, double b) {
+#if defined(__CUDA_ARCH__)
+  return __dmul_rn(a, b);
+#else
+  return a * b;
+#endif
+}
+PD_HD inline float pinned_fma(float a, float b, float c) {
+#if defined(__CUDA_ARCH__)
+  return __fmaf_rn(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+PD_HD inline double pinned_fma(double a, double b, double c) {
+#if defined(__CUDA_ARCH__)
+  return __fma_rn(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+
+// dot(a, b) with its products fused on the GPU as nvcc fused them in the bond loops: a.y b.y
+// rounded, a.x b.x and then a.z b.z added in by multiply-adds.
+PD_HD inline real pinned_dot(Vec3 a, Vec3 b) {
+#if defined(__CUDA_ARCH__)
+  return pinned_fma(a.z, b.z, pinned_fma(a.x, b.x, pinned_product(a.y, b.y)));
+#else
+  return dot(a, b);
+#endif
+}
+
 // The smallest normal `real`: squared lengths below it count as zero.
 constexpr real kMinNormal = std::numeric_limits<real>::min();
 

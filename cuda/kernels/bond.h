@@ -39,24 +39,32 @@ PD_HD inline real volume_fraction(real r0, const PartialVolumes& v) {
 }
 
 // |y| - |xi| without cancellation: (|y|^2 - |xi|^2) / (|y| + |xi|) with
-// |y|^2 - |xi|^2 = 2 xi.eta + eta.eta. Identical bits from both ends of a bond.
-PD_HD inline real bond_elongation(Vec3 xi, Vec3 eta, real r0, real r) {
-  return fast_divide(real(2) * dot(xi, eta) + dot(eta, eta), r + r0);
+// |y|^2 - |xi|^2 = 2 xi.eta + eta.eta; `lengths_sum` is |y| + |xi| (bond_lengths_sum). Identical
+// bits from both ends of a bond. The GPU's rounding is pinned (vec3.h pinned_dot).
+PD_HD inline real bond_elongation(Vec3 xi, Vec3 eta, real lengths_sum) {
+  return fast_divide(pinned_fma(real(2), pinned_dot(xi, eta), pinned_dot(eta, eta)), lengths_sum);
+}
+
+// |y| + |xi| from |y|^2, 1/|y| and |xi|: |y|'s product fused into the sum on the GPU.
+PD_HD inline real bond_lengths_sum(real r2, real inv_r, real r0) {
+  return pinned_fma(r2, inv_r, r0);
 }
 
 // Lengths of one bond and their reciprocals: reference |xi| and current |y| (0 when the two
-// particles coincide, |y|^2 below kMinNormal, with reciprocal 0 so the bond exerts no force).
+// particles coincide, |y|^2 below kMinNormal, with reciprocal 0 so the bond exerts no force),
+// and their sum (bond_elongation's).
 struct BondLengths {
-  real r0, inv_r0, r, inv_r;
+  real r0, inv_r0, r, inv_r, sum;
 };
 
 PD_HD inline BondLengths bond_lengths(Vec3 xi, Vec3 y) {
   BondLengths l;
-  const real r02 = dot(xi, xi), r2 = dot(y, y);
+  const real r02 = pinned_dot(xi, xi), r2 = pinned_dot(y, y);
   l.inv_r0 = fast_rsqrt(r02);
-  l.r0 = r02 * l.inv_r0;
+  l.r0 = pinned_product(r02, l.inv_r0);
   l.inv_r = r2 >= kMinNormal ? fast_rsqrt(r2) : real(0);
   l.r = r2 * l.inv_r;
+  l.sum = bond_lengths_sum(r2, l.inv_r, l.r0);
   return l;
 }
 
@@ -166,7 +174,7 @@ PD_HD inline BondGeometry bond_geometry(Vec4 rest_i, Vec4 disp_i, Vec4 rest_j, V
   g.inv_r0 = l.inv_r0;
   g.r = l.r;
   g.inv_r = l.inv_r;
-  g.e = bond_elongation(g.xi, eta, g.r0, g.r);
+  g.e = bond_elongation(g.xi, eta, l.sum);
   g.volume_j = rest_j.w;
   g.tau_j = disp_j.w;
   g.weak = true;
@@ -250,12 +258,12 @@ PD_HD inline LatticeBondGeometry lattice_bond_geometry(const StencilEntry& s, Ve
   g.xi = xyz(s.xi);
   const Vec3 eta = xyz(disp_j) - xyz(disp_i);
   g.y = g.xi + eta;
-  const real r2 = dot(g.y, g.y);
+  const real r2 = pinned_dot(g.y, g.y);
   g.r0 = s.xi.w;
   g.inv_r0 = s.inv_r0;
   g.inv_r = r2 >= kMinNormal ? fast_rsqrt(r2) : real(0);
   g.r = r2 * g.inv_r;
-  g.e = bond_elongation(g.xi, eta, g.r0, g.r);
+  g.e = bond_elongation(g.xi, eta, bond_lengths_sum(r2, g.inv_r, g.r0));
   g.volume_j = s.weight;
   g.tau_j = disp_j.w;
   g.weak = weak;

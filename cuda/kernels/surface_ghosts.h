@@ -174,7 +174,7 @@ PD_HD inline GhostBond ghost_bond(const GhostFit& f, Vec4 offset, real inv_delta
   const BondLengths l = bond_lengths(xi, o.y);
   o.r0 = l.r0;
   o.inv_r = l.inv_r;
-  o.e = bond_elongation(xi, eta, l.r0, l.r);
+  o.e = bond_elongation(xi, eta, l.sum);
   o.weight = offset.w;
   return o;
 }

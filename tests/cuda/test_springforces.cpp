@@ -77,7 +77,7 @@ TEST(SpringForces, ElongationHasNoCancellation) {
   const double dx = 0.3 + 1e-7, dy = -0.2 + 3e-8, dz = 0.1 - 2e-8;
   const double exact = std::sqrt(dx * dx + dy * dy + dz * dz) - r0;
   const real r = length(xi + eta);
-  EXPECT_NEAR(bond_elongation(xi, eta, length(xi), r), exact, 1e-4 * std::fabs(exact));
+  EXPECT_NEAR(bond_elongation(xi, eta, length(xi) + r), exact, 1e-4 * std::fabs(exact));
 }
 
 TEST(SpringForces, BondPastItsLimitBreaksFromBothEnds) {
