@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "cuda/pd_common.h"
 
@@ -94,30 +95,24 @@ PD_HD inline double fast_divide(double a, double b) {
 // everything after it (bench/NOTES.md, "The vase's impact on the GPU"). The bond geometry takes
 // these, which fix the choice; the CPU computes the plain expressions, as before (its default
 // build has no FMA).
-PD_HD inline float pinned_product(float a, float b) {
+template <class T>
+PD_HD inline T pinned_product(T a, T b) {
 #if defined(__CUDA_ARCH__)
-  return __fmul_rn(a, b);
+  if constexpr (std::is_same_v<T, float>)
+    return __fmul_rn(a, b);
+  else
+    return __dmul_rn(a, b);
 #else
   return a * b;
 #endif
 }
-PD_HD inline double pinned_product(double a, double b) {
+template <class T>
+PD_HD inline T pinned_fma(T a, T b, T c) {
 #if defined(__CUDA_ARCH__)
-  return __dmul_rn(a, b);
-#else
-  return a * b;
-#endif
-}
-PD_HD inline float pinned_fma(float a, float b, float c) {
-#if defined(__CUDA_ARCH__)
-  return __fmaf_rn(a, b, c);
-#else
-  return a * b + c;
-#endif
-}
-PD_HD inline double pinned_fma(double a, double b, double c) {
-#if defined(__CUDA_ARCH__)
-  return __fma_rn(a, b, c);
+  if constexpr (std::is_same_v<T, float>)
+    return __fmaf_rn(a, b, c);
+  else
+    return __fma_rn(a, b, c);
 #else
   return a * b + c;
 #endif
