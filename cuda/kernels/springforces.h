@@ -31,10 +31,15 @@ PD_HD inline real pmb_bond_energy(real s, real r0, real vol_i, real weight_j, co
 template <bool kSurface>
 constexpr real kWeightUnit = kSurface ? real(kSurfaceBondStep) : real(1);
 
+// Without the correction a listed bond takes the partial-volume rule only where `partial` (the
+// material's flag, read once before the loop) says its material has partial volumes: PMB's
+// default has none, and the rule's load, test and branch at every bond cost the explicit
+// lattice's force pass (bench/NOTES.md).
 template <bool kSurface, class Geometry>
-PD_HD inline real surface_bond_weight(const Geometry& g, const Material& m, const uint16_t* row) {
+PD_HD inline real surface_bond_weight(const Geometry& g, const Material& m, bool partial,
+                                      const uint16_t* row) {
   if constexpr (!kSurface)
-    return g.weight(m);
+    return partial ? g.weight(m) : g.volume_j;
   else if constexpr (std::is_same_v<Geometry, LatticeBondGeometry>)
     return g.weight(m) * real(row[g.entry]);
   else
@@ -68,10 +73,11 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   real smin = real(INFINITY);
   ReleasedEnergy<kThreads> released;
   const uint16_t* row = surface_row_of<kSurface>(b, i);
+  const bool partial = m.partial_volumes != 0;  // (surface_bond_weight)
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>, kNoHistory, kSurface>(
       i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
-        const real weight = surface_bond_weight<kSurface>(g, m, row);
+        const real weight = surface_bond_weight<kSurface>(g, m, partial, row);
         if (s > max_of(tau_i, g.tau_j) * bond_strength<kWeak>(b, slot, g)) {
           released.add(p, i, double(pmb_bond_energy(s, g.r0, vol_i, weight * kWeightUnit<kSurface>, m)));
           if (kRaiseInBranch<kWeak>) raise_flag(broke);
@@ -105,12 +111,13 @@ PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b
   real smin = real(INFINITY);
   real nearest = -real(INFINITY);  // the largest s - w tau_i (s alone without weakened bonds)
   const uint16_t* row = surface_row_of<kSurface>(b, i);
+  const bool partial = m.partial_volumes != 0;  // (surface_bond_weight)
   const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>, kNoHistory, kSurface>(
       i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         nearest = max_of(nearest, kWeak ? s - bond_strength<kWeak>(b, slot, g) * tau_early : s);
         smin = min_of(s, smin);
-        f += (s * surface_bond_weight<kSurface>(g, m, row) * g.inv_r) * g.y;
+        f += (s * surface_bond_weight<kSurface>(g, m, partial, row) * g.inv_r) * g.y;
       });
   if (may_break<kWeak>(team.max(nearest), kEarly ? tau_early : p.strain_limit(i)))
     return spring_forces<kWeak, kLattice, kSurface>(i, p, b, mt, broke, team);
