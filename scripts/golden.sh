@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Golden outputs: runs six small scenes (bond-based, state-based plastic, anisotropic, tets falling
-# and tets breaking on the floor, Voronoi; with contact, pre-cracks, anchors and projectiles among them) on one backend, renders
-# their last frame, and prints the SHA-256 of every output file whose bytes are meant to depend
-# only on the physics (files that record wall times, dates or paths are left out).
+# and tets breaking on the floor, Voronoi; with contact, pre-cracks, anchors and projectiles among
+# them) on one backend, renders their last frame, and prints the SHA-256 of every output file
+# whose bytes are meant to depend only on the physics (files that record wall times, dates or
+# paths are left out).
 #   scripts/golden.sh [cpu|cuda] [BINARY] > sums.txt
 # A change that must not move results is checked by running this before and after it with the
 # same compiler and comparing the two lists (`diff`); bench/golden/ keeps lists so made.
