@@ -26,6 +26,8 @@ class CpuExec {
 
   // The GPU's threads per block of team launches (CudaExec::set_team_block); no meaning here.
   void set_team_block(int) {}
+  // Overlapped launches (CudaExec::set_overlap_launches); no meaning here.
+  void set_overlap_launches(bool) {}
 
   // kMinBlocks: the GPU backend's occupancy hint (CudaExec::parallel_for); no meaning here.
   template <int kMinBlocks = 0, class F>

@@ -23,8 +23,23 @@ namespace pd {
 
 void cuda_check(cudaError_t err, const char* what);
 
+// Programmatic dependent launch (sm_90, CUDA's PDL): the step's kernels are launched so that
+// the next one's blocks may be scheduled while this one's last blocks run (CudaExec::launch), which
+// hides the gap between two launches. Each kernel of parallel_for & co. first waits until the
+// launch before it has finished and its writes are visible (griddepcontrol.wait: at once for a
+// launch made without the attribute), then lets the launch after it be scheduled
+// (griddepcontrol.launch_dependents), so nothing a kernel reads or writes can race with the
+// launch before it, and every result is the one of launches in turn.
+__device__ inline void follow_previous_launch() {
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 900
+  asm volatile("griddepcontrol.wait;" ::: "memory");
+  asm volatile("griddepcontrol.launch_dependents;" :::);
+#endif
+}
+
 template <class F>
 __global__ void parallel_for_kernel(int64_t n, F f) {
+  follow_previous_launch();
   const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i < n) f(i);
 }
@@ -35,6 +50,7 @@ constexpr int kCudaBlockSize = 256;  // threads per block of every launch
 // per thread (65536 / (kMinBlocks * kCudaBlockSize)).
 template <int kMinBlocks, class F>
 __global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks) parallel_for_bounded_kernel(int64_t n, F f) {
+  follow_previous_launch();
   const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i < n) f(i);
 }
@@ -42,6 +58,7 @@ __global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks) parallel_for_bound
 // Both over [first, first + n) (parallel_for_from).
 template <class F>
 __global__ void parallel_for_from_kernel(int64_t first, int64_t n, F f) {
+  follow_previous_launch();
   const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i < n) f(first + i);
 }
@@ -49,6 +66,7 @@ __global__ void parallel_for_from_kernel(int64_t first, int64_t n, F f) {
 template <int kMinBlocks, class F>
 __global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks)
     parallel_for_from_bounded_kernel(int64_t first, int64_t n, F f) {
+  follow_previous_launch();
   const int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i < n) f(first + i);
 }
@@ -58,6 +76,7 @@ __global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks)
 template <int kThreads, int kMinBlocks, class F>
 __global__ void __launch_bounds__(kCudaBlockSize, kMinBlocks > 0 ? kMinBlocks : 1)
     parallel_for_team_kernel(int64_t first, int64_t n, F f) {
+  follow_previous_launch();
   const int64_t thread = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
   const int64_t t = thread / kThreads;
   if (t >= n) return;
@@ -105,6 +124,9 @@ class CudaExec {
   // kernels (their register bound is for kBlockSize, which any smaller block keeps) and the same
   // bits: a team's sums are its own and a launch's particles its own, whatever the blocks.
   void set_team_block(int threads) { team_block_ = threads; }
+  // Whether launches overlap their predecessor's last blocks (launch; on unless switched off
+  // with PERIFRAC_OVERLAP_LAUNCHES=off, step_graphs.h): the same bits either way.
+  void set_overlap_launches(bool on) { overlap_launches_ = on; }
   ~CudaExec();
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
@@ -124,10 +146,9 @@ class CudaExec {
     }
     cudaEvent_t start = begin_timing(name);
     if constexpr (kMinBlocks > 0)
-      parallel_for_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(n, f);
+      launch(name, parallel_for_bounded_kernel<kMinBlocks, F>, blocks, kBlockSize, n, f);
     else
-      parallel_for_kernel<<<unsigned(blocks), kBlockSize, 0, stream_>>>(n, f);
-    cuda_check(cudaGetLastError(), name);
+      launch(name, parallel_for_kernel<F>, blocks, kBlockSize, n, f);
     end_timing(name, start);
   }
 
@@ -140,10 +161,9 @@ class CudaExec {
     const int64_t blocks = (n + kBlockSize - 1) / kBlockSize;
     cudaEvent_t start = begin_timing(name);
     if constexpr (kMinBlocks > 0)
-      parallel_for_from_bounded_kernel<kMinBlocks><<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
+      launch(name, parallel_for_from_bounded_kernel<kMinBlocks, F>, blocks, kBlockSize, first, n, f);
     else
-      parallel_for_from_kernel<<<unsigned(blocks), kBlockSize, 0, stream_>>>(first, n, f);
-    cuda_check(cudaGetLastError(), name);
+      launch(name, parallel_for_from_kernel<F>, blocks, kBlockSize, first, n, f);
     end_timing(name, start);
   }
 
@@ -160,9 +180,7 @@ class CudaExec {
                team_block_);
     const int64_t blocks = (n * kThreads + team_block_ - 1) / team_block_;
     cudaEvent_t start = begin_timing(name);
-    parallel_for_team_kernel<kThreads, kMinBlocks>
-        <<<unsigned(blocks), team_block_, 0, stream_>>>(first, n, f);
-    cuda_check(cudaGetLastError(), name);
+    launch(name, parallel_for_team_kernel<kThreads, kMinBlocks, F>, blocks, team_block_, first, n, f);
     end_timing(name, start);
   }
 
@@ -280,6 +298,21 @@ class CudaExec {
     const char* name;
     cudaEvent_t start, stop;
   };
+  // kernel<<<blocks, threads, 0, stream_>>>(args...) as a programmatic dependent launch
+  // (follow_previous_launch) where overlap_launches_; its error named after the launch's kernel.
+  template <class... Params, class... Args>
+  void launch(const char* name, void (*kernel)(Params...), int64_t blocks, int threads, const Args&... args) {
+    cudaLaunchAttribute overlap{};
+    overlap.id = cudaLaunchAttributeProgrammaticStreamSerialization;
+    overlap.val.programmaticStreamSerializationAllowed = 1;
+    cudaLaunchConfig_t config{};
+    config.gridDim = dim3(unsigned(blocks));
+    config.blockDim = dim3(unsigned(threads));
+    config.stream = stream_;
+    config.attrs = &overlap;
+    config.numAttrs = overlap_launches_ ? 1 : 0;
+    cuda_check(cudaLaunchKernelEx(&config, kernel, args...), name);
+  }
   void describe(KernelStat* s, const void* kernel, int block = kBlockSize);
   int64_t resident_blocks(const void* kernel) const;  // blocks of `kernel` the GPU holds at once
   cudaEvent_t begin_timing(const char* name);         // counts the launch; an event where it is timed
@@ -289,6 +322,7 @@ class CudaExec {
 
   KernelStats* stats_;
   int team_block_ = kBlockSize;
+  bool overlap_launches_ = true;  // (launch)
   std::vector<Pending> pending_;
   std::vector<cudaEvent_t> free_events_;
   void* scratch_[3] = {nullptr, nullptr, nullptr};

@@ -161,6 +161,7 @@ case_ "command line" "PERIFRAC_BOND_THREADS=7" 2 "PERIFRAC_BOND_THREADS='7'" env
 case_ "command line" "PERIFRAC_STEP_GRAPHS=yes" 2 "PERIFRAC_STEP_GRAPHS='yes'" env PERIFRAC_STEP_GRAPHS=yes "$BIN" "${P[@]}" s.toml --out o4
 case_ "command line" "PERIFRAC_BALANCE_WINDOW=-1" 2 "PERIFRAC_BALANCE_WINDOW='-1'" env PERIFRAC_BALANCE_WINDOW=-1 "$BIN" "${P[@]}" s.toml --out o4
 case_ "command line" "PERIFRAC_TEAM_BLOCK=64" 2 "PERIFRAC_TEAM_BLOCK='64'" env PERIFRAC_TEAM_BLOCK=64 "$BIN" "${P[@]}" s.toml --out o4
+case_ "command line" "PERIFRAC_OVERLAP_LAUNCHES=no" 2 "PERIFRAC_OVERLAP_LAUNCHES='no'" env PERIFRAC_OVERLAP_LAUNCHES=no "$BIN" "${P[@]}" s.toml --out o4
 case_ "command line" "an argument with a line break" 2 "^error: .*\?" "$BIN" "${P[@]}" s.toml $'--out\nx' extra
 sed 's/^steps_per_frame = 20/dt = 5e-324\nsteps_per_frame = 20/' s.toml >tiny-dt.toml
 case_ "command line" "dt = 5e-324" 2 "simulation.dt" "$BIN" "${P[@]}" tiny-dt.toml --out o2

@@ -53,6 +53,7 @@ class EngineImpl final : public Engine {
     // Graphs where no host work falls between the step's launches (step_graphs.h).
     const bool graphs_wanted = step_graphs_wanted(in);  // (a bad PERIFRAC_STEP_GRAPHS fails on the CPU too)
     const ContactRebuild contact_rebuild = requested_contact_rebuild(in);  // (and a bad ..._CONTACT_REBUILD)
+    exec_.set_overlap_launches(overlapped_launches_wanted());              // (and ..._OVERLAP_LAUNCHES)
     graphs_ = Exec::kGraphs && graphs_wanted && !rank && !scripted_motion_ && free_.empty() &&
               !moving_colliders_ && !contact_ && step_params_.n_projectiles == 0;
     colliders_host_ = in.colliders;

@@ -31,4 +31,15 @@ bool step_graphs_wanted(const SimulationInput& in) {
   return int64_t(in.particles.size()) < kGraphParticles;
 }
 
+bool overlapped_launches_wanted() {
+  const char* v = std::getenv("PERIFRAC_OVERLAP_LAUNCHES");
+  if (!v || !*v) return true;
+  const std::string s = v;
+  if (s == "on") return true;
+  if (s == "off") return false;
+  throw std::invalid_argument(
+      "environment PERIFRAC_OVERLAP_LAUNCHES='" + s +
+      "': allowed are on (a launch overlaps the last blocks of the one before it) and off");
+}
+
 }  // namespace pd

@@ -2,6 +2,8 @@
 // engine records kGraphSteps steps' launches once into a graph and then runs them as one launch
 // (cuda/engine/engine_impl.h), which small scenes, bound by launches, run faster. The graph runs
 // the same kernels on the same arguments in the same order: the bits are those of the launches.
+// Launches, graphed or not, overlap the last blocks of the one before them on the GPU
+// (overlapped_launches_wanted).
 #pragma once
 
 #include <cstdint>
@@ -30,5 +32,10 @@ StepGraphs requested_step_graphs(const SimulationInput& in);
 // lists, projectiles or ranks): asked for (kOn), or left to the engine (kAuto) below
 // kGraphParticles particles.
 bool step_graphs_wanted(const SimulationInput& in);
+
+// Whether the GPU's launches overlap their predecessor's last blocks (programmatic dependent
+// launch, cuda/exec_cuda.cuh): on, unless the environment's PERIFRAC_OVERLAP_LAUNCHES is off (the
+// launches in turn, for comparison: the same bits). std::invalid_argument names a bad value.
+bool overlapped_launches_wanted();
 
 }  // namespace pd

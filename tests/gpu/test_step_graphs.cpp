@@ -26,29 +26,6 @@ void advance_unevenly(Engine& e) {
   for (int64_t steps : {1, 45, 32, 100, 7, 64}) e.advance(steps);
 }
 
-void expect_same_run(Engine& a, Engine& b) {
-  ParticleState sa, sb;
-  BondLists ba, bb;
-  EngineSnapshot pa, pb;
-  a.read_state(sa);
-  b.read_state(sb);
-  a.read_bonds(ba);
-  b.read_bonds(bb);
-  a.save(pa);
-  b.save(pb);
-  EXPECT_EQ(a.step(), b.step());
-  EXPECT_EQ(a.time(), b.time());
-  EXPECT_TRUE(testing::same_bits(pa.disp, pb.disp));
-  EXPECT_TRUE(testing::same_bits(sa.vel, sb.vel));
-  EXPECT_TRUE(testing::same_bits(sa.force, sb.force));
-  EXPECT_EQ(sa.intact, sb.intact);
-  EXPECT_EQ(ba.neighbor, bb.neighbor);
-  EXPECT_TRUE(testing::same_bits(pa.strain_min, pb.strain_min));
-  EXPECT_TRUE(testing::same_bits(pa.ledger, pb.ledger));
-  EXPECT_TRUE(testing::same_bits(pa.state, pb.state));
-  EXPECT_TRUE(testing::same_bits(pa.plastic, pb.plastic));
-}
-
 void expect_graphs_agree(const SimulationInput& in) {
   auto launched = gpu_engine(in, StepGraphs::kOff);
   auto graphed = gpu_engine(in, StepGraphs::kOn);
@@ -58,7 +35,7 @@ void expect_graphs_agree(const SimulationInput& in) {
   EXPECT_EQ(graphed->graphed_steps(), 7 * kGraphSteps);  // 45: 1, 32: 1, 100: 3, 64: 2
   EXPECT_EQ(launched->force_passes(), graphed->force_passes());
   ASSERT_GT(launched->broken_bonds(), 0) << "the run must break bonds";
-  expect_same_run(*launched, *graphed);
+  testing::expect_same_run(*launched, *graphed);
 }
 
 TEST(GpuStepGraphs, BondBasedRunsTheSameAsLaunched) {
@@ -92,7 +69,7 @@ TEST(GpuStepGraphs, ARestoredRunContinuesTheSame) {
   resumed->restore(half);
   resumed->advance(150);
   EXPECT_GT(resumed->graphed_steps(), 0);
-  expect_same_run(*whole, *resumed);
+  testing::expect_same_run(*whole, *resumed);
 }
 
 TEST(GpuStepGraphs, HostWorkBetweenLaunchesRunsWithout) {

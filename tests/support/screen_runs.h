@@ -1,5 +1,6 @@
-// Runs of one input with `springforces` screened in every pass, never, and as the engine
-// chooses (cuda/kernels/bond_screen.h), compared bit for bit; shared by the CPU and GPU suites.
+// Runs compared bit for bit (expect_same_run), and runs of one input with `springforces` screened
+// in every pass, never, and as the engine chooses (cuda/kernels/bond_screen.h); shared by the CPU
+// and GPU suites.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -20,6 +21,30 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 
 using EngineFactory = std::function<std::unique_ptr<Engine>(const SimulationInput&)>;
 
+// Two runs at the same step with the same bits: state, bonds, energy ledger and plastic history.
+inline void expect_same_run(Engine& a, Engine& b) {
+  ParticleState sa, sb;
+  BondLists ba, bb;
+  EngineSnapshot pa, pb;
+  a.read_state(sa);
+  b.read_state(sb);
+  a.read_bonds(ba);
+  b.read_bonds(bb);
+  a.save(pa);
+  b.save(pb);
+  EXPECT_EQ(a.step(), b.step());
+  EXPECT_EQ(a.time(), b.time());
+  EXPECT_TRUE(same_bits(pa.disp, pb.disp));
+  EXPECT_TRUE(same_bits(sa.vel, sb.vel));
+  EXPECT_TRUE(same_bits(sa.force, sb.force));
+  EXPECT_EQ(sa.intact, sb.intact);
+  EXPECT_EQ(ba.neighbor, bb.neighbor);
+  EXPECT_TRUE(same_bits(pa.strain_min, pb.strain_min));
+  EXPECT_TRUE(same_bits(pa.ledger, pb.ledger));
+  EXPECT_TRUE(same_bits(pa.state, pb.state));
+  EXPECT_TRUE(same_bits(pa.plastic, pb.plastic));
+}
+
 // The three runs of `in` over `steps` steps leave the same state, bonds and energy ledger bits;
 // the run must break bonds, and the automatic choice must use both forms.
 inline void expect_screen_modes_agree(const EngineFactory& make, SimulationInput in, int64_t steps) {
@@ -37,29 +62,9 @@ inline void expect_screen_modes_agree(const EngineFactory& make, SimulationInput
   EXPECT_GT(runs[2]->screened_passes(), 0) << "auto: screened before the first break";
   EXPECT_LT(runs[2]->screened_passes(), passes) << "auto: the breaking pass after a break";
   ASSERT_GT(runs[0]->broken_bonds(), 0) << "the run must break bonds";
-  ParticleState base;
-  BondLists base_bonds;
-  EngineSnapshot base_snapshot;
-  runs[0]->read_state(base);
-  runs[0]->read_bonds(base_bonds);
-  runs[0]->save(base_snapshot);
   for (int r = 1; r < 3; ++r) {
     SCOPED_TRACE(r == 1 ? "screened in every pass" : "screened as the engine chooses");
-    ParticleState s;
-    BondLists b;
-    EngineSnapshot snapshot;
-    runs[r]->read_state(s);
-    runs[r]->read_bonds(b);
-    runs[r]->save(snapshot);
-    EXPECT_TRUE(same_bits(snapshot.disp, base_snapshot.disp));
-    EXPECT_TRUE(same_bits(s.vel, base.vel));
-    EXPECT_TRUE(same_bits(s.force, base.force));
-    EXPECT_EQ(s.intact, base.intact);
-    EXPECT_EQ(b.neighbor, base_bonds.neighbor);
-    EXPECT_TRUE(same_bits(snapshot.strain_min, base_snapshot.strain_min));
-    EXPECT_TRUE(same_bits(snapshot.ledger, base_snapshot.ledger));
-    EXPECT_TRUE(same_bits(snapshot.state, base_snapshot.state));
-    EXPECT_TRUE(same_bits(snapshot.plastic, base_snapshot.plastic));
+    expect_same_run(*runs[0], *runs[r]);
   }
 }
 
