@@ -1,25 +1,11 @@
-// Scene files: TOML parsed by toml++, then validated key by key into a pd::Scene. Every user
-// mistake becomes a SceneError "<file>: <key>: <what is wrong> (allowed: <what is allowed>)".
-// The keys are documented in docs/scene-reference.md.
-
-// toml++ 3.3 asserts on some malformed input that it goes on to report as a parse error (a
-// table header "[[[a]]", a control character in a key): an abort in debug builds and, with
-// NDEBUG, an optimiser assumption (__builtin_assume under clang) that the input is well formed.
-// Both are turned off here so that every input ends in a result or a toml::parse_error.
-#pragma push_macro("NDEBUG")
-#undef NDEBUG
-#define TOML_ASSERT(expr) static_cast<void>(0)
-#include <toml++/toml.h>
-#pragma pop_macro("NDEBUG")
+// Scene files: TOML parsed by toml++ (toml_document.h), then validated key by key into a pd::Scene
+// (table_reader.h). Every user mistake becomes a SceneError "<file>: <key>: <what is wrong>
+// (allowed: <what is allowed>)". The keys are documented in docs/scene-reference.md.
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <limits>
-#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -31,453 +17,26 @@
 #include "host/geometry/tetgen.h"
 #include "host/io/input_file.h"
 #include "host/scene/scene.h"
+#include "host/scene/scene_overrides.h"
+#include "host/scene/table_reader.h"
+#include "host/scene/toml_document.h"
 #include "render/looks.h"
 
 namespace pd {
 
-// A syntax error passes "<file>:<line>:<column>" as `file` and an empty key.
 std::string format_number(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", v);
   return text;
 }
 
+// A syntax error passes "<file>:<line>:<column>" as `file` and an empty key.
 SceneError::SceneError(std::string file, std::string key, const std::string& message)
     : std::runtime_error(file + (key.empty() ? "" : ": " + key) + ": " + message),
       file_(std::move(file)),
       key_(std::move(key)) {}
 
 namespace {
-
-using Keys = std::vector<std::string_view>;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// ---- Message helpers ---------------------------------------------------------------------------
-
-// Replaces control characters (a quoted TOML key may hold a newline) so messages stay on one line.
-std::string one_line(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned char>(c));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-std::string quoted(std::string_view s) {
-  return "\"" + one_line(s) + "\"";
-}
-
-// "a, b, c", each item optionally quoted.
-std::string join(const Keys& items, bool quote) {
-  std::string out;
-  for (std::string_view item : items) {
-    if (!out.empty()) out += ", ";
-    out += quote ? quoted(item) : std::string(item);
-  }
-  return out;
-}
-
-// Shortest decimal form that reads back as the same double ("0.5", "1e+08", "0.99999999").
-std::string number_text(double v) {
-  char buf[40];
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
-
-std::string type_name(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::none:
-      return "nothing";
-    case toml::node_type::table:
-      return "a table";
-    case toml::node_type::array:
-      return "an array";
-    case toml::node_type::string:
-      return "a string";
-    case toml::node_type::integer:
-      return "an integer";
-    case toml::node_type::floating_point:
-      return "a float";
-    case toml::node_type::boolean:
-      return "a boolean";
-    case toml::node_type::date:
-      return "a date";
-    case toml::node_type::time:
-      return "a time";
-    case toml::node_type::date_time:
-      return "a date-time";
-  }
-  return "an unknown type";
-}
-
-[[noreturn]] void scene_error(const std::string& file, const std::string& key, const std::string& what,
-                              const std::string& allowed) {
-  throw SceneError(file, one_line(key), one_line(what) + " (allowed: " + one_line(allowed) + ")");
-}
-
-// The location takes the place of the file name: "<file>:<line>:<column>: TOML syntax error: ...".
-SceneError syntax_error(const std::string& path, int64_t line, int64_t column, std::string_view description) {
-  return SceneError(path + ":" + std::to_string(line) + ":" + std::to_string(column), "",
-                    "TOML syntax error: " + one_line(description));
-}
-
-// ---- Characters toml++ 3.3 cannot classify ------------------------------------------------------
-
-// toml++ 3.3 decides whether a non-ASCII character is whitespace with a table that falls through
-// to __builtin_unreachable() for most of U+00A1..U+0499, U+2FF6..U+33EF and U+FB0A..U+FEFE
-// (upstream issues #190 and #295): undefined behaviour whenever the parser asks, which it does
-// for any character outside a string and, in some places, inside one. parse_scene therefore hands
-// toml++ the text with each such character c replaced by the private-use character U+F0000 + c,
-// which the table handles, and maps keys, strings and messages back after parsing.
-constexpr char32_t kShift = 0xF0000;
-
-bool breaks_toml_whitespace_table(char32_t c) {
-  if (c <= 0xA0 || c >= 0xFEFF || c == 0x3000) return false;
-  const char32_t block = (c - 0xA0) / 0x3FA;
-  return block == 0 || block == 11 || block == 63;
-}
-
-// Decodes the UTF-8 sequence at text[i] into `c` and returns its length; 0 when it is malformed.
-size_t decode_utf8(std::string_view text, size_t i, char32_t& c) {
-  const auto lead = static_cast<unsigned char>(text[i]);
-  const size_t length = lead < 0x80 ? 1 : lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 0;
-  if (length == 0 || i + length > text.size()) return 0;
-  c = length == 1 ? lead : lead & (0x7F >> length);
-  for (size_t k = 1; k < length; ++k) {
-    const auto next = static_cast<unsigned char>(text[i + k]);
-    if ((next & 0xC0) != 0x80) return 0;
-    c = (c << 6) | (next & 0x3F);
-  }
-  const char32_t shortest[] = {0, 0, 0x80, 0x800, 0x10000};  // overlong encodings are malformed
-  return c >= shortest[length] ? length : 0;
-}
-
-void append_utf8(std::string& out, char32_t c) {
-  if (c < 0x80) {
-    out += char(c);
-  } else if (c < 0x800) {
-    out += char(0xC0 | (c >> 6));
-    out += char(0x80 | (c & 0x3F));
-  } else if (c < 0x10000) {
-    out += char(0xE0 | (c >> 12));
-    out += char(0x80 | ((c >> 6) & 0x3F));
-    out += char(0x80 | (c & 0x3F));
-  } else {
-    out += char(0xF0 | (c >> 18));
-    out += char(0x80 | ((c >> 12) & 0x3F));
-    out += char(0x80 | ((c >> 6) & 0x3F));
-    out += char(0x80 | (c & 0x3F));
-  }
-}
-
-// `text` with each character c that breaks the table replaced by U+F0000 + c (forward) or each
-// U+F0000 + c by c (back). Malformed UTF-8 is copied as it is: toml++ refuses it before asking.
-std::string shift_characters(std::string_view text, bool forward) {
-  std::string out;
-  out.reserve(text.size());
-  for (size_t i = 0; i < text.size();) {
-    char32_t c = 0;
-    const size_t length = decode_utf8(text, i, c);
-    if (length == 0) {
-      out += text[i++];
-      continue;
-    }
-    if (forward && breaks_toml_whitespace_table(c)) {
-      append_utf8(out, kShift + c);
-    } else if (!forward && c > kShift && breaks_toml_whitespace_table(c - kShift)) {
-      append_utf8(out, c - kShift);
-    } else {
-      out.append(text, i, length);
-    }
-    i += length;
-  }
-  return out;
-}
-
-// The document with shift_characters(..., back) applied to every key and string.
-toml::array shift_back(const toml::array& array);
-toml::table shift_back(const toml::table& table) {
-  toml::table out;
-  for (auto&& [key, node] : table) {
-    const std::string name = shift_characters(key.str(), false);
-    if (const auto* s = node.as_string()) {
-      out.insert(name, shift_characters(s->get(), false));
-    } else if (const auto* t = node.as_table()) {
-      out.insert(name, shift_back(*t));
-    } else if (const auto* a = node.as_array()) {
-      out.insert(name, shift_back(*a));
-    } else {
-      node.visit([&](const auto& value) { out.insert(name, value); });
-    }
-  }
-  return out;
-}
-toml::array shift_back(const toml::array& array) {
-  toml::array out;
-  for (const toml::node& node : array) {
-    if (const auto* s = node.as_string()) {
-      out.push_back(shift_characters(s->get(), false));
-    } else if (const auto* t = node.as_table()) {
-      out.push_back(shift_back(*t));
-    } else if (const auto* a = node.as_array()) {
-      out.push_back(shift_back(*a));
-    } else {
-      node.visit([&](const auto& value) { out.push_back(value); });
-    }
-  }
-  return out;
-}
-
-// ---- Numbers -----------------------------------------------------------------------------------
-
-// Allowed range of a float key; describe() is the "allowed" part of its messages.
-struct Bounds {
-  double lo = -kInf, hi = kInf;
-  bool lo_open = false, hi_open = false;
-  std::string note;  // appended to describe(), e.g. the meaning of the bound
-
-  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
-  std::string describe() const {
-    std::string s;
-    if (lo == -kInf && hi == kInf) {
-      s = "a finite number";
-    } else if (hi == kInf) {
-      s = std::string("a number ") + (lo_open ? "> " : ">= ") + number_text(lo);
-    } else {
-      s = std::string("a number in ") + (lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) +
-          (hi_open ? ")" : "]");
-    }
-    return note.empty() ? s : s + ": " + note;
-  }
-};
-
-Bounds greater_than(double lo) {
-  return {lo, kInf, true, false, ""};
-}
-Bounds at_least(double lo) {
-  return {lo, kInf, false, false, ""};
-}
-Bounds in_closed(double lo, double hi) {
-  return {lo, hi, false, false, ""};
-}
-Bounds in_open(double lo, double hi) {
-  return {lo, hi, true, true, ""};
-}
-
-// An integer or float node as a finite double within `bounds`.
-double to_number(const toml::node& n, const std::string& file, const std::string& key, const Bounds& bounds) {
-  double v = 0;
-  if (const auto* i = n.as_integer()) {
-    v = static_cast<double>(i->get());
-  } else if (const auto* f = n.as_floating_point()) {
-    v = f->get();
-  } else {
-    scene_error(file, key, "expected a number, got " + type_name(n), bounds.describe());
-  }
-  if (!std::isfinite(v))
-    scene_error(file, key, number_text(v) + " is not a finite number", bounds.describe());
-  if (!bounds.contains(v)) scene_error(file, key, number_text(v) + " is out of range", bounds.describe());
-  return v;
-}
-
-// ---- Table reader ------------------------------------------------------------------------------
-
-enum class Presence { optional, required };
-
-// Typed access to one TOML table whose dotted path is `prefix`. The constructor rejects keys
-// not in `allowed`, so a misspelt key is reported as unknown rather than as missing. The
-// getters write `out` and return true when the key is present, leave `out` (the default) alone
-// and return false when it is absent, and throw when it is required and absent.
-class TableReader {
- public:
-  TableReader(const toml::table& table, std::string prefix, const std::string& file, const Keys& allowed)
-      : table_(&table), prefix_(std::move(prefix)), file_(&file) {
-    for (auto&& [key, value] : table) {
-      if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end())
-        fail(key.str(), "unknown key", join(allowed, false));
-    }
-  }
-
-  // Dotted path of `key` in this table; the table's own path for an empty key.
-  std::string path(std::string_view key) const {
-    if (key.empty()) return prefix_;
-    return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
-  }
-
-  [[noreturn]] void fail(std::string_view key, const std::string& what, const std::string& allowed) const {
-    scene_error(*file_, path(key), what, allowed);
-  }
-
-  bool number(std::string_view key, double& out, const Bounds& bounds = {},
-              Presence presence = Presence::optional) const {
-    const toml::node* n = find(key, presence, bounds.describe());
-    if (n) out = to_number(*n, *file_, path(key), bounds);
-    return n != nullptr;
-  }
-
-  bool integer(std::string_view key, int64_t& out, int64_t min,
-               int64_t max = std::numeric_limits<int64_t>::max()) const {
-    const std::string allowed = max == std::numeric_limits<int64_t>::max()
-                                    ? "an integer >= " + std::to_string(min)
-                                    : "an integer from " + std::to_string(min) + " to " + std::to_string(max);
-    const toml::node* n = find(key, Presence::optional, allowed);
-    if (!n) return false;
-    const auto* i = n->as_integer();
-    if (!i) fail(key, "expected an integer, got " + type_name(*n), allowed);
-    if (i->get() < min || i->get() > max) fail(key, std::to_string(i->get()) + " is out of range", allowed);
-    out = i->get();
-    return true;
-  }
-
-  bool boolean(std::string_view key, bool& out) const {
-    const toml::node* n = find(key, Presence::optional, "true or false");
-    if (!n) return false;
-    const auto* b = n->as_boolean();
-    if (!b) fail(key, "expected a boolean, got " + type_name(*n), "true or false");
-    out = b->get();
-    return true;
-  }
-
-  // A string; when `choices` is not empty it must be one of them.
-  bool string(std::string_view key, std::string& out, const Keys& choices = {},
-              Presence presence = Presence::optional) const {
-    const std::string allowed = choices.empty() ? "a string" : join(choices, true);
-    const toml::node* n = find(key, presence, allowed);
-    if (!n) return false;
-    const auto* s = n->as_string();
-    if (!s) fail(key, "expected a string, got " + type_name(*n), allowed);
-    if (!choices.empty() && std::find(choices.begin(), choices.end(), s->get()) == choices.end())
-      fail(key, "unsupported value " + quoted(s->get()), allowed);
-    out = s->get();
-    return true;
-  }
-
-  // An array of exactly 3 finite numbers.
-  bool vec3(std::string_view key, Vec3d& out, Presence presence = Presence::optional) const {
-    const std::string allowed = "an array of 3 finite numbers [x, y, z]";
-    const toml::node* n = find(key, presence, allowed);
-    if (!n) return false;
-    const auto* a = n->as_array();
-    if (!a) fail(key, "expected an array of 3 numbers, got " + type_name(*n), allowed);
-    if (a->size() != 3) fail(key, "expected 3 numbers, got " + std::to_string(a->size()), allowed);
-    for (size_t c = 0; c < 3; ++c)
-      out[c] = to_number(*a->get(c), *file_, path(key) + "[" + std::to_string(c) + "]", Bounds{});
-    return true;
-  }
-
-  // Keyframes [[t, x, y, z], ...]: at least two, times >= 0 and strictly increasing.
-  bool keyframes(std::string_view key, std::vector<SceneKeyframe>& out) const {
-    const std::string allowed = "an array of at least 2 keyframes [time, x, y, z], times >= 0 and increasing";
-    const toml::node* n = find(key, Presence::optional, allowed);
-    if (!n) return false;
-    const auto* a = n->as_array();
-    if (!a) fail(key, "expected an array of keyframes, got " + type_name(*n), allowed);
-    if (a->size() < 2) fail(key, std::to_string(a->size()) + " keyframe(s)", allowed);
-    out.clear();
-    for (size_t k = 0; k < a->size(); ++k) {
-      const std::string item = path(key) + "[" + std::to_string(k) + "]";
-      const auto* frame = a->get(k)->as_array();
-      if (!frame || frame->size() != 4) scene_error(*file_, item, "expected [time, x, y, z]", allowed);
-      SceneKeyframe f{};
-      for (size_t c = 0; c < 4; ++c)
-        f[c] = to_number(*frame->get(c), *file_, item + "[" + std::to_string(c) + "]",
-                         c == 0 ? at_least(0) : Bounds{});
-      if (k > 0 && !(f[0] > out.back()[0]))
-        scene_error(*file_, item + "[0]",
-                    "time " + number_text(f[0]) + " does not follow " + number_text(out.back()[0]), allowed);
-      out.push_back(f);
-    }
-    return true;
-  }
-
-  bool has(std::string_view key) const { return table_->get(key) != nullptr; }
-  const toml::node* node(std::string_view key) const { return table_->get(key); }
-  const std::string& file() const { return *file_; }
-  bool is_string(std::string_view key) const {
-    const toml::node* n = table_->get(key);
-    return n && n->is_string();
-  }
-
-  // An array of `n` finite numbers.
-  template <size_t N>
-  bool numbers(std::string_view key, std::array<double, N>& out, const std::string& allowed) const {
-    const toml::node* n = find(key, Presence::optional, allowed);
-    if (!n) return false;
-    const auto* a = n->as_array();
-    if (!a)
-      fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + type_name(*n), allowed);
-    if (a->size() != N)
-      fail(key, "expected " + std::to_string(N) + " numbers, got " + std::to_string(a->size()), allowed);
-    for (size_t c = 0; c < N; ++c)
-      out[c] = to_number(*a->get(c), *file_, path(key) + "[" + std::to_string(c) + "]", Bounds{});
-    return true;
-  }
-
-  // The sub-table `key` ([simulation], ...); an empty one when absent.
-  TableReader table(std::string_view key, const Keys& allowed) const {
-    return TableReader(sub_table(key), path(key), *file_, allowed);
-  }
-
-  // The entries of the sub-table `key`, each itself a table: [key.NAME] -> (NAME, reader).
-  std::vector<std::pair<std::string, TableReader>> named_tables(std::string_view key,
-                                                                const Keys& allowed) const {
-    std::vector<std::pair<std::string, TableReader>> out;
-    for (auto&& [name, value] : sub_table(key)) {
-      const std::string name_path = path(key) + "." + std::string(name.str());
-      if (!value.is_table())
-        scene_error(*file_, name_path, "expected a table, got " + type_name(value),
-                    "a [" + name_path + "] table");
-      out.emplace_back(std::string(name.str()), TableReader(*value.as_table(), name_path, *file_, allowed));
-    }
-    return out;
-  }
-
-  // The elements of the array of tables `key` ([[key]]); none when absent.
-  std::vector<TableReader> table_array(std::string_view key, const Keys& allowed) const {
-    const std::string kind = "[[" + path(key) + "]] tables";
-    const toml::node* n = table_->get(key);
-    if (!n) return {};
-    const auto* a = n->as_array();
-    if (!a) fail(key, "expected an array of tables, got " + type_name(*n), kind);
-    std::vector<TableReader> out;
-    for (size_t i = 0; i < a->size(); ++i) {
-      const std::string element_path = path(key) + "[" + std::to_string(i) + "]";
-      const toml::node& element = *a->get(i);
-      if (!element.is_table())
-        scene_error(*file_, element_path, "expected a table, got " + type_name(element), kind);
-      out.emplace_back(*element.as_table(), element_path, *file_, allowed);
-    }
-    return out;
-  }
-
- private:
-  const toml::node* find(std::string_view key, Presence presence, const std::string& allowed) const {
-    const toml::node* n = table_->get(key);
-    if (!n && presence == Presence::required) fail(key, "missing required key", allowed);
-    return n;
-  }
-
-  const toml::table& sub_table(std::string_view key) const {
-    static const toml::table kEmpty;
-    const toml::node* n = table_->get(key);
-    if (!n) return kEmpty;
-    if (!n->is_table()) fail(key, "expected a table, got " + type_name(*n), "a [" + path(key) + "] table");
-    return *n->as_table();
-  }
-
-  const toml::table* table_;
-  std::string prefix_;
-  const std::string* file_;
-};
 
 // ---- Sections ----------------------------------------------------------------------------------
 
@@ -733,7 +292,7 @@ size_t parse_kind(const TableReader& r, std::string& shape, const Keys& shapes, 
     for (std::string_view key : shape_keys[other]) {
       const Keys& own = shape_keys[s];
       if (r.has(key) && std::find(own.begin(), own.end(), key) == own.end())
-        r.fail(key, "not a key of shape = " + quoted(shape), "for " + shape + ": " + join(own, false));
+        r.fail(key, "not a key of shape = " + in_quotes(shape), "for " + shape + ": " + join(own, false));
     }
   return s;
 }
@@ -744,7 +303,7 @@ void parse_body_name(const TableReader& r, std::string& out, const std::vector<S
   Keys names;
   for (const SceneBody& b : bodies) names.push_back(b.name);
   if (std::find(names.begin(), names.end(), out) == names.end())
-    r.fail("body", "no body named " + quoted(out), join(names, true));
+    r.fail("body", "no body named " + in_quotes(out), join(names, true));
 }
 
 // A mesh file reference: `mesh` (required), `scale` and `translate`.
@@ -766,7 +325,7 @@ void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
   const Keys& own = kShapeKeys[s];
   for (std::string_view key : kDimensionKeys)
     if (r.has(key) && std::find(own.begin(), own.end(), key) == own.end())
-      r.fail(key, "not a dimension of shape = " + quoted(b.shape),
+      r.fail(key, "not a dimension of shape = " + in_quotes(b.shape),
              "for " + b.shape + ": " + join(own, false));
   const Bounds positive = greater_than(0);
   if (b.shape == "box") r.vec3("size", b.size, Presence::required);
@@ -810,10 +369,11 @@ void parse_particle_switches(const TableReader& r, SceneBody& b) {
   for (std::string_view key : {"tet_quality", "tet_max_volume", "tet_keep_surface"})
     if (r.has(key) && !tets)
       r.fail(key, "only for particles = \"tets\" or \"shell\"",
-             "no TetGen switch with particles = " + quoted(b.particles));
+             "no TetGen switch with particles = " + in_quotes(b.particles));
   for (std::string_view key : {"shell_thickness", "shell_layers"})
     if (r.has(key) && !shell)
-      r.fail(key, "only for particles = \"shell\"", "no shell key with particles = " + quoted(b.particles));
+      r.fail(key, "only for particles = \"shell\"",
+             "no shell key with particles = " + in_quotes(b.particles));
   if (r.has("tet_quality")) {
     const Bounds quality{0, 10, false, false, kTetQualityAllowed};
     r.number("tet_quality", b.tet_quality, quality);
@@ -848,7 +408,7 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
   if (r.vec3("lattice_origin", origin)) {
     if (b.particles != "grid")
       r.fail("lattice_origin",
-             "a lattice origin places grid particles, and this body's are " + quoted(b.particles),
+             "a lattice origin places grid particles, and this body's are " + in_quotes(b.particles),
              "lattice_origin with particles = \"grid\"");
     b.lattice_origin = origin;
   }
@@ -858,7 +418,7 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
   Keys names;
   for (const SceneMaterial& m : materials) names.push_back(m.name);
   if (std::find(names.begin(), names.end(), b.material) == names.end())
-    r.fail("material", "no material named " + quoted(b.material), join(names, true));
+    r.fail("material", "no material named " + in_quotes(b.material), join(names, true));
 
   // A box or plate of grid particles: round(size / spacing) per axis (host/geometry/box_grid.cpp).
   // Every axis needs at least one particle, and the body's particle count must fit an int32
@@ -1283,109 +843,17 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     for (const SceneBody& b : scene.bodies) names.push_back(b.name);
     for (const SceneBodyLook& l : scene.render->bodies)
       if (std::find(names.begin(), names.end(), l.body) == names.end())
-        scene_error(path, "render.bodies." + l.body, "no body is named " + quoted(l.body), join(names, true));
+        scene_error(path, "render.bodies." + l.body, "no body is named " + in_quotes(l.body),
+                    join(names, true));
   }
   return scene;
-}
-
-// ---- Overrides ---------------------------------------------------------------------------------
-
-// Applies one "KEY=VALUE" override to the document: tables on the way are created, an index one
-// past the end of an array of tables (or 0 where there is none) adds an empty table to it, other
-// array elements must exist; the value replaces what the file had.
-void apply_override(toml::table& root, const std::string& setting, const std::string& file) {
-  const std::string allowed =
-      "KEY=VALUE, KEY a dotted path (materials.glass.density, bodies[0].spacing), "
-      "VALUE a TOML value (2.5e9, \"text\", [1, 0, 0], true)";
-  const size_t eq = setting.find('=');
-  std::string key = eq == std::string::npos ? setting : setting.substr(0, eq);
-  while (!key.empty() && (key.back() == ' ' || key.back() == '\t')) key.pop_back();
-  key.erase(0, key.find_first_not_of(" \t"));
-  auto fail = [&](const std::string& what) { scene_error(file, "--set " + key, what, allowed); };
-  if (eq == std::string::npos || eq == 0) fail("expected KEY=VALUE");
-  if (setting.find_first_of("\n\r") != std::string::npos)
-    fail("it holds a line break (one KEY=VALUE per --set)");
-  toml::table value_doc;
-  try {
-    value_doc = toml::parse("value = " + setting.substr(eq + 1));
-  } catch (const toml::parse_error& e) {
-    fail("the value is not TOML: " + std::string(e.description()));
-  }
-  // Walk the path: name segments, each optionally followed by [index] parts.
-  toml::node* here = &root;
-  std::string name;
-  size_t i = 0;
-  auto step_into_name = [&](bool last) -> bool {
-    toml::table* t = here->as_table();
-    if (!t) fail("'" + name + "' is inside something that is not a table");
-    if (last) {
-      t->insert_or_assign(name, *value_doc.get("value"));
-      return true;
-    }
-    const bool indexed = i < key.size() && key[i] == '[';
-    if (!t->get(name)) {
-      if (indexed)
-        t->insert(name, toml::array{});
-      else
-        t->insert(name, toml::table{});
-    }
-    here = t->get(name);
-    return false;
-  };
-  while (i < key.size()) {
-    const size_t end = key.find_first_of(".[", i);
-    name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
-    if (name.empty()) fail("an empty name in the path");
-    i = end == std::string::npos ? key.size() : end;
-    if (step_into_name(i >= key.size())) return;
-    while (i < key.size() && key[i] == '[') {
-      const size_t close = key.find(']', i);
-      if (close == std::string::npos) fail("an unclosed [");
-      const std::string digits = key.substr(i + 1, close - i - 1);
-      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
-        fail("[" + digits + "] is not an index");
-      if (digits.size() > 9) fail("[" + digits + "] is past the end of any list");
-      toml::array* a = here->as_array();
-      const size_t index = std::stoul(digits);
-      i = close + 1;
-      // One past the end of an array of tables (or of an empty array) adds a table, when a key
-      // inside it follows: shards[0].size = 0.01 where the file has no [[shards]].
-      const bool tables =
-          a && std::all_of(a->begin(), a->end(), [](const toml::node& n) { return n.is_table(); });
-      if (a && index == a->size() && tables && i < key.size() && key[i] == '.') a->push_back(toml::table{});
-      if (!a || index >= a->size()) fail("'" + name + "' has no element " + digits);
-      if (i >= key.size()) {
-        a->replace(a->begin() + long(index), *value_doc.get("value"));
-        return;
-      }
-      here = a->get(index);
-    }
-    if (key[i] != '.') fail("expected '.' after ']'");
-    ++i;
-  }
-  fail("an empty name in the path");
 }
 
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& path,
                   const std::vector<std::string>& overrides) {
-  // Characters that toml++ cannot classify go through the private-use plane 15 (see above); one
-  // already there would come back as another character, so it is refused.
-  const std::string shifted = shift_characters(text, true);
-  const bool was_shifted = shifted != text;
-  if (was_shifted && shift_characters(shifted, false) != text)
-    scene_error(path, "", "the file holds private-use characters of U+F00A1..U+FFEFE",
-                "no such characters (they stand in for others while the TOML parser reads the file)");
-  toml::table root;
-  try {
-    root = toml::parse(shifted, path);
-  } catch (const toml::parse_error& e) {
-    const std::string description(e.description());
-    throw syntax_error(path, e.source().begin.line, e.source().begin.column,
-                       was_shifted ? shift_characters(description, false) : description);
-  }
-  if (was_shifted) root = shift_back(root);
+  toml::table root = parse_toml_document(text, path);
   for (const std::string& setting : overrides) apply_override(root, setting, path);
   return parse_root(root, path);
 }
