@@ -57,6 +57,7 @@ TEST(GpuOverlappedLaunches, PlasticRunsTheSameAsLaunchesInTurn) {
   expect_overlap_leaves_the_bits(in, 250);
 }
 
+// Contact lists put host work between the launches, so both passes of the loop run launches.
 TEST(GpuOverlappedLaunches, ContactRunsTheSameAsLaunchesInTurn) {
   REQUIRE_GPU();
   auto in = testing::pulled_apart(testing::lattice_block(16, 16, 16, kLambda, 2e-4), 16, kLambda, 2);
