@@ -212,8 +212,13 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geomet
 // bonds it found intact. kHistory (HistoryReads): the plastic histories the visitor reads, fetched
 // into L2 with the next index (prefetch_history: the plastic explicit lattice's step +12%). Slots
 // are counted from the family's first (H200, bench/NOTES.md: springforces +7-11% on the vase,
-// the torus and the explicit lattices). kFactors: slot_ahead's.
-template <int kHistory, bool kFactors, int kThreads, class Visit>
+// the torus and the explicit lattices). kFactors: slot_ahead's. kAheadUnbranched (one thread a
+// particle): after its last bond the family's last slot is loaded again, a value that goes unused,
+// instead of a branch around the load, whose test, branch and convergence barrier are three of the
+// ~67 instructions a bond of the explicit bond-based lattice's pass (H200, bench/NOTES.md: that
+// pass +1.7%, the plastic one +2%, the elastic state-based one -2 to -3%, a team's -0.3 to -1.1%:
+// chosen by the visitors where it gains).
+template <int kHistory, bool kFactors, bool kAheadUnbranched, int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                                  const Team<kThreads>& team, Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
@@ -236,7 +241,12 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
     const int64_t slot = first_slot + int64_t(k) * kSliceWidth;
     const int32_t j = next;
     const SlotAhead ahead = next_ahead;
-    if (k + kThreads < count) {
+    if constexpr (kAheadUnbranched && kThreads == 1) {
+      const int64_t next_slot = first_slot + int64_t(k + 1 < count ? k + 1 : k) * kSliceWidth;
+      next = load_streaming(b.neighbor[next_slot]);
+      next_ahead = slot_ahead<kFactors>(b, next_slot);
+      prefetch_history<kHistory>(b, next_slot);
+    } else if (k + kThreads < count) {
       const int64_t next_slot = slot + kStride;
       next = load_streaming(b.neighbor[next_slot]);
       next_ahead = slot_ahead<kFactors>(b, next_slot);
@@ -372,9 +382,10 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
 // (team.h), each lane visits its share of the bonds and the count returned is the whole team's.
 // fetch_histories: false where the visitor reads none of the particle's histories (the lattice
 // loop's fetches of kHistory left out where no particle of the warp reads them). kFactors: the
-// run has surface factors, known at compile time (slot_ahead).
+// run has surface factors, known at compile time (slot_ahead); kAheadUnbranched:
+// for_each_intact_listed_bond's.
 template <int kLattice = kLatticeListed, int kUnroll = 2, int kHistory = kNoHistory, bool kFactors = false,
-          int kThreads = 1, class Visit>
+          bool kAheadUnbranched = false, int kThreads = 1, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                           const Team<kThreads>& team, Visit&& visit,
                                           bool fetch_histories = true) {
@@ -382,7 +393,7 @@ PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, con
   if (kLattice != kNoLattice && stencil >= 0)
     return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll, kHistory>(i, stencil, p, b, team, visit,
                                                                               fetch_histories));
-  return team.sum(for_each_intact_listed_bond<kHistory, kFactors>(i, p, b, team, visit));
+  return team.sum(for_each_intact_listed_bond<kHistory, kFactors, kAheadUnbranched>(i, p, b, team, visit));
 }
 template <int kLattice = kLatticeListed, int kUnroll = 2, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,

@@ -74,7 +74,7 @@ PD_HD inline void spring_forces(int32_t i, ParticlesView p, BondsView b, const M
   ReleasedEnergy<kThreads> released;
   const uint16_t* row = surface_row_of<kSurface>(b, i);
   const bool partial = m.partial_volumes != 0;  // (surface_bond_weight)
-  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>, kNoHistory, kSurface>(
+  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>, kNoHistory, kSurface, true>(
       i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         const real weight = surface_bond_weight<kSurface>(g, m, partial, row);
@@ -112,7 +112,7 @@ PD_HD inline void screened_spring_forces(int32_t i, ParticlesView p, BondsView b
   real nearest = -real(INFINITY);  // the largest s - w tau_i (s alone without weakened bonds)
   const uint16_t* row = surface_row_of<kSurface>(b, i);
   const bool partial = m.partial_volumes != 0;  // (surface_bond_weight)
-  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>, kNoHistory, kSurface>(
+  const int32_t intact = for_each_intact_bond<kLattice, kSpringUnroll<kWeak>, kNoHistory, kSurface, true>(
       i, p, b, team, [&](int64_t slot, int32_t, const auto& g) {
         const real s = g.e * g.inv_r0;
         nearest = max_of(nearest, kWeak ? s - bond_strength<kWeak>(b, slot, g) * tau_early : s);
