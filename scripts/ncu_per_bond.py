@@ -6,10 +6,12 @@ executed and thread instructions per bond (32 x warp instructions / bonds, idle 
 issue slots busy, active threads per warp, and the warp cycles between two issued instructions
 split into their largest stall reasons. Usage: ncu_per_bond.py REPORT.csv BONDS
 """
-import csv
+import os
 import re
 import sys
-from collections import OrderedDict
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from profile_table import read_launches  # noqa: E402 (the report reader shared with profile.sh's table)
 
 STALL = re.compile(r"smsp__average_warps_issue_stalled_(\w+)_per_issue_active\.ratio")
 
@@ -22,27 +24,14 @@ def kernel_label(name):
     return f"{m.group(1)}<{args}>"
 
 
-def number(text):
-    return float(text.replace(",", "")) if text not in ("", "n/a") else 0.0
-
-
 def main():
     path, bonds = sys.argv[1], float(sys.argv[2])
-    launches = OrderedDict()  # ID -> (label, metrics)
-    with open(path, newline="") as f:
-        rows = [r for r in csv.reader(f) if len(r) > 10]
-    header = rows[0]
-    col = {name: header.index(name) for name in ("ID", "Kernel Name", "Metric Name", "Metric Value")}
-    for r in rows[1:]:
-        label = kernel_label(r[col["Kernel Name"]])
-        if label is None or not label.startswith(("springforces", "init")):
-            continue
-        entry = launches.setdefault(r[col["ID"]], (label, {}))
-        entry[1][r[col["Metric Name"]]] = number(r[col["Metric Value"]])
+    launches = [(label, m) for label, m in read_launches(path, kernel_label).values()
+                if label and label.startswith(("springforces", "init"))]
     print("| kernel | ms | warp instructions | per bond | issue busy | threads / warp | cycles / issue | "
           "largest stalls (cycles / issue) | occupancy | registers | DRAM % | L1 hit | L2 hit |")
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: |")
-    for label, m in launches.values():
+    for label, m in launches:
         # "selected" is a warp issuing, not a stall.
         stalls = sorted(((v, STALL.match(k).group(1)) for k, v in m.items() if STALL.match(k)), reverse=True)
         top = ", ".join([f"{name.replace('_', ' ')} {v:.1f}" for v, name in stalls if name != "selected"][:3])

@@ -12,7 +12,8 @@ from collections import OrderedDict
 
 
 def kernel_label(name):
-    m = re.search(r"launch_([a-z_]+?)(?:_variant)?<", name)
+    # A kernel run over a particle range is wrapped by launch_over_range: its variant names it.
+    m = re.search(r"launch_([a-z_]+?)_variant<", name) or re.search(r"launch_([a-z_]+?)<", name)
     if m:
         return m.group(1)
     for cub in ("RadixSort", "Scan", "Reduce", "Histogram"):
@@ -25,14 +26,21 @@ def number(text):
     return float(text.replace(",", "")) if text not in ("", "n/a") else 0.0
 
 
-def main():
-    path, bonds = sys.argv[1], float(sys.argv[2])
-    launches = OrderedDict()  # ID -> (label, metrics)
+def read_launches(path, label=kernel_label):
+    """ID -> (label(kernel name), {metric: value}) for each launch of an ncu --csv report; the
+    profiled program's own output before ncu's header is skipped."""
+    launches = OrderedDict()
     with open(path, newline="") as f:
         lines = [line for line in f if line.startswith('"')]
     for row in csv.DictReader(lines):
-        entry = launches.setdefault(row["ID"], (kernel_label(row["Kernel Name"]), {}))
+        entry = launches.setdefault(row["ID"], (label(row["Kernel Name"]), {}))
         entry[1][row["Metric Name"]] = number(row["Metric Value"])
+    return launches
+
+
+def main():
+    path, bonds = sys.argv[1], float(sys.argv[2])
+    launches = read_launches(path)
     table = OrderedDict()
     for label, m in launches.values():
         t = table.setdefault(label, {"n": 0, "ns": 0.0, "bytes": 0.0, "dram_pct": 0.0, "occ": 0.0,

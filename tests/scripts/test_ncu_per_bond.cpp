@@ -1,13 +1,11 @@
 // scripts/ncu_per_bond.py: the bond loops' table from an Nsight Compute --csv report.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <string>
 #include <utility>
 
+#include "tests/support/external_tools.h"
+#include "tests/support/ncu_report.h"
 #include "tests/support/temp_dir.h"
 
 namespace pd {
@@ -15,41 +13,13 @@ namespace {
 
 class NcuPerBondScript : public testing::TempDirTest {};
 
-// One metric row of `ncu --csv --print-units base`, for kernel launch `id`.
-void write_metric(std::ofstream& out, int id, const std::string& kernel, const std::string& metric,
-                  const std::string& value) {
-  out << '"' << id << "\",\"1136\",\"perifrac\",\"127.0.0.1\",\"1136 \",\"\",\"" << kernel
-      << "\",\"1\",\"7\",\"(256, 1, 1)\",\"(3907, 1, 1)\",\"0\",\"9.0\",\"Command line profiler metrics\",\""
-      << metric << "\",\"\",\"" << value << "\"\n";
-}
-
-std::string run(const std::string& command) {
-  std::string text;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return text;
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), int(buffer.size()), pipe)) text += buffer.data();
-  if (pclose(pipe) != 0) text += "\n(exit status not 0)";
-  return text;
-}
-
 TEST_F(NcuPerBondScript, TabulatesTheBondLoopsPerBondAndLeavesTheOthersOut) {
-  if (std::system("command -v python3 >/dev/null 2>&1") != 0) GTEST_SKIP() << "no python3 on PATH";
+  if (testing::find_program("python3").empty()) GTEST_SKIP() << "no python3 on PATH";
   const std::string csv = path("report.csv");
   {
-    std::ofstream out(csv);
-    // The bench's own lines come first in the report; then ncu's header and its metric rows.
-    out << "==PROF== Connected to process 1136\nsize       1000 particles, 64000 bonds\n";
-    out << "\"ID\",\"Process ID\",\"Process Name\",\"Host Name\",\"thread Domain\",\"Id:Domain\",";
-    out << "\"Kernel Name\",\"Context\",\"Stream\",\"Block Size\",\"Grid Size\",\"Device\",\"CC\",";
-    out << "\"Section Name\",\"Metric Name\",\"Metric Unit\",\"Metric Value\"\n";
-    const std::string update =
-        "void parallel_for_kernel<void launch_position_update_variant<0, 1, CudaExec>(T3 &)>(long, T1)";
-    const std::string forces =
-        "void parallel_for_bounded_kernel<8, void launch_over_range<1, 8, CudaExec, void "
-        "launch_springforces_variant<0, 0, 0, 0, 0, 1, 0, 1, CudaExec>(T9 &)>(long, T2)";
-    write_metric(out, 0, update, "gpu__time_duration.sum", "24,096");
-    write_metric(out, 0, update, "smsp__inst_executed.sum", "2,000,000");
+    testing::NcuReport report(csv);
+    report.metric(0, testing::kNcuPositionUpdate, "gpu__time_duration.sum", "24,096");
+    report.metric(0, testing::kNcuPositionUpdate, "smsp__inst_executed.sum", "2,000,000");
     const std::pair<const char*, const char*> metrics[] = {
         {"gpu__time_duration.sum", "425,184"},
         {"smsp__inst_executed.sum", "130,000"},
@@ -67,10 +37,10 @@ TEST_F(NcuPerBondScript, TabulatesTheBondLoopsPerBondAndLeavesTheOthersOut) {
         {"l1tex__t_sector_hit_rate.pct", "75.76"},
         {"lts__t_sector_hit_rate.pct", "45.35"},
     };
-    for (const auto& [metric, value] : metrics) write_metric(out, 1, forces, metric, value);
+    for (const auto& [name, value] : metrics) report.metric(1, testing::kNcuSpringforces, name, value);
   }
-  const std::string table = run("python3 " PERIFRAC_SOURCE_DIR "/scripts/ncu_per_bond.py " + csv + " 64000");
-  ASSERT_EQ(table.find("exit status"), std::string::npos) << table;
+  const std::string table =
+      testing::run_command("python3 " PERIFRAC_SOURCE_DIR "/scripts/ncu_per_bond.py " + csv + " 64000");
   // 130,000 warp instructions over 64,000 bonds: 65.0 thread instructions a bond. The stalls
   // largest first, "selected" (issuing, not a stall) left out; the position update has no row.
   EXPECT_NE(
