@@ -204,6 +204,23 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geomet
   }
 }
 
+// How a listed family's loop loads the next bond's partner index a bond ahead, chosen by each
+// visitor as measured (H200, bench/NOTES.md):
+// - kWalkBranched: under a test that there is a next bond (teams, whose last bonds diverge anyway,
+//   and the elastic state-based pass, whose registers fall out worse with the others);
+// - kWalkClamped (one thread a particle): from slot first + min(k + 1, count - 1) kSliceWidth, so
+//   after its last bond the family's last slot is read again, a value that goes unused, with no
+//   branch, whose test, branch and convergence barrier were three of the ~67 instructions a bond
+//   of the explicit bond-based lattice's pass (that pass +1.7%, the plastic one +2%); the passes
+//   with weakened bonds or surface factors;
+// - kWalkFromBase (one thread a particle): the same slot, its index's address one multiply-add on
+//   the family's own base (three dependent instructions to the load where the clamped walk takes
+//   six), and the bonds left intact counted as the count less those found or left broken (rare)
+//   rather than at every bond; for the passes with neither weakened bonds nor factors (the
+//   explicit bond-based lattice's pass +3.9%, the plastic one's +2%; with weakened bonds and
+//   factors, the 1M glass plate's explicit families, -13%).
+enum ListedWalk : int { kWalkBranched = 0, kWalkClamped = 1, kWalkFromBase = 2 };
+
 // Explicit families: the next bond's partner index (and its surface factor, SlotAhead) is loaded
 // before this bond is visited: a visit may break its own slot, which keeps the compiler from
 // hoisting the next load over it, and without the early load every bond waits for two dependent
@@ -212,13 +229,9 @@ PD_HD inline bool visit_bond(Visit& visit, int64_t slot, int32_t j, const Geomet
 // bonds it found intact. kHistory (HistoryReads): the plastic histories the visitor reads, fetched
 // into L2 with the next index (prefetch_history: the plastic explicit lattice's step +12%). Slots
 // are counted from the family's first (H200, bench/NOTES.md: springforces +7-11% on the vase,
-// the torus and the explicit lattices). kFactors: slot_ahead's. kAheadUnbranched (one thread a
-// particle): after its last bond the family's last slot is loaded again, a value that goes unused,
-// instead of a branch around the load, whose test, branch and convergence barrier are three of the
-// ~67 instructions a bond of the explicit bond-based lattice's pass (H200, bench/NOTES.md: that
-// pass +1.7%, the plastic one +2%, the elastic state-based one -2 to -3%, a team's -0.3 to -1.1%:
-// chosen by the visitors where it gains).
-template <int kHistory, bool kFactors, bool kAheadUnbranched, int kThreads, class Visit>
+// the torus and the explicit lattices). kFactors: slot_ahead's. kWalk: kWalkBranched or
+// kWalkClamped (ListedWalk).
+template <int kHistory, bool kFactors, int kWalk, int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                                  const Team<kThreads>& team, Visit& visit) {
   const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
@@ -241,7 +254,7 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
     const int64_t slot = first_slot + int64_t(k) * kSliceWidth;
     const int32_t j = next;
     const SlotAhead ahead = next_ahead;
-    if constexpr (kAheadUnbranched && kThreads == 1) {
+    if constexpr (kWalk == kWalkClamped && kThreads == 1) {
       const int64_t next_slot = first_slot + int64_t(k + 1 < count ? k + 1 : k) * kSliceWidth;
       next = load_streaming(b.neighbor[next_slot]);
       next_ahead = slot_ahead<kFactors>(b, next_slot);
@@ -259,6 +272,41 @@ PD_HD inline int32_t for_each_intact_listed_bond(int32_t i, const ParticlesView&
       b.neighbor[slot] = ~j;
   }
   return holding;
+}
+
+// The listed walk kWalkFromBase (ListedWalk), one thread a particle.
+template <int kHistory, bool kFactors, class Visit>
+PD_HD inline int32_t for_each_intact_listed_bond_from_base(int32_t i, const ParticlesView& p,
+                                                           const BondsView& b, Visit& visit) {
+  const Vec4 rest_i = p.rest[i], disp_i = p.disp[i];
+  const int32_t count = b.count[i];
+  if (count <= 0) return 0;
+  const int64_t first_slot = b.slot(i, 0);
+  const int32_t last = count - 1;
+  const ArrayView<int32_t> family = b.neighbor.sub(first_slot, int64_t(last) * kSliceWidth + 1);
+  int32_t next = load_streaming(family[0]);
+  SlotAhead next_ahead = slot_ahead<kFactors>(b, first_slot);
+  int32_t lost = 0;
+  PD_BOND_LOOP
+  for (int32_t k = 0; k <= last; ++k) {
+    const int32_t j = next;
+    const SlotAhead ahead = next_ahead;
+    const int32_t k1 = k + 1;
+    const int64_t ahead_k = int64_t(k1 < last ? k1 : last) * kSliceWidth;
+    next = load_streaming(family[ahead_k]);
+    next_ahead = slot_ahead<kFactors>(b, first_slot + ahead_k);
+    prefetch_history<kHistory>(b, first_slot + ahead_k);
+    if (!bond_intact(j)) {
+      ++lost;
+      continue;
+    }
+    const int64_t slot = first_slot + int64_t(k) * kSliceWidth;
+    if (!visit_bond(visit, slot, j, bond_geometry(rest_i, disp_i, p.rest[j], p.disp[j], ahead))) {
+      ++lost;
+      b.neighbor[slot] = ~j;
+    }
+  }
+  return last + 1 - lost;
 }
 
 // Geometry of a lattice bond: the reference vector, lengths and weight from the stencil entry.
@@ -382,10 +430,10 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
 // (team.h), each lane visits its share of the bonds and the count returned is the whole team's.
 // fetch_histories: false where the visitor reads none of the particle's histories (the lattice
 // loop's fetches of kHistory left out where no particle of the warp reads them). kFactors: the
-// run has surface factors, known at compile time (slot_ahead); kAheadUnbranched:
-// for_each_intact_listed_bond's.
+// run has surface factors, known at compile time (slot_ahead); kWalk: how a listed family's loop
+// loads ahead (ListedWalk).
 template <int kLattice = kLatticeListed, int kUnroll = 2, int kHistory = kNoHistory, bool kFactors = false,
-          bool kAheadUnbranched = false, int kThreads = 1, class Visit>
+          int kWalk = kWalkBranched, int kThreads = 1, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,
                                           const Team<kThreads>& team, Visit&& visit,
                                           bool fetch_histories = true) {
@@ -393,7 +441,10 @@ PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, con
   if (kLattice != kNoLattice && stencil >= 0)
     return team.sum(for_each_intact_lattice_bond<kLattice, kUnroll, kHistory>(i, stencil, p, b, team, visit,
                                                                               fetch_histories));
-  return team.sum(for_each_intact_listed_bond<kHistory, kFactors, kAheadUnbranched>(i, p, b, team, visit));
+  if constexpr (kWalk == kWalkFromBase && kThreads == 1)
+    return for_each_intact_listed_bond_from_base<kHistory, kFactors>(i, p, b, visit);
+  else
+    return team.sum(for_each_intact_listed_bond<kHistory, kFactors, kWalk>(i, p, b, team, visit));
 }
 template <int kLattice = kLatticeListed, int kUnroll = 2, class Visit>
 PD_HD inline int32_t for_each_intact_bond(int32_t i, const ParticlesView& p, const BondsView& b,

@@ -54,7 +54,10 @@ PD_HD inline bool state_force_pass(int32_t i, ParticlesView p, BondsView b, cons
   // The entry loop unrolled 8 times: +3% (elastic) to +8% (plastic) against the compiler's 2
   // (bench/NOTES.md); a plastic run's histories of both ends fetched ahead.
   constexpr int kHistory = kPlastic ? kBothHistories : kNoHistory;
-  const int32_t intact = for_each_intact_bond<kLattice, 8, kHistory, false, kPlastic>(
+  // The listed loop's walk (bond.h ListedWalk): the plastic pass's from the family's base (with
+  // weakened bonds clamped), the elastic pass's branched (as measured).
+  constexpr int kWalk = !kPlastic ? kWalkBranched : kWeak ? kWalkClamped : kWalkFromBase;
+  const int32_t intact = for_each_intact_bond<kLattice, 8, kHistory, false, kWalk>(
       i, p, b, team,
       [&](int64_t slot, int32_t j, const auto& g) {
         const Vec4 state_j = p.state[j];
