@@ -383,8 +383,9 @@ template <int kLattice, int kUnroll, int kHistory, int kThreads, class Visit>
 PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
                                                   const BondsView& b, const Team<kThreads>& team,
                                                   Visit& visit, bool fetch_histories) {
-  constexpr int kEntries = 32 / kThreads;                                                 // per lane and word
-  [[maybe_unused]] constexpr int kEntryUnroll = kUnroll < kEntries ? kUnroll : kEntries;  // (GPU pragma)
+  constexpr int kEntries = 32 / kThreads;  // per lane and word
+  constexpr int kEntryUnroll = kUnroll < kEntries ? kUnroll : kEntries;
+  static_assert(kEntries % kEntryUnroll == 0, "runs of kEntryUnroll entries fill a word");
   const LatticeView& l = b.lattice;
   const Stencil st = l.stencils[stencil];
   const ArrayView<const StencilEntry> entries = l.entries.sub(st.first, st.size);
@@ -400,21 +401,37 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
     const uint32_t weak = l.weak ? l.weak[word] : 0u;
     prefetch_history_rows<kHistory, kThreads>(i, k0, present, b, fetch_rows);
     // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
-    PD_UNROLL(kEntryUnroll)
-    for (int32_t r = 0; r < kEntries; ++r) {
-      const int32_t q = r * kThreads + team.lane();
-      if (!(intact >> q & 1u)) continue;
-      const StencilEntry& e = entries[w0 + q];
-      const int64_t slot = first_slot + int64_t(k0 + bit_count(present & ((1u << q) - 1u))) * kSliceWidth;
-      int32_t j;
-      if constexpr (kLattice == kLatticeOffsets)
-        j = i + e.offset;
-      else
-        j = st.listed ? bond_partner(b.neighbor[slot]) : i + e.offset;
-      if (!visit_bond(visit, slot, j, lattice_bond_geometry(e, disp_i, p.disp[j], weak >> q & 1u, w0 + q))) {
-        b.neighbor[slot] = ~j;
-        intact &= ~(1u << q);
-        store_intact_word<kThreads>(&l.intact[word], intact, q);  // rare: stored at once
+    // The entries in runs of kEntryUnroll. Visitors without histories (kRunBits) shift the run's
+    // bits down once, so that each entry's tests take constant masks (one instruction where a
+    // shift by the entry's position took three): the state-based lattice's springforces +2%, the
+    // 1M glass plate's +1.5%; the plastic passes keep each entry's own shift (with the run's bits
+    // Chen's plastic wall's init lost 5%; one H200, bench/NOTES.md).
+    constexpr bool kRunBits = kHistory == kNoHistory;
+    PD_UNROLL(1)
+    for (int32_t r0 = 0; r0 < kEntries; r0 += kEntryUnroll) {
+      const int32_t q0 = r0 * kThreads + team.lane();
+      const uint32_t run_intact = intact >> q0, run_present = present >> q0, run_weak = weak >> q0;
+      const int32_t run_k = k0 + bit_count(present & ((1u << q0) - 1u));  // present bonds before the run
+      PD_UNROLL(kEntryUnroll)
+      for (int32_t u = 0; u < kEntryUnroll; ++u) {
+        const int32_t shift = u * kThreads, q = q0 + shift;
+        if (!((kRunBits ? run_intact >> shift : intact >> q) & 1u)) continue;
+        const StencilEntry& e = entries[w0 + q];
+        const int32_t before = kRunBits ? run_k + bit_count(run_present & ((1u << shift) - 1u))
+                                        : k0 + bit_count(present & ((1u << q) - 1u));
+        const int64_t slot = first_slot + int64_t(before) * kSliceWidth;
+        int32_t j;
+        if constexpr (kLattice == kLatticeOffsets)
+          j = i + e.offset;
+        else
+          j = st.listed ? bond_partner(b.neighbor[slot]) : i + e.offset;
+        if (!visit_bond(visit, slot, j,
+                        lattice_bond_geometry(e, disp_i, p.disp[j],
+                                              (kRunBits ? run_weak >> shift : weak >> q) & 1u, w0 + q))) {
+          b.neighbor[slot] = ~j;
+          intact &= ~(1u << q);
+          store_intact_word<kThreads>(&l.intact[word], intact, q);  // rare: stored at once
+        }
       }
     }
     k0 += bit_count(present);

@@ -1,5 +1,7 @@
 // Bond loops (cuda/kernels/bond.h): the listed family's three walks (ListedWalk) visit the same
-// bonds with the same geometry, break the same ones and count the same bonds left intact.
+// bonds with the same geometry, break the same ones and count the same bonds left intact; so do
+// the lattice loop's two ways of testing an entry's bits (a run's bits shifted once, for visitors
+// without histories, or each entry's own shift).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -80,6 +82,129 @@ TEST(ListedWalk, EveryWalkVisitsBreaksAndCountsTheSameBonds) {
   EXPECT_EQ(stored_b[1 * kSliceWidth + 4], ~3);
   EXPECT_EQ(stored_c, stored_b);
   EXPECT_EQ(stored_f, stored_b);
+}
+
+// A row of 100 particles on one stencil of 44 entries (offsets -20 to 24 but 0: two mask words),
+// some entries absent (cut), some bonds already broken, some weakened.
+struct LatticeRow : testing::ParticleArrays {
+  static constexpr int32_t kN = 100, kEntries = 44, kWords = 2;
+  std::vector<int32_t> count, neighbor;
+  std::vector<int64_t> offset;
+  std::vector<int16_t> stencil_of;
+  std::vector<Stencil> stencils{{0, kEntries, 0}};
+  std::vector<StencilEntry> entries;
+  std::vector<uint32_t> present, intact_bits, weak;
+
+  LatticeRow() {
+    for (int32_t i = 0; i < kN; ++i) {
+      rest.push_back({real(i), 0, 0, real(1)});
+      disp.push_back({real(1e-3 * (i % 7)), real(-2e-4 * (i % 5)), real(1e-4 * (i % 3)), real(0.1)});
+    }
+    for (int32_t o = -20; o <= 24; ++o)
+      if (o != 0)
+        entries.push_back({{real(o), 0, 0, real(std::abs(o))}, real(1) / real(std::abs(o)), 1, o, 0});
+    stencil_of.assign(kN, 0);
+    for (int32_t s = 0; s * kSliceWidth < kN; ++s) offset.push_back(int64_t(s) * kEntries * kSliceWidth);
+    neighbor.assign(offset.size() * kEntries * kSliceWidth, 0);
+    present.assign(kWords * kN, 0u);
+    intact_bits.assign(kWords * kN, 0u);
+    weak.assign(kWords * kN, 0u);
+    for (int32_t i = 0; i < kN; ++i) {
+      int32_t k = 0;
+      for (int32_t q = 0; q < kEntries; ++q) {
+        const int32_t j = i + entries[size_t(q)].offset;
+        if (j < 0 || j >= kN || (i * 7 + q) % 11 == 0) continue;  // outside the row, or cut
+        const size_t word = size_t(q / 32) * kN + size_t(i), bit = size_t(q % 32);
+        present[word] |= 1u << bit;
+        if ((i + 3 * q) % 13 != 0) intact_bits[word] |= 1u << bit;  // else broken before
+        if ((i * q) % 5 == 1) weak[word] |= 1u << bit;
+        neighbor[size_t(offset[size_t(i / kSliceWidth)] + int64_t(k) * kSliceWidth + i % kSliceWidth)] = j;
+        ++k;
+      }
+      count.push_back(k);
+    }
+  }
+  BondsView bonds() {
+    BondsView b;
+    b.n = kN;
+    b.slice_offset = view_of(offset);
+    b.count = view_of(count);
+    b.neighbor = view_of(neighbor);
+    b.lattice.words = kWords;
+    b.lattice.stencil = view_of(stencil_of);
+    b.lattice.stencils = view_of(stencils);
+    b.lattice.entries = view_of(entries);
+    b.lattice.present = view_of(present);
+    b.lattice.intact = view_of(intact_bits);
+    b.lattice.weak = view_of(weak);
+    return b;
+  }
+};
+
+struct LatticeVisit {
+  int64_t slot;
+  int32_t j, entry;
+  bool weak;
+  real e;
+  bool operator==(const LatticeVisit& o) const {
+    return slot == o.slot && j == o.j && entry == o.entry && weak == o.weak && e == o.e;
+  }
+};
+
+// Walks every particle's lattice family as a visitor reading kHistory would (the histories
+// themselves are not read here), unrolled kUnroll times; the visitor breaks the bonds whose
+// partner and entry sum to a multiple of 7. Fills the counts left intact and the bits and partners
+// stored after the walk.
+template <int kHistory, int kUnroll>
+std::vector<LatticeVisit> walk_lattice(std::vector<int32_t>& holding, std::vector<uint32_t>& bits,
+                                       std::vector<int32_t>& stored) {
+  LatticeRow row;
+  std::vector<LatticeVisit> visits;
+  holding.clear();
+  for (int32_t i = 0; i < LatticeRow::kN; ++i)
+    holding.push_back(for_each_intact_bond<kLatticeOffsets, kUnroll, kHistory>(
+        i, row.view(), row.bonds(), Team<1>{}, [&](int64_t slot, int32_t j, const auto& g) {
+          visits.push_back({slot, j, g.entry, g.weak, g.e});
+          return (j + g.entry) % 7 != 0;
+        }));
+  bits = row.intact_bits;
+  stored = row.neighbor;
+  return visits;
+}
+
+TEST(LatticeLoop, RunBitsAndEntryBitsVisitBreakAndCountTheSameBonds) {
+  std::vector<int32_t> holding_runs, holding_entries, holding_two, stored_runs, stored_entries, stored_two;
+  std::vector<uint32_t> bits_runs, bits_entries, bits_two;
+  const auto runs = walk_lattice<kNoHistory, 8>(holding_runs, bits_runs, stored_runs);
+  const auto entries = walk_lattice<kOwnHistory, 8>(holding_entries, bits_entries, stored_entries);
+  const auto two = walk_lattice<kNoHistory, 2>(holding_two, bits_two, stored_two);
+  // Every present, intact bond visited once, in entry order, with its slot, weak bit and entry.
+  const LatticeRow row;
+  size_t expected = 0, weak_visits = 0, breaks = 0;
+  for (int32_t i = 0; i < LatticeRow::kN; ++i)
+    for (int32_t w = 0; w < LatticeRow::kWords; ++w)
+      expected += size_t(bit_count(row.intact_bits[size_t(w) * LatticeRow::kN + size_t(i)]));
+  ASSERT_EQ(runs.size(), expected);
+  for (const LatticeVisit& v : runs) {
+    weak_visits += v.weak;
+    breaks += (v.j + v.entry) % 7 == 0;
+    const int32_t i = v.j - row.entries[size_t(v.entry)].offset;
+    EXPECT_EQ(row.neighbor[size_t(v.slot)], v.j) << "particle " << i << " entry " << v.entry;
+  }
+  EXPECT_GT(weak_visits, 0u);
+  EXPECT_GT(breaks, 0u);
+  EXPECT_EQ(entries, runs);
+  EXPECT_EQ(two, runs);
+  EXPECT_EQ(holding_entries, holding_runs);
+  EXPECT_EQ(holding_two, holding_runs);
+  EXPECT_EQ(bits_entries, bits_runs);
+  EXPECT_EQ(bits_two, bits_runs);
+  EXPECT_EQ(stored_entries, stored_runs);
+  EXPECT_EQ(stored_two, stored_runs);
+  // What the loop left: the broken bonds' bits cleared and their partners stored as ~j.
+  size_t left = 0;
+  for (int32_t h : holding_runs) left += size_t(h);
+  EXPECT_EQ(left, expected - breaks);
 }
 
 }  // namespace
