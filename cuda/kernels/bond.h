@@ -369,6 +369,21 @@ PD_HD inline void prefetch_history_rows(int32_t i, int32_t k0, uint32_t present,
 #endif
 }
 
+// Whether the lattice loop (below) shifts each run's bits down once, so that each entry's tests
+// take constant masks (one instruction where a shift by the entry's position takes three): on
+// the GPU for visitors without plastic histories (one H200: the state-based lattice's
+// springforces +2%, the 1M glass plate's +1.5%; with the run's bits the plastic passes gained
+// nothing and Chen's plastic wall's init lost 5%); not on the CPU, whose reference state-based
+// lattice ran 8% slower with them, and 2-4% slower in runs of 8 entries each with its own shift
+// (2-core CPU; bench/NOTES.md).
+template <int kHistory>
+constexpr bool kLatticeRunBits =
+#if defined(__CUDA_ARCH__)
+    kHistory == kNoHistory;
+#else
+    false;
+#endif
+
 // Lattice families: the warp's threads walk the same stencil entries together (one broadcast
 // load of the entry, partners at the same offset: one contiguous gather), each skipping the
 // entries its intact bits leave out (intact bits are a subset of the present ones). A bond's
@@ -379,7 +394,8 @@ PD_HD inline void prefetch_history_rows(int32_t i, int32_t k0, uint32_t present,
 // team's lane visits entries lane, lane + kThreads, ... of each word and counts the intact bonds
 // among those. kHistory (HistoryReads): the plastic histories the visitor reads, fetched ahead
 // (prefetch_history_rows) where any particle of the warp reads them (fetch_histories).
-template <int kLattice, int kUnroll, int kHistory, int kThreads, class Visit>
+template <int kLattice, int kUnroll, int kHistory, int kThreads, class Visit,
+          bool kRunBits = kLatticeRunBits<kHistory>>
 PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, const ParticlesView& p,
                                                   const BondsView& b, const Team<kThreads>& team,
                                                   Visit& visit, bool fetch_histories) {
@@ -401,19 +417,16 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
     const uint32_t weak = l.weak ? l.weak[word] : 0u;
     prefetch_history_rows<kHistory, kThreads>(i, k0, present, b, fetch_rows);
     // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
-    // The entries in runs of kEntryUnroll. Visitors without histories (kRunBits) shift the run's
-    // bits down once, so that each entry's tests take constant masks (one instruction where a
-    // shift by the entry's position took three): the state-based lattice's springforces +2%, the
-    // 1M glass plate's +1.5%; the plastic passes keep each entry's own shift (with the run's bits
-    // Chen's plastic wall's init lost 5%; one H200, bench/NOTES.md).
-    constexpr bool kRunBits = kHistory == kNoHistory;
+    // With kRunBits the entries in runs of kEntryUnroll, each run's bits shifted down once;
+    // without, the word's entries in one run, each tested with its own shift.
+    constexpr int kRun = kRunBits ? kEntryUnroll : kEntries;
     PD_UNROLL(1)
-    for (int32_t r0 = 0; r0 < kEntries; r0 += kEntryUnroll) {
+    for (int32_t r0 = 0; r0 < kEntries; r0 += kRun) {
       const int32_t q0 = r0 * kThreads + team.lane();
       const uint32_t run_intact = intact >> q0, run_present = present >> q0, run_weak = weak >> q0;
       const int32_t run_k = k0 + bit_count(present & ((1u << q0) - 1u));  // present bonds before the run
       PD_UNROLL(kEntryUnroll)
-      for (int32_t u = 0; u < kEntryUnroll; ++u) {
+      for (int32_t u = 0; u < kRun; ++u) {
         const int32_t shift = u * kThreads, q = q0 + shift;
         if (!((kRunBits ? run_intact >> shift : intact >> q) & 1u)) continue;
         const StencilEntry& e = entries[w0 + q];

@@ -1,7 +1,7 @@
 // Bond loops (cuda/kernels/bond.h): the listed family's three walks (ListedWalk) visit the same
 // bonds with the same geometry, break the same ones and count the same bonds left intact; so do
-// the lattice loop's two ways of testing an entry's bits (a run's bits shifted once, for visitors
-// without histories, or each entry's own shift).
+// the lattice loop's two ways of testing an entry's bits (kLatticeRunBits: a run's bits shifted
+// once, or each entry's own shift).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -151,22 +151,30 @@ struct LatticeVisit {
   }
 };
 
-// Walks every particle's lattice family as a visitor reading kHistory would (the histories
-// themselves are not read here), unrolled kUnroll times; the visitor breaks the bonds whose
-// partner and entry sum to a multiple of 7. Fills the counts left intact and the bits and partners
-// stored after the walk.
-template <int kHistory, int kUnroll>
+// Records each visit; breaks the bonds whose partner and entry sum to a multiple of 7.
+struct LatticeRecorder {
+  std::vector<LatticeVisit>* visits;
+  template <class Geometry>
+  bool operator()(int64_t slot, int32_t j, const Geometry& g) const {
+    visits->push_back({slot, j, g.entry, g.weak, g.e});
+    return (j + g.entry) % 7 != 0;
+  }
+};
+
+// Walks every particle's lattice family with the run's bits shifted once (kRunBits) or each
+// entry's own shift, unrolled kUnroll times. Fills the counts left intact and the bits and
+// partners stored after the walk.
+template <bool kRunBits, int kUnroll>
 std::vector<LatticeVisit> walk_lattice(std::vector<int32_t>& holding, std::vector<uint32_t>& bits,
                                        std::vector<int32_t>& stored) {
   LatticeRow row;
   std::vector<LatticeVisit> visits;
+  LatticeRecorder record{&visits};
   holding.clear();
   for (int32_t i = 0; i < LatticeRow::kN; ++i)
-    holding.push_back(for_each_intact_bond<kLatticeOffsets, kUnroll, kHistory>(
-        i, row.view(), row.bonds(), Team<1>{}, [&](int64_t slot, int32_t j, const auto& g) {
-          visits.push_back({slot, j, g.entry, g.weak, g.e});
-          return (j + g.entry) % 7 != 0;
-        }));
+    holding.push_back(
+        for_each_intact_lattice_bond<kLatticeOffsets, kUnroll, kNoHistory, 1, LatticeRecorder, kRunBits>(
+            i, 0, row.view(), row.bonds(), Team<1>{}, record, true));
   bits = row.intact_bits;
   stored = row.neighbor;
   return visits;
@@ -175,9 +183,9 @@ std::vector<LatticeVisit> walk_lattice(std::vector<int32_t>& holding, std::vecto
 TEST(LatticeLoop, RunBitsAndEntryBitsVisitBreakAndCountTheSameBonds) {
   std::vector<int32_t> holding_runs, holding_entries, holding_two, stored_runs, stored_entries, stored_two;
   std::vector<uint32_t> bits_runs, bits_entries, bits_two;
-  const auto runs = walk_lattice<kNoHistory, 8>(holding_runs, bits_runs, stored_runs);
-  const auto entries = walk_lattice<kOwnHistory, 8>(holding_entries, bits_entries, stored_entries);
-  const auto two = walk_lattice<kNoHistory, 2>(holding_two, bits_two, stored_two);
+  const auto runs = walk_lattice<true, 8>(holding_runs, bits_runs, stored_runs);
+  const auto entries = walk_lattice<false, 8>(holding_entries, bits_entries, stored_entries);
+  const auto two = walk_lattice<true, 2>(holding_two, bits_two, stored_two);
   // Every present, intact bond visited once, in entry order, with its slot, weak bit and entry.
   const LatticeRow row;
   size_t expected = 0, weak_visits = 0, breaks = 0;
