@@ -460,5 +460,34 @@ TEST(LatticeFamilies, SnapshotsRestoreTheIntactBits) {
   EXPECT_THROW(make_cpu_engine(in)->restore(s), std::invalid_argument);
 }
 
+// A plastic run restored from a snapshot, whose mirror of the histories is derived from the
+// histories alone (mirror_plastic), continues with the bits of the run that kept the mirror as
+// `springforces` wrote it (each thread moving its partners' ends as their own threads move them,
+// plasticity.h), with lattice and with explicit families; particles flowed before the snapshot.
+TEST(LatticeFamilies, PlasticRunsRestoredFromTheirHistoryContinueTheSame) {
+  for (bool lattice : {true, false}) {
+    auto in = pulled_apart(state_block(16, 8, 8, kLambda, 4e-3, true), 16, 20);  // flows in the middle
+    in.lattice_families = lattice;
+    auto whole = make_cpu_engine(in);
+    whole->advance(150);
+    auto first = make_cpu_engine(in);
+    EXPECT_EQ(first->family_stats().lattice_particles > 0, lattice);
+    first->advance(75);
+    EngineSnapshot s;
+    first->save(s);
+    const int64_t flowed = std::count_if(s.plastic.begin(), s.plastic.end(), [](real e) { return e != 0; });
+    EXPECT_GT(flowed, int64_t(s.plastic.size() / 20)) << "bonds whose ends flowed";
+    auto second = make_cpu_engine(in);
+    second->restore(s);
+    second->advance(75);
+    ParticleState a, b;
+    whole->read_state(a);
+    second->read_state(b);
+    EXPECT_EQ(relative_l2(a.disp, b.disp), 0.0) << lattice;
+    EXPECT_EQ(relative_l2(a.force, b.force), 0.0) << lattice;
+    EXPECT_EQ(whole->broken_bonds(), second->broken_bonds());
+  }
+}
+
 }  // namespace
 }  // namespace pd
