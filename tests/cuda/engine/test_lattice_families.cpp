@@ -7,6 +7,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -438,26 +439,41 @@ TEST(LatticeFamilies, CutAndWeakenedBondsKeepTheirSlots) {
   expect_same_run(in, 150);
 }
 
+// `in` run for 2 half steps at once and, from a snapshot after the first half restored into a
+// fresh engine, the second half again: both engines' states, the snapshot, and the bonds broken
+// by then.
+struct RestoredRun {
+  std::unique_ptr<Engine> whole, resumed;
+  EngineSnapshot snapshot;
+  int64_t broken_at_snapshot = 0;
+  ParticleState whole_state, resumed_state;
+};
+
+RestoredRun restored_run(const SimulationInput& in, int64_t half) {
+  RestoredRun r;
+  r.whole = make_cpu_engine(in);
+  r.whole->advance(2 * half);
+  auto first = make_cpu_engine(in);
+  first->advance(half);
+  first->save(r.snapshot);
+  r.broken_at_snapshot = first->broken_bonds();
+  r.resumed = make_cpu_engine(in);
+  r.resumed->restore(r.snapshot);
+  r.resumed->advance(half);
+  r.whole->read_state(r.whole_state);
+  r.resumed->read_state(r.resumed_state);
+  return r;
+}
+
 TEST(LatticeFamilies, SnapshotsRestoreTheIntactBits) {
   const auto in = pulled_apart(lattice_block(16, 8, 8, kLambda, 2e-4), 16, 2);
-  auto whole = make_cpu_engine(in);
-  whole->advance(150);
-  auto first = make_cpu_engine(in);
-  first->advance(75);
-  EngineSnapshot s;
-  first->save(s);
-  ASSERT_GT(first->broken_bonds(), 0);
-  auto second = make_cpu_engine(in);
-  second->restore(s);
-  second->advance(75);
-  ParticleState a, b;
-  whole->read_state(a);
-  second->read_state(b);
-  EXPECT_EQ(relative_l2(a.disp, b.disp), 0.0);
-  EXPECT_EQ(whole->broken_bonds(), second->broken_bonds());
+  RestoredRun r = restored_run(in, 75);
+  ASSERT_GT(r.broken_at_snapshot, 0);
+  EXPECT_EQ(relative_l2(r.whole_state.disp, r.resumed_state.disp), 0.0);
+  EXPECT_EQ(r.whole->broken_bonds(), r.resumed->broken_bonds());
   // A snapshot whose families list the bonds in another order is refused.
-  std::swap(s.neighbor[0], s.neighbor[size_t(kSliceWidth)]);
-  EXPECT_THROW(make_cpu_engine(in)->restore(s), std::invalid_argument);
+  std::swap(r.snapshot.neighbor[0], r.snapshot.neighbor[size_t(kSliceWidth)]);
+  EXPECT_THROW(make_cpu_engine(in)->restore(r.snapshot), std::invalid_argument);
 }
 
 // A plastic run restored from a snapshot, whose mirror of the histories is derived from the
@@ -468,24 +484,14 @@ TEST(LatticeFamilies, PlasticRunsRestoredFromTheirHistoryContinueTheSame) {
   for (bool lattice : {true, false}) {
     auto in = pulled_apart(state_block(16, 8, 8, kLambda, 4e-3, true), 16, 20);  // flows in the middle
     in.lattice_families = lattice;
-    auto whole = make_cpu_engine(in);
-    whole->advance(150);
-    auto first = make_cpu_engine(in);
-    EXPECT_EQ(first->family_stats().lattice_particles > 0, lattice);
-    first->advance(75);
-    EngineSnapshot s;
-    first->save(s);
-    const int64_t flowed = std::count_if(s.plastic.begin(), s.plastic.end(), [](real e) { return e != 0; });
-    EXPECT_GT(flowed, int64_t(s.plastic.size() / 20)) << "bonds whose ends flowed";
-    auto second = make_cpu_engine(in);
-    second->restore(s);
-    second->advance(75);
-    ParticleState a, b;
-    whole->read_state(a);
-    second->read_state(b);
-    EXPECT_EQ(relative_l2(a.disp, b.disp), 0.0) << lattice;
-    EXPECT_EQ(relative_l2(a.force, b.force), 0.0) << lattice;
-    EXPECT_EQ(whole->broken_bonds(), second->broken_bonds());
+    const RestoredRun r = restored_run(in, 75);
+    EXPECT_EQ(r.whole->family_stats().lattice_particles > 0, lattice);
+    const std::vector<real>& e = r.snapshot.plastic;
+    const int64_t flowed = std::count_if(e.begin(), e.end(), [](real x) { return x != 0; });
+    EXPECT_GT(flowed, int64_t(e.size() / 20)) << "bonds whose ends flowed";
+    EXPECT_EQ(relative_l2(r.whole_state.disp, r.resumed_state.disp), 0.0) << lattice;
+    EXPECT_EQ(relative_l2(r.whole_state.force, r.resumed_state.force), 0.0) << lattice;
+    EXPECT_EQ(r.whole->broken_bonds(), r.resumed->broken_bonds());
   }
 }
 
