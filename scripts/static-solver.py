@@ -10,7 +10,8 @@ problems define them (host/validation/):
               the grips' force over the gauge's strain (the central width), nu from its lateral strain
   bending     the same bar bent between grips (u_x = k x z, u_z = -k x^2 / 2): EI over E W^4 / 12
   cantilever  the validation's beam, L = LH h, clamped by 3 layers under a uniform body force: the
-              tip deflection against Timoshenko's
+              tip deflection against Timoshenko's, and the deflection along the beam split into its
+              bending and shear parts and a rotation and offset at the clamp (least squares)
   torsion     the bar between grips, the right one turned about the axis: GJ over Saint-Venant's
               G k a^4 (k = 0.14058, a square)
   uniform     every particle of the bar's body (grips included) moved by uniform strains: the
@@ -472,24 +473,66 @@ def torsion(args):
     print(f"torsion {args.model} n={n}: GJ / (G k a^4) = {torque / rate / reference:.4f}")
 
 
+def clamp_extrapolation(b, n, clamp, order, layers):
+    """The map from the beam's displacements to every particle's where the clamp layers move with
+    the beam's field continued behind the face: along each row of particles (fixed y, z) the
+    polynomial of `order` through u = 0 at the face (x = 0) fitted to the row's first `layers`
+    beam particles, evaluated at the clamp particles."""
+    xs = (np.arange(layers) + 0.5) * LAMBDA
+    pinv = np.linalg.pinv(np.stack([xs ** q for q in range(1, order + 1)], 1))
+    beam = np.nonzero(b.idx[:, 0] >= clamp)[0]
+    column = np.full(b.n, -1)
+    column[beam] = np.arange(len(beam))
+    rows, cols, vals = [], [], []
+    for p, (i, j, k) in enumerate(b.idx):
+        if i >= clamp:
+            sources, weights = [p], [1.0]
+        else:
+            x = (i - clamp + 0.5) * LAMBDA
+            sources = [((clamp + t) * n + j) * n + k for t in range(layers)]
+            weights = np.array([x ** q for q in range(1, order + 1)]) @ pinv
+        for q, wt in zip(sources, weights):
+            for d in range(3):
+                rows.append(3 * p + d)
+                cols.append(3 * column[q] + d)
+                vals.append(wt)
+    return sp.csr_matrix((vals, (rows, cols)), shape=(3 * b.n, 3 * len(beam)))
+
+
 def cantilever(args):
-    n, clamp = args.n, 3
+    n, clamp = args.n, args.clamp_layers
     nl = args.length_over_height * n
     h = n * LAMBDA
     origin = (-clamp * LAMBDA, -0.5 * h, -0.5 * h)
     b = Body(nl + clamp, n, n, origin)
     H, E, nu = body_stiffness(b, (nl + clamp, n, n), origin, args)
-    fixed = np.repeat(b.idx[:, 0] < clamp, 3)
+    in_clamp = np.repeat(b.idx[:, 0] < clamp, 3)
     load = np.zeros(3 * b.n)
     load[1::3] = -b.vol  # a body force of 1 per unit volume along -y
-    u = solve(H, fixed, np.zeros(3 * b.n), load)
-    w = -u[1::3][b.idx[:, 0] == nl + clamp - 1].mean()
+    if args.clamp_fit:
+        P = clamp_extrapolation(b, n, clamp, *args.clamp_fit)
+        load[in_clamp] = 0
+        u = P @ spl.spsolve((P.T @ H @ P).tocsc(), P.T @ load)
+    else:
+        u = solve(H, in_clamp, np.zeros(3 * b.n), load)
+    # Each layer's mean deflection against Timoshenko's bending and shear parts at its centre.
+    w = np.array([-u[1::3][b.idx[:, 0] == clamp + k].mean() for k in range(nl)])
     L, A, inertia = nl * LAMBDA, h * h, h ** 4 / 12
-    kappa, x = 10 * (1 + nu) / (12 + 11 * nu), L - 0.5 * LAMBDA
-    ref = A * (x ** 4 - 4 * L * x ** 3 + 6 * L * L * x * x) / (24 * E * inertia) + \
-        A * (L * x - 0.5 * x * x) / (kappa * E / (2 * (1 + nu)) * A)
-    print(f"cantilever {args.model} n={n} L/h={args.length_over_height}: tip {w:.4e} against Timoshenko's {ref:.4e}: "
-          f"{(w / ref - 1) * 100:+.1f}%")
+    kappa, x = 10 * (1 + nu) / (12 + 11 * nu), (np.arange(nl) + 0.5) * LAMBDA
+    bending = A * (x ** 4 - 4 * L * x ** 3 + 6 * L * L * x * x) / (24 * E * inertia)
+    shear = A * (L * x - 0.5 * x * x) / (kappa * E / (2 * (1 + nu)) * A)
+    ref = bending[-1] + shear[-1]
+    print(f"cantilever {args.model} n={n} L/h={args.length_over_height}: tip {w[-1]:.4e} against Timoshenko's "
+          f"{ref:.4e}: {(w[-1] / ref - 1) * 100:+.1f}%")
+    # The deflection along the beam as c_b bending + c_s shear + theta_0 x + w_0: the tip's error
+    # split into the beam's bending and shear stiffness (1 / c - 1) and a rotation and offset at the
+    # clamp, each in points of the tip's reference.
+    c = np.linalg.lstsq(np.stack([bending, shear, x, np.ones_like(x)], 1), w, rcond=None)[0]
+    fitted = c[0] * bending + c[1] * shear + c[2] * x + c[3]
+    print(f"  split (points of the tip): bending {(c[0] - 1) * bending[-1] / ref * 100:+.1f} (EI x {1 / c[0]:.3f}), "
+          f"shear {(c[1] - 1) * shear[-1] / ref * 100:+.1f} (GA x {1 / c[1]:.2f}), "
+          f"rotation at the clamp {c[2] * x[-1] / ref * 100:+.1f}, offset {c[3] / ref * 100:+.1f}; "
+          f"largest residual {np.abs(fitted - w).max() / ref * 100:.2f}")
 
 
 def uniform(args):
@@ -550,6 +593,11 @@ def main():
     p.add_argument("--moments-order", type=int, default=1, choices=[0, 1],
                    help="pmb-moments: 0 matches the zeroth moments only")
     p.add_argument("--length-over-height", type=int, default=5, help="cantilever: L / h")
+    p.add_argument("--clamp-layers", type=int, default=3, help="cantilever: the clamp's layers of particles")
+    p.add_argument("--clamp-fit", type=int, nargs=2, metavar=("ORDER", "LAYERS"),
+                   help="cantilever: the clamp layers move with the beam's field continued behind the face "
+                        "(a polynomial of ORDER through u = 0 there, fitted along each row to its first "
+                        "LAYERS beam particles) instead of held fixed")
     p.add_argument("--ghosts", nargs="?", const="layer", choices=["layer", "fit"],
                    help="layer: a fictitious layer outside every face; fit: each particle's own ghosts on "
                         "its family's fitted linear field (see above)")
