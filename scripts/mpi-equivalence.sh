@@ -118,20 +118,25 @@ if [ "$quick" != 1 ]; then
   fi
 fi
 
-# The run's report on 2 ranks: the two ranks' bonds add up to the run's, and the vase's tets, whose
-# partition estimate is 4% off, are split again on their families to within 1%.
+# The run's report on 2 ranks: the two ranks' bonds add up to the run's; and on 3 ranks the vase's
+# tets, whose partition estimate is 5% off there (within 1% on 2 ranks since its shell's edges
+# are flipped), are split again on their families to within 1%.
 log="$out/ranks2/vase_tets.log"
 rank_bonds=$(sed -n 's/^ranks .* bonds \([0-9]*\) to \([0-9]*\), .*/\1 + \2/p' "$log")
 total_bonds=$(sed -n 's/^bonds *\([0-9]*\) .*/\1/p' "$log")
-imbalance=$(sed -n 's/^ranks .* imbalance \([0-9.]*\).*/\1/p' "$log")
+log3="$out/ranks3/vase_tets.log"
+imbalance=""
+[ -f "$log3" ] && imbalance=$(sed -n 's/^ranks .* imbalance \([0-9.]*\).*/\1/p' "$log3")
 if [ -z "$rank_bonds" ] || [ "$(($rank_bonds))" != "$total_bonds" ]; then
   echo "mpi-equivalence: the bonds per rank ($rank_bonds) do not add up to the run's ($total_bonds): $log" >&2
   status=1
-elif ! grep -q "split again on the families" "$log" || ! awk -v x="$imbalance" 'BEGIN { exit !(x <= 1.01) }'; then
-  echo "mpi-equivalence: the vase on 2 ranks is not split again to within 1% (imbalance ${imbalance:-?}): $log" >&2
+elif [ "$quick" = 1 ]; then
+  echo "mpi-equivalence: the bonds per rank add up to the run's ($rank_bonds = $total_bonds); quick: the 3-rank split not run"
+elif ! grep -q "split again on the families" "$log3" || ! awk -v x="$imbalance" 'BEGIN { exit !(x <= 1.01) }'; then
+  echo "mpi-equivalence: the vase on 3 ranks is not split again to within 1% (imbalance ${imbalance:-?}): $log3" >&2
   status=1
 else
-  echo "mpi-equivalence: the bonds per rank add up to the run's ($rank_bonds = $total_bonds): $(grep -o 'imbalance.*' "$log")"
+  echo "mpi-equivalence: the bonds per rank add up to the run's ($rank_bonds = $total_bonds); on 3 ranks the vase's $(grep -o 'imbalance.*' "$log3")"
 fi
 
 # `perifrac bench` under mpirun reports every rank: particles, ghosts, rate and halo traffic; and

@@ -5,7 +5,8 @@
 # `perifrac run --frames 0` with an empty tet cache, printing the run's TetGen stage beside it.
 # A benchmark, not a test (bench/NOTES.md, "TetGen alone on the GPU machine").
 #   scripts/tetgen-alone.sh [BIN] [SCENE] [SCALE] [ROUNDS]
-#   default: build/cpu/perifrac scenes/vase_drop.toml 4.27 3; BACKEND=cuda for the GPU build
+#   default: build/cpu/perifrac scenes/vase_drop.toml 4.27 3; BACKEND=cuda for the GPU build;
+#   TETGEN_KEEP_INPUT=DIR keeps a copy of the captured input (scripts/tetgen-surface.py reads it)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build/cpu/perifrac}
@@ -35,6 +36,7 @@ run_setup() {  # $1: PATH to use; prints the run's set-up line
 run_setup "$work/wrapper:$PATH" >/dev/null
 [ -f "$work/input/in.smesh" ] || { echo "tetgen-alone: $scene ran no TetGen (no tet body)" >&2; exit 2; }
 switches=$(cat "$work/input/switches")
+[[ -n "${TETGEN_KEEP_INPUT:-}" ]] && mkdir -p "$TETGEN_KEEP_INPUT" && cp "$work/input"/* "$TETGEN_KEEP_INPUT/"
 echo "tetgen-alone: $scene --scale $scale, tetgen $switches, $(nproc) cores, $(date -u +%Y-%m-%dT%H:%MZ)"
 for r in $(seq "$rounds"); do
   rm -rf "$work/alone" && mkdir -p "$work/alone" && cp "$work/input"/in.* "$work/alone/"
