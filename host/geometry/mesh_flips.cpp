@@ -8,7 +8,7 @@ namespace pd {
 
 namespace {
 
-constexpr int kMaxPasses = 16;  // Delaunay flips on a plane stop in far fewer; a cap for curved input
+constexpr int kMaxPasses = 16;  // a cap: on a curved surface the flips need not settle
 
 uint64_t edge_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
