@@ -8,9 +8,14 @@ edge) and the obtuse triangles, and with --flip DIR writes a copy whose encroach
 flipped where the flip keeps the surface's orientation and ends encroached by nothing. With
 --tetgen SWITCHES runs `tetgen SWITCHES` with V (stage times and counts) on the input, and on
 the flipped copy where one was written, and prints its counts of Steiner points and its time.
+With --delaunay JITTER (a shell's input: outer sheet, inner sheet, then its layers) builds the
+shell as Levine et al. 2014 sec. 4 do: a plain Delaunay tetrahedralization of all the points
+(`tetgen -zQ`), tets with every corner on the outer or every corner on the inner sheet left out;
+the layers' points moved along their sheet by JITTER times the mean edge (0: as perifrac places
+them); prints its time, the tets kept, their volume against the shell's and the share of slivers.
 A measurement behind bench/NOTES.md, not part of the build. Needs numpy and scipy (Debian:
 python3-numpy python3-scipy).
-  scripts/tetgen-surface.py DIR [--flip OUT] [--tetgen=-pq1.414a2.99765808e-08iO0zF]
+  scripts/tetgen-surface.py DIR [--flip OUT] [--tetgen=-pq1.414a2.99765808e-08iO0zF] [--delaunay J]
 """
 import argparse
 import pathlib
@@ -135,6 +140,64 @@ def run_tetgen(switches, folder):
     inside = number(r"Steiner points inside domain:\s+(\d+)")
     print(f"  tetgen {switches}: {wall:.2f} s wall (refinement {refinement} s), {tets} tets, Steiner points "
           f"on segments {on_segments}, on facets {on_facets}, inside {inside}")
+    nodes = np.array(read_rows(work / "in.1.node", 3))
+    elements = np.array(read_rows(work / "in.1.ele", 4), dtype=np.int64)
+    print(f"  tets by volume over the median: {sliver_shares(tet_volumes(nodes, elements))}")
+    shutil.rmtree(work, ignore_errors=True)
+
+
+def tet_volumes(nodes, tets):
+    corners = nodes[tets]
+    return np.abs(np.einsum("ij,ij->i", np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]),
+                            corners[:, 3] - corners[:, 0])) / 6
+
+
+def sliver_shares(volume):
+    median = np.median(volume)
+    return ", ".join(f"{(volume < f * median).mean() * 100:.3f}% under {f:g}" for f in (1e-3, 1e-2, 1e-1))
+
+
+def read_rows(path, columns):
+    rows = path.read_text().split("\n")
+    return [[float(v) for v in r.split()[1 : 1 + columns]] for r in rows[1 : 1 + int(rows[0].split()[0])]]
+
+
+def layers_delaunay(points, tris, inserted, jitter, folder):
+    """Levine's shell: the Delaunay tetrahedralization of the sheets and layers, filtered."""
+    half = len(points) // 2
+    if inserted is None or len(points) % 2 or len(inserted) % half:
+        print("  --delaunay needs a shell's input (two sheets of equal size and whole layers)")
+        return
+    outer, inner = points[:half], points[half:]
+    layers = inserted.reshape(-1, half, 3).copy()
+    if jitter > 0:
+        t = np.array([tri for tri in tris if max(tri) < half])
+        edge = np.linalg.norm(outer[t[:, 0]] - outer[t[:, 1]], axis=1).mean()
+        depth = (inner - outer) / np.linalg.norm(inner - outer, axis=1)[:, None]
+        rng = np.random.default_rng(1)
+        for layer in layers:
+            move = rng.normal(scale=jitter * edge, size=layer.shape)
+            layer += move - (move * depth).sum(1)[:, None] * depth  # along the sheet only
+    every = np.vstack([outer, inner, layers.reshape(-1, 3)])
+    work = pathlib.Path(folder) / "delaunay-run"
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir()
+    with (work / "in.node").open("w") as f:
+        f.write(f"{len(every)} 3 0 0\n")
+        for k, p in enumerate(every):
+            f.write(f"{k} {p[0]!r} {p[1]!r} {p[2]!r}\n")
+    start = time.monotonic()
+    subprocess.run(["tetgen", "-zQ", str(work / "in.node")], check=True, capture_output=True)
+    wall = time.monotonic() - start
+    tets = np.array(read_rows(work / "in.1.ele", 4), dtype=np.int64)
+    sheet = np.where(tets < half, 0, np.where(tets < 2 * half, 1, 2))
+    kept = tets[~((sheet == 0).all(1) | (sheet == 1).all(1))]
+    volume = tet_volumes(every, kept)
+    t = np.array(tris)
+    solid = np.einsum("ij,ij->i", points[t[:, 0]], np.cross(points[t[:, 1]], points[t[:, 2]])).sum() / 6
+    print(f"  Levine's Delaunay (jitter {jitter:g}): {wall:.2f} s wall, {len(every)} points, {len(tets)} tets, "
+          f"{len(kept)} kept, their volume {volume.sum() / solid - 1:+.2%} against the shell's; "
+          f"tets by volume over the median: {sliver_shares(volume)}")
     shutil.rmtree(work, ignore_errors=True)
 
 
@@ -143,6 +206,8 @@ def main():
     parser.add_argument("input", help="folder with in.smesh (and in.a.node)")
     parser.add_argument("--flip", metavar="OUT", help="write a copy with encroached edges flipped")
     parser.add_argument("--tetgen", metavar="SWITCHES", help="run tetgen with these switches (V added)")
+    parser.add_argument("--delaunay", metavar="JITTER", type=float,
+                        help="Levine's shell: a plain Delaunay of the sheets and layers, layers moved by JITTER")
     args = parser.parse_args()
     folder = pathlib.Path(args.input)
     points, tris = read_smesh(folder / "in.smesh")
@@ -154,6 +219,8 @@ def main():
     report("input", points, tris, inserted)
     if args.tetgen:
         run_tetgen(args.tetgen, folder)
+    if args.delaunay is not None:
+        layers_delaunay(points, tris, inserted, args.delaunay, folder)
     if args.flip:
         out = pathlib.Path(args.flip)
         out.mkdir(parents=True, exist_ok=True)
