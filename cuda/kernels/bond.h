@@ -369,13 +369,13 @@ PD_HD inline void prefetch_history_rows(int32_t i, int32_t k0, uint32_t present,
 #endif
 }
 
-// Whether the lattice loop (below) shifts each run's bits down once, so that each entry's tests
-// take constant masks (one instruction where a shift by the entry's position takes three): on
-// the GPU for visitors without plastic histories (one H200: the state-based lattice's
-// springforces +2%, the 1M glass plate's +1.5%; with the run's bits the plastic passes gained
-// nothing and Chen's plastic wall's init lost 5%); not on the CPU, whose reference state-based
-// lattice ran 8% slower with them, and 2-4% slower in runs of 8 entries each with its own shift
-// (2-core CPU; bench/NOTES.md).
+// Whether the lattice loop (below) walks a word's entries in runs of its unroll count, each
+// run's bits shifted down once, so that each entry's tests take constant masks (one instruction
+// where a shift by the entry's position takes three): on the GPU for visitors without plastic
+// histories (one H200: the state-based lattice's springforces +2%, the 1M glass plate's +1.5%;
+// in runs the plastic passes gained nothing and Chen's plastic wall's init lost 5%); not on the
+// CPU, whose reference state-based lattice ran 8% slower in runs, and 2-4% slower in runs of 8
+// entries each with its own shift (2-core CPU; bench/NOTES.md). Otherwise the word is one run.
 template <int kHistory>
 constexpr bool kLatticeRunBits =
 #if defined(__CUDA_ARCH__)
@@ -417,8 +417,8 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
     const uint32_t weak = l.weak ? l.weak[word] : 0u;
     prefetch_history_rows<kHistory, kThreads>(i, k0, present, b, fetch_rows);
     // A constant count, the bits past the stencil's end being 0: fewer registers (bench/NOTES.md).
-    // With kRunBits the entries in runs of kEntryUnroll, each run's bits shifted down once;
-    // without, the word's entries in one run, each tested with its own shift.
+    // The entries in runs of kEntryUnroll with kRunBits, else the word in one run; each run's bits
+    // shifted down to its first entry once.
     constexpr int kRun = kRunBits ? kEntryUnroll : kEntries;
     PD_UNROLL(1)
     for (int32_t r0 = 0; r0 < kEntries; r0 += kRun) {
@@ -428,10 +428,9 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
       PD_UNROLL(kEntryUnroll)
       for (int32_t u = 0; u < kRun; ++u) {
         const int32_t shift = u * kThreads, q = q0 + shift;
-        if (!((kRunBits ? run_intact >> shift : intact >> q) & 1u)) continue;
+        if (!((run_intact >> shift) & 1u)) continue;
         const StencilEntry& e = entries[w0 + q];
-        const int32_t before = kRunBits ? run_k + bit_count(run_present & ((1u << shift) - 1u))
-                                        : k0 + bit_count(present & ((1u << q) - 1u));
+        const int32_t before = run_k + bit_count(run_present & ((1u << shift) - 1u));
         const int64_t slot = first_slot + int64_t(before) * kSliceWidth;
         int32_t j;
         if constexpr (kLattice == kLatticeOffsets)
@@ -439,8 +438,7 @@ PD_HD inline int32_t for_each_intact_lattice_bond(int32_t i, int32_t stencil, co
         else
           j = st.listed ? bond_partner(b.neighbor[slot]) : i + e.offset;
         if (!visit_bond(visit, slot, j,
-                        lattice_bond_geometry(e, disp_i, p.disp[j],
-                                              (kRunBits ? run_weak >> shift : weak >> q) & 1u, w0 + q))) {
+                        lattice_bond_geometry(e, disp_i, p.disp[j], (run_weak >> shift) & 1u, w0 + q))) {
           b.neighbor[slot] = ~j;
           intact &= ~(1u << q);
           store_intact_word<kThreads>(&l.intact[word], intact, q);  // rare: stored at once

@@ -1,7 +1,7 @@
 // Bond loops (cuda/kernels/bond.h): the listed family's three walks (ListedWalk) visit the same
 // bonds with the same geometry, break the same ones and count the same bonds left intact; so do
-// the lattice loop's two ways of testing an entry's bits (kLatticeRunBits: a run's bits shifted
-// once, or each entry's own shift).
+// the lattice loop's two ways of walking a word's entries (kLatticeRunBits: in runs of the unroll
+// count, or the word in one run).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -161,8 +161,8 @@ struct LatticeRecorder {
   }
 };
 
-// Walks every particle's lattice family with the run's bits shifted once (kRunBits) or each
-// entry's own shift, unrolled kUnroll times. Fills the counts left intact and the bits and
+// Walks every particle's lattice family in runs of kUnroll entries (kRunBits) or a word in one
+// run, unrolled kUnroll times. Fills the counts left intact and the bits and
 // partners stored after the walk.
 template <bool kRunBits, int kUnroll>
 std::vector<LatticeVisit> walk_lattice(std::vector<int32_t>& holding, std::vector<uint32_t>& bits,
@@ -180,7 +180,7 @@ std::vector<LatticeVisit> walk_lattice(std::vector<int32_t>& holding, std::vecto
   return visits;
 }
 
-TEST(LatticeLoop, RunBitsAndEntryBitsVisitBreakAndCountTheSameBonds) {
+TEST(LatticeLoop, RunsAndWholeWordsVisitBreakAndCountTheSameBonds) {
   std::vector<int32_t> holding_runs, holding_entries, holding_two, stored_runs, stored_entries, stored_two;
   std::vector<uint32_t> bits_runs, bits_entries, bits_two;
   const auto runs = walk_lattice<true, 8>(holding_runs, bits_runs, stored_runs);

@@ -99,6 +99,14 @@ TEST(GpuTeam, StateBasedChenCriterionAndStretch) {
   expect_teams_follow_one_thread(in, 200);
 }
 
+// Plastic lattice families: the lattice loop's teams that read histories walk each word in one
+// run from the lane's first entry (bond.h kLatticeRunBits).
+TEST(GpuTeam, StateBasedPlasticLattice) {
+  REQUIRE_GPU();
+  expect_teams_follow_one_thread(
+      testing::pulled_apart(testing::state_block(32, 16, 16, kLambda, 2e-4, true), 32, kLambda, 2), 200);
+}
+
 TEST(GpuTeam, StateBasedPlasticListed) {
   REQUIRE_GPU();
   auto in = testing::pulled_apart(testing::state_block(32, 16, 16, kLambda, 2e-4, true), 32, kLambda, 2);
