@@ -155,6 +155,7 @@ int bench_command(const BenchOptions& opt) {
   const double family_dt = engine->critical_time_step();
   std::optional<MeasuredStep> measured;  // with ghosts, as `perifrac run` takes it
   if (!opt.scene.empty()) {
+    auto_step_within_families(*engine, scene.dt_auto, family_dt, dt);
     measured = measure_ghost_step(*engine, input, scene.dt_auto, critical_dt, dt);
     check_family_time_step(scene, dt, measured ? measured->stable : family_dt, opt.allow_unstable_dt,
                            measured.has_value());

@@ -108,8 +108,9 @@ RunCheckpoint open_resume(RunOptions& opt) {
   const std::string path = opt.resume + "/" + kCheckpointFileName;
   if (!std::filesystem::exists(path))
     throw ResumeError("cannot resume from '" + opt.resume + "': it holds no " + kCheckpointFileName +
-                      " (the run wrote none yet, or this is not a run's output folder); start the run "
-                      "again without --resume");
+                      " (the run wrote none: checkpoints are written every --checkpoint-minutes, every "
+                      "--checkpoint-every N frames and on Ctrl-C; or this is not a run's output folder); "
+                      "start the run again without --resume, with --checkpoint-every N to extend it later");
   RunCheckpoint c;
   try {
     c = read_checkpoint(path);
@@ -140,6 +141,20 @@ RunCheckpoint open_resume(RunOptions& opt) {
   opt.steps_per_frame = c.steps_per_frame;
   if (opt.frames < 0) opt.frames = c.frames;
   return c;
+}
+
+// A resume continues from its checkpoint and removes the frames written after it: where the run
+// went on past its checkpoint (a checkpoint every N frames, or one left by an interrupted run that
+// was resumed to its end), ending before its last frame would lose frames. Refused; ending at it or
+// past it writes those frames again, the same bits.
+void check_resume_target(const RunCheckpoint& c, const RunManifest& m, int64_t frames,
+                         const std::string& dir) {
+  if (m.frames_written <= c.frame || frames >= m.frames_written) return;
+  throw ResumeError("cannot resume '" + dir + "' to frame " + std::to_string(frames) +
+                    ": it holds frames 0 to " + std::to_string(m.frames_written) +
+                    " and its checkpoint is after frame " + std::to_string(c.frame) + ", so frames " +
+                    std::to_string(frames + 1) + " to " + std::to_string(m.frames_written) +
+                    " would be removed; pass --frames N with N >= " + std::to_string(m.frames_written));
 }
 
 // The checkpoint must come from this scene file and set-up; the backend may differ (the run
@@ -276,6 +291,14 @@ void start_engine(Simulation& sim, const RunOptions& opt) {
                     ? (" (" + std::to_string(fam.cuts.weakened) + " per direction)").c_str()
                     : "");
   const double family_dt = engine.critical_time_step();
+  if (double dt = setup.dt; auto_step_within_families(engine, sim.scene.dt_auto, family_dt, dt)) {
+    sim.setup.dt = dt;
+    sim.setup.input.step.dt = real(dt);
+    std::printf(
+        "time step  dt = \"auto\" takes the families' stable step %.4g s, shorter than half the "
+        "continuum estimate\n",
+        dt);
+  }
   std::printf("stability  dt_c from the families %.4g s (continuum estimate %.4g s): dt = %.2f of it\n",
               family_dt, setup.critical_dt, setup.dt / family_dt);
   const std::optional<double> measured = sim.measured_dt = measured_stable_step(sim);
@@ -314,6 +337,7 @@ std::unique_ptr<RunFolder> claim_output_folder(const Simulation& sim, const RunO
                         format_number(m.scale) + ", the checkpoint of '" + resume->scene_path +
                         "' at scale " + format_number(resume->scale) +
                         "): it was copied from another run's folder");
+    check_resume_target(*resume, m, sim.scene.frames, out);
     folder->start(m);
     return folder;
   }
@@ -678,7 +702,8 @@ int run_command(const RunOptions& options) {
   std::optional<RunCheckpoint> resume;
   if (!opt.resume.empty()) resume = open_resume(opt);
   // A folder this run may not use is refused before the set-up's work (and again under its lock).
-  check_run_folder(output_folder(opt), folder_use(opt));
+  if (const auto found = check_run_folder(output_folder(opt), folder_use(opt)); resume && found)
+    check_resume_target(*resume, *found, opt.frames, opt.out);
   Simulation sim = set_up_simulation(opt, resume);
   start_engine(sim, opt);
   auto t = lap(run.started, run.engine);

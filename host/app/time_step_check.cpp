@@ -33,6 +33,13 @@ std::optional<MeasuredStep> measure_ghost_step(Engine& engine, const SimulationI
   return out;
 }
 
+bool auto_step_within_families(Engine& engine, bool dt_auto, double family_dt, double& dt) {
+  if (!dt_auto || dt <= family_dt) return false;
+  dt = family_dt;
+  engine.set_time_step(dt);
+  return true;
+}
+
 void check_time_step(const Scene& scene, const SetupResult& setup, bool allow) {
   if (setup.dt <= setup.critical_dt || allow) return;
   // The material that sets the limit, named with what sets its stable step.

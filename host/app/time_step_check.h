@@ -29,6 +29,13 @@ struct MeasuredStep {
 std::optional<MeasuredStep> measure_ghost_step(Engine& engine, const SimulationInput& in, bool dt_auto,
                                                double critical_dt, double& dt);
 
+// dt = "auto" without ghosts: kAutoDtFraction of the continuum estimate, or the families' stable
+// step `family_dt` where that is shorter (a body thinner than its horizon somewhere): the families'
+// estimate is itself about half the step Verlet stands (bench/NOTES.md), so "auto" stays half the
+// stable step and never takes one the check below refuses. Sets it on `engine` and in `dt`;
+// returns whether dt was lowered.
+bool auto_step_within_families(Engine& engine, bool dt_auto, double family_dt, double& dt);
+
 // Throws SceneError (simulation.dt) when dt exceeds `family_dt` (Engine::critical_time_step, or
 // with ghosts the step measured on the engine: `measured`) and `allow` is off.
 void check_family_time_step(const Scene& scene, double dt, double family_dt, bool allow,

@@ -387,23 +387,28 @@ TEST_F(Resume, ACheckpointFromAnotherRunsFolderIsRefused) {
 }
 
 // Frames a killed run wrote after its last checkpoint are removed when it resumes.
-TEST_F(Resume, ResumeRemovesFramesWrittenAfterTheCheckpoint) {
+// Frames written after the checkpoint are computed again (the same bits); a resume that would end
+// before them is refused and removes nothing.
+TEST_F(Resume, ResumeRewritesFramesAfterTheCheckpointAndNeverEndsBeforeThem) {
   const std::string out = path("out");
   ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", out, "--frames", "6", "--checkpoint-every", "3"},
                 log_),
             0);
-  // The checkpoint is frame 6's; put back frame 3's as if the run had been killed after frame 5.
+  // The checkpoint is frame 6's; put back frame 3's as if the run had gone on after it unrecorded.
   ASSERT_EQ(run({"run", scene_, "--backend", "cpu", "--out", path("at3"), "--frames", "3",
                  "--checkpoint-every", "3"},
                 log_),
             0);
   std::filesystem::copy_file(path("at3") + "/checkpoint.pck", out + "/checkpoint.pck",
                              std::filesystem::copy_options::overwrite_existing);
-  ASSERT_EQ(run({"run", "--resume", out, "--frames", "4"}, log_), 0) << read_all(log_);
+  const std::string frame6 = read_all(out + "/frame_00006.pfr");
+  expect_refusal({"run", "--resume", out, "--frames", "4"}, log_, "frames 5 to 6 would be removed");
+  EXPECT_TRUE(std::filesystem::exists(out + "/frame_00005.pfr"));
+  EXPECT_TRUE(read_all(out + "/frame_00006.pfr") == frame6);
+  ASSERT_EQ(run({"run", "--resume", out, "--frames", "6"}, log_), 0) << read_all(log_);
   EXPECT_NE(read_all(log_).find("written after the checkpoint"), std::string::npos) << read_all(log_);
-  EXPECT_TRUE(std::filesystem::exists(out + "/frame_00004.pfr"));
-  EXPECT_FALSE(std::filesystem::exists(out + "/frame_00005.pfr"));
-  EXPECT_FALSE(std::filesystem::exists(out + "/frame_00006.pfr"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/frame_00005.pfr"));
+  EXPECT_TRUE(read_all(out + "/frame_00006.pfr") == frame6);
 }
 
 // SIGTERM in the middle of a long frame stops the run within a second with a checkpoint inside
