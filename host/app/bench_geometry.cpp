@@ -18,6 +18,7 @@
 #include "host/geometry/shapes.h"
 #include "host/geometry/tet_particles.h"
 #include "host/geometry/voronoi_particles.h"
+#include "host/scene/scene.h"
 
 namespace pd {
 
@@ -45,14 +46,18 @@ double density(const std::string& particles) {
 
 // The volume of the solid the particles will fill, before it is meshed at the final spacing.
 double nominal_volume(const GeometryBenchOptions& o, const TriMesh* file_mesh) {
+  if (o.shape != "mesh" && o.shape != "sphere" && o.shape != "vase")
+    throw std::invalid_argument("bench-geometry: --shape must be sphere, vase or mesh, got '" + o.shape +
+                                "'");
+  if (o.particles == "shell") {  // the surface's area times the shell's depth
+    const TriMesh surface = o.shape == "mesh"     ? *file_mesh
+                            : o.shape == "sphere" ? sphere_mesh(kRadius, 0.002)
+                                                  : vase_sheet(kRadius, kHeight, 0.002);
+    return surface_area(surface) * o.shell_thickness;
+  }
   if (o.shape == "mesh") return signed_volume(*file_mesh);
   if (o.shape == "sphere") return 4 * kPi / 3 * kRadius * kRadius * kRadius;
-  if (o.shape == "vase") {
-    const TriMesh sheet = vase_sheet(kRadius, kHeight, 0.002);
-    return o.particles == "shell" ? surface_area(sheet) * o.shell_thickness
-                                  : signed_volume(vase_mesh(kRadius, kHeight, o.shell_thickness, 0.002));
-  }
-  throw std::invalid_argument("bench-geometry: --shape must be sphere, vase or mesh, got '" + o.shape + "'");
+  return signed_volume(vase_mesh(kRadius, kHeight, o.shell_thickness, 0.002));
 }
 
 // Throws std::invalid_argument for a particle kind, shape or mesh the bench does not take.
@@ -61,8 +66,16 @@ void check_options(const GeometryBenchOptions& o) {
   if (kind != "grid" && kind != "tets" && kind != "shell" && kind != "voronoi")
     throw std::invalid_argument("bench-geometry: --particles must be grid, tets, shell or voronoi, got '" +
                                 kind + "'");
-  if (kind == "shell" && o.shape != "vase")
-    throw std::invalid_argument("bench-geometry: --particles shell needs --shape vase");
+  // The vase's wall, or a shell's depth (one that folds the surface over is refused where the shell
+  // is made).
+  const bool wall = o.shape == "vase" && kind != "shell";
+  if (wall && !(o.shell_thickness > 0 && o.shell_thickness < vase_foot(kRadius, kHeight)))
+    throw std::invalid_argument("bench-geometry: --shell-thickness " + format_number(o.shell_thickness) +
+                                " (the vase's wall) is out of range (allowed: in (0, " +
+                                format_number(vase_foot(kRadius, kHeight)) + ") m, below the foot's radius)");
+  if (kind == "shell" && !(o.shell_thickness > 0 && std::isfinite(o.shell_thickness)))
+    throw std::invalid_argument("bench-geometry: --shell-thickness " + format_number(o.shell_thickness) +
+                                " is out of range (allowed: a depth > 0 m)");
   if (o.shape == "mesh" && o.mesh.empty())
     throw std::invalid_argument("bench-geometry: --shape mesh needs --mesh FILE");
 }
@@ -117,7 +130,7 @@ int bench_geometry_command(const GeometryBenchOptions& o) {
   const double edge = kind == "tets" || kind == "shell" ? 2 * spacing : spacing;
   TriMesh solid;
   if (o.shape == "mesh") solid = file_mesh;
-  if (o.shape == "sphere") solid = sphere_mesh(kRadius, edge);
+  if (o.shape == "sphere") solid = sphere_mesh(kRadius, edge);  // (a shell's surface for shells)
   if (o.shape == "vase")
     solid = kind == "shell" ? vase_sheet(kRadius, kHeight, edge)
                             : vase_mesh(kRadius, kHeight, o.shell_thickness, edge);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <unordered_map>
 
 #include "host/geometry/curve_order.h"
@@ -109,6 +111,42 @@ ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& option
 // Radians: a flip moves the surface by about half the bend times a triangle's height at most.
 constexpr double kShellFlipDihedral = 0.25;
 
+namespace {
+
+// The depth at which triangle (a, b, c), its corners moved inward along their normals, first turns
+// over: the least positive root of n(t) . n(0) = 0 with n(t) the normal of (a - t na, b - t nb,
+// c - t nc), a quadratic in t; +infinity where it never does.
+double fold_depth(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& na, const Vec3d& nb,
+                  const Vec3d& nc) {
+  const Vec3d e1 = b - a, e2 = c - a, d1 = nb - na, d2 = nc - na, n0 = cross(e1, e2);
+  const double c0 = dot(n0, n0), c1 = -dot(cross(e1, d2) + cross(d1, e2), n0), c2 = dot(cross(d1, d2), n0);
+  if (!(c0 > 0)) return INFINITY;  // a triangle without area has no side to turn over
+  double least = INFINITY;
+  if (std::abs(c2) <= 1e-12 * (std::abs(c1) + c0)) {
+    if (c1 < 0) least = -c0 / c1;
+  } else {
+    const double disc = c1 * c1 - 4 * c2 * c0;
+    if (disc >= 0)
+      for (const double root : {(-c1 - std::sqrt(disc)) / (2 * c2), (-c1 + std::sqrt(disc)) / (2 * c2)})
+        if (root > 0) least = std::min(least, root);
+  }
+  return least;
+}
+
+}  // namespace
+
+ShellThicknessError::ShellThicknessError(double thickness, double limit_, const Vec3d& where)
+    : std::invalid_argument([&] {
+        char text[320];
+        std::snprintf(
+            text, sizeof text,
+            "a shell %.4g m thick folds its inner surface over near (%.4g, %.4g, %.4g): the solid is "
+            "thinner than that there (allowed: below %.4g m for this surface)",
+            thickness, where[0], where[1], where[2], limit_);
+        return std::string(text);
+      }()),
+      limit(limit_) {}
+
 FattenedShell fattened_shell(const TriMesh& surface, double thickness, int layers) {
   // Area-weighted vertex normals (outward for a closed, outward mesh), lengthened at creases
   // (mitred) so a layer keeps its depth from every adjacent face: n / min over faces of n . n_f,
@@ -129,6 +167,21 @@ FattenedShell fattened_shell(const TriMesh& surface, double thickness, int layer
     for (int32_t v : surface.triangles[f])
       mitre[v] = std::max(mitre[v], 1 / std::max(dot(normal[v], face_normal[f]), 1.0 / 3));
   for (size_t v = 0; v < nv; ++v) normal[v] = mitre[v] * normal[v];
+  // The inner surface must not turn over anywhere: a thickness past the solid's own there.
+  double limit = INFINITY;
+  size_t folds = 0;
+  for (size_t f = 0; f < surface.triangles.size(); ++f) {
+    const Triangle& t = surface.triangles[f];
+    const double depth = fold_depth(surface.vertices[t[0]], surface.vertices[t[1]], surface.vertices[t[2]],
+                                    normal[t[0]], normal[t[1]], normal[t[2]]);
+    if (depth < limit) limit = depth, folds = f;
+  }
+  if (thickness >= limit) {
+    const Triangle& t = surface.triangles[folds];
+    throw ShellThicknessError(
+        thickness, limit,
+        (1.0 / 3) * (surface.vertices[t[0]] + surface.vertices[t[1]] + surface.vertices[t[2]]));
+  }
   auto layer = [&](double depth) {
     std::vector<Vec3d> points(surface.vertices.size());
     for (size_t v = 0; v < points.size(); ++v) points[v] = surface.vertices[v] - depth * normal[v];

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -40,6 +41,14 @@ ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& option
 // (lengthened at creases so the depth holds from every adjacent face),
 // closed along the boundary loops of an open surface (a sheet), and the vertices of
 // `layers` - 2 evenly spaced layers between the two, which TetGen inserts as tet corners.
+// A thickness at or past `limit` folds the inner surface over: some triangle of it turns over
+// (its corners moved past one another), where the solid is thinner than the shell. Thrown by
+// fattened_shell; the message names the place and the limit.
+class ShellThicknessError : public std::invalid_argument {
+ public:
+  ShellThicknessError(double thickness, double limit, const Vec3d& where);
+  double limit;
+};
 struct FattenedShell {
   TriMesh solid;
   std::vector<Vec3d> layer_points;

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <chrono>
@@ -21,8 +22,10 @@
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <unordered_map>
 #include <utility>
 
+#include "host/geometry/inside_test.h"
 #include "host/geometry/tet_cache.h"
 #include "host/io/byte_file.h"
 
@@ -58,6 +61,70 @@ class WorkDir {
   std::string path_;
 };
 
+// A point inside each cavity of a closed solid, for TetGen's hole list: without one TetGen fills
+// the cavity (a shell of a closed surface would be a ball). A cavity is bounded by a connected
+// component of the surface that faces inward (negative volume); its point lies a thousandth of a
+// triangle's size off the component's largest triangle, on the side its normal points to (into the
+// cavity), checked outside the solid; the next largest triangles are tried where it is not.
+std::vector<Vec3d> cavity_points(const TriMesh& mesh) {
+  const size_t n = mesh.triangles.size();
+  std::vector<int32_t> part(n, -1);
+  std::unordered_map<uint64_t, std::vector<int32_t>> by_edge;
+  auto key = [](int32_t a, int32_t b) {
+    return (uint64_t(uint32_t(std::min(a, b))) << 32) | uint32_t(std::max(a, b));
+  };
+  for (size_t f = 0; f < n; ++f)
+    for (int c = 0; c < 3; ++c)
+      by_edge[key(mesh.triangles[f][c], mesh.triangles[f][(c + 1) % 3])].push_back(int32_t(f));
+  int32_t parts = 0;
+  for (size_t seed = 0; seed < n; ++seed) {
+    if (part[seed] >= 0) continue;
+    std::vector<int32_t> stack{int32_t(seed)};
+    part[seed] = parts;
+    while (!stack.empty()) {
+      const Triangle& t = mesh.triangles[size_t(stack.back())];
+      stack.pop_back();
+      for (int c = 0; c < 3; ++c)
+        for (int32_t g : by_edge[key(t[c], t[(c + 1) % 3])])
+          if (part[size_t(g)] < 0) part[size_t(g)] = parts, stack.push_back(g);
+    }
+    ++parts;
+  }
+  std::vector<double> volume(size_t(parts), 0.0);
+  for (size_t f = 0; f < n; ++f) {
+    const Triangle& t = mesh.triangles[f];
+    volume[size_t(part[f])] += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]])) / 6;
+  }
+  std::vector<Vec3d> points;
+  std::optional<InsideTest> inside;
+  for (int32_t c = 0; c < parts; ++c) {
+    if (!(volume[size_t(c)] < 0)) continue;
+    std::vector<std::pair<double, int32_t>> largest;  // (area, triangle) of the component
+    for (size_t f = 0; f < n; ++f)
+      if (part[f] == c) {
+        const Triangle& t = mesh.triangles[f];
+        largest.push_back({norm(cross(mesh.vertices[t[1]] - mesh.vertices[t[0]],
+                                      mesh.vertices[t[2]] - mesh.vertices[t[0]])),
+                           int32_t(f)});
+      }
+    std::sort(largest.rbegin(), largest.rend());
+    if (!inside) inside.emplace(mesh);
+    for (size_t k = 0; k < std::min<size_t>(largest.size(), 16); ++k) {
+      const Triangle& t = mesh.triangles[size_t(largest[k].second)];
+      const Vec3d a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], d = mesh.vertices[t[2]];
+      const Vec3d normal = cross(b - a, d - a);
+      const double area2 = norm(normal);
+      if (!(area2 > 0)) break;
+      const Vec3d p = (1.0 / 3) * (a + b + d) + (1e-3 * std::sqrt(area2) / area2) * normal;
+      if (!inside->inside(p)) {
+        points.push_back(p);
+        break;
+      }
+    }
+  }
+  return points;
+}
+
 void write_smesh(const TriMesh& mesh, const std::string& path) {
   std::ofstream out(path);
   char buf[128];
@@ -69,7 +136,13 @@ void write_smesh(const TriMesh& mesh, const std::string& path) {
   }
   out << mesh.triangles.size() << " 0\n";
   for (const Triangle& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
-  out << "0\n0\n";
+  const std::vector<Vec3d> holes = cavity_points(mesh);
+  out << holes.size() << '\n';
+  for (size_t h = 0; h < holes.size(); ++h) {
+    std::snprintf(buf, sizeof buf, "%zu %.17g %.17g %.17g\n", h, holes[h][0], holes[h][1], holes[h][2]);
+    out << buf;
+  }
+  out << "0\n";
   if (!out) throw std::runtime_error("cannot write " + path);
 }
 
@@ -140,9 +213,13 @@ int run_program(const std::vector<std::string>& argv, const std::string& log, do
 // PERIFRAC_TETGEN_SECONDS. A solid whose surface crosses itself (a shell thicker than its mesh)
 // can keep TetGen busy for ever.
 double tetgen_seconds(const TriMesh& surface, const TetgenOptions& options) {
-  if (const char* given = std::getenv("PERIFRAC_TETGEN_SECONDS")) {
-    const double s = std::atof(given);
-    if (s > 0) return s;
+  if (const char* given = std::getenv("PERIFRAC_TETGEN_SECONDS"); given && *given) {
+    char* end = nullptr;
+    const double s = std::strtod(given, &end);
+    if (*end != '\0' || !(s > 0) || !std::isfinite(s))
+      throw std::invalid_argument(std::string("environment PERIFRAC_TETGEN_SECONDS='") + given +
+                                  "': allowed is a number of seconds > 0 (unset: from the volume bound)");
+    return s;
   }
   const double tets = options.max_volume > 0 ? std::fabs(signed_volume(surface)) / options.max_volume : 0;
   return 120 + 2e-4 * tets;

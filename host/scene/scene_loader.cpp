@@ -390,8 +390,7 @@ void parse_particle_switches(const TableReader& r, SceneBody& b) {
     thickness.note = "less than the vase's foot radius min(radius/4, height/10)";
   }
   r.number("shell_thickness", b.shell_thickness, thickness, Presence::required);
-  if (r.integer("shell_layers", b.shell_layers, 2) && b.shell_layers > 64)
-    r.fail("shell_layers", std::to_string(b.shell_layers) + " is out of range", "an integer in [2, 64]");
+  r.integer("shell_layers", b.shell_layers, 2, 64);
 }
 
 SceneBody parse_body(size_t index, const TableReader& r, const std::vector<SceneMaterial>& materials,

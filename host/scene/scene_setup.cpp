@@ -295,6 +295,8 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     } catch (const MeshError& e) {
       const bool from_file = body.shape == "mesh" && e.path() == body.mesh_path;
       throw SceneError(scene.path, key + (from_file ? ".mesh" : ".particles"), e.what());
+    } catch (const ShellThicknessError& e) {
+      throw SceneError(scene.path, key + ".shell_thickness", e.what());
     }
     if (geometry.size() == 0) {  // (a box says so when counted; a sphere or a mesh finds it here)
       char text[96];

@@ -46,6 +46,13 @@ std::string number_text(double v) {
   return buf;
 }
 
+std::string bound_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  const double shown = std::strtod(buf, nullptr);
+  return std::abs(shown - v) <= 1e-12 * std::abs(v) ? std::string(buf) : number_text(v);
+}
+
 std::string type_name(const toml::node& n) {
   switch (n.type()) {
     case toml::node_type::none:

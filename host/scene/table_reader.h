@@ -38,6 +38,10 @@ std::string type_name(const toml::node& n);
 
 // ---- Numbers -----------------------------------------------------------------------------------
 
+// A bound for a message: number_text, but a computed bound within round-off of a short decimal
+// (0.1 / 10 = 0.010000000000000002) as that decimal.
+std::string bound_text(double v);
+
 // Allowed range of a float key; describe() is the "allowed" part of its messages.
 struct Bounds {
   double lo = -kInf, hi = kInf;
@@ -50,9 +54,9 @@ struct Bounds {
     if (lo == -kInf && hi == kInf) {
       s = "a finite number";
     } else if (hi == kInf) {
-      s = std::string("a number ") + (lo_open ? "> " : ">= ") + number_text(lo);
+      s = std::string("a number ") + (lo_open ? "> " : ">= ") + bound_text(lo);
     } else {
-      s = std::string("a number in ") + (lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) +
+      s = std::string("a number in ") + (lo_open ? "(" : "[") + bound_text(lo) + ", " + bound_text(hi) +
           (hi_open ? ")" : "]");
     }
     return note.empty() ? s : s + ": " + note;

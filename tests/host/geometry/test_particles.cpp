@@ -245,6 +245,55 @@ TEST(TetParticles, FattenedShellOfTheVase) {
   expect_symmetric(g.adjacency);
 }
 
+// A closed surface's shell and a solid with a cavity: TetGen leaves the cavity empty (its hole
+// list), so the tets fill the solid only, not the ball or box around the cavity.
+TEST(TetParticles, CavitiesStayEmpty) {
+  if (!have_tetgen()) GTEST_SKIP() << "tetgen is not installed";
+  const TriMesh sphere = sphere_mesh(0.05, 0.006);
+  const FattenedShell shell = fattened_shell(sphere, 0.01, 3);
+  const ParticleGeometry g = shell_particles(sphere, 0.01, 3, TetgenOptions{}, kBudget, "sphere");
+  EXPECT_NEAR(g.total_volume(), signed_volume(shell.solid), 1e-6 * signed_volume(shell.solid));
+  EXPECT_LT(g.total_volume(), 0.6 * signed_volume(sphere));
+  expect_inside(shell.solid, g);
+  // A box with a box-shaped cavity (the inner box's faces turned inward).
+  TriMesh hollow = box_mesh({1, 1, 1});
+  const TriMesh cavity = box_mesh({0.5, 0.5, 0.5});
+  const int32_t base = int32_t(hollow.vertices.size());
+  for (const Vec3d& v : cavity.vertices) hollow.vertices.push_back(v);
+  for (const Triangle& t : cavity.triangles)
+    hollow.triangles.push_back({t[0] + base, t[2] + base, t[1] + base});
+  TetgenOptions options;
+  options.max_volume = 0.01;
+  const ParticleGeometry h = tet_particles(hollow, options, kBudget, "hollow");
+  EXPECT_NEAR(h.total_volume(), 1 - 0.125, 1e-9);
+  expect_inside(hollow, h);
+}
+
+// A shell deeper than the solid turns its inner surface over: refused before TetGen, with the
+// depth the surface allows, which lies below the solid's own radii (a sphere's radius, a torus's
+// tube) and not far below them; a shell just within it is made.
+TEST(TetParticles, AShellDeeperThanTheSolidIsRefusedWithItsLimit) {
+  struct Case {
+    TriMesh surface;
+    double radius;  // the curvature radius that bounds the depth
+  };
+  for (const Case& c : {Case{sphere_mesh(0.05, 0.005), 0.05}, Case{torus_mesh(0.05, 0.01, 0.002), 0.01}}) {
+    double limit = 0;
+    try {
+      fattened_shell(c.surface, 1.2 * c.radius, 3);
+      ADD_FAILURE() << "a shell deeper than the radius " << c.radius << " was made";
+    } catch (const ShellThicknessError& e) {
+      limit = e.limit;
+      EXPECT_NE(std::string(e.what()).find("folds its inner surface over"), std::string::npos) << e.what();
+    }
+    EXPECT_LT(limit, c.radius);
+    EXPECT_GT(limit, 0.8 * c.radius);
+    EXPECT_THROW(fattened_shell(c.surface, limit, 3), ShellThicknessError);
+    const FattenedShell shell = fattened_shell(c.surface, 0.99 * limit, 3);
+    EXPECT_GT(signed_volume(shell.solid), 0);
+  }
+}
+
 TEST(TetParticles, MissingTetgenIsAClearError) {
   const char* old = std::getenv("PATH");
   const std::string saved = old ? old : "";

@@ -69,6 +69,23 @@ TEST(Tetgen, ARunPastItsTimeIsStoppedWithAMessage) {
   EXPECT_LT(seconds, 10);
 }
 
+TEST(Tetgen, ABadTimeLimitInTheEnvironmentIsRefused) {
+  const NeverEndingTetgen tetgen("perifrac-test-tetgen-limit");
+  TetgenOptions options;
+  options.work_dir = tetgen.work_dir();
+  for (const char* bad : {"abc", "-5", "0", "1s"}) {
+    testing::ScopedEnv limit("PERIFRAC_TETGEN_SECONDS", bad);
+    try {
+      tetrahedralize(box_mesh({1, 1, 1}), options, "box.obj");
+      ADD_FAILURE() << bad << " was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("PERIFRAC_TETGEN_SECONDS='" + std::string(bad) + "'"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // A check that overlaps TetGen (TetgenOptions::while_running, the particle budget found on a
 // thread of its own) and fails stops TetGen at once, its own message going on.
 TEST(Tetgen, AFailedCheckWhileRunningStopsIt) {

@@ -126,5 +126,32 @@ TEST(SceneSetup, LatticeOriginIsForGridParticlesOnly) {
   }
 }
 
+// A shell deeper than its solid: one message naming the body's shell_thickness, before TetGen.
+TEST(SceneSetup, AShellDeeperThanItsSolidNamesShellThickness) {
+  const std::string scene = R"(
+[simulation]
+dt = 1e-7
+[materials.glass]
+density = 2440
+bulk_modulus = 40e9
+strain_limit = 5e-4
+[[bodies]]
+shape = "sphere"
+radius = 0.05
+spacing = 0.003
+material = "glass"
+particles = "shell"
+shell_thickness = 0.06
+)";
+  try {
+    setup_scene(parse_scene(scene, "scene.toml"), SetupOptions(1.0));
+    ADD_FAILURE() << "a shell deeper than the sphere was set up";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bodies[0].shell_thickness"), std::string::npos) << what;
+    EXPECT_NE(what.find("allowed: below"), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace pd
