@@ -126,9 +126,9 @@ class EngineImpl final : public Engine {
     std::vector<double> ghost_rate;
     if (features_.ghosts) {
       if (rank)
-        throw std::runtime_error(
-            "the ghost surface correction (surface_correction = \"ghosts\") runs on one rank; "
-            "run without --ranks or use surface_correction = true");
+        throw std::invalid_argument(
+            "the ghost surface correction (surface_correction = \"ghosts\") runs on one rank "
+            "(allowed: the run without mpirun -np N, or surface_correction = true)");
       set_up_ghosts(in.particles, in.body_solids.get(), uncut, bonds_on_host().count, ghost_rate);
       ghost_threads_ = ghost_threads_for(ghost_counts_.ghosted, requested_bond_threads(in));
       uncut = BondLists();

@@ -344,11 +344,18 @@ int render_frames(const RenderOptions& cli) {
   std::string scene_note;
   const RenderOptions o = with_scene_render(cli, &scene_note);
   check_render_options(o);
+  // A folder that is not a run's is the user's mistake (exit 2), not a failure to read one.
+  std::error_code ec;
+  if (!fs::is_directory(o.dir, ec))
+    throw std::invalid_argument("render: '" + o.dir + "' is " +
+                                (fs::exists(o.dir, ec) ? "not a folder" : "not there") +
+                                " (allowed: the output folder of `perifrac run`, its --out)");
   const std::vector<std::string> frames = select_frame_files(o.dir, o.frames);
-  if (frames.empty()) {
-    read_rest_file((fs::path(o.dir) / kRestFileName).string());  // a missing folder says so first
-    throw io_error("read", o.dir, "no frame_*.pfr files");
-  }
+  if (frames.empty())  // (--frames names frames that are there: select_frame_files)
+    throw std::invalid_argument(
+        "render: '" + o.dir + "' holds no frame_*.pfr" +
+        (fs::exists(fs::path(o.dir) / kRestFileName, ec) ? "" : " nor " + std::string(kRestFileName)) +
+        " (allowed: the output folder of `perifrac run`, its --out, once frame 0 is written)");
   RunRenderer renderer(o, frames.back());
   if (!renderer.backend_note().empty()) std::printf("backend    %s\n", renderer.backend_note().c_str());
   std::printf("device     %s\n", renderer.device().c_str());

@@ -184,6 +184,10 @@ std::optional<RunManifest> read_manifest(const std::string& dir) {
 }
 
 std::optional<RunManifest> check_run_folder(const std::string& dir, FolderUse use) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw RunFolderError("output folder '" + dir +
+                         "' is a file, not a folder (allowed: --out naming a folder, new or a run's)");
   std::optional<RunManifest> found = read_manifest(dir);
   if (use == FolderUse::kResume) {
     if (!found)

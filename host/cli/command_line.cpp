@@ -59,8 +59,8 @@ void add_run(CLI::App& app, const CommandActions& actions, std::function<int()>*
   cmd->add_option("--steps-per-frame", run->steps_per_frame, "steps per frame (default: the scene's)")
       ->check(CLI::Range(int64_t(1), kMaxStepsPerFrame));
   cmd->add_option("--out", run->out, "output folder (default: out/<scene name>)")->check(non_empty());
-  CLI::Option* scale =
-      cmd->add_option("--scale", run->scale, "particle-count factor, e.g. 0.05 for a small CPU run");
+  CLI::Option* scale = cmd->add_option("--scale", run->scale,
+                                       "particle-count factor in (0, 1000], e.g. 0.05 for a small CPU run");
   cmd->add_flag("--allow-unstable-dt", run->allow_unstable_dt, "run even if dt exceeds the stable time step");
   cmd->add_flag("--explicit-families", run->explicit_families,
                 "listed families for box-grid bodies too (what lattice families save, bench/NOTES.md)");
@@ -96,7 +96,7 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
   const auto bench = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "time the step kernels (bond-updates/s, occupancy)");
   cmd->add_option("--scene", bench->scene, "scene file; default: a synthetic lattice cube");
-  cmd->add_option("--scale", bench->scale, "scene particle-count factor");
+  cmd->add_option("--scale", bench->scale, "scene particle-count factor in (0, 1000]");
   cmd->add_option("--set", bench->overrides, "KEY=VALUE: change one scene key (repeatable)");
   cmd->add_option("--lattice", bench->lattice, "lattice particles per side")
       ->check(CLI::Range(int64_t(4), int64_t(1000)));
@@ -250,7 +250,7 @@ void add_profile(CLI::App& app, const CommandActions& actions, std::function<int
       ->check(CLI::Range(int64_t(1), int64_t(1) << 40));
   cmd->add_option("--timeline", profile->timeline, "timeline resolution in steps (default: ~100 points)")
       ->check(CLI::Range(int64_t(0), int64_t(1) << 40));
-  cmd->add_option("--scale", profile->scale, "scene particle-count factor");
+  cmd->add_option("--scale", profile->scale, "scene particle-count factor in (0, 1000]");
   cmd->add_option("--backend", profile->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cmd->add_option("--out", profile->out, "results folder")->check(non_empty());
@@ -385,6 +385,19 @@ void add_commands(CLI::App& app, const CommandActions& actions, std::function<in
   for (const auto add : {add_run, add_bench, add_bench_render, add_bench_geometry, add_shapes,
                          add_bench_fragments, add_profile, add_validate, add_render, add_compare, add_info})
     add(app, actions, chosen);
+}
+
+std::string unknown_command_error(const CLI::App& app, const std::string& first) {
+  if (first.empty() || first[0] == '-') return {};
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (sub->get_name() == first) return {};
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  }
+  std::string line = "error: unknown command '" + first + "' (allowed: " + names + "; perifrac --help)";
+  for (char& c : line)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return line;
 }
 
 std::string command_line_error(const CLI::ParseError& e) {

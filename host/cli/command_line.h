@@ -45,4 +45,8 @@ void add_commands(CLI::App& app, const CommandActions& actions, std::function<in
 // control characters of quoted arguments shown as '?'.
 std::string command_line_error(const CLI::ParseError& e);
 
+// The line for a first argument that names no command of `app` (not an option): "unknown
+// command" with the commands allowed; empty where it names one, or is an option.
+std::string unknown_command_error(const CLI::App& app, const std::string& first);
+
 }  // namespace pd

@@ -115,7 +115,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {  // a command-line mistake: one line, exit code 2
-    std::fprintf(stderr, "%s\n", command_line_error(e).c_str());
+    const std::string unknown = unknown_command_error(app, argc > 1 ? argv[1] : "");
+    std::fprintf(stderr, "%s\n", unknown.empty() ? command_line_error(e).c_str() : unknown.c_str());
     leave_world();
     return kExitUsage;
   }

@@ -188,7 +188,9 @@ MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOp
       throw MeshError(
           path, "the mesh is open: " + count_text(loops.size(), "hole", "holes") + " (boundary loops) with " +
                     count_text(edges, "boundary edge", "boundary edges") +
-                    " (allowed: a closed mesh, or repair = \"fill_holes\" to close simple holes)");
+                    (options.repair_offered
+                         ? " (allowed: a closed mesh, or repair = \"fill_holes\" to close simple holes)"
+                         : " (allowed: a closed mesh)"));
     fill_loops(mesh, loops);
     check_triangles(mesh, path);
     check_edges(mesh, path);

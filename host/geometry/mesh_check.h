@@ -11,6 +11,9 @@ namespace pd {
 
 struct MeshCheckOptions {
   bool fill_holes = false;  // close simple boundary loops by a fan around their centroid
+  // Whether the caller takes repair = "fill_holes" (a body's mesh), which an open mesh's message
+  // then offers; elsewhere it asks for a closed mesh.
+  bool repair_offered = false;
 };
 
 // What the check changed, one line each (e.g. "filled 5 holes (boundary loops)").

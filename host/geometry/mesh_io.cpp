@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -43,13 +44,17 @@ std::string printable(std::string_view text) {
 }  // namespace detail
 
 TriMesh read_mesh(const std::string& path) {
-  const size_t dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw MeshError(path, "is a folder, not a mesh file (allowed: an .obj, .ply or .stl file)");
+  std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == "obj") return read_obj(path);
-  if (ext == "ply") return read_ply(path);
-  if (ext == "stl") return read_stl(path);
-  throw MeshError(path, "unknown mesh format '." + ext + "' (allowed: .obj, .ply, .stl)");
+  if (ext == ".obj") return read_obj(path);
+  if (ext == ".ply") return read_ply(path);
+  if (ext == ".stl") return read_stl(path);
+  throw MeshError(path,
+                  (ext.empty() ? std::string("has no file extension") : "unknown mesh format '" + ext + "'") +
+                      " (allowed: .obj, .ply, .stl)");
 }
 
 }  // namespace pd

@@ -8,6 +8,7 @@
 
 #include "host/geometry/curve_order.h"
 #include "host/geometry/grid_particles.h"
+#include "host/geometry/inside_test.h"
 #include "host/geometry/mesh_flips.h"
 #include "host/geometry/particle_order.h"
 
@@ -226,7 +227,11 @@ int scaled_shell_layers(int layers, double spacing_factor) {
 ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,
                                  const ParticleLimit& max_particles, const std::string& name) {
   FattenedShell shell = fattened_shell(surface, thickness, layers);
-  options.extra_points = std::move(shell.layer_points);
+  // Only the layers' points inside the solid: at a crease the mitred normals can take a point past
+  // the inner surface, and TetGen 1.5.0 then fails, or crashes where the shell has a cavity.
+  const InsideTest inside(shell.solid);
+  for (const Vec3d& p : shell.layer_points)
+    if (inside.inside(p)) options.extra_points.push_back(p);
   return tet_particles(shell.solid, options, max_particles, name);
 }
 

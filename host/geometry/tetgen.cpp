@@ -125,7 +125,7 @@ std::vector<Vec3d> cavity_points(const TriMesh& mesh) {
   return points;
 }
 
-void write_smesh(const TriMesh& mesh, const std::string& path) {
+void write_smesh(const TriMesh& mesh, const std::vector<Vec3d>& holes, const std::string& path) {
   std::ofstream out(path);
   char buf[128];
   out << mesh.vertices.size() << " 3 0 0\n";
@@ -136,7 +136,6 @@ void write_smesh(const TriMesh& mesh, const std::string& path) {
   }
   out << mesh.triangles.size() << " 0\n";
   for (const Triangle& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
-  const std::vector<Vec3d> holes = cavity_points(mesh);
   out << holes.size() << '\n';
   for (size_t h = 0; h < holes.size(); ++h) {
     std::snprintf(buf, sizeof buf, "%zu %.17g %.17g %.17g\n", h, holes[h][0], holes[h][1], holes[h][2]);
@@ -308,7 +307,8 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
                     "or \"voronoi\")");
   StageClock clock(options.stages);
   const WorkDir dir(options.work_dir);
-  write_smesh(surface, dir.file("in.smesh"));
+  const std::vector<Vec3d> holes = cavity_points(surface);
+  write_smesh(surface, holes, dir.file("in.smesh"));
 
   // Switches: PLC, [keep the surface,] quality, volume bound, inserted points, no mesh
   // optimization, 0-based, no .face or .edge file, quiet. The face neighbours are found here from
@@ -347,8 +347,16 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
     }
   }
   const double seconds = tetgen_seconds(surface, options);
-  const int status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"), seconds,
-                                 options.while_running);
+  int status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"), seconds,
+                           options.while_running);
+  // TetGen 1.5.0 can crash carving a hole where it also inserts points (a cube's shell): then it
+  // meshes the cavities too, and their tets are dropped below.
+  const bool mesh_cavities = status != 0 && status != kStopped && !holes.empty();
+  if (mesh_cavities) {
+    write_smesh(surface, {}, dir.file("in.smesh"));
+    status = run_program({program, switches, dir.file("in.smesh")}, dir.file("tetgen.log"), seconds,
+                         options.while_running);
+  }
   clock.lap("tetgen " + switches);
   if (status == kStopped)
     throw MeshError(name, "tetgen " + switches + " was stopped after " + std::to_string(int(seconds)) +
@@ -370,6 +378,14 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
       if (v < 0 || size_t(v) >= mesh.vertices.size())
         throw MeshError(name, "tetgen's in.1.ele names vertex " + std::to_string(v) + " of " +
                                   std::to_string(mesh.vertices.size()) + " (allowed: a tetgen that works)");
+  if (mesh_cavities) {  // the tets of the cavities, bounded by the surface, have their centroid outside it
+    const InsideTest inside(surface);
+    const auto cavity = [&](const std::array<int32_t, 4>& t) {
+      return !inside.inside(
+          0.25 * (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]] + mesh.vertices[t[3]]));
+    };
+    mesh.tets.erase(std::remove_if(mesh.tets.begin(), mesh.tets.end(), cavity), mesh.tets.end());
+  }
   // Positive orientation, then the neighbour opposite each corner.
   for (size_t t = 0; t < mesh.tets.size(); ++t)
     if (mesh.volume(t) < 0) std::swap(mesh.tets[t][0], mesh.tets[t][1]);

@@ -577,13 +577,16 @@ SceneCollider parse_collider(const TableReader& r) {
 }
 
 // A list of points [[x, y, z], ...] with at least `min` entries.
-std::vector<Vec3d> parse_points(const TableReader& r, std::string_view key, size_t min) {
-  const std::string allowed = "an array of at least " + std::to_string(min) + " points [x, y, z]";
+// An array of `min` points or more, exactly `min` with `exact`.
+std::vector<Vec3d> parse_points(const TableReader& r, std::string_view key, size_t min, bool exact = false) {
+  const std::string allowed =
+      std::string("an array of ") + (exact ? "" : "at least ") + std::to_string(min) + " points [x, y, z]";
   const toml::node* n = r.node(key);
   if (!n) r.fail(key, "missing required key", allowed);
   const auto* a = n->as_array();
   if (!a) r.fail(key, "expected an array of points, got " + type_name(*n), allowed);
-  if (a->size() < min) r.fail(key, std::to_string(a->size()) + " point(s)", allowed);
+  if (a->size() < min || (exact && a->size() != min))
+    r.fail(key, std::to_string(a->size()) + " point(s)", allowed);
   std::vector<Vec3d> out;
   for (size_t k = 0; k < a->size(); ++k) {
     const std::string item = r.path(key) + "[" + std::to_string(k) + "]";
@@ -608,9 +611,7 @@ SceneCrack parse_crack(const TableReader& r, const std::vector<SceneBody>& bodie
   };
   switch (shape) {
     case 0: {
-      const auto corners = parse_points(r, "corners", 4);
-      if (corners.size() != 4)
-        r.fail("corners", std::to_string(corners.size()) + " points", "4 points [x, y, z]");
+      const auto corners = parse_points(r, "corners", 4, true);
       std::copy(corners.begin(), corners.end(), c.corners.begin());
       break;
     }

@@ -137,10 +137,22 @@ TEST_F(RenderFramesTest, RejectsMismatchedFramesAndMissingInputs) {
   PrimitiveSet prims;
   std::vector<Vec3> albedo;
   EXPECT_THROW(frame_primitives(rest_, short_frame, &prims, &albedo), std::invalid_argument);
+  // A folder that is not there, or holds no run: the user's mistake (exit 2), said so.
   RenderOptions o;
-  o.dir = (dir_ / "missing").string();
   o.backend = "cpu";
-  EXPECT_THROW(render_frames(o), IoError);
+  auto refusal = [&](const std::string& dir) {
+    o.dir = dir;
+    try {
+      render_frames(o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no refusal");
+  };
+  EXPECT_NE(refusal((dir_ / "missing").string()).find("is not there"), std::string::npos);
+  std::filesystem::create_directories(dir_ / "empty");
+  EXPECT_NE(refusal((dir_ / "empty").string()).find("holds no frame_*.pfr nor rest.pfr"), std::string::npos);
+  EXPECT_NE(refusal(path("frame_00000.pfr")).find("is not a folder"), std::string::npos);
   o.dir = dir_.string();
   o.spp = 0;
   EXPECT_THROW(render_frames(o), std::invalid_argument);

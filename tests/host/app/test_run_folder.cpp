@@ -83,6 +83,21 @@ TEST_F(RunFolderTest, OneRunAtATime) {
   }
 }
 
+// --out naming a file: the user's mistake, said so (not a failure to make a folder), for every use.
+TEST_F(RunFolderTest, AFileIsNoFolder) {
+  const std::string file = out_ + ".toml";
+  { std::ofstream(file) << "x"; }
+  for (FolderUse use : {FolderUse::kNew, FolderUse::kOverwrite, FolderUse::kResume}) {
+    try {
+      check_run_folder(file, use);
+      ADD_FAILURE() << "a file was taken for a folder";
+    } catch (const RunFolderError& e) {
+      EXPECT_NE(std::string(e.what()).find("is a file, not a folder"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(testing::read_all(file), "x");
+}
+
 TEST_F(RunFolderTest, AFolderHoldingARunIsRefusedWithoutOverwrite) {
   write_run(2);
   EXPECT_THROW(check_run_folder(out_, FolderUse::kNew), RunFolderError);

@@ -215,6 +215,8 @@ TEST_F(Cli, BadOptionValues) {
   }
   EXPECT_NE(run_perifrac("run " + scene(kGoodBody) + " --backend gpu").output.find("--backend"),
             std::string::npos);
+  EXPECT_NE(run_perifrac("frobnicate").output.find("unknown command 'frobnicate' (allowed: run, "),
+            std::string::npos);
   const Result r = run_perifrac("run " + scene(kGoodBody) + " --scale -1 --out " + out());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--scale"), std::string::npos) << r.output;

@@ -93,7 +93,10 @@ TEST(MeshCheck, InconsistentOrientation) {
 TEST(MeshCheck, OpenMeshReportsTheHoleCount) {
   TriMesh box = box_mesh({1, 1, 1});
   box.triangles.erase(box.triangles.begin(), box.triangles.begin() + 2);  // the -x face
-  expect_refused(box, "the mesh is open: 1 hole (boundary loops) with 4 boundary edges");
+  expect_refused(box,
+                 "the mesh is open: 1 hole (boundary loops) with 4 boundary edges (allowed: a closed mesh)");
+  // The repair is offered only where the caller takes it (a body's mesh).
+  expect_refused(box, "or repair = \"fill_holes\"", {false, true});
   // A sphere with two caps removed: two holes.
   TriMesh sphere = latitude_longitude_sphere();
   const size_t n = sphere.triangles.size();

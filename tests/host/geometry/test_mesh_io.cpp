@@ -68,13 +68,26 @@ void expect_read_error(const std::string& name, const std::string& text, const s
   }
 }
 
+TEST(MeshIo, AFolderIsNoMesh) {
+  ScratchDir dir("folder");
+  const std::string path = dir.file("meshes.obj");
+  std::filesystem::create_directories(path);
+  try {
+    read_mesh(path);
+    ADD_FAILURE() << "a folder was read as a mesh";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a folder, not a mesh file"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MeshIo, MalformedFilesAreRefused) {
   expect_read_error("empty.obj", "", "empty");
   expect_read_error("nofaces.obj", "v 0 0 0\n", "no faces");
   expect_read_error("word.obj", "v 0 zero 0\n", "line 1: 'zero' is not a number");
   expect_read_error("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "line 4: vertex index 4");
   expect_read_error("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", "at least 3 vertices");
-  expect_read_error("shape.xyz", "1 2 3", "unknown mesh format");
+  expect_read_error("shape.xyz", "1 2 3", "unknown mesh format '.xyz'");
+  expect_read_error("shape", "1 2 3", "has no file extension");
   expect_read_error("big.ply", "ply\nformat binary_big_endian 1.0\nelement vertex 0\nend_header\n",
                     "binary_big_endian");
   expect_read_error(

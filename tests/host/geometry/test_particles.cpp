@@ -267,6 +267,20 @@ TEST(TetParticles, CavitiesStayEmpty) {
   const ParticleGeometry h = tet_particles(hollow, options, kBudget, "hollow");
   EXPECT_NEAR(h.total_volume(), 1 - 0.125, 1e-9);
   expect_inside(hollow, h);
+  // A cube's shell with two inner layers, where TetGen 1.5.0 crashes carving the hole beside the
+  // inserted points: the cavity is meshed and its tets dropped.
+  TriMesh cube;
+  for (int v = 0; v < 8; ++v)
+    cube.vertices.push_back({0.05 * (v == 1 || v == 2 || v == 5 || v == 6) - 0.025,
+                             0.05 * (v == 2 || v == 3 || v == 6 || v == 7) - 0.025, 0.05 * (v >= 4) - 0.025});
+  cube.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                    {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  TetgenOptions cube_options;
+  cube_options.max_volume = 2.5e-7;
+  const FattenedShell cube_shell = fattened_shell(cube, 0.005, 4);
+  const ParticleGeometry c = shell_particles(cube, 0.005, 4, cube_options, kBudget, "cube");
+  EXPECT_NEAR(c.total_volume(), signed_volume(cube_shell.solid), 1e-9 * signed_volume(cube_shell.solid));
+  expect_inside(cube_shell.solid, c);
 }
 
 // A shell deeper than the solid turns its inner surface over: refused before TetGen, with the

@@ -436,7 +436,10 @@ strain_limit_factor = 0.5
 
 TEST(SceneLoader, CrackAndRegionMistakes) {
   const std::string crack = kMinimal + "[[cracks]]\n";
-  expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0]]\n", "cracks[0].corners", "3 point(s)");
+  expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0]]\n", "cracks[0].corners",
+               "3 point(s) (allowed: an array of 4 points");
+  expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1]]\n",
+               "cracks[0].corners", "5 point(s) (allowed: an array of 4 points");
   expect_error(crack + "shape = \"path\"\npoints = [[0, 0, 0], [1, 0, 0]]\nextrude = [0, 0, 0]\n",
                "cracks[0].extrude", "zero vector");
   expect_error(
