@@ -132,6 +132,11 @@ case_ "resume" "from another working directory" 0 "resume     from frame 2" env 
 cp r/checkpoint.pck saved.pck
 head -c 1000 saved.pck >r/checkpoint.pck
 case_ "resume" "a truncated checkpoint" 2 "checksum mismatch|truncated" "$BIN" run --resume r --frames 4
+fresh r2
+"$BIN" "${P[@]}" s.toml --frames 4 --checkpoint-every 2 --out r2 >/dev/null 2>&1 && cp r2/checkpoint.pck r2-4.pck
+"$BIN" "${P[@]}" s.toml --frames 2 --checkpoint-every 2 --out r2b >/dev/null 2>&1 && cp r2b/checkpoint.pck r2/checkpoint.pck
+POST='[[ -e r2/frame_00004.pfr ]]'
+case_ "resume" "ending before frames already written: refused, nothing removed" 2 "frames 4 to 4 would be removed" "$BIN" run --resume r2 --frames 3
 fresh k
 "$BIN" "${P[@]}" s.toml --frames 1 --steps-per-frame 200000 --out k >out-k.txt 2>&1 &
 run=$!
@@ -175,12 +180,23 @@ case_ "command line" "surface_correction neither a boolean nor \"ghosts\"" 2 "ma
 case_ "command line" "[[shards]] dust_hold without a pattern" 2 "shards\[0\]\.dust_hold" "$BIN" "${P[@]}" dust.toml --out o7
 "$BIN" "${P[@]}" s.toml --out o8 >/dev/null 2>&1 && rm -f o8/crack_mesh_*
 case_ "command line" "render --surface mesh of a run without crack meshes" 2 "no o8/crack_mesh_00000.ply" "$BIN" render o8 --surface mesh --width 32 --height 32
+mkdir -p not-a-run
+case_ "command line" "render of a folder that holds no run" 2 "holds no frame_\*.pfr" "$BIN" render not-a-run
+case_ "command line" "--out naming a file" 2 "is a file, not a folder" "$BIN" "${P[@]}" s.toml --out s.toml
+case_ "command line" "an unknown command" 2 "unknown command 'simulate'" "$BIN" simulate s.toml
 
 # Limits: what would hang, run for nothing or overflow a count
 mkdir -p slow-tetgen && printf '#!/bin/sh\nexec sleep 60\n' >slow-tetgen/tetgen && chmod +x slow-tetgen/tetgen
+scene shell.toml '[[bodies]]\nname = "ball"\nmaterial = "glass"\nshape = "sphere"\nradius = 0.01\ncenter = [0.1, 0, 0]\nspacing = 0.002\nparticles = "shell"\nshell_thickness = 0.012\n'
+case_ "limits" "a shell deeper than its sphere: refused before TetGen" 2 "bodies\[1\]\.shell_thickness: .* folds its inner surface over" "$BIN" "${P[@]}" shell.toml --out l7
+mkdir -p folder.obj
+scene dirmesh.toml '[[bodies]]\nshape = "mesh"\nmesh = "folder.obj"\nmaterial = "glass"\nspacing = 0.002\n'
+case_ "bounded input" "a mesh path that is a folder" 2 "is a folder, not a mesh file" "$BIN" "${P[@]}" dirmesh.toml --out o10
 scene tets.toml '[[bodies]]\nname = "ball"\nmaterial = "glass"\nshape = "sphere"\nradius = 0.01\ncenter = [0.1, 0, 0]\nspacing = 0.004\nparticles = "tets"\n'
 case_ "limits" "a TetGen run that does not end: stopped" 2 "was stopped after 1 s" \
   env PATH="$PWD/slow-tetgen:$PATH" PERIFRAC_TETGEN_SECONDS=1 PERIFRAC_TET_CACHE=off "$BIN" "${P[@]}" tets.toml --out l1
+case_ "limits" "PERIFRAC_TETGEN_SECONDS=soon" 2 "PERIFRAC_TETGEN_SECONDS='soon'" \
+  env PATH="$PWD/slow-tetgen:$PATH" PERIFRAC_TETGEN_SECONDS=soon PERIFRAC_TET_CACHE=off "$BIN" "${P[@]}" tets.toml --out l8
 scene stiff.toml '[[colliders]]\nshape = "sphere"\nradius = 0.01\ncenter = [0, 0.2, 0]\nstiffness = 1e300\n'
 case_ "limits" "a collider stiffness that leaves no stable step" 2 "colliders: the colliders' contact" "$BIN" "${P[@]}" stiff.toml --out l2
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >sheet.obj
