@@ -227,8 +227,8 @@ int scaled_shell_layers(int layers, double spacing_factor) {
 ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,
                                  const ParticleLimit& max_particles, const std::string& name) {
   FattenedShell shell = fattened_shell(surface, thickness, layers);
-  // Only the layers' points inside the solid: at a crease the mitred normals can take a point past
-  // the inner surface, and TetGen 1.5.0 then fails, or crashes where the shell has a cavity.
+  // Only the layers' points inside the solid, where TetGen's -i takes them: at a sharp crease the
+  // mitred normals (capped at 3) can take a layer's point out of it.
   const InsideTest inside(shell.solid);
   for (const Vec3d& p : shell.layer_points)
     if (inside.inside(p)) options.extra_points.push_back(p);

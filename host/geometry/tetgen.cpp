@@ -90,23 +90,20 @@ std::vector<Vec3d> cavity_points(const TriMesh& mesh) {
     }
     ++parts;
   }
+  // Each component's volume, and its triangles by area (largest first).
   std::vector<double> volume(size_t(parts), 0.0);
+  std::vector<std::vector<std::pair<double, int32_t>>> by_area(static_cast<size_t>(parts));
   for (size_t f = 0; f < n; ++f) {
     const Triangle& t = mesh.triangles[f];
-    volume[size_t(part[f])] += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]])) / 6;
+    const Vec3d &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    volume[size_t(part[f])] += dot(a, cross(b, c)) / 6;
+    by_area[size_t(part[f])].push_back({norm(cross(b - a, c - a)), int32_t(f)});
   }
   std::vector<Vec3d> points;
   std::optional<InsideTest> inside;
   for (int32_t c = 0; c < parts; ++c) {
     if (!(volume[size_t(c)] < 0)) continue;
-    std::vector<std::pair<double, int32_t>> largest;  // (area, triangle) of the component
-    for (size_t f = 0; f < n; ++f)
-      if (part[f] == c) {
-        const Triangle& t = mesh.triangles[f];
-        largest.push_back({norm(cross(mesh.vertices[t[1]] - mesh.vertices[t[0]],
-                                      mesh.vertices[t[2]] - mesh.vertices[t[0]])),
-                           int32_t(f)});
-      }
+    std::vector<std::pair<double, int32_t>>& largest = by_area[size_t(c)];
     std::sort(largest.rbegin(), largest.rend());
     if (!inside) inside.emplace(mesh);
     for (size_t k = 0; k < std::min<size_t>(largest.size(), 16); ++k) {

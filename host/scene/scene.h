@@ -143,7 +143,7 @@ struct SceneCollider {
   double friction = 0;                    // dynamic Coulomb coefficient, >= 0
   std::optional<double> static_friction;  // >= friction; default: friction
   double damping = 0.2;                   // of the normal push, as a ratio of critical damping, in [0, 1]
-  std::string law = "penalty";            // "penalty" | "lammps_indent" (K (R - r)^2, K in N/m^2)
+  std::string law = "penalty";            // "penalty" | "lammps_indent" (K (R - r)^2 V, K in N/m^5)
   std::optional<double> mass;     // [kg]: a free rigid body (not a plane), moved by the particles and gravity
   std::optional<double> density;  // [kg/m^3]: the same, its mass from its volume
   std::string mesh;               // mesh: an OBJ/PLY/STL file as written in the scene

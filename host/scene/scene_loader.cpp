@@ -328,7 +328,12 @@ void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
       r.fail(key, "not a dimension of shape = " + in_quotes(b.shape),
              "for " + b.shape + ": " + join(own, false));
   const Bounds positive = greater_than(0);
-  if (b.shape == "box") r.vec3("size", b.size, Presence::required);
+  if (b.shape == "box") {
+    r.vec3("size", b.size, Presence::required);
+    for (int a = 0; a < 3; ++a)
+      if (!(b.size[a] > 0))
+        r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(b.size[a]) + " is not > 0", "sizes > 0");
+  }
   if (b.shape == "plate") {
     r.number("width", b.width, positive, Presence::required);
     r.number("depth", b.depth, positive, Presence::required);
@@ -426,9 +431,6 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
   const std::string size_key = b.shape == "box" ? "size" : "width, depth, thickness";
   double count = 1;
   for (int a = 0; a < 3; ++a) {
-    if (!(b.size[a] > 0))
-      r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(b.size[a]) + " is not > 0",
-             "sizes > 0");
     const double per_axis = std::round(b.size[a] / b.spacing);
     if (per_axis < 1)
       r.fail(b.shape == "box" ? "size"
@@ -555,7 +557,7 @@ SceneCollider parse_collider(const TableReader& r) {
     for (std::string_view key : {"friction", "static_friction", "damping"})
       if (r.has(key))
         r.fail(key, "the lammps_indent law has no " + std::string(key),
-               "shape, motion and stiffness (K [N/m^2])");
+               "shape, motion and stiffness (K [N/m^5])");
     c.damping = 0;
     double k = 0;
     r.number("stiffness", k, greater_than(0), Presence::required);

@@ -780,6 +780,18 @@ std::string body(const std::string& keys) {
   return kShapeMaterial + "[[bodies]]\nspacing = 0.01\nmaterial = \"glass\"\n" + keys;
 }
 
+// A box's sizes are positive whatever fills it (a grid counts its particles; tets, Voronoi cells
+// and shells would mesh a box of negative volume).
+TEST(SceneLoader, BoxSizesArePositiveForEveryParticleKind) {
+  for (const char* particles : {"grid", "tets", "voronoi", "shell"}) {
+    SCOPED_TRACE(particles);
+    const std::string shell = std::string(particles) == "shell" ? "shell_thickness = 0.01\n" : "";
+    expect_error(body("shape = \"box\"\nsize = [-0.1, 0.1, 0.1]\nparticles = \"" + std::string(particles) +
+                      "\"\n" + shell),
+                 "bodies[0].size", "x size -0.1 is not > 0");
+  }
+}
+
 TEST(SceneLoader, ShapesWithTheirDimensions) {
   const Scene s = parse_scene(
       body("shape = \"torus\"\nradius = 0.2\ntube_radius = 0.05\nparticles = \"voronoi\"\n") +
