@@ -92,15 +92,18 @@ std::vector<HalfEdge> check_edges(const TriMesh& mesh, const std::string& path) 
 }
 
 // Loops of boundary half-edges; MeshError when a vertex has two outgoing boundary edges.
-std::vector<std::vector<int32_t>> trace_loops(const std::vector<HalfEdge>& boundary,
-                                              const std::string& path) {
+// repair_offered: whether the message offers repair = "fill_holes" (MeshCheckOptions).
+std::vector<std::vector<int32_t>> trace_loops(const std::vector<HalfEdge>& boundary, const std::string& path,
+                                              bool repair_offered) {
   std::unordered_map<int32_t, int32_t> next;
   for (const HalfEdge& e : boundary) {
     if (!next.emplace(e.from, e.to).second)
-      throw MeshError(path, "boundary vertex " + std::to_string(e.from) +
-                                " (0-based) lies on two holes at once (a non-simple boundary loop) "
-                                "(allowed: a closed mesh, or holes with simple boundary loops for "
-                                "repair = \"fill_holes\")");
+      throw MeshError(path,
+                      "boundary vertex " + std::to_string(e.from) +
+                          " (0-based) lies on two holes at once (a non-simple boundary loop) " +
+                          (repair_offered ? "(allowed: a closed mesh, or holes with simple boundary loops "
+                                            "for repair = \"fill_holes\")"
+                                          : "(allowed: a closed mesh)"));
   }
   std::vector<std::vector<int32_t>> loops;
   std::unordered_map<int32_t, bool> used;
@@ -152,8 +155,9 @@ void check_triangles(const TriMesh& mesh, const std::string& path) {
 
 }  // namespace
 
-std::vector<std::vector<int32_t>> boundary_loops(const TriMesh& mesh, const std::string& path) {
-  return trace_loops(check_edges(mesh, path), path);
+std::vector<std::vector<int32_t>> boundary_loops(const TriMesh& mesh, const std::string& path,
+                                                 bool repair_offered) {
+  return trace_loops(check_edges(mesh, path), path, repair_offered);
 }
 
 MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOptions& options) {
@@ -179,7 +183,7 @@ MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOp
   check_triangles(mesh, path);
 
   // Boundary: refuse, or fill the loops and check the patches like any triangle.
-  const auto loops = boundary_loops(mesh, path);
+  const auto loops = boundary_loops(mesh, path, options.repair_offered);
   report.holes = int(loops.size());
   if (!loops.empty()) {
     size_t edges = 0;

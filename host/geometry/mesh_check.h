@@ -32,7 +32,9 @@ struct MeshReport {
 MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOptions& options);
 
 // Boundary loops of a mesh (each as its vertex cycle, following the triangles' direction), for
-// reports and tests. Throws MeshError when a boundary vertex starts two loops (not simple).
-std::vector<std::vector<int32_t>> boundary_loops(const TriMesh& mesh, const std::string& path);
+// reports and tests. Throws MeshError when a boundary vertex starts two loops (not simple), its
+// message offering repair = "fill_holes" with `repair_offered` (MeshCheckOptions).
+std::vector<std::vector<int32_t>> boundary_loops(const TriMesh& mesh, const std::string& path,
+                                                 bool repair_offered = false);
 
 }  // namespace pd

@@ -126,6 +126,8 @@ TEST(MeshCheck, NonSimpleHoleIsRefused) {
   m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
   m.triangles = {{0, 1, 2}, {0, 3, 4}};
   expect_refused(m, "lies on two holes at once", {true});
+  expect_refused(m, "(a non-simple boundary loop) (allowed: a closed mesh)");
+  expect_refused(m, "simple boundary loops for repair = \"fill_holes\"", {true, true});
 }
 
 TEST(MeshCheck, InvertedOrientationIsFlipped) {
