@@ -159,11 +159,13 @@ const std::string kTetgenAllowed =
     "(allowed: a closed mesh without self-intersections; for particles = \"shell\", a shell_thickness "
     "below the mesh's own thickness and radii of curvature)";
 
-constexpr int kStopped = -2;  // run_program: the program ran past its time and was killed
+constexpr int kStopped = -2;      // run_program: the program ran past its time and was killed
+constexpr int kSignalled = 1000;  // run_program: kSignalled + the signal that ended the program
 
 // Runs argv with stdout and stderr to `log`; returns the exit status (-1 if it did not run,
-// kStopped if it ran past `seconds` and was killed). `while_running` (if set) is called once the
-// program has started; when it throws, the program is killed and the exception goes on.
+// kStopped if it ran past `seconds` and was killed, kSignalled + the signal if one ended it). `while_running`
+// (if set) is called once the program has started; when it throws, the program is killed and the exception
+// goes on.
 int run_program(const std::vector<std::string>& argv, const std::string& log, double seconds,
                 const std::function<void()>& while_running) {
   posix_spawn_file_actions_t actions;
@@ -201,7 +203,7 @@ int run_program(const std::vector<std::string>& argv, const std::string& log, do
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? kSignalled + WTERMSIG(status) : -1;
 }
 
 // How long TetGen may run: two minutes and 0.2 ms for each tet the volume bound allows (TetGen
@@ -230,7 +232,7 @@ std::string log_tail(const std::string& log) {
     if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
   for (size_t k = lines.size() > 3 ? lines.size() - 3 : 0; k < lines.size(); ++k)
     last += (last.empty() ? "" : " / ") + lines[k];
-  return last.empty() ? "no message" : last;
+  return last.empty() ? "none" : "'" + last + "'";
 }
 
 // Reads "count ..." then `count` rows of an index and `width` numbers (the rest of each row,
@@ -359,8 +361,11 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
     throw MeshError(name, "tetgen " + switches + " was stopped after " + std::to_string(int(seconds)) +
                               " s without a result " + kTetgenAllowed);
   if (status != 0)
-    throw MeshError(name, "tetgen " + switches + " failed (exit status " + std::to_string(status) +
-                              "): " + log_tail(dir.file("tetgen.log")) + " " + kTetgenAllowed);
+    throw MeshError(
+        name, "tetgen " + switches +
+                  (status >= kSignalled ? " crashed (signal " + std::to_string(status - kSignalled) + ")"
+                                        : " failed (exit status " + std::to_string(status) + ")") +
+                  ", its last words: " + log_tail(dir.file("tetgen.log")) + " " + kTetgenAllowed);
 
   // The vertices read on a thread of their own beside the tets.
   TetMesh mesh;

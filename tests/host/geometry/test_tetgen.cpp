@@ -20,16 +20,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A `tetgen` that never finishes, first on PATH while the object lives; its folder removed after.
+// A `tetgen` that never finishes (or runs `body` instead), first on PATH while the object lives;
+// its folder removed after.
 class NeverEndingTetgen {
  public:
-  explicit NeverEndingTetgen(const std::string& name)
+  explicit NeverEndingTetgen(const std::string& name, const std::string& body = "exec sleep 60")
       : dir_(fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()))),
         old_path_(std::getenv("PATH") ? std::getenv("PATH") : "") {
     fs::create_directories(dir_);
     {
       std::ofstream script(dir_ / "tetgen");
-      script << "#!/bin/sh\nexec sleep 60\n";
+      script << "#!/bin/sh\n" << body << "\n";
     }
     fs::permissions(dir_ / "tetgen", fs::perms::owner_all);
     setenv("PATH", (dir_.string() + ":" + old_path_).c_str(), 1);
@@ -67,6 +68,19 @@ TEST(Tetgen, ARunPastItsTimeIsStoppedWithAMessage) {
   EXPECT_NE(message.find("was stopped after 1 s"), std::string::npos) << message;
   EXPECT_NE(message.find("shell_thickness"), std::string::npos) << message;
   EXPECT_LT(seconds, 10);
+}
+
+// A TetGen that crashes: the signal and its last words, one line.
+TEST(Tetgen, ACrashIsReportedWithItsSignal) {
+  const NeverEndingTetgen tetgen("perifrac-test-tetgen-crash",
+                                 "echo 'Segmentation fault ahead'\nkill -SEGV $$");
+  TetgenOptions options;
+  options.work_dir = tetgen.work_dir();
+  const std::string message = tetrahedralize_box(options).first;
+  EXPECT_NE(message.find("crashed (signal 11), its last words: 'Segmentation fault ahead'"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
 TEST(Tetgen, ABadTimeLimitInTheEnvironmentIsRefused) {
