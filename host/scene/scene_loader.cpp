@@ -332,7 +332,8 @@ void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
     r.vec3("size", b.size, Presence::required);
     for (int a = 0; a < 3; ++a)
       if (!(b.size[a] > 0))
-        r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(b.size[a]) + " is not > 0", "sizes > 0");
+        r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(b.size[a]) + " is not > 0",
+               "sizes > 0");
   }
   if (b.shape == "plate") {
     r.number("width", b.width, positive, Presence::required);
