@@ -8,7 +8,6 @@
 
 #include "host/geometry/curve_order.h"
 #include "host/geometry/grid_particles.h"
-#include "host/geometry/inside_test.h"
 #include "host/geometry/mesh_flips.h"
 #include "host/geometry/particle_order.h"
 
@@ -227,11 +226,7 @@ int scaled_shell_layers(int layers, double spacing_factor) {
 ParticleGeometry shell_particles(const TriMesh& surface, double thickness, int layers, TetgenOptions options,
                                  const ParticleLimit& max_particles, const std::string& name) {
   FattenedShell shell = fattened_shell(surface, thickness, layers);
-  // Only the layers' points inside the solid, where TetGen's -i takes them: at a sharp crease the
-  // mitred normals (capped at 3) can take a layer's point out of it.
-  const InsideTest inside(shell.solid);
-  for (const Vec3d& p : shell.layer_points)
-    if (inside.inside(p)) options.extra_points.push_back(p);
+  options.extra_points = std::move(shell.layer_points);
   return tet_particles(shell.solid, options, max_particles, name);
 }
 
