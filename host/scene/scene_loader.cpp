@@ -141,6 +141,15 @@ const Keys kRenderKeys = {"eye",           "look_at",  "vfov",          "width",
 const Keys kRenderBodyKeys = {"look", "color"};
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
+
+// A box's `size`, required, every extent > 0 (a body's or a collider's).
+void read_box_size(const TableReader& r, Vec3d& size) {
+  r.vec3("size", size, Presence::required);
+  for (int a = 0; a < 3; ++a)
+    if (!(size[a] > 0))
+      r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(size[a]) + " is not > 0",
+             "sizes > 0");
+}
 constexpr double kMaxHorizon = 12;  // delta / lambda; beyond this the bond families explode
 
 // Elastic constants: bond_based takes the bulk modulus (its Poisson ratio is 1/4);
@@ -328,13 +337,7 @@ void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
       r.fail(key, "not a dimension of shape = " + in_quotes(b.shape),
              "for " + b.shape + ": " + join(own, false));
   const Bounds positive = greater_than(0);
-  if (b.shape == "box") {
-    r.vec3("size", b.size, Presence::required);
-    for (int a = 0; a < 3; ++a)
-      if (!(b.size[a] > 0))
-        r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(b.size[a]) + " is not > 0",
-               "sizes > 0");
-  }
+  if (b.shape == "box") read_box_size(r, b.size);
   if (b.shape == "plate") {
     r.number("width", b.width, positive, Presence::required);
     r.number("depth", b.depth, positive, Presence::required);
@@ -532,13 +535,7 @@ SceneCollider parse_collider(const TableReader& r) {
   }
   if (round) r.number("radius", c.radius, greater_than(0), Presence::required);
   if (long_) r.number("length", c.length, greater_than(0), Presence::required);
-  if (c.shape == "box") {
-    r.vec3("size", c.size, Presence::required);
-    for (int a = 0; a < 3; ++a)
-      if (!(c.size[a] > 0))
-        r.fail("size", std::string(kAxisNames[a]) + " size " + number_text(c.size[a]) + " is not > 0",
-               "sizes > 0");
-  }
+  if (c.shape == "box") read_box_size(r, c.size);
   // Free: a mass or a density (not both, not for a plane, not on a path).
   double m = 0;
   if (r.has("mass") && r.has("density"))
