@@ -29,11 +29,16 @@ class CpuExec {
   // Overlapped launches (CudaExec::set_overlap_launches); no meaning here.
   void set_overlap_launches(bool) {}
 
+  // Loops shorter than this run on the calling thread: waking the team costs more than they take,
+  // and far more on a busy machine, where a team waits for its descheduled threads. (Each f(i)
+  // writes its own outputs, so the bits do not depend on it.)
+  static constexpr int64_t kParallelMinimum = 1024;
+
   // kMinBlocks: the GPU backend's occupancy hint (CudaExec::parallel_for); no meaning here.
   template <int kMinBlocks = 0, class F>
   void parallel_for(const char* name, int64_t n, F f) {
     const auto t0 = std::chrono::steady_clock::now();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
     for (int64_t i = 0; i < n; ++i) f(i);
     record(name, t0);
   }
@@ -53,7 +58,7 @@ class CpuExec {
     size_t k = 0;
     const auto run = [&](auto& phase) {
       const int64_t count = n[k++];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (count >= kParallelMinimum)
       for (int64_t i = 0; i < count; ++i) phase(i);
     };
     (run(f), ...);

@@ -22,8 +22,9 @@ struct CameraFrame {
   int32_t width, height;         // image size [pixels]
 };
 
-// Throws std::invalid_argument for a degenerate camera (eye at look_at, up along the view,
-// field of view outside (0, 180) degrees) or an empty image.
+// Throws std::invalid_argument for a degenerate camera (eye at look_at, field of view outside
+// (0, 180) degrees) or an empty image. A view along `up` (straight down or up) takes -z, then x,
+// as the image's up instead.
 inline CameraFrame camera_frame(const Camera& c, int width, int height) {
   const Vec3 view = c.look_at - c.eye;
   if (width <= 0 || height <= 0) throw std::invalid_argument("camera: the image is empty");
@@ -33,9 +34,10 @@ inline CameraFrame camera_frame(const Camera& c, int width, int height) {
   CameraFrame f;
   f.eye = c.eye;
   f.forward = normalize(view);
-  const Vec3 right = cross(f.forward, c.up);
-  if (!(length(right) > real(1e-6) * length(c.up)))
-    throw std::invalid_argument("camera: up is along the view");
+  Vec3 right = cross(f.forward, c.up);
+  for (const Vec3 up : {Vec3{0, 0, -1}, Vec3{1, 0, 0}})
+    if (!(length(right) > real(1e-6) * length(c.up))) right = cross(f.forward, up);
+  if (!(length(right) > 0)) throw std::invalid_argument("camera: the view direction is not finite");
   f.right = normalize(right);
   f.up = cross(f.right, f.forward);
   f.half_height = real(std::tan(0.5 * double(c.vfov_degrees) * 3.14159265358979323846 / 180));

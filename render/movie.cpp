@@ -1,12 +1,16 @@
 #include "render/movie.h"
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -16,26 +20,59 @@ namespace pd {
 
 namespace {
 
-// `path` with the characters glob(3) treats specially escaped by a backslash.
-std::string glob_escape(const std::string& path) {
-  std::string out;
-  for (char c : path) {
-    if (c == '*' || c == '?' || c == '[' || c == ']' || c == '{' || c == '}' || c == '\\') out += '\\';
-    out += c;
+// Writes `bytes` to `fd` whole; false when the reader went away or the write failed.
+bool write_all(int fd, const char* bytes, size_t n) {
+  while (n > 0) {
+    const ssize_t w = ::write(fd, bytes, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    bytes += w;
+    n -= size_t(w);
   }
-  return out;
+  return true;
 }
 
-// Runs argv[0] (a full path) with the arguments and waits; returns its exit status, or -1 when it
-// could not be started or did not exit normally.
-int run_program(const std::vector<std::string>& args) {
+// Runs argv[0] (a full path) with the arguments, its standard input fed with the bytes of `inputs`
+// in order, and waits; returns its exit status, or -1 when it could not be started, did not exit
+// normally, or an input could not be read. (SIGPIPE is ignored while feeding it: a program that
+// stops reading ends with its own status.)
+int run_program_fed(const std::vector<std::string>& args, const std::vector<std::string>& inputs) {
+  int pipe_fds[2];
+  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) return -1;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[0], 0);
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   pid_t pid = 0;
-  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(pipe_fds[0]);
+  if (spawned != 0) {
+    ::close(pipe_fds[1]);
+    return -1;
+  }
+  struct sigaction ignore = {}, previous = {};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGPIPE, &ignore, &previous);
+  bool fed = true;
+  std::vector<char> buffer(1 << 20);
+  for (const std::string& input : inputs) {
+    std::ifstream in(input, std::ios::binary);
+    if (!in) fed = false;
+    while (fed && in) {
+      in.read(buffer.data(), std::streamsize(buffer.size()));
+      fed = write_all(pipe_fds[1], buffer.data(), size_t(in.gcount()));
+    }
+    if (!fed) break;
+  }
+  ::close(pipe_fds[1]);
+  ::sigaction(SIGPIPE, &previous, nullptr);
   int status = 0;
-  if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  if (!fed || !WIFEXITED(status)) return -1;
   return WEXITSTATUS(status);
 }
 
@@ -51,38 +88,29 @@ std::string find_on_path(const std::string& program) {
   return "";
 }
 
-MovieResult make_movie(const std::string& image_dir, int framerate) {
+MovieResult make_movie(const std::vector<std::string>& images, const std::string& target, int framerate) {
   namespace fs = std::filesystem;
   MovieResult r;
   const std::string ffmpeg = find_on_path("ffmpeg");
   if (ffmpeg.empty()) {
     r.message = "no movie: ffmpeg is not on PATH (install it, e.g. apt-get install ffmpeg, to get " +
-                std::string(kMovieFileName) + ")";
+                fs::path(target).filename().string() + ")";
     return r;
   }
-  const std::string target = (fs::path(image_dir) / kMovieFileName).string();
+  if (images.empty()) {
+    r.message = "no movie: no images";
+    return r;
+  }
   const std::string temporary = target + ".tmp." + std::to_string(::getpid()) + ".0";
-  const int status = run_program({ffmpeg,
-                                  "-nostdin",
-                                  "-hide_banner",
-                                  "-loglevel",
-                                  "error",
-                                  "-y",
-                                  "-framerate",
-                                  std::to_string(framerate),
-                                  "-pattern_type",
-                                  "glob",
-                                  "-i",
-                                  glob_escape(fs::path(image_dir).string()) + "/frame_*.png",
-                                  "-vf",
-                                  "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                  "-pix_fmt",
-                                  "yuv420p",
-                                  "-c:v",
-                                  "libx264",
-                                  "-f",
-                                  "mp4",
-                                  temporary});
+  const int status = run_program_fed({ffmpeg,       "-hide_banner", "-loglevel",
+                                      "error",      "-y",           "-f",
+                                      "image2pipe", "-framerate",   std::to_string(framerate),
+                                      "-c:v",       "png",          "-i",
+                                      "pipe:0",     "-vf",          "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                      "-pix_fmt",   "yuv420p",      "-c:v",
+                                      "libx264",    "-f",           "mp4",
+                                      temporary},
+                                     images);
   std::error_code ec;
   if (status != 0) {
     fs::remove(temporary, ec);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace pd {
 
@@ -16,9 +17,10 @@ struct MovieResult {
   std::string message;  // the movie's path, or why there is none
 };
 
-// Encodes image_dir/frame_*.png (name order) into image_dir/movie.mp4: ffmpeg writes a temporary
-// file beside it, which is renamed over the target only when ffmpeg succeeded, so a reader never
-// sees a partial movie. Odd image sizes are padded by one pixel (yuv420p needs even sizes).
-MovieResult make_movie(const std::string& image_dir, int framerate = 24);
+// Encodes `images` (PNG files, in that order) into `target` (an MP4): ffmpeg reads them from a pipe
+// and writes a temporary file beside the target, which is renamed over it only when ffmpeg
+// succeeded, so a reader never sees a partial movie. Odd image sizes are padded by one pixel
+// (yuv420p needs even sizes).
+MovieResult make_movie(const std::vector<std::string>& images, const std::string& target, int framerate = 24);
 
 }  // namespace pd

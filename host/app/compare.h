@@ -12,7 +12,9 @@ struct CompareOptions {
   double damage_tolerance = 0.02;    // mean absolute damage difference
 };
 
-// 0 when every common frame agrees, 1 when one does not.
+// 0 when both folders hold the same complete frames (run_folder.h) and each pair agrees: the same
+// step and time, the displacement and the damage within the tolerances; 1 otherwise. Throws
+// std::invalid_argument for a folder that is not a run's.
 int compare_command(const CompareOptions& options);
 
 }  // namespace pd

@@ -1,6 +1,8 @@
 #include "host/app/live_render.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <vector>
 
 #include "host/io/atomic_file.h"
 #include "host/io/frame.h"
@@ -29,6 +31,7 @@ void LiveRender::frame(int64_t frame) {
   if (frame % every_ != 0) return;
   const FrameRenderReport r = renderer_->render(out_dir_ + "/" + frame_file_name(frame, "pfr"));
   ++frames_;
+  last_frame_ = frame;
   rays_ += r.rays;
   build_seconds_ += r.tree.build_seconds;
   render_seconds_ += r.render_seconds;
@@ -39,8 +42,14 @@ void LiveRender::finish() {
               (long long)frames_, renderer_->image_dir().c_str(), build_seconds_, render_seconds_,
               render_seconds_ > 0 ? 1e-6 * double(rays_) / render_seconds_ : 0.0);
   if (frames_ > 0) {
-    announce_output(renderer_->image_dir() + "/" + kMovieFileName);
-    std::printf("movie      %s\n", make_movie(renderer_->image_dir()).message.c_str());
+    std::vector<std::string> images;  // (the frames before a resume were rendered by the run before it)
+    for (int64_t f = 0; f <= last_frame_; f += every_) {
+      const std::string image = renderer_->image_dir() + "/" + frame_file_name(f, "png");
+      if (std::filesystem::exists(image)) images.push_back(image);
+    }
+    const std::string movie = renderer_->image_dir() + "/" + kMovieFileName;
+    announce_output(movie);
+    std::printf("movie      %s\n", make_movie(images, movie).message.c_str());
   }
 }
 

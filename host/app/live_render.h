@@ -19,14 +19,15 @@ class LiveRender {
 
   // Renders OUT/frame_NNNNN.pfr when frame is a multiple of `every`.
   void frame(int64_t frame);
-  // One summary line, then the movie (or why there is none).
+  // One summary line, then the movie of the run's rendered frames, those of a run resumed
+  // included (or why there is none).
   void finish();
 
  private:
   std::string out_dir_;
   int64_t every_ = 1;
   std::unique_ptr<RunRenderer> renderer_;
-  int64_t frames_ = 0, rays_ = 0;
+  int64_t frames_ = 0, rays_ = 0, last_frame_ = -1;
   double build_seconds_ = 0, render_seconds_ = 0;
 };
 

@@ -1,6 +1,7 @@
 #include "host/app/render_frames.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include "host/io/collider_file.h"
 #include "host/io/frame_file.h"
 #include "host/io/input_file.h"
+#include "host/io/interrupt.h"
 #include "host/io/png_file.h"
 #include "render/movie.h"
 
@@ -28,40 +30,34 @@ namespace pd {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> list_frame_files(const std::string& dir) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.rfind("frame_", 0) == 0 && it->path().extension() == ".pfr" && it->is_regular_file())
-      files.push_back(it->path().string());
+std::vector<std::string> select_frame_files(const std::string& dir, const RunContents& run,
+                                            const std::vector<int64_t>& wanted, std::string* note) {
+  std::vector<int64_t> partial;
+  const std::map<int64_t, std::string> complete = complete_frame_files(dir, run, &partial);
+  if (!partial.empty()) {
+    std::string numbers;
+    for (int64_t f : partial) numbers += (numbers.empty() ? "" : ", ") + std::to_string(f);
+    *note = "frame " + numbers +
+            " left out: its files are incomplete (the run stopped while writing it, or " + "is writing it)";
   }
-  if (ec) throw io_error_errno("list", dir, ec.value());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-std::vector<std::string> select_frame_files(const std::string& dir, const std::vector<int64_t>& wanted) {
-  std::vector<std::string> all = list_frame_files(dir);
-  if (wanted.empty()) return all;
-  auto number = [](const std::string& file) -> int64_t {  // the digits after "frame_"; -1 if none
-    const std::string digits = fs::path(file).stem().string().substr(6);
-    const bool ok = !digits.empty() && digits.size() <= 18 &&
-                    std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
-    return ok ? std::stoll(digits) : -1;
-  };
-  std::vector<int64_t> numbers(all.size());
-  std::transform(all.begin(), all.end(), numbers.begin(), number);
   std::vector<std::string> chosen;
-  for (int64_t f : wanted) {
-    const auto it = std::find(numbers.begin(), numbers.end(), f);
-    if (it == numbers.end())
+  if (wanted.empty()) {
+    for (const auto& [frame, file] : complete) chosen.push_back(file);
+    return chosen;
+  }
+  std::vector<int64_t> frames = wanted;  // (in order, each once)
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  for (int64_t f : frames) {
+    const auto it = complete.find(f);
+    if (it == complete.end())
       throw std::invalid_argument(
           "render: --frames " + std::to_string(f) + ": no such frame in '" + dir + "' (allowed: " +
-          (all.empty() ? std::string("none, the folder has no frame_*.pfr files")
-                       : std::to_string(numbers.front()) + " to " + std::to_string(numbers.back())) +
+          (complete.empty() ? std::string("none, the folder has no complete frame_*.pfr file")
+                            : std::to_string(complete.begin()->first) + " to " +
+                                  std::to_string(complete.rbegin()->first)) +
           ")");
-    chosen.push_back(all[size_t(it - numbers.begin())]);
+    chosen.push_back(it->second);
   }
   return chosen;
 }
@@ -103,7 +99,21 @@ void check_render_options(const RenderOptions& o) {
     bad("vfov " + std::to_string(o.vfov_degrees) + " (allowed: degrees in (0, 180))");
   if (o.material != "opaque" && o.material != "glass")
     bad("material '" + o.material + "' (allowed: opaque, glass)");
-  if (!(o.ior >= 1) || !(o.ior <= 4)) bad("ior must be in [1, 4]");
+  if (!(o.ior >= 1) || !(o.ior <= 4)) {
+    char ior[48];
+    std::snprintf(ior, sizeof ior, "ior %g (allowed: 1 to 4)", double(o.ior));
+    bad(ior);
+  }
+  // (A camera farther out would overflow the float vectors of its view.)
+  constexpr real kFarthest = real(1e9);
+  for (const auto& [name, point] : {std::pair{"eye", o.eye}, std::pair{"look-at", o.look_at}})
+    if (point && !(std::fabs(point->x) <= kFarthest && std::fabs(point->y) <= kFarthest &&
+                   std::fabs(point->z) <= kFarthest)) {
+      char where[96];
+      std::snprintf(where, sizeof where, "%s %g,%g,%g", name, double(point->x), double(point->y),
+                    double(point->z));
+      bad(std::string(where) + " is too far out (allowed: coordinates within 1e9 m)");
+    }
   if (o.surface != "elements" && o.surface != "mesh")
     bad("surface '" + o.surface + "' (allowed: elements, mesh)");
   if (o.smooth_cracks < 0 || o.smooth_cracks > 100) bad("--smooth-cracks must be in [0, 100]");
@@ -117,13 +127,13 @@ void check_render_options(const RenderOptions& o) {
 
 RunRenderer::RunRenderer(const RenderOptions& o, const std::string& last_frame) : options_(o) {
   check_render_options(o);
+  run_ = read_run_contents(o.dir);
   rest_ = read_rest_file((fs::path(o.dir) / kRestFileName).string());
   out_ = o.out.empty() ? (fs::path(o.dir) / "render").string() : o.out;
   // Rest-space geometry the run wrote: Voronoi bodies' trimtopes, tet bodies' tetrahedra.
-  const fs::path trimtope_path = fs::path(o.dir) / kTrimtopesFileName;
-  if (fs::exists(trimtope_path)) trimtopes_ = read_trimtopes_file(trimtope_path.string());
-  const fs::path tets_path = fs::path(o.dir) / kTetsFileName;
-  if (fs::exists(tets_path)) tets_ = read_tets_file(tets_path.string());
+  if (const auto trimtope_path = run_file(kTrimtopesFileName))
+    trimtopes_ = read_trimtopes_file(*trimtope_path);
+  if (const auto tets_path = run_file(kTetsFileName)) tets_ = read_tets_file(*tets_path);
 
   // Camera, floor and texture scale for the whole run, from the rest configuration (and the
   // last frame for the floor, where fallen pieces lie).
@@ -153,6 +163,16 @@ RunRenderer::RunRenderer(const RenderOptions& o, const std::string& last_frame) 
   renderer_ = make_renderer(backend == Backend::kCuda);
   backend_name_ = backend_name(backend);
   ensure_directory(out_);
+  remove_stale_temporaries(out_);  // (images a killed render left half-written)
+}
+
+std::optional<std::string> RunRenderer::run_file(const std::string& relative) const {
+  const fs::path path = fs::path(options_.dir) / relative;
+  std::error_code ec;
+  if (fs::exists(path, ec)) return path.string();
+  if (run_.wrote(relative))
+    throw io_error("read", path.string(), "missing, though the run wrote it (run.files lists it)");
+  return std::nullopt;
 }
 
 RunRenderer::~RunRenderer() = default;
@@ -163,12 +183,13 @@ std::string RunRenderer::device() const {
 
 std::string RunRenderer::scene_summary() const {
   const size_t n_trim = trimtopes_ ? trimtopes_->size() : 0, n_tets = tets_ ? tets_->tets.size() : 0;
+  // The material of bodies without a look of their own, then what the looks per body are.
   std::string looks = options_.material;
+  int glass = 0, opaque = 0;
   for (const std::optional<BodyLook>& l : options_.body_looks)
-    if (l) {
-      looks += ", looks per body";
-      break;
-    }
+    if (l) ++(l->surface == kMaterialGlass ? glass : opaque);
+  if (glass + opaque > 0)
+    looks += ", looks per body: " + std::to_string(glass) + " glass, " + std::to_string(opaque) + " opaque";
   if (options_.damage_colors) looks += ", damage colours";
   if (options_.surface == "mesh")
     looks += ", crack mesh surfaces (" + std::to_string(options_.smooth_cracks) + " smoothing passes)";
@@ -183,8 +204,8 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
   // Scene of this frame, its kd-tree, the image.
   const FrameData frame = read_frame_file(frame_file);
   std::optional<FragmentsFrame> fragments;
-  const fs::path fragments_path = fs::path(options_.dir) / fragments_file_name(frame.frame);
-  if (fs::exists(fragments_path)) fragments = read_fragments_file(fragments_path.string());
+  if (const auto fragments_path = run_file(fragments_file_name(frame.frame)))
+    fragments = read_fragments_file(*fragments_path);
   PrimitiveSet prims;
   std::vector<Vec3> albedo;
   const RunLooks looks{options_.body_looks, options_.material == "glass", options_.damage_colors};
@@ -201,10 +222,8 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
     material.clear();
   RenderScene scene = make_render_scene(std::move(prims), std::move(albedo), std::move(material), {},
                                         HiddenElements::kCull, left_out);
-  const fs::path colliders_path = fs::path(options_.dir) / colliders_file_name(frame.frame);
-  if (fs::exists(colliders_path)) {
-    for (const ColliderState& c : read_colliders_file(colliders_path.string()))
-      scene.colliders.push_back(c.collider);
+  if (const auto colliders_path = run_file(colliders_file_name(frame.frame))) {
+    for (const ColliderState& c : read_colliders_file(*colliders_path)) scene.colliders.push_back(c.collider);
     add_mesh_grids(scene.colliders);
     scene.collider_grids = collider_grids_;
   }
@@ -350,16 +369,27 @@ int render_frames(const RenderOptions& cli) {
     throw std::invalid_argument("render: '" + o.dir + "' is " +
                                 (fs::exists(o.dir, ec) ? "not a folder" : "not there") +
                                 " (allowed: the output folder of `perifrac run`, its --out)");
-  const std::vector<std::string> frames = select_frame_files(o.dir, o.frames);
-  if (frames.empty())  // (--frames names frames that are there: select_frame_files)
+  if (!o.out.empty() && fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
+    throw std::invalid_argument("render: --out '" + o.out +
+                                "' is a file, not a folder (allowed: a folder, new or holding images)");
+  const RunContents run = read_run_contents(o.dir);
+  std::string frames_note;
+  const std::vector<std::string> frames = select_frame_files(o.dir, run, o.frames, &frames_note);
+  if (frames.empty()) {  // (--frames names frames that are there: select_frame_files)
+    if (run.frames_written && *run.frames_written >= 0 && !run.wrote(frame_file_name(0, "pfr")))
+      throw std::invalid_argument("render: the run in '" + o.dir +
+                                  "' wrote no .pfr frames (output.binary = false), which render reads "
+                                  "(allowed: a run with output.binary = true, the default)");
     throw std::invalid_argument(
-        "render: '" + o.dir + "' holds no frame_*.pfr" +
+        "render: '" + o.dir + "' holds no complete frame_*.pfr" +
         (fs::exists(fs::path(o.dir) / kRestFileName, ec) ? "" : " nor " + std::string(kRestFileName)) +
         " (allowed: the output folder of `perifrac run`, its --out, once frame 0 is written)");
+  }
   RunRenderer renderer(o, frames.back());
   if (!renderer.backend_note().empty()) std::printf("backend    %s\n", renderer.backend_note().c_str());
   std::printf("device     %s\n", renderer.device().c_str());
   if (!scene_note.empty()) std::printf("settings   %s\n", scene_note.c_str());
+  if (!frames_note.empty()) std::printf("frames     %s\n", frames_note.c_str());
   std::printf("images     %d x %d, %d spp, %s, %zu frames -> %s\n", o.width, o.height, o.spp,
               renderer.scene_summary().c_str(), frames.size(), renderer.image_dir().c_str());
   // Images written into a run's folder join its journal (host/app/run_folder.h): --overwrite and
@@ -368,9 +398,16 @@ int render_frames(const RenderOptions& cli) {
   if (fs::exists(fs::path(o.dir) / kManifestFileName)) journal.emplace(o.dir);
   double ray_seconds = 0;
   int64_t rays = 0;
+  std::vector<std::string> images;
+  const InterruptGuard interrupt;  // SIGINT/SIGTERM: stop between two frames, their images complete
   for (size_t k = 0; k < frames.size(); ++k) {
+    if (InterruptGuard::signal_received()) {
+      std::printf("interrupted after %zu of %zu frames: their images are complete\n", k, frames.size());
+      return kExitInterrupted;
+    }
     if (journal) journal->set_frame(frame_number(frames[k]));
     const FrameRenderReport r = renderer.render(frames[k]);
+    images.push_back(r.png);
     ray_seconds += r.render_seconds;
     rays += r.rays;
     const std::string mesh =
@@ -385,10 +422,16 @@ int render_frames(const RenderOptions& cli) {
   }
   std::printf("rendered   %zu frames, %.2f Mrays/s overall\n", frames.size(),
               1e-6 * double(rays) / ray_seconds);
+  // The movie of every frame, from this render's images (not others the folder may hold).
+  const std::string movie = renderer.image_dir() + "/" + kMovieFileName;
+  MovieResult made;
   if (o.movie && o.frames.empty()) {
-    announce_output(renderer.image_dir() + "/" + kMovieFileName);
-    std::printf("movie      %s\n", make_movie(renderer.image_dir()).message.c_str());
+    announce_output(movie);
+    made = make_movie(images, movie);
+    std::printf("movie      %s\n", made.message.c_str());
   }
+  if (!made.made && o.frames.empty() && fs::exists(movie, ec))
+    std::printf("note       %s is from an earlier render, not of these images\n", movie.c_str());
   return kExitOk;
 }
 

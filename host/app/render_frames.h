@@ -10,6 +10,7 @@
 
 #include "host/app/frame_primitives.h"
 #include "host/app/mesh_surface.h"
+#include "host/app/run_folder.h"
 #include "host/scene/scene.h"
 #include "render/renderer.h"
 
@@ -46,10 +47,12 @@ struct RenderOptions {
 // The options of a scene's [render] block (which it must have) for the run folder `dir`.
 RenderOptions render_options_from_scene(const Scene& scene, const std::string& dir);
 
-// The run's frame files frame_NNNNN.pfr, in order; with `wanted` (frame numbers), only those.
-// Throws IoError when the folder cannot be listed, std::invalid_argument naming a wanted frame the
-// run does not have (and the range it has).
-std::vector<std::string> select_frame_files(const std::string& dir, const std::vector<int64_t>& wanted);
+// The run's complete frame files frame_NNNNN.pfr (complete_frame_files), in order; with `wanted`
+// (frame numbers), only those, each once. `note`: the frames left out as incomplete, if any.
+// Throws IoError when the folder cannot be listed or a frame the run wrote is gone,
+// std::invalid_argument naming a wanted frame the run does not have (and the range it has).
+std::vector<std::string> select_frame_files(const std::string& dir, const RunContents& run,
+                                            const std::vector<int64_t>& wanted, std::string* note);
 
 // Throws std::invalid_argument naming the option and what is allowed when `o` holds a bad value
 // (image size, spp, field of view, material, ior, surface, smoothing passes, eye at look-at).
@@ -67,8 +70,9 @@ struct FrameRenderReport {
 
 // The renderer of one run folder: rest.pfr, trimtopes.ptm and tets.ptt are read once, the
 // environment loaded and the backend chosen at construction; each render() call draws one frame
-// file. Throws IoError for unreadable inputs and std::invalid_argument for bad options (an
-// unreadable .hdr included) or frames that do not match the rest file.
+// file. Throws IoError for unreadable inputs (a file the run wrote that is gone included) and
+// std::invalid_argument for bad options (an unreadable .hdr included) or frames that do not match the rest
+// file.
 class RunRenderer {
  public:
   // `last_frame`: a frame file whose lowest cube sets the default floor (empty: the rest only).
@@ -98,6 +102,10 @@ class RunRenderer {
   RenderSettings settings_;
   std::unique_ptr<Renderer> renderer_;
   std::string backend_name_;
+  RunContents run_;  // the files the run wrote
+  // DIR/relative where it is; nullopt where the run did not write it; IoError where it did and
+  // the file is gone.
+  std::optional<std::string> run_file(const std::string& relative) const;
   // The mesh colliders' distance grids for drawing, built from colliders.obj when a frame first
   // has one (grid fields of collider k in mesh_grid_[k], shape mesh_grid_[k].shape == kColliderMesh).
   void add_mesh_grids(std::vector<Collider>& colliders);
@@ -106,11 +114,9 @@ class RunRenderer {
   std::vector<float> collider_grids_;
 };
 
-// Renders DIR/render/frame_NNNNN.png for every frame file, printing one line per frame with
-// the rays per second, then the movie. Returns kExitOk; throws as RunRenderer does.
+// Renders DIR/render/frame_NNNNN.png for every complete frame file, printing one line per frame
+// with the rays per second, then the movie. Returns kExitOk, or kExitInterrupted when SIGINT or
+// SIGTERM stopped it between two frames; throws as RunRenderer does.
 int render_frames(const RenderOptions& options);
-
-// The frame files of DIR (frame_*.pfr), in name order.
-std::vector<std::string> list_frame_files(const std::string& dir);
 
 }  // namespace pd

@@ -23,7 +23,6 @@
 #include "host/app/backend_choice.h"
 #include "host/app/checkpoint.h"
 #include "host/app/energy_watch.h"
-#include "host/app/interrupt.h"
 #include "host/app/kernel_report.h"
 #include "host/app/run_folder.h"
 #include "host/app/run_output.h"
@@ -34,6 +33,7 @@
 #include "host/geometry/stage_time.h"
 #include "host/io/atomic_file.h"
 #include "host/io/frame_file.h"
+#include "host/io/interrupt.h"
 #include "host/scene/scene.h"
 #include "host/scene/scene_setup.h"
 
@@ -107,15 +107,17 @@ std::string checkpoint_scene(const RunCheckpoint& c, const std::string& dir) {
 RunCheckpoint open_resume(RunOptions& opt) {
   const std::string path = opt.resume + "/" + kCheckpointFileName;
   if (!std::filesystem::exists(path))
-    throw ResumeError("cannot resume from '" + opt.resume + "': it holds no " + kCheckpointFileName +
-                      " (the run wrote none: checkpoints are written every --checkpoint-minutes, every "
-                      "--checkpoint-every N frames and on Ctrl-C; or this is not a run's output folder); "
-                      "start the run again without --resume, with --checkpoint-every N to extend it later");
+    throw ResumeError(
+        "cannot resume from '" + opt.resume + "': it holds no " + kCheckpointFileName +
+        " (the run wrote none: checkpoints are written every --checkpoint-minutes, every "
+        "--checkpoint-every N frames and on Ctrl-C; or this is not a run's output folder); "
+        "start the run again with --overwrite instead of --resume, and --checkpoint-every N to extend it "
+        "later");
   RunCheckpoint c;
   try {
     c = read_checkpoint(path);
   } catch (const IoError& e) {
-    throw ResumeError(std::string(e.what()) + "; start the run again without --resume");
+    throw ResumeError(std::string(e.what()) + "; start the run again with --overwrite instead of --resume");
   }
   if (opt.scene.empty()) opt.scene = checkpoint_scene(c, opt.resume);
   if (opt.overrides.empty()) opt.overrides = c.overrides;
@@ -516,17 +518,18 @@ struct Progress {
   double steps_per_s = 0, eta = 0, broken = 0, excess = 0;
 };
 
-Progress progress_after(const Simulation& sim, int64_t frame, int64_t first_frame, double elapsed,
+// `first_step`: the engine's step when the frame loop began (a resumed run's may lie inside a frame).
+Progress progress_after(const Simulation& sim, int64_t frame, int64_t first_step, double elapsed,
                         double excess) {
   const Scene& scene = sim.scene;
   Engine& engine = *sim.engine;
   Progress p;
-  const int64_t done = frame - first_frame + 1;
+  const int64_t done = std::max<int64_t>(engine.step() - first_step, 1);
   p.frame = frame;
   p.frames = scene.frames;
   p.step = engine.step();
-  p.steps_per_s = double(done * scene.steps_per_frame) / elapsed;
-  p.eta = elapsed / double(done) * double(scene.frames - frame);
+  p.steps_per_s = double(done) / elapsed;
+  p.eta = elapsed / double(done) * double(scene.frames * scene.steps_per_frame - p.step);
   const int64_t bonds = engine.family_stats().bonds;
   p.broken = bonds > 0 ? double(engine.broken_bonds()) / double(bonds) : 0;
   p.excess = excess;
@@ -595,6 +598,7 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
   const bool tty = isatty(fileno(stdout));
   const auto t0 = std::chrono::steady_clock::now();
   StepPacer pacer;
+  const int64_t first_step = engine.step();
   const double growth_limit = energy_growth_limit(sim, opt);
   for (int64_t frame = start.first_frame; frame <= scene.frames; ++frame) {
     auto t = std::chrono::steady_clock::now();
@@ -618,8 +622,8 @@ int run_frames(Simulation& sim, const RunOptions& opt, RunOutput& output, const 
       return kExitBlowUp;
     const auto now = std::chrono::steady_clock::now();
     t = lap(t, times.checks);
-    const Progress progress = progress_after(sim, frame, start.first_frame,
-                                             std::chrono::duration<double>(now - t0).count(), excess);
+    const Progress progress =
+        progress_after(sim, frame, first_step, std::chrono::duration<double>(now - t0).count(), excess);
     output.write_frame(frame, energy, [progress, tty](const std::string& fragments) {
       print_progress(progress, fragments, tty);
     });
@@ -695,7 +699,9 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
 
 }  // namespace
 
-int run_command(const RunOptions& options) {
+namespace {
+
+int run_guarded(const RunOptions& options, std::optional<InterruptGuard>& interrupt) {
   RunTimes run;
   RunOptions opt = options;
   output_thread_wanted();  // a bad PERIFRAC_OUTPUT_THREAD is refused before the set-up's work
@@ -707,7 +713,7 @@ int run_command(const RunOptions& options) {
   Simulation sim = set_up_simulation(opt, resume);
   start_engine(sim, opt);
   auto t = lap(run.started, run.engine);
-  StageClock clock(&sim.stages);
+  StageClock clock(&sim.stages, false);  // (an interrupt from here on stops in the frame loop)
   // Only rank 0 of a run over MPI ranks gets here (the others serve its engine).
   const std::unique_ptr<RunFolder> folder = claim_output_folder(sim, opt, resume);
   clock.lap("output folder");
@@ -725,12 +731,31 @@ int run_command(const RunOptions& options) {
   clock.lap(resume ? "restore" : "frame 0");
   print_setup_stages(sim.stages);
 
-  // From here on, SIGINT/SIGTERM ends the run after the frame with a checkpoint.
-  const InterruptGuard interrupt;
+  // From here on, SIGINT/SIGTERM ends the run inside or after a frame with a checkpoint (over MPI
+  // ranks, from here on only: the ranks' set-ups must not part ways).
+  if (!interrupt) interrupt.emplace();
   LoopTimes times;
   if (const int code = run_frames(sim, opt, output, start, times); code != kExitOk) return code;
   finish_run(sim, output, start.first_frame, times, run);
   return kExitOk;
+}
+
+}  // namespace
+
+int run_command(const RunOptions& options) {
+  // One process: SIGINT/SIGTERM during the set-up stop it between two stages (an external TetGen
+  // killed), with no file half-written; the folder, if claimed, holds a run that ended before its
+  // first frame, which the next run takes over.
+  std::optional<InterruptGuard> interrupt;
+  if (!world_comm()) interrupt.emplace();
+  try {
+    return run_guarded(options, interrupt);
+  } catch (const std::exception& e) {
+    if (!InterruptGuard::signal_received()) throw;
+    std::printf("\n%s: no frame written; start the run again to run it\n",
+                dynamic_cast<const Interrupted*>(&e) ? e.what() : "interrupted during set-up");
+    return kExitInterrupted;
+  }
 }
 
 }  // namespace pd

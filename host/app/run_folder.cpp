@@ -15,6 +15,7 @@
 
 #include "host/io/atomic_file.h"
 #include "host/io/exact_number.h"
+#include "host/io/frame.h"
 #include "host/io/input_file.h"
 
 namespace pd {
@@ -183,6 +184,42 @@ std::optional<RunManifest> read_manifest(const std::string& dir) {
   return m;
 }
 
+RunContents read_run_contents(const std::string& dir) {
+  RunContents run;
+  if (const std::optional<RunManifest> m = read_manifest(dir)) run.frames_written = m->frames_written;
+  for (const JournalEntry& e : read_journal(dir)) run.files.insert(e.path);
+  return run;
+}
+
+std::map<int64_t, std::string> complete_frame_files(const std::string& dir, const RunContents& run,
+                                                    std::vector<int64_t>* partial) {
+  std::map<int64_t, std::string> frames;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= 10 || name.rfind("frame_", 0) != 0 || it->path().extension() != ".pfr") continue;
+    const std::string digits = name.substr(6, name.size() - 10);
+    if (digits.size() > 18 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      continue;
+    if (!it->is_regular_file(ec)) continue;
+    const int64_t frame = std::stoll(digits);
+    if (run.frames_written && frame > *run.frames_written)
+      partial->push_back(frame);
+    else
+      frames.emplace(frame, it->path().string());
+  }
+  if (ec) throw io_error_errno("list", dir, ec.value());
+  std::sort(partial->begin(), partial->end());
+  for (int64_t f = 0; run.frames_written && f <= *run.frames_written; ++f) {
+    const std::string name = frame_file_name(f, "pfr");
+    if (run.wrote(name) && !frames.count(f))
+      throw io_error("read", (fs::path(dir) / name).string(),
+                     "missing, though the run wrote it (run.files lists it)");
+  }
+  return frames;
+}
+
 std::optional<RunManifest> check_run_folder(const std::string& dir, FolderUse use) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
@@ -193,7 +230,8 @@ std::optional<RunManifest> check_run_folder(const std::string& dir, FolderUse us
     if (!found)
       throw RunFolderError(
           "cannot resume in '" + dir + "': it holds no " + kManifestFileName +
-          " (a run of this perifrac writes one first); start the run again without --resume");
+          " (a run of this perifrac writes one first); start the run again with --overwrite instead of "
+          "--resume");
     return found;
   }
   if (!found) {
@@ -218,6 +256,7 @@ OutputJournal::OutputJournal(std::string dir) : dir_(std::move(dir)) {
   const std::string path = dir_ + "/" + kJournalFileName;
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd_ < 0) throw io_error_errno("write", path, errno);
+  for (const JournalEntry& e : read_journal(dir_)) recorded_.insert(e.path);
   set_output_observer([this](const std::string& p) { record(p); });
 }
 
@@ -231,11 +270,16 @@ void OutputJournal::set_frame(int64_t frame) {
 }
 
 // One line per file, in one write(2) on an O_APPEND descriptor, so that a line is whole or absent.
-// Files outside the folder and the folder's own bookkeeping files are not journaled.
+// Files outside the folder and the folder's own bookkeeping files are not journaled, nor a file
+// journaled before (rewritten: its first frame, the one a resume goes by, is already there).
 void OutputJournal::record(const std::string& path) {
   const fs::path relative =
       fs::path(path).lexically_normal().lexically_relative(fs::path(dir_).lexically_normal());
   if (relative.empty() || *relative.begin() == ".." || relative == kManifestFileName) return;
+  {
+    const std::lock_guard<std::mutex> lock(recorded_mutex_);  // (writers on several threads)
+    if (!recorded_.insert(relative.string()).second) return;
+  }
   const std::string line = std::to_string(frame_) + " " + relative.string() + "\n";
   if (::write(fd_, line.data(), line.size()) != ssize_t(line.size()))
     throw io_error_errno("write", dir_ + "/" + kJournalFileName, errno);

@@ -10,7 +10,10 @@
 
 #include <atomic>
 #include <cstdint>
+#include <map>
+#include <mutex>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -42,6 +45,27 @@ struct RunManifest {
 // Reads DIR/run.manifest; nullopt when there is none. Throws RunFolderError for a broken one.
 std::optional<RunManifest> read_manifest(const std::string& dir);
 
+// What a run's folder holds for the commands that read it (render, compare): the manifest's last
+// complete frame and the files its journal lists.
+struct RunContents {
+  std::optional<int64_t> frames_written;  // the manifest's; nullopt: a folder without a manifest
+  std::set<std::string> files;            // the journal's paths, relative to the folder
+  // Whether the run wrote `relative` (false for a folder without a journal).
+  bool wrote(const std::string& relative) const { return files.count(relative) > 0; }
+};
+
+// Reads DIR's manifest and journal (either may be missing). Throws RunFolderError for a broken
+// manifest.
+RunContents read_run_contents(const std::string& dir);
+
+// The frame files DIR holds complete (frame_NNNNN.pfr), by frame number: those up to the
+// manifest's frames written (without a manifest, every one there). The numbers of those past it
+// (the frame a killed run was writing, or the one a running run is writing) go to `partial`.
+// Throws IoError naming a frame file the run wrote (its journal says) that is gone, and when the
+// folder cannot be listed.
+std::map<int64_t, std::string> complete_frame_files(const std::string& dir, const RunContents& run,
+                                                    std::vector<int64_t>* partial);
+
 // Journals the files written into `dir` while it lives (set_output_observer), tagged with the
 // frame being written. One per process at a time.
 class OutputJournal {
@@ -58,6 +82,8 @@ class OutputJournal {
   std::string dir_;
   int fd_ = -1;
   std::atomic<int64_t> frame_{-1};  // set by the output thread that writes frames, read by every writer
+  std::set<std::string> recorded_;  // the paths the journal holds
+  std::mutex recorded_mutex_;
 };
 
 enum class FolderUse {

@@ -20,7 +20,8 @@ CLI::Validator finite_in(double lo, double hi, const std::string& allowed) {
   return CLI::Validator(
       [lo, hi, allowed](std::string& text) -> std::string {
         double v = 0;
-        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
+        if (!CLI::detail::lexical_cast(text, v)) return "not a number (allowed: " + allowed + ")";
+        if (!std::isfinite(v) || v < lo || v > hi)
           return "value out of range (allowed: " + allowed + ")";  // (the value itself may be NaN)
         return {};
       },
@@ -300,6 +301,7 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
   struct RenderArgs {
     RenderOptions options;
     std::vector<double> eye, look_at;
+    bool no_movie = false;
   };
   const auto render = std::make_shared<RenderArgs>();
   RenderOptions& o = render->options;
@@ -320,7 +322,7 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
       ->delimiter(',')
       ->expected(3);
   cmd->add_option("--vfov", o.vfov_degrees, "vertical field of view in degrees")
-      ->check(CLI::Range(0.1, 179.9));
+      ->check(finite_in(0.1, 179.9, "degrees from 0.1 to 179.9"));
   cmd->add_option("--material", o.material,
                   "opaque | glass: the material of every body (replaces the scene's looks)")
       ->check(CLI::IsMember({"opaque", "glass"}));
@@ -334,10 +336,10 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
                   "Taubin smoothing passes over the crack surfaces with --surface mesh (default 2; 0: "
                   "the element faces as they are)")
       ->check(CLI::Range(0, 100));
-  cmd->add_option("--ior", o.ior, "glass index of refraction")->check(CLI::Range(1.0, 4.0));
+  cmd->add_option("--ior", o.ior, "glass index of refraction")->check(finite_in(1, 4, "1 to 4"));
   cmd->add_option("--environment", o.environment,
                   "sky (procedural) or a Radiance .hdr latitude-longitude map");
-  cmd->add_flag("!--no-movie", o.movie, "no movie.mp4 even when ffmpeg is on PATH");
+  cmd->add_flag("--no-movie", render->no_movie, "no movie.mp4 even when ffmpeg is on PATH");
   cmd->add_option("--frames", o.frames, "frame numbers to render, e.g. 20,60 (default: all; no movie)")
       ->delimiter(',')
       ->check(CLI::Range(int64_t(0), kMaxFrames));
@@ -351,6 +353,7 @@ void add_render(CLI::App& app, const CommandActions& actions, std::function<int(
   on_parsed(cmd, chosen, [&actions, render] {
     const std::vector<double>& eye = render->eye;
     const std::vector<double>& look_at = render->look_at;
+    render->options.movie = !render->no_movie;
     if (eye.size() == 3) render->options.eye = Vec3{real(eye[0]), real(eye[1]), real(eye[2])};
     if (look_at.size() == 3)
       render->options.look_at = Vec3{real(look_at[0]), real(look_at[1]), real(look_at[2])};

@@ -1,6 +1,8 @@
 // The perifrac command line: run a scene, benchmark the kernels, list devices.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <functional>
 #include <new>
@@ -120,7 +122,14 @@ int main(int argc, char** argv) {
     leave_world();
     return kExitUsage;
   }
-  const int exit_code = chosen ? report_errors(chosen) : int(kExitUsage);
+  int exit_code = chosen ? report_errors(chosen) : int(kExitUsage);
+  // What the command printed must have reached its reader (a full disk, /dev/full).
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "error: cannot write the standard output: %s\n",
+                 errno != 0 ? std::strerror(errno) : "write error");
+    if (exit_code == kExitOk) exit_code = kExitRuntime;
+  }
   leave_world();
   return exit_code;
 }

@@ -1,6 +1,7 @@
 #include "host/fragments/crack_mesh_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -106,6 +107,8 @@ CrackSurface read_crack_obj(const std::string& path, const std::string& text) {
     if (word == "v") {
       Vec3d v;
       if (!(l >> v[0] >> v[1] >> v[2])) fail("a vertex needs 3 coordinates");
+      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+        fail("a vertex is not finite");
       s.vertices.push_back(v);
     } else if (word == "g" || word == "usemtl") {
       if (!(l >> word) || (word != "surface" && word != "crack")) fail("unknown group");
@@ -156,6 +159,8 @@ CrackSurface read_crack_ply(const std::string& path, const std::string& bytes) {
   for (size_t v = 0; v < nv; ++v, p += 12) {
     float x[3];
     std::memcpy(x, p, 12);
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+      fail("vertex " + std::to_string(v) + " is not finite");
     s.vertices.push_back({x[0], x[1], x[2]});
   }
   for (size_t f = 0; f < nf; ++f, p += face_bytes) {

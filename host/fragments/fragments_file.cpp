@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -164,8 +165,16 @@ FragmentsFrame read_fragments_file(const std::string& path) {
   f.step = get<int64_t>(bytes, 32);
   f.time = get<double>(bytes, 40);
   f.fragments.reserve(count);
-  for (size_t k = 0; k < count; ++k)
-    f.fragments.push_back(from_record(get<Record>(bytes, kFragmentsHeaderBytes + k * kFragmentRecordBytes)));
+  for (size_t k = 0; k < count; ++k) {
+    const Record r = get<Record>(bytes, kFragmentsHeaderBytes + k * kFragmentRecordBytes);
+    // (The record's numbers after its two integers are doubles: a pose that is not finite is damage.)
+    double numbers[(sizeof(Record) - 8) / 8];
+    std::memcpy(numbers, reinterpret_cast<const char*>(&r) + 8, sizeof numbers);
+    for (double x : numbers)
+      if (!std::isfinite(x))
+        throw io_error("read", path, "fragment " + std::to_string(k) + " has a number that is not finite");
+    f.fragments.push_back(from_record(r));
+  }
   return f;
 }
 

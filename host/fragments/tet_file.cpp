@@ -1,5 +1,6 @@
 #include "host/fragments/tet_file.h"
 
+#include <cmath>
 #include <cstring>
 
 #include "host/io/atomic_file.h"
@@ -48,7 +49,8 @@ EmbeddedTets read_tets_file(const std::string& path) {
   EmbeddedTets t;
   t.vertices.resize(vertices);
   for (Vec3d& v : t.vertices)
-    for (double& x : v) x = r.get<float>();
+    for (double& x : v)
+      if (x = r.get<float>(); !std::isfinite(x)) r.fail("a vertex is not finite");
   t.tets.resize(tets);
   for (auto& c : t.tets)
     for (int32_t& k : c) {

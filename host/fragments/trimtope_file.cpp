@@ -25,8 +25,10 @@ float outward(double x, bool up) {
 }
 
 // Three float32 values, widened.
+// Three floats, finite (a number that is not is damage).
 Vec3d get3(ByteReader& r) {
   const float x = r.get<float>(), y = r.get<float>(), z = r.get<float>();
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) r.fail("a point or normal is not finite");
   return {x, y, z};
 }
 
@@ -95,7 +97,8 @@ RestTrimtopes read_trimtopes_file(const std::string& path) {
   t.plane_normal.resize(planes);
   for (auto& m : t.plane_normal) m = get3(r);
   t.plane_offset.resize(planes);
-  for (auto& d : t.plane_offset) d = r.get<float>();
+  for (auto& d : t.plane_offset)
+    if (d = r.get<float>(); !std::isfinite(d)) r.fail("a plane offset is not finite");
   t.tri_start = read_offsets(r, n, tris, "triangle");
   t.tri_vertex.resize(3 * tris);
   for (auto& v : t.tri_vertex) v = get3(r);

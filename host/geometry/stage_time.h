@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "host/io/interrupt.h"
+
 namespace pd {
 
 struct StageTime {
@@ -13,18 +15,23 @@ struct StageTime {
   double seconds = 0;
 };
 
-// Appends the time since the previous lap (or construction) under a name.
+// Appends the time since the previous lap (or construction) under a name. A lap is a point where
+// the stage's results are complete: an interrupted command stops there (throw_if_interrupted),
+// unless the clock was made without stop points.
 class StageClock {
  public:
-  explicit StageClock(std::vector<StageTime>* out) : out_(out), last_(std::chrono::steady_clock::now()) {}
+  explicit StageClock(std::vector<StageTime>* out, bool stop_points = true)
+      : out_(out), stop_points_(stop_points), last_(std::chrono::steady_clock::now()) {}
   void lap(const std::string& name) {
     const auto now = std::chrono::steady_clock::now();
     if (out_) out_->push_back({name, std::chrono::duration<double>(now - last_).count()});
     last_ = now;
+    if (stop_points_) throw_if_interrupted("set-up");
   }
 
  private:
   std::vector<StageTime>* out_;
+  bool stop_points_;
   std::chrono::steady_clock::time_point last_;
 };
 

@@ -28,6 +28,7 @@
 #include "host/geometry/inside_test.h"
 #include "host/geometry/tet_cache.h"
 #include "host/io/byte_file.h"
+#include "host/io/interrupt.h"
 
 extern char** environ;
 
@@ -165,7 +166,7 @@ constexpr int kSignalled = 1000;  // run_program: kSignalled + the signal that e
 // Runs argv with stdout and stderr to `log`; returns the exit status (-1 if it did not run,
 // kStopped if it ran past `seconds` and was killed, kSignalled + the signal if one ended it). `while_running`
 // (if set) is called once the program has started; when it throws, the program is killed and the exception
-// goes on.
+// goes on. An interrupted command (interrupt.h) kills the program and throws Interrupted.
 int run_program(const std::vector<std::string>& argv, const std::string& log, double seconds,
                 const std::function<void()>& while_running) {
   posix_spawn_file_actions_t actions;
@@ -195,6 +196,12 @@ int run_program(const std::vector<std::string>& argv, const std::string& log, do
     const pid_t done = waitpid(pid, &status, WNOHANG);
     if (done == pid) break;
     if (done < 0 && errno != EINTR) return -1;
+    if (InterruptGuard::signal_received()) {  // (the program is killed, then the command stops)
+      kill(pid, SIGKILL);
+      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      throw_if_interrupted("TetGen");
+    }
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds) {
       kill(pid, SIGKILL);
       while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
@@ -203,6 +210,7 @@ int run_program(const std::vector<std::string>& argv, const std::string& log, do
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
+  throw_if_interrupted("TetGen");  // (a terminal's Ctrl-C reaches the program too)
   return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? kSignalled + WTERMSIG(status) : -1;
 }
 

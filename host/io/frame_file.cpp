@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -258,6 +259,14 @@ void write_rest_file(const std::string& path, const RestData& r) {
              {"material", kPfrInt32, 1, bytes_of(r.material)}});
 }
 
+namespace {
+
+bool all_finite(const std::vector<float>& values) {
+  return std::all_of(values.begin(), values.end(), [](float x) { return std::isfinite(x); });
+}
+
+}  // namespace
+
 FrameData read_frame_file(const std::string& path) {
   FrameData f;
   std::vector<float> position, velocity;
@@ -267,6 +276,9 @@ FrameData read_frame_file(const std::string& path) {
                           {"damage", 1, true, &f.damage},
                           {"body", 1, true, &f.body},
                           {"component", 1, false, &f.component}});
+  for (const auto& [name, values] :
+       {std::pair{"position", &position}, std::pair{"velocity", &velocity}, std::pair{"damage", &f.damage}})
+    if (!all_finite(*values)) throw io_error("read", path, std::string("a ") + name + " is not finite");
   f.frame = h.frame;
   f.step = h.step;
   f.time = h.time;
@@ -283,6 +295,8 @@ RestData read_rest_file(const std::string& path) {
             {"volume", 1, true, &r.volume},
             {"body", 1, true, &r.body},
             {"material", 1, true, &r.material}});
+  if (!all_finite(position) || !all_finite(r.volume))
+    throw io_error("read", path, "a position or volume is not finite");
   r.position = from_float32(position);
   return r;
 }

@@ -1,7 +1,10 @@
 // `render DIR`: frames of a run to PNG images, on the CPU renderer.
 #include "host/app/render_frames.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -17,6 +20,7 @@
 #include "host/geometry/shapes.h"
 #include "host/geometry/voronoi_particles.h"
 #include "host/io/atomic_file.h"
+#include "host/io/collider_file.h"
 #include "host/io/frame_file.h"
 
 #include "tests/support/stb_png.h"
@@ -112,6 +116,143 @@ TEST_F(RenderFramesTest, RendersOnlyTheChosenFrames) {
   }
 }
 
+// A run's manifest and journal (run_folder.h) as a run leaves them: frames 0 to `written`
+// complete, the files named in the journal.
+void write_run_records(const fs::path& dir, int64_t written, const std::vector<std::string>& files) {
+  std::ofstream(dir / kManifestFileName) << "perifrac test\nscene_path /nowhere.toml\nscene_hash 1\nscale 1\n"
+                                            "overrides 0\nframes_written "
+                                         << written << "\n";
+  std::ofstream journal(dir / kJournalFileName);
+  for (const std::string& f : files) journal << "-1 " << f << "\n";
+}
+
+// The frame a killed run was writing is left out, said so; a file the run wrote that is gone is
+// an error naming it, not a frame drawn without it.
+TEST_F(RenderFramesTest, UsesTheCompleteFramesAndRefusesMissingFilesTheRunWrote) {
+  RenderOptions o;
+  o.dir = dir_.string();
+  o.backend = "cpu";
+  o.width = o.height = 16;
+  o.spp = 1;
+  o.movie = false;
+  write_run_records(dir_, 0, {"rest.pfr", "frame_00000.pfr", "frame_00001.pfr"});
+  ASSERT_EQ(render_frames(o), 0);
+  EXPECT_TRUE(fs::exists(path("render/frame_00000.png")));
+  EXPECT_FALSE(fs::exists(path("render/frame_00001.png")));  // (past frames_written)
+  o.frames = {1};
+  EXPECT_THROW(render_frames(o), std::invalid_argument);
+  o.frames.clear();
+
+  // Frame 1 complete but its file gone; then a set-up file gone.
+  write_run_records(dir_, 1, {"rest.pfr", "frame_00000.pfr", "frame_00001.pfr"});
+  fs::remove(path("frame_00001.pfr"));
+  try {
+    render_frames(o);
+    FAIL() << "a missing frame was passed over";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("frame_00001.pfr"), std::string::npos) << e.what();
+  }
+  write_run_records(dir_, 0, {"rest.pfr", "frame_00000.pfr", kTrimtopesFileName, colliders_file_name(0)});
+  for (const std::string& gone : {std::string(kTrimtopesFileName), colliders_file_name(0)}) {
+    try {
+      render_frames(o);
+      FAIL() << gone << " missing was passed over";
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(gone), std::string::npos) << e.what();
+    }
+    write_run_records(dir_, 0, {"rest.pfr", "frame_00000.pfr", colliders_file_name(0)});
+  }
+}
+
+// A run made with output.binary = false wrote no .pfr frames: said so, not "no run here".
+TEST_F(RenderFramesTest, ARunWithoutBinaryFramesIsNamedAsSuch) {
+  fs::remove(path("frame_00000.pfr"));
+  fs::remove(path("frame_00001.pfr"));
+  write_run_records(dir_, 1, {"frame_00000.vtu", "frame_00001.vtu"});
+  RenderOptions o;
+  o.dir = dir_.string();
+  o.backend = "cpu";
+  try {
+    render_frames(o);
+    FAIL() << "no refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("output.binary = false"), std::string::npos) << e.what();
+  }
+}
+
+// Repeated or unordered --frames render each frame once, in order; an --out that is a file is
+// the user's mistake.
+TEST_F(RenderFramesTest, FramesOnceInOrderAndOutMustBeAFolder) {
+  std::string note;
+  const std::vector<std::string> chosen = select_frame_files(dir_.string(), {}, {1, 0, 1}, &note);
+  ASSERT_EQ(chosen.size(), 2u);
+  EXPECT_EQ(fs::path(chosen[0]).filename(), "frame_00000.pfr");
+  EXPECT_EQ(fs::path(chosen[1]).filename(), "frame_00001.pfr");
+  EXPECT_TRUE(note.empty());
+  RenderOptions o;
+  o.dir = dir_.string();
+  o.backend = "cpu";
+  o.out = path("frame_00000.pfr");
+  try {
+    render_frames(o);
+    FAIL() << "no refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("is a file, not a folder"), std::string::npos) << e.what();
+  }
+}
+
+// A camera straight above its target renders (the image's up is -z), one too far out is refused
+// naming the option.
+TEST_F(RenderFramesTest, TopDownCameraRendersAndAFarOneIsRefused) {
+  RenderOptions o;
+  o.dir = dir_.string();
+  o.backend = "cpu";
+  o.width = o.height = 16;
+  o.spp = 1;
+  o.movie = false;
+  o.look_at = Vec3{real(0.03), real(0.05), real(0.02)};
+  o.eye = Vec3{real(0.03), real(1), real(0.02)};
+  EXPECT_EQ(render_frames(o), 0);
+  o.eye = Vec3{real(1e30), real(1e30), real(1e30)};
+  try {
+    render_frames(o);
+    FAIL() << "no refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("eye 1e+30"), std::string::npos) << e.what();
+  }
+}
+
+// SIGINT while `perifrac render` works: it stops after the image in progress, says how many are
+// done, exits with 130 and leaves no half-written image.
+TEST_F(RenderFramesTest, AnInterruptStopsBetweenFramesWithTheImagesComplete) {
+  for (int f = 2; f < 40; ++f) {  // (more frames than the render finishes before the signal)
+    FrameData frame = read_frame_file(path("frame_00001.pfr"));
+    frame.frame = f;
+    write_frame_file(path(frame_file_name(f, "pfr")), frame);
+  }
+  const std::string log = path("render.log");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setenv("OMP_NUM_THREADS", "1", 1);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execl(PERIFRAC_BINARY, PERIFRAC_BINARY, "render", dir_.c_str(), "--backend", "cpu", "--width", "400",
+          "--height", "300", "--spp", "4", "--no-movie", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  for (int i = 0; i < 3000 && !fs::exists(path("render/frame_00000.png")); ++i) ::usleep(10000);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << read_all(log);
+  EXPECT_EQ(WEXITSTATUS(status), 130) << read_all(log);
+  EXPECT_NE(read_all(log).find("interrupted after"), std::string::npos) << read_all(log);
+  EXPECT_FALSE(fs::exists(path("render/frame_00039.png")));
+  for (const auto& e : fs::directory_iterator(path("render")))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+}
+
 TEST_F(RenderFramesTest, FramedCameraSeesTheBlockInTheMiddle) {
   PrimitiveSet prims;
   std::vector<Vec3> albedo;
@@ -151,7 +292,8 @@ TEST_F(RenderFramesTest, RejectsMismatchedFramesAndMissingInputs) {
   };
   EXPECT_NE(refusal((dir_ / "missing").string()).find("is not there"), std::string::npos);
   std::filesystem::create_directories(dir_ / "empty");
-  EXPECT_NE(refusal((dir_ / "empty").string()).find("holds no frame_*.pfr nor rest.pfr"), std::string::npos);
+  EXPECT_NE(refusal((dir_ / "empty").string()).find("holds no complete frame_*.pfr nor rest.pfr"),
+            std::string::npos);
   EXPECT_NE(refusal(path("frame_00000.pfr")).find("is not a folder"), std::string::npos);
   o.dir = dir_.string();
   o.spp = 0;

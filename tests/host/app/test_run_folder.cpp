@@ -234,5 +234,32 @@ TEST_F(RunFolderTest, OnlyTheFoldersFilesAreJournaled) {
   EXPECT_EQ(journal.find("run.manifest"), std::string::npos) << journal;
 }
 
+// A file rewritten (an index every frame, an image rendered again) is journaled once, under the
+// frame it was first written for, across journals of the folder.
+TEST_F(RunFolderTest, ARewrittenFileIsJournaledOnce) {
+  write_run(3);
+  {
+    OutputJournal again(out_);  // (as `perifrac render` opens it)
+    again.set_frame(1);
+    write_file_atomic(out_ + "/render/frame_00001.png", "png again");
+  }
+  const std::string journal = read_all(out_ + "/run.files");
+  auto count = [&](const std::string& line) {
+    size_t n = 0;
+    for (size_t at = journal.find(line); at != std::string::npos; at = journal.find(line, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("particles.pvd\n"), 1u) << journal;
+  EXPECT_EQ(count("0 particles.pvd\n"), 1u) << journal;
+  EXPECT_EQ(count("render/frame_00001.png\n"), 1u) << journal;
+  // A resume that drops a file lets it be journaled again when it is written again.
+  RunFolder folder(out_, FolderUse::kResume);
+  folder.start(folder.found());
+  folder.drop_frames_after(0);
+  folder.begin_frame(1);
+  write_file_atomic(out_ + "/render/frame_00001.png", "png");
+  EXPECT_NE(read_all(out_ + "/run.files").find("1 render/frame_00001.png"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace pd

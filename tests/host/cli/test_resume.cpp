@@ -1,6 +1,7 @@
 // Checkpoint and resume through the binary: a run killed (SIGKILL) at random points and resumed
 // until it completes gives files identical to an uninterrupted run; SIGINT stops after a
-// checkpoint; checkpoints of another scene, or corrupted ones, are refused with exit code 2.
+// checkpoint, or during the set-up with nothing half-written; checkpoints of another scene, or corrupted
+// ones, are refused with exit code 2.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -8,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -443,6 +445,36 @@ TEST_F(Resume, SigtermStopsWithinASecondInsideALongFrame) {
   ASSERT_EQ(run({"run", "--resume", out}, log_), 0) << read_all(log_);
   EXPECT_TRUE(read_all(reference + "/frame_00001.pfr") == read_all(out + "/frame_00001.pfr"));
   EXPECT_TRUE(read_all(reference + "/energy.csv") == read_all(out + "/energy.csv"));
+}
+
+// SIGINT during the set-up (here while TetGen runs: a fake one sends it, as a terminal's Ctrl-C
+// reaches both) stops the run between two stages with one line and exit code 130: TetGen is
+// killed, nothing is left half-written, and the next run in the folder needs no --overwrite.
+TEST_F(Resume, InterruptDuringTheSetUpStopsItCleanly) {
+  const std::string bin = path("bin"), out = path("out"), scene = path("tets.toml");
+  std::filesystem::create_directories(bin);
+  std::ofstream(bin + "/tetgen") << "#!/bin/sh\nkill -INT $PPID\nexec sleep 60\n";
+  std::filesystem::permissions(bin + "/tetgen", std::filesystem::perms::owner_all);
+  std::ofstream(scene)
+      << "[simulation]\nframes = 1\nsteps_per_frame = 2\ndt = \"auto\"\n"
+         "[materials.m]\nmodel = \"bond_based\"\ndensity = 1000.0\nbulk_modulus = 1e9\nstrain_limit = 0.01\n"
+         "[[bodies]]\nmaterial = \"m\"\nparticles = \"tets\"\nsize = [0.01, 0.01, 0.01]\n"
+         "spacing = 0.002\n";
+  const std::string saved_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", (bin + ":" + saved_path).c_str(), 1);
+  setenv("PERIFRAC_TET_CACHE", path("cache").c_str(), 1);
+  const auto start = std::chrono::steady_clock::now();
+  const int code = run({"run", scene, "--backend", "cpu", "--out", out}, log_);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  setenv("PATH", saved_path.c_str(), 1);
+  unsetenv("PERIFRAC_TET_CACHE");
+  EXPECT_EQ(code, 130) << read_all(log_);
+  EXPECT_NE(read_all(log_).find("interrupted during TetGen (SIGINT): no frame written"), std::string::npos)
+      << read_all(log_);
+  EXPECT_LT(seconds, 30);  // (the fake TetGen would sleep 60 s)
+  if (std::filesystem::exists(out))
+    for (const auto& e : std::filesystem::directory_iterator(out))
+      EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <stdexcept>
 
 #include "host/geometry/mesh_io.h"
@@ -46,6 +47,19 @@ TEST_F(CrackMeshFile, ObjAndPlyRoundTrip) {
   }
   EXPECT_EQ(crack_mesh_file_name(42, "ply"), "crack_mesh_00042.ply");
   EXPECT_THROW(read_crack_mesh(path("m.obj") + ".ply"), MeshError);
+}
+
+// A vertex that is not finite is damage, in either format.
+TEST_F(CrackMeshFile, VerticesThatAreNotFiniteAreRefused) {
+  CrackSurface s;
+  s.vertices = {{0, 0, 0}, {1, 0, 0}, {0, std::numeric_limits<double>::quiet_NaN(), 0}};
+  s.triangles = {{0, 1, 2}};
+  s.crack = {0};
+  s.particle = {0};
+  write_crack_obj(path("nan.obj"), s, "frame 0");
+  write_crack_ply(path("nan.ply"), s, "frame 0");
+  EXPECT_THROW(read_crack_mesh(path("nan.obj")), MeshError);
+  EXPECT_THROW(read_crack_mesh(path("nan.ply")), MeshError);
 }
 
 // PLY files written before the faces named their particles (14-byte face records) still read, with

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -148,6 +150,10 @@ TEST_F(FragmentsFileTest, RefusesBadFiles) {
   std::string huge = good;
   huge[23] = 0x7f;
   expect_refused(huge, "does not match");
+  std::string not_finite = good;  // the first fragment's translation's x (record offset 168)
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::memcpy(&not_finite[kFragmentsHeaderBytes + 168], &nan, 8);
+  expect_refused(not_finite, "not finite");
   EXPECT_THROW(read_fragments_file(path("missing.pfg")), IoError);
 }
 

@@ -2,7 +2,11 @@
 #include "host/fragments/tet_file.h"
 
 #include <gtest/gtest.h>
+
+#include <limits>
+
 #include <unistd.h>
+#include <cstring>
 
 #include <filesystem>
 #include <fstream>
@@ -65,6 +69,10 @@ TEST_F(TetFile, RefusesDamagedFiles) {
   std::string index = bytes;
   index[32 + 5 * 12] = 5;  // vertex index 5 of 5 vertices
   refused(index);
+  std::string not_finite = bytes;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&not_finite[32 + 4], &nan, 4);  // the first vertex's y
+  refused(not_finite);
   EXPECT_THROW(read_tets_file(path_ + ".missing"), IoError);
 }
 

@@ -3,7 +3,11 @@
 #include "host/fragments/trimtope_file.h"
 
 #include <gtest/gtest.h>
+
+#include <limits>
+
 #include <unistd.h>
+#include <cstring>
 
 #include <filesystem>
 #include <fstream>
@@ -87,6 +91,12 @@ TEST_F(TrimtopeFile, RefusesDamagedFiles) {
   std::string counts = bytes;
   counts[16] = char(counts[16] + 1);  // one cell more than stored
   refused(counts);
+  std::string not_finite = bytes;  // the first cell's site, after the 40-byte header and n indices
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  uint64_t n = 0;
+  std::memcpy(&n, &bytes[16], 8);
+  std::memcpy(&not_finite[40 + 4 * n], &nan, 4);
+  refused(not_finite);
   EXPECT_THROW(read_trimtopes_file(path_ + ".missing"), IoError);
 }
 

@@ -1,5 +1,6 @@
 // TetGen as an external program: a run that does not end is stopped, with a message that says
-// what TetGen needs, instead of hanging the scene's set-up; a check made beside it that fails stops it.
+// what TetGen needs, instead of hanging the scene's set-up; a check made beside it that fails stops it,
+// and so does an interrupt.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -13,6 +14,7 @@
 
 #include "host/geometry/shapes.h"
 #include "host/geometry/tetgen.h"
+#include "host/io/interrupt.h"
 #include "tests/support/scoped_env.h"
 
 namespace pd {
@@ -115,6 +117,23 @@ TEST(Tetgen, AFailedCheckWhileRunningStopsIt) {
   EXPECT_TRUE(checked);
   EXPECT_NE(message.find("over the budget"), std::string::npos) << message;
   EXPECT_LT(seconds, 10);
+}
+
+// Ctrl-C while TetGen runs (here the fake sends SIGINT to perifrac, as a terminal sends it to
+// both): TetGen is killed and the set-up stops with Interrupted, not a crash report.
+TEST(Tetgen, AnInterruptKillsItAndStopsTheSetUp) {
+  const NeverEndingTetgen tetgen("perifrac-test-tetgen-interrupted", "kill -INT $PPID\nexec sleep 60");
+  const InterruptGuard guard;
+  TetgenOptions options;
+  options.work_dir = tetgen.work_dir();
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    tetrahedralize(box_mesh({1, 1, 1}), options, "box.obj");
+    FAIL() << "TetGen's run was not stopped";
+  } catch (const Interrupted& e) {
+    EXPECT_EQ(std::string(e.what()), "interrupted during TetGen (SIGINT)");
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10);
 }
 
 }  // namespace

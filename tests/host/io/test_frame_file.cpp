@@ -1,7 +1,9 @@
 #include "host/io/frame_file.h"
 
 #include <gtest/gtest.h>
+
 #include <unistd.h>
+#include <limits>
 
 #include <cstring>
 #include <filesystem>
@@ -166,6 +168,18 @@ TEST_F(FrameFileTest, EveryTruncationIsRefused) {
     write_bytes(cut, std::string_view(bytes).substr(0, length));
     expect_io_error([&] { pd::read_frame_file(cut); }, cut, "truncated");
   }
+}
+
+// A number that is not finite (a damaged file: a run writes none) is refused, not drawn.
+TEST_F(FrameFileTest, NumbersThatAreNotFiniteAreRefused) {
+  pd::FrameData f = sample_frame();
+  f.velocity[0].y = std::numeric_limits<pd::real>::infinity();
+  pd::write_frame_file(path("frame.pfr"), f);
+  EXPECT_THROW(pd::read_frame_file(path("frame.pfr")), pd::IoError);
+  pd::RestData r = sample_rest();
+  r.position[1].z = std::numeric_limits<pd::real>::quiet_NaN();
+  pd::write_rest_file(path("rest.pfr"), r);
+  EXPECT_THROW(pd::read_rest_file(path("rest.pfr")), pd::IoError);
 }
 
 TEST_F(FrameFileTest, WrongMagicIsRefused) {

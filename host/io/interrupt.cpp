@@ -1,7 +1,8 @@
-#include "host/app/interrupt.h"
+#include "host/io/interrupt.h"
 
 #include <csignal>
 #include <cstring>
+#include <string>
 
 #include <unistd.h>
 
@@ -17,7 +18,7 @@ struct sigaction g_previous_int, g_previous_term;
 extern "C" void on_interrupt(int sig) {
   g_signal = sig;
   static const char kMsg[] =
-      "\nperifrac: interrupted; finishing this frame and writing a checkpoint (again to stop now)\n";
+      "\nperifrac: interrupted; stopping at the next safe point (again to stop at once)\n";
   [[maybe_unused]] const ssize_t w = ::write(STDERR_FILENO, kMsg, sizeof kMsg - 1);
   struct sigaction dfl;
   std::memset(&dfl, 0, sizeof dfl);
@@ -40,10 +41,17 @@ InterruptGuard::InterruptGuard() {
 InterruptGuard::~InterruptGuard() {
   ::sigaction(SIGINT, &g_previous_int, nullptr);
   ::sigaction(SIGTERM, &g_previous_term, nullptr);
+  g_signal = 0;
 }
 
 int InterruptGuard::signal_received() {
   return g_signal;
+}
+
+void throw_if_interrupted(const char* where) {
+  if (g_signal != 0)
+    throw Interrupted(std::string("interrupted during ") + where + " (" +
+                      (g_signal == SIGTERM ? "SIGTERM" : "SIGINT") + ")");
 }
 
 }  // namespace pd
