@@ -181,7 +181,18 @@ case_ "command line" "[[shards]] dust_hold without a pattern" 2 "shards\[0\]\.du
 "$BIN" "${P[@]}" s.toml --out o8 >/dev/null 2>&1 && rm -f o8/crack_mesh_*
 case_ "command line" "render --surface mesh of a run without crack meshes" 2 "no o8/crack_mesh_00000.ply" "$BIN" render o8 --surface mesh --width 32 --height 32
 mkdir -p not-a-run
-case_ "command line" "render of a folder that holds no run" 2 "holds no frame_\*.pfr" "$BIN" render not-a-run
+case_ "command line" "render of a folder that holds no run" 2 "holds no complete frame_\*.pfr" "$BIN" render not-a-run
+case_ "command line" "render --out naming a file" 2 "--out 's.toml' is a file, not a folder" "$BIN" render o8 --out s.toml
+case_ "command line" "render --eye beyond 1e9 m" 2 "eye 1e\+30,1e\+30,1e\+30 is too far out" "$BIN" render o8 --eye 1e30,1e30,1e30
+case_ "command line" "render --eye straight above the target" 0 "rendered   3 frames" "$BIN" render o8 --eye 0,1,0 --look-at 0,0,0 --width 32 --height 32 --no-movie
+case_ "command line" "render --ior nan" 2 "--ior: value out of range" "$BIN" render o8 --ior nan
+case_ "command line" "info into a full disk (/dev/full)" 4 "cannot write the standard output" sh -c "'$BIN' info >/dev/full"
+# A killed run's last frame (past the manifest's frames written), and a frame file the run wrote gone.
+cp -r o8 o11 && sed -i 's/^frames_written 2$/frames_written 1/' o11/run.manifest
+case_ "run folder" "render of a killed run's unfinished frame: left out" 0 "frame 2 left out: its files are incomplete" "$BIN" render o11 --width 32 --height 32 --no-movie
+cp -r o8 o12 && rm o12/frame_00001.pfr
+case_ "run folder" "render of a run whose frame file is gone" 4 "o12/frame_00001.pfr': missing, though the run wrote it" "$BIN" render o12 --no-movie
+case_ "run folder" "compare with a frame in one folder only" 1 "MISSING \(only in o8\)" "$BIN" compare o8 o11
 case_ "command line" "--out naming a file" 2 "is a file, not a folder" "$BIN" "${P[@]}" s.toml --out s.toml
 case_ "command line" "an unknown command" 2 "unknown command 'simulate'" "$BIN" simulate s.toml
 
