@@ -242,11 +242,18 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
 int64_t RunRenderer::add_crack_mesh(int64_t frame, const std::vector<int32_t>& body, PrimitiveSet* prims,
                                     std::vector<Vec3>* albedo, std::vector<uint8_t>* material,
                                     std::vector<uint8_t>* left_out) const {
-  const std::string path = (fs::path(options_.dir) / crack_mesh_file_name(frame, "ply")).string();
-  if (!fs::exists(path))
+  const std::string name = crack_mesh_file_name(frame, "ply");
+  const std::optional<std::string> found = run_file(name);  // (gone though the run wrote it: IoError)
+  const std::string path = (fs::path(options_.dir) / name).string();
+  if (!found)
     throw std::invalid_argument("render --surface mesh: no " + path +
                                 " (the run must write crack meshes: fragment output on, the default)");
-  CrackSurface mesh = read_crack_mesh(path);
+  CrackSurface mesh;
+  try {
+    mesh = read_crack_mesh(path);
+  } catch (const MeshError& e) {  // (a file the run wrote, damaged: not the user's mistake)
+    throw IoError(e.what());
+  }
   try {
     *left_out = covered_particles(mesh, body);
   } catch (const std::invalid_argument& e) {
