@@ -25,18 +25,35 @@ P3 to_p3(Vec3 v) {
 
 }  // namespace
 
-CutTester::CutTester(const std::vector<CutTriangle>& cuts, double reach) : cuts_(&cuts), inv_(1 / reach) {
+CutTester::CutTester(const std::vector<CutTriangle>& cuts, double reach, const std::vector<Vec3>& points)
+    : cuts_(&cuts), inv_(1 / reach) {
+  // The cells a bond from one of `points` can start in: a triangle is listed in those of its box
+  // only (a crack far larger than the bodies costs no more than one across them).
+  P3 lo_bound{INFINITY, INFINITY, INFINITY}, hi_bound{-INFINITY, -INFINITY, -INFINITY};
+  for (const Vec3& v : points) {
+    const P3 p = to_p3(v);
+    for (size_t a = 0; a < 3; ++a) {
+      lo_bound[a] = std::min(lo_bound[a], p[a]);
+      hi_bound[a] = std::max(hi_bound[a], p[a]);
+    }
+  }
   for (size_t t = 0; t < cuts.size(); ++t) {
     std::array<int64_t, 3> lo{}, hi{};
-    for (int a = 0; a < 3; ++a) {
-      double mn = cuts[t].corner[0][size_t(a)], mx = mn;
+    bool inside = true;
+    for (size_t a = 0; a < 3; ++a) {
+      double mn = cuts[t].corner[0][a], mx = mn;
       for (const P3& c : cuts[t].corner) {
-        mn = std::min(mn, c[size_t(a)]);
-        mx = std::max(mx, c[size_t(a)]);
+        mn = std::min(mn, c[a]);
+        mx = std::max(mx, c[a]);
       }
-      lo[size_t(a)] = coord(mn - reach);
-      hi[size_t(a)] = coord(mx + reach);
+      mn = std::max(mn - reach, lo_bound[a]);
+      mx = std::min(mx + reach, hi_bound[a]);
+      inside = inside && mn <= mx;
+      if (!inside) break;
+      lo[a] = coord(mn);
+      hi[a] = coord(mx);
     }
+    if (!inside) continue;
     for (int64_t z = lo[2]; z <= hi[2]; ++z)
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
         for (int64_t x = lo[0]; x <= hi[0]; ++x) bins_[key(x, y, z)].push_back(int32_t(t));
@@ -98,7 +115,7 @@ BondCutCounts cut_bonds(const std::vector<CutTriangle>& cuts, const std::vector<
 
   // The grid's cell: the longest bond, so every bond starts in a cell that lists what it crosses.
   const std::unique_ptr<CutTester> tester =
-      cuts.empty() || !(longest > 0) ? nullptr : std::make_unique<CutTester>(cuts, longest);
+      cuts.empty() || !(longest > 0) ? nullptr : std::make_unique<CutTester>(cuts, longest, rest);
 
   // Per slot: the strength of the weakest triangle the bond crosses (1 for none) or, between two
   // shards, the shards' strength; then each family is compacted past its removed bonds, in order.

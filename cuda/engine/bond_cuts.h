@@ -47,7 +47,9 @@ bool segment_crosses_triangle(const std::array<double, 3>& p, const std::array<d
 // cells of side `reach`, so a bond is tested only against those near its first end.
 class CutTester {
  public:
-  CutTester(const std::vector<CutTriangle>& cuts, double reach);
+  // `reach`: the longest bond; `points`: where the bonds start (the triangles are listed only
+  // where bonds from them can cross).
+  CutTester(const std::vector<CutTriangle>& cuts, double reach, const std::vector<Vec3>& points);
   // The smallest strength among the triangles the bond between particle a at `pa` and particle b
   // at `pb` of body `body` crosses; 1 when it crosses none. The segment runs from the lower index.
   double strength(int32_t a, Vec3 pa, int32_t b, Vec3 pb, int32_t body) const;

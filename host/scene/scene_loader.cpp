@@ -15,6 +15,7 @@
 #include "cuda/views.h"
 #include "host/geometry/shapes.h"
 #include "host/geometry/tetgen.h"
+#include "host/geometry/vec3d.h"
 #include "host/io/input_file.h"
 #include "host/scene/scene.h"
 #include "host/scene/scene_overrides.h"
@@ -600,6 +601,24 @@ std::vector<Vec3d> parse_points(const TableReader& r, std::string_view key, size
   return out;
 }
 
+// A quad crack's corners span a plane (the cross product of its diagonals its normal) and lie in it,
+// each within a thousandth of the longer diagonal (corners typed with a few digits pass).
+void check_planar_quad(const TableReader& r, const std::array<Vec3d, 4>& q) {
+  const Vec3d d0 = q[2] - q[0], d1 = q[3] - q[1];
+  const double size = std::max(norm(d0), norm(d1));
+  const Vec3d n = cross(d0, d1);
+  if (!(norm(n) > 1e-12 * size * size))
+    r.fail("corners", "a quad of no area (its diagonals are parallel)",
+           "4 corners around a planar quadrilateral");
+  const Vec3d unit = (1 / norm(n)) * n, centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+  for (size_t k = 0; k < 4; ++k)
+    if (const double off = std::fabs(dot(q[k] - centre, unit)); off > 1e-3 * size) {
+      char what[96];
+      std::snprintf(what, sizeof what, "not planar: corner %zu lies %.3g m off the quad's plane", k, off);
+      r.fail("corners", what, "4 corners in one plane, within 0.001 of the quad's size");
+    }
+}
+
 SceneCrack parse_crack(const TableReader& r, const std::vector<SceneBody>& bodies, const std::string& file) {
   SceneCrack c;
   const size_t shape = parse_kind(r, c.shape, kCrackShapes, kCrackShapeKeys);
@@ -613,6 +632,7 @@ SceneCrack parse_crack(const TableReader& r, const std::vector<SceneBody>& bodie
     case 0: {
       const auto corners = parse_points(r, "corners", 4, true);
       std::copy(corners.begin(), corners.end(), c.corners.begin());
+      check_planar_quad(r, c.corners);
       break;
     }
     case 1:

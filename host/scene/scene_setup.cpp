@@ -185,7 +185,7 @@ void remove_cut_pairs(const std::vector<CutTriangle>& cuts, const ParticleSet& p
   double reach = 0;
   for (const auto& [a, b] : pairs)
     reach = std::max(reach, double(length(ps.rest[size_t(a)] - ps.rest[size_t(b)])));
-  const CutTester tester(cuts, 1.001 * reach);
+  const CutTester tester(cuts, 1.001 * reach, ps.rest);
   pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
                              [&](const std::pair<int32_t, int32_t>& p) {
                                return tester.strength(p.first, ps.rest[size_t(p.first)], p.second,

@@ -71,6 +71,18 @@ TEST(BondCuts, PreCrackRemovesExactlyTheBondsAcross) {
   EXPECT_EQ(e->broken_bonds(), 0);  // a pre-crack is a free surface, not damage
 }
 
+// A crack far larger than the bodies (a random walk of huge steps) is listed only where bonds
+// start: set up at once, with the same bonds removed as the same plane of the bodies' size.
+TEST(BondCuts, AHugeCrackCostsNoMoreThanOneAcrossTheBodies) {
+  const double lambda = 1e-3, cut = 4.5e-3;
+  auto in = lattice_block(10, 5, 5, lambda);
+  in.cuts = plane_x(cut, 0);
+  const int64_t removed = make_cpu_engine(in)->family_stats().cuts.removed;
+  in.cuts = plane_x(cut, 0, 1e30);
+  EXPECT_EQ(make_cpu_engine(in)->family_stats().cuts.removed, removed);
+  EXPECT_GT(removed, 0);
+}
+
 // A triangle limited to another body leaves this one whole.
 TEST(BondCuts, CutsOfAnotherBodyDoNothing) {
   auto in = lattice_block(6, 4, 4, 1e-3);

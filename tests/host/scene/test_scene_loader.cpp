@@ -440,6 +440,10 @@ TEST(SceneLoader, CrackAndRegionMistakes) {
                "3 point(s) (allowed: an array of 4 points");
   expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1]]\n",
                "cracks[0].corners", "5 point(s) (allowed: an array of 4 points");
+  expect_error(crack + "corners = [[0, -1, -1], [0, 1, -1], [1, 1, 1], [0, -1, 1]]\n", "cracks[0].corners",
+               "not planar: corner 0 lies 0.236 m off the quad's plane");
+  expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]]\n", "cracks[0].corners",
+               "a quad of no area");
   expect_error(crack + "shape = \"path\"\npoints = [[0, 0, 0], [1, 0, 0]]\nextrude = [0, 0, 0]\n",
                "cracks[0].extrude", "zero vector");
   expect_error(
