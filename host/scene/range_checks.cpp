@@ -32,6 +32,20 @@ void check_speed(const Scene& scene, const std::string& key, const Vec3d& veloci
                          format(kSpeedOfLight) + " m/s; peridynamics here is Newtonian)");
 }
 
+// A keyframed path moving at or above the speed of light between two keyframes is refused.
+void check_path_speed(const Scene& scene, const std::string& key, const std::vector<SceneKeyframe>& path) {
+  for (size_t k = 1; k < path.size(); ++k) {
+    const double dt = path[k][0] - path[k - 1][0];
+    const double speed =
+        norm({path[k][1] - path[k - 1][1], path[k][2] - path[k - 1][2], path[k][3] - path[k - 1][3]}) / dt;
+    if (!(speed < kSpeedOfLight))
+      throw SceneError(scene.path, key,
+                       "keyframes " + std::to_string(k - 1) + " to " + std::to_string(k) + " move at " +
+                           format(speed) + " m/s, not below the speed of light (allowed: below " +
+                           format(kSpeedOfLight) + " m/s; peridynamics here is Newtonian)");
+  }
+}
+
 // Each body's particles: mass and volume positive and finite in `real`, and the kinetic energy
 // of the fastest one finite in `real` (the kernels square velocities times masses).
 void check_body_particles(const Scene& scene, const SetupResult& setup) {
@@ -86,6 +100,12 @@ void check_materials(const Scene& scene, const SetupResult& setup) {
                          "its bulk modulus " + format(sm.bulk_modulus) + " Pa and shear modulus " +
                              format(sm.shear_modulus) + " Pa give stiffnesses beyond a " + kPrecision +
                              " number (allowed: up to " + format(kRealMax) + "): lower the moduli");
+    if (sm.fracture_energy && !(real(m.strain_limit) > 0 && m.strain_limit < 1))
+      throw SceneError(scene.path, key + ".fracture_energy",
+                       "a fracture energy of " + format(*sm.fracture_energy) +
+                           " J/m^2 gives a critical stretch of " + format(m.strain_limit) +
+                           " at this spacing and horizon (allowed: one giving a stretch in (0, 1): below " +
+                           format(*sm.fracture_energy / (m.strain_limit * m.strain_limit)) + " J/m^2 here)");
     if (!(m.critical_dt > 0 && std::isfinite(m.critical_dt)))
       throw SceneError(scene.path, key + ".density",
                        "with a density of " + format(find_material(scene, scene.bodies[k].material).density) +
@@ -105,6 +125,12 @@ void check_physical_ranges(const Scene& scene, const SetupResult& setup) {
     check_speed(scene, "projectiles[" + std::to_string(p) + "].velocity", scene.projectiles[p].velocity);
   for (size_t c = 0; c < scene.colliders.size(); ++c)
     check_speed(scene, "colliders[" + std::to_string(c) + "].velocity", scene.colliders[c].velocity);
+  for (size_t a = 0; a < scene.anchors.size(); ++a)
+    check_path_speed(scene, "anchors[" + std::to_string(a) + "].path", scene.anchors[a].path);
+  for (size_t p = 0; p < scene.projectiles.size(); ++p)
+    check_path_speed(scene, "projectiles[" + std::to_string(p) + "].path", scene.projectiles[p].path);
+  for (size_t c = 0; c < scene.colliders.size(); ++c)
+    check_path_speed(scene, "colliders[" + std::to_string(c) + "].path", scene.colliders[c].path);
   // Pushes the kernels hold as `real`: a projectile's strength (eq. 7) and the contact stiffness.
   for (size_t p = 0; p < scene.projectiles.size(); ++p)
     if (!(scene.projectiles[p].strength <= kRealMax))

@@ -232,6 +232,8 @@ SceneAnisotropy parse_anisotropy(const TableReader& r) {
   if (!std::isfinite(1 / ratio))
     r.fail("ratio", number_text(ratio) + " is too small: 1 / ratio overflows",
            "a number > 0 whose inverse is finite");
+  if (!(1 / ratio > 1e-12))  // (the matrix form's bound: det G = 1 / ratio)
+    r.fail("ratio", number_text(ratio) + " makes G singular", "a ratio below 1e12");
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 3; ++col)
       a.matrix[3 * row + col] = (row == col ? 1.0 : 0.0) + (1 / ratio - 1) * d[row] * d[col];
@@ -791,7 +793,13 @@ Scene parse_root(const toml::table& root, const std::string& path) {
 
   // [world]
   const TableReader world = top.table("world", kWorldKeys);
-  world.vec3("gravity", scene.gravity);
+  constexpr double kMaxGravity = 1e9;  // [m/s^2] (1e8 g, past any centrifuge)
+  if (world.vec3("gravity", scene.gravity) &&
+      !(std::hypot(scene.gravity[0], scene.gravity[1], scene.gravity[2]) <= kMaxGravity))
+    world.fail("gravity",
+               "an acceleration of " +
+                   number_text(std::hypot(scene.gravity[0], scene.gravity[1], scene.gravity[2])) + " m/s^2",
+               "at most 1e9 m/s^2");
   world.boolean("floor", scene.floor);
   world.number("floor_height", scene.floor_height);
   world.number("restitution", scene.restitution, in_closed(0, 1));

@@ -440,6 +440,7 @@ TEST(SceneLoader, CrackAndRegionMistakes) {
                "3 point(s) (allowed: an array of 4 points");
   expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1]]\n",
                "cracks[0].corners", "5 point(s) (allowed: an array of 4 points");
+  expect_error(kMinimal + "[world]\ngravity = [0, -1e20, 0]\n", "world.gravity", "at most 1e9 m/s^2");
   expect_error(crack + "corners = [[0, -1, -1], [0, 1, -1], [1, 1, 1], [0, -1, 1]]\n", "cracks[0].corners",
                "not planar: corner 0 lies 0.236 m off the quad's plane");
   expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]]\n", "cracks[0].corners",
@@ -767,6 +768,8 @@ TEST(SceneLoader, AnisotropyBlock) {
                "materials.steel.anisotropy.matrix", "non-singular");
   expect_error(elastic + "[materials.steel.anisotropy]\ndirection = [0, 0, 0]\nratio = 2\n" + kSteelBody,
                "materials.steel.anisotropy.direction");
+  expect_error(elastic + "[materials.steel.anisotropy]\ndirection = [0, 0, 1]\nratio = 1e20\n" + kSteelBody,
+               "materials.steel.anisotropy.ratio", "makes G singular");
 }
 
 }  // namespace
