@@ -1,7 +1,9 @@
 #include "host/app/profile.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -52,15 +54,27 @@ struct RangeResult {
 
 }  // namespace
 
+constexpr long long kMaxProfileSteps = 1LL << 40;  // --steps's bound
+constexpr int64_t kMaxTimelineRows = 100000;
+
 std::vector<std::pair<int64_t, int64_t>> parse_step_ranges(const std::string& text) {
   std::vector<std::pair<int64_t, int64_t>> ranges;
   std::stringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    long long a = -1, b = -1;
-    char tail = 0;
-    if (std::sscanf(item.c_str(), "%lld:%lld%c", &a, &b, &tail) != 2 || a < 0 || b <= a)
-      throw std::invalid_argument("--ranges: '" + item +
-                                  "' is not a step range A:B with 0 <= A < B (e.g. 0:1000,50000:51000)");
+    // A:B, each a step count up to 2^40 (--steps's bound), nothing after.
+    const auto step = [](const char* text, char** end) {
+      errno = 0;
+      const long long v = std::strtoll(text, end, 10);
+      return errno == ERANGE || *end == text || v < 0 || v > kMaxProfileSteps ? -1LL : v;
+    };
+    char* end = nullptr;
+    const long long a = step(item.c_str(), &end);
+    const bool colon = a >= 0 && *end == ':';
+    const long long b = colon ? step(end + 1, &end) : -1;
+    if (!colon || b <= a || *end != '\0')
+      throw std::invalid_argument(
+          "--ranges: '" + item +
+          "' is not a step range A:B with 0 <= A < B <= 2^40 (e.g. 0:1000,50000:51000)");
     ranges.emplace_back(a, b);
   }
   if (ranges.empty()) throw std::invalid_argument("--ranges: no range given (e.g. 0:1000,50000:51000)");
@@ -211,6 +225,12 @@ int profile_command(const ProfileOptions& opt) {
   int64_t steps = 0;
   const auto ranges = profile_ranges(opt, scene.frames * scene.steps_per_frame, &steps);
   const int64_t chunk = opt.timeline > 0 ? opt.timeline : std::max<int64_t>(1, steps / 100);
+  if (steps / chunk > kMaxTimelineRows)  // (each row a kernel's line of the timeline, held in memory)
+    throw std::invalid_argument("--timeline " + std::to_string(chunk) + ": " + std::to_string(steps / chunk) +
+                                " points over " + std::to_string(steps) + " steps (allowed: at most " +
+                                std::to_string(kMaxTimelineRows) + " points, --timeline " +
+                                std::to_string((steps + kMaxTimelineRows - 1) / kMaxTimelineRows) +
+                                " or more)");
 
   auto engine = make_engine(backend, setup.input);
   const int64_t bonds = engine->family_stats().bonds;

@@ -17,7 +17,8 @@ TEST(ProfileRanges, ParsesSortsAndRefusesBadRanges) {
   ASSERT_EQ(r.size(), 2u);
   EXPECT_EQ(r[0], std::make_pair(int64_t(0), int64_t(100)));
   EXPECT_EQ(r[1], std::make_pair(int64_t(500), int64_t(600)));
-  for (const char* bad : {"", "5", "10:5", "-1:3", "0:10,5:20", "0:10x", "a:b"})
+  for (const char* bad : {"", "5", "10:5", "-1:3", "0:10,5:20", "0:10x", "a:b", "0:99999999999999999999",
+                          "0:1099511627777", ":5", "0:"})
     EXPECT_THROW(parse_step_ranges(bad), std::invalid_argument) << bad;
 }
 
@@ -48,6 +49,16 @@ TEST_F(Profile, SmallSceneWritesRangesAndTimeline) {
     EXPECT_NE(profile.find(row), std::string::npos) << row << " in\n" << profile;
   EXPECT_NE(timeline.find("\n35,40,springforces,"), std::string::npos) << timeline;
   EXPECT_EQ(timeline.find("\n40,"), std::string::npos) << "the timeline runs past the last range";
+  // A timeline of more points than it may hold is refused before the engine runs.
+  o.ranges.clear();
+  o.steps = 100000000;
+  o.timeline = 1;
+  try {
+    profile_command(o);
+    FAIL() << "a timeline of 1e8 points was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--timeline 1000 or more"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
