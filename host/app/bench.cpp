@@ -13,6 +13,7 @@
 
 #include "cuda/engine/engine.h"
 #include "cuda/engine/material.h"
+#include "cuda/engine/memory_budget.h"
 #include "cuda/engine/step_graphs.h"
 #include "cuda/kernel_stats.h"
 #include "host/app/backend_choice.h"
@@ -120,6 +121,16 @@ int bench_command(const BenchOptions& opt) {
     workload = std::filesystem::path(opt.scene).stem().string();
   } else {
     if (!opt.overrides.empty()) throw std::invalid_argument("bench: --set needs --scene");
+    // The lattice's particles against what the backend holds, before anything is allocated.
+    const ParticleBudget budget =
+        particle_budget(backend, opt.horizon, opt.model == "plastic", opt.model == "bond_based");
+    const double particles = double(opt.lattice) * double(opt.lattice) * double(opt.lattice);
+    if (particles > double(budget.max_particles))
+      throw ResourceError("bench: --lattice " + std::to_string(opt.lattice) + " is " +
+                          std::to_string(int64_t(particles)) + " particles, more than the " +
+                          std::to_string(budget.max_particles) + " that fit (" + budget.why +
+                          "; allowed: --lattice " +
+                          std::to_string(int64_t(std::cbrt(double(budget.max_particles)))) + " or less)");
     input = lattice_input(opt);
     workload = "lattice" + std::to_string(opt.lattice) + "_h" + std::to_string(int(opt.horizon)) + "_" +
                opt.model + (opt.contact ? "_contact" : "");

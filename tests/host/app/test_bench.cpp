@@ -10,8 +10,10 @@
 #include <regex>
 #include <string>
 
+#include "cuda/engine/memory_budget.h"
 #include "host/scene/scene.h"
 #include "tests/support/scene_texts.h"
+#include "tests/support/scoped_env.h"
 #include "tests/support/temp_dir.h"
 
 namespace pd {
@@ -115,6 +117,21 @@ TEST_F(Bench, ReportsNoBrokenBondForTheElasticLattice) {
   std::string json;
   const std::string printed = run(opt, json);
   EXPECT_EQ(broken_bonds(printed, json), 0);
+}
+
+// A lattice past the memory the backend has is refused before anything is allocated.
+TEST_F(Bench, ALatticeThatDoesNotFitIsRefusedUpFront) {
+  const testing::ScopedEnv small("PERIFRAC_HOST_MEMORY_MB", "100");
+  BenchOptions opt;
+  opt.backend = "cpu";
+  opt.lattice = 400;  // 64M particles: far past 100 MiB
+  try {
+    bench_command(opt);
+    FAIL() << "the lattice was set up";
+  } catch (const ResourceError& e) {
+    EXPECT_NE(std::string(e.what()).find("--lattice 400 is 64000000 particles"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
