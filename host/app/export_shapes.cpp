@@ -1,5 +1,6 @@
 #include "host/app/export_shapes.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -25,7 +26,11 @@ int export_shapes_command(const ShapeExportOptions& o) {
     } catch (const MeshError& e) {
       throw SceneError(scene.path, key + ".mesh", e.what());
     }
-    const std::string path = o.out + "/" + body.name + "." + o.format;
+    // (Bodies of one name, which the scene allows with a warning, get their index too.)
+    const bool shared = std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                      [&](const SceneBody& x) { return x.name == body.name; }) > 1;
+    const std::string path =
+        o.out + "/" + body.name + (shared ? "_" + std::to_string(b) : "") + "." + o.format;
     if (o.format == "obj") write_obj(mesh, path);
     if (o.format == "ply") write_ply(mesh, path, true);
     if (o.format == "stl") write_stl(mesh, path, true);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cuda/views.h"
+#include "host/geometry/mesh_io.h"
 #include "host/geometry/shapes.h"
 #include "host/geometry/tetgen.h"
 #include "host/geometry/vec3d.h"
@@ -409,7 +410,13 @@ SceneBody parse_body(size_t index, const TableReader& r, const std::vector<Scene
                      const std::string& file) {
   SceneBody b;
   b.name = "body" + std::to_string(index);
-  r.string("name", b.name);
+  // A name is printed on one line and names the body's files (`perifrac shapes`): no control
+  // character, no folder separator, not empty, "." or "..".
+  if (r.string("name", b.name) &&
+      (b.name.empty() || b.name == "." || b.name == ".." ||
+       std::any_of(b.name.begin(), b.name.end(), [](char c) { return c == '/' || (unsigned char)(c) < 32; })))
+    r.fail("name", "'" + detail::printable(b.name) + "'",
+           "a non-empty name without '/' or control characters, not '.' or '..'");
   parse_shape(r, b, file);
   parse_particle_switches(r, b);
   r.vec3("center", b.center);

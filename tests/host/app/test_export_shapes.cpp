@@ -75,5 +75,18 @@ TEST_F(ExportShapes, BrokenMeshBodyIsReportedWithItsKey) {
   EXPECT_FALSE(std::filesystem::exists(path("shapes/part.obj")));
 }
 
+// Bodies of one name each get a file of their own (the name and the body's index).
+TEST_F(ExportShapes, BodiesOfOneNameDoNotOverwriteEachOther) {
+  ShapeExportOptions o;
+  const std::string body =
+      "[[bodies]]\nname = \"twin\"\nmaterial = \"glass\"\nsize = [0.1, 0.1, 0.1]\nspacing = 0.01\n";
+  o.scene = scene(body + body + "center = [1.0, 0.0, 0.0]\n");
+  o.out = path("shapes");
+  o.format = "obj";
+  ASSERT_EQ(export_shapes_command(o), 0);
+  EXPECT_NEAR(bounds(read_mesh(path("shapes/twin_0.obj"))).center()[0], 0, 1e-12);
+  EXPECT_NEAR(bounds(read_mesh(path("shapes/twin_1.obj"))).center()[0], 1, 1e-12);
+}
+
 }  // namespace
 }  // namespace pd

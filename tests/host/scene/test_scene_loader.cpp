@@ -441,6 +441,11 @@ TEST(SceneLoader, CrackAndRegionMistakes) {
   expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1]]\n",
                "cracks[0].corners", "5 point(s) (allowed: an array of 4 points");
   expect_error(kMinimal + "[world]\ngravity = [0, -1e20, 0]\n", "world.gravity", "at most 1e9 m/s^2");
+  for (const char* name : {"\"../out\"", "\"\"", "\"a\\nb\"", "\"..\""}) {
+    std::string text = kMinimal;
+    text.insert(text.find("[[bodies]]\n") + 11, std::string("name = ") + name + "\n");
+    expect_error(text, "bodies[0].name", "without '/' or control characters");
+  }
   expect_error(crack + "corners = [[0, -1, -1], [0, 1, -1], [1, 1, 1], [0, -1, 1]]\n", "cracks[0].corners",
                "not planar: corner 0 lies 0.236 m off the quad's plane");
   expect_error(crack + "corners = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]]\n", "cracks[0].corners",
