@@ -4,6 +4,7 @@
 // sample and returns the 8-bit sRGB image.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,6 +64,9 @@ struct RenderSettings {
   real exposure = real(0.85);      // linear scale before the sRGB encoding
   real ior = real(1.5);            // index of refraction of glass elements
   bool count_rays = false;         // count every traced ray (RenderResult::traced_rays)
+  // Asked between parts of the frame (a sixty-fourth each) when set: true leaves the frame
+  // unfinished (RenderResult::stopped), so that a long frame can be interrupted.
+  std::function<bool()> stop;
 };
 
 // The kernel's shading parameters for `s` (projects the sky to SH).
@@ -75,6 +79,7 @@ struct RenderResult {
   // With RenderSettings::count_rays: all nearest-hit rays (primary, Fresnel reflections, rays
   // leaving glass collections); the steps of the walk inside glass are not rays here.
   int64_t traced_rays = 0;
+  bool stopped = false;  // RenderSettings::stop said so: the image is unfinished
 };
 
 class Renderer {

@@ -148,8 +148,8 @@ PD_HD inline void render_pixel(const PixelKernelParams& p, int64_t i, uint8_t* r
 }
 
 template <class Exec>
-void launch_render_pixels(Exec& ex, const PixelKernelParams& p, uint8_t* rgb) {
-  ex.parallel_for("render/pixels", p.tiles * kTilePixels, [=] PD_HD(int64_t i) { render_pixel(p, i, rgb); });
+void launch_render_pixels(Exec& ex, const PixelKernelParams& p, uint8_t* rgb, int64_t first, int64_t count) {
+  ex.parallel_for_from("render/pixels", first, count, [=] PD_HD(int64_t i) { render_pixel(p, i, rgb); });
 }
 
 // A scene's primitive arrays copied to the backend, under PrimitiveSet's member names.
@@ -174,6 +174,9 @@ struct DevicePrimitives {
   DeviceArray<Vec3, Exec> tri_vertex;
   DeviceArray<Vec3, Exec> tri_normal;
 };
+
+// The parts a frame is rendered in where RenderSettings::stop is set.
+inline constexpr int64_t kStopParts = 64;
 
 template <class Exec>
 class RendererImpl final : public Renderer {
@@ -227,9 +230,15 @@ class RendererImpl final : public Renderer {
     DeviceArray<uint32_t, Exec> ray_count(&exec_, s.count_rays ? size_t(s.width) * size_t(s.height) : 0);
     if (s.count_rays) p.ray_count = view_of(ray_count);
     const auto t0 = std::chrono::steady_clock::now();
-    launch_render_pixels(exec_, p, image.data());
-    exec_.flush_stats();  // waits for the device and reports kernel errors
+    // In parts where a stop question is set, asked between them (the pixels do not depend on it).
     RenderResult r;
+    const int64_t parts = s.stop ? std::min<int64_t>(kStopParts, p.tiles) : 1;
+    for (int64_t k = 0; k < parts && !r.stopped; ++k) {
+      const int64_t first = p.tiles * k / parts * kTilePixels, end = p.tiles * (k + 1) / parts * kTilePixels;
+      launch_render_pixels(exec_, p, image.data(), first, end - first);
+      exec_.flush_stats();  // waits for the device and reports kernel errors
+      r.stopped = k + 1 < parts && s.stop();
+    }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.rays = int64_t(s.width) * s.height * s.spp;
     r.image.width = s.width;

@@ -158,6 +158,7 @@ RunRenderer::RunRenderer(const RenderOptions& o, const std::string& last_frame) 
         rmin(settings_.floor_y, cube_bounds(read_frame_file(last_frame).position, rest_.volume).lo.y);
   if (o.environment != "sky")
     settings_.environment = std::make_shared<EnvironmentMap>(load_environment(o.environment));
+  settings_.stop = [] { return InterruptGuard::signal_received() != 0; };  // (a long frame stops too)
 
   const Backend backend = choose_backend(o.backend, &backend_note_);
   renderer_ = make_renderer(backend == Backend::kCuda);
@@ -228,6 +229,7 @@ FrameRenderReport RunRenderer::render(const std::string& frame_file) {
     scene.collider_grids = collider_grids_;
   }
   const RenderResult r = renderer_->render_frame(scene, camera_, settings_);
+  if (r.stopped) throw Interrupted("interrupted while rendering frame " + std::to_string(frame.frame));
   FrameRenderReport report;
   report.png = (fs::path(out_) / fs::path(frame_file).filename().replace_extension(".png")).string();
   write_png(report.png, r.image);
@@ -413,7 +415,13 @@ int render_frames(const RenderOptions& cli) {
       return kExitInterrupted;
     }
     if (journal) journal->set_frame(frame_number(frames[k]));
-    const FrameRenderReport r = renderer.render(frames[k]);
+    FrameRenderReport r;
+    try {
+      r = renderer.render(frames[k]);
+    } catch (const Interrupted& e) {
+      std::printf("%s: the %zu images before it are complete\n", e.what(), k);
+      return kExitInterrupted;
+    }
     images.push_back(r.png);
     ray_seconds += r.render_seconds;
     rays += r.rays;

@@ -737,6 +737,15 @@ int run_guarded(const RunOptions& options, std::optional<InterruptGuard>& interr
   LoopTimes times;
   if (const int code = run_frames(sim, opt, output, start, times); code != kExitOk) return code;
   finish_run(sim, output, start.first_frame, times, run);
+  // Interrupted after the last step, while the last frames' outputs were written: they are
+  // complete, but for images a live render left unfinished.
+  if (InterruptGuard::signal_received()) {
+    std::printf(
+        "interrupted after the last frame: every frame's files are written; images a [render] block "
+        "left unfinished: perifrac render %s\n",
+        output.dir().c_str());
+    return kExitInterrupted;
+  }
   return kExitOk;
 }
 

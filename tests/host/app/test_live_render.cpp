@@ -189,5 +189,21 @@ TEST_F(LiveRender, TetBodiesAreWrittenAndDrawnAsTetrahedra) {
       << bad.output;
 }
 
+// A run resumed after an interrupt that left an image unwritten draws it with its first frame,
+// and its movie has every image.
+TEST_F(LiveRender, AResumeDrawsTheImagesAnInterruptLeftUnwritten) {
+  const std::string render = "[render]\nwidth = 32\nheight = 24\nspp = 1\n";
+  ASSERT_EQ(
+      run_perifrac("run " + scene(kGridBody, render) + " --backend cpu --checkpoint-every 1 --out " + out())
+          .exit_code,
+      0);
+  fs::remove(out() + "/render/frame_00001.png");  // (as an interrupt in its image leaves it)
+  const Result r = run_perifrac("run --resume " + out() + " --frames 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (int f = 0; f <= 3; ++f)
+    EXPECT_TRUE(fs::exists(out() + "/render/frame_0000" + std::to_string(f) + ".png")) << f << "\n"
+                                                                                       << r.output;
+}
+
 }  // namespace
 }  // namespace pd
