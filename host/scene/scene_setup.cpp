@@ -284,6 +284,17 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
                             "; use a larger spacing or a smaller --scale)");
     };
     if ((body.shape == "box" || body.shape == "plate") && body.particles == "grid") {
+      // Every axis at least half a (scaled) spacing long, as the scene loader checks unscaled
+      // (box_grid_counts would make one particle of the whole extent along it).
+      const double smallest = *std::min_element(body.size.begin(), body.size.end());
+      if (std::round(smallest / spacing) < 1) {
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      "at this scale the spacing is %.3g m, more than twice the body's smallest size %.3g m: "
+                      "it would be particles as large as the body (allowed: --scale %.3g or more)",
+                      spacing, smallest, std::pow(body.spacing / (2 * smallest), 3) * 1.0001);
+        throw SceneError(scene.path, "--scale", text);
+      }
       // Counted before the particles are made.
       const auto n = box_grid_counts(body.size, spacing);
       if (total + n[0] * n[1] * n[2] > max_now()) throw too_many(total + n[0] * n[1] * n[2]);

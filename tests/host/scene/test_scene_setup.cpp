@@ -153,5 +153,19 @@ shell_thickness = 0.06
   }
 }
 
+// --scale that makes the spacing more than twice a box's smallest size is refused with the
+// smallest scale allowed (it made one particle of the whole box, far too heavy).
+TEST(SceneSetup, AScaleThatLeavesABoxNoParticleAlongAnAxisIsRefused) {
+  const Scene scene = parse_scene(kWall, "scene.toml");
+  EXPECT_NO_THROW(setup_scene(scene, SetupOptions(0.125)));  // spacing 0.02 for a 0.1 m box
+  try {
+    setup_scene(scene, SetupOptions(1e-6));
+    ADD_FAILURE() << "a box of one particle was set up";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key(), "--scale");
+    EXPECT_NE(std::string(e.what()).find("--scale 0.000125 or more"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace pd
