@@ -55,11 +55,20 @@ AnchorScript anchor_script(const SceneAnchor& a) {
   return s;
 }
 
-// Initial velocity of a particle at rest position x held by anchor script s.
+// Initial velocity of a particle at rest position x held by anchor script s: a path's is that of
+// its segment leaving t = 0 (sample_path gives none at a keyframe's time), so that frame 0's
+// kinetic energy is the motion the path starts with.
 Vec3 anchor_velocity(const AnchorScript& s, Vec3 x) {
-  const PathSample start = s.path.empty() ? PathSample{{0, 0, 0}, s.velocity} : sample_path(s.path, 0);
+  std::array<double, 3> start = s.velocity;
+  if (!s.path.empty()) {
+    start = {0, 0, 0};
+    for (size_t k = 0; k + 1 < s.path.size(); ++k)
+      if (s.path[k][0] <= 0 && 0 < s.path[k + 1][0])
+        for (int c = 0; c < 3; ++c)
+          start[size_t(c)] = (s.path[k + 1][c + 1] - s.path[k][c + 1]) / (s.path[k + 1][0] - s.path[k][0]);
+  }
   const Vec3 omega = to_vec3(s.omega), d = x - to_vec3(s.pivot);
-  return to_vec3(start.velocity) + cross(omega, d);
+  return to_vec3(start) + cross(omega, d);
 }
 
 // Kernel constants of one body's material at the body's spacing.

@@ -167,5 +167,20 @@ TEST(SceneSetup, AScaleThatLeavesABoxNoParticleAlongAnAxisIsRefused) {
   }
 }
 
+// A path anchor starts its particles at the velocity of its first segment (frame 0's kinetic
+// energy, the energy balance's reference), as the same motion given as a velocity does.
+TEST(SceneSetup, APathAnchorStartsAtItsFirstSegmentsVelocity) {
+  const std::string box = "[[anchors]]\nbox_min = [-1, -1, -1]\nbox_max = [1, 0.03, 1]\n";
+  const SetupResult path = set_up(box + "path = [[0, 0, 0, 0], [0.5, 1, 0, 0], [1, 1, 0, 0]]\n");
+  const SetupResult velocity = set_up(box + "velocity = [2, 0, 0]\n");
+  const ParticleSet& a = path.input.particles;
+  int anchored = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a.velocity[i].x, velocity.input.particles.velocity[i].x) << i;
+    anchored += (a.flags[i] & kAnchored) != 0 && a.velocity[i].x == 2;
+  }
+  EXPECT_GT(anchored, 0);
+}
+
 }  // namespace
 }  // namespace pd
