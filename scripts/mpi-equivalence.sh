@@ -154,4 +154,16 @@ elif [ "${listed:-32768}" -gt 16384 ]; then
 else
   echo "mpi-equivalence: bench on 2 ranks reports both ranks ($(grep -o '"halo_transport": "[^"]*"' "$json" | sort -u | tr '\n' ' ')), $listed of 32768 lattice particles reading lists"
 fi
+# Ranks started with other arguments (MPMD, a --set on one rank only): refused at once with one
+# line, not a hang or a run of mixed set-ups.
+code=0
+timeout 300 mpirun -np 1 "$bin" run --overwrite $scene --frames 1 --out "$out/mismatch" : \
+  -np 1 "$bin" run --overwrite $scene --frames 1 --out "$out/mismatch" --set materials.glass.density=3000 \
+  >"$out/mismatch.log" 2>&1 || code=$?
+if [ $code -eq 2 ] && grep -q "every rank must be started with the same arguments" "$out/mismatch.log"; then
+  echo "mpi-equivalence: ranks started with other arguments: refused (exit 2)"
+else
+  echo "mpi-equivalence: ranks started with other arguments: exit $code, not the refusal: $out/mismatch.log" >&2
+  status=1
+fi
 exit $status

@@ -1,6 +1,7 @@
 // The perifrac command line: run a scene, benchmark the kernels, list devices.
 #include <CLI/CLI.hpp>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -100,6 +101,23 @@ int main(int argc, char** argv) {
                      "error: under mpirun only `perifrac run` and `perifrac bench` use the ranks; "
                      "start `perifrac %s` without mpirun\n",
                      command.c_str());
+      return int(kExitUsage);
+    }
+    // Every rank runs the same command (one scene, scale and --set values): a rank started with
+    // other arguments would take another set-up and hang or garble the collective steps.
+    std::string line;
+    for (int k = 1; k < argc; ++k) line += std::string(argv[k]) + '\0';
+    const uint64_t mine = std::hash<std::string>{}(line);
+    uint64_t first = mine;
+    world->broadcast(&first, sizeof first, 0);
+    if (world->bit_or(first != mine ? 1u : 0u) != 0) {
+      if (first != mine)
+        std::fprintf(stderr,
+                     "error: under mpirun every rank must be started with the same arguments; rank %d's "
+                     "differ from rank 0's (allowed: mpirun -np N perifrac run SCENE [options], one command "
+                     "for all ranks)\n",
+                     world->rank());
+      leave_world();
       return int(kExitUsage);
     }
     if (world->rank() != 0 && !std::freopen("/dev/null", "w", stdout)) return int(kExitRuntime);
