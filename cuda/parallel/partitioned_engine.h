@@ -156,8 +156,7 @@ class PartitionedEngine final : public Engine {
     // Chosen from the whole run's particles, so each rank sums a particle's bonds as one rank does.
     local_input.bond_threads = bond_threads_of(in);
     if (local_input.particles.size() == 0)
-      throw std::runtime_error("rank " + std::to_string(comm_->rank()) + " of " +
-                               std::to_string(comm_->size()) + " holds no particle: run on fewer ranks");
+      throw std::runtime_error("it holds no particle: run on fewer ranks");  // (named "rank R of N: ")
     const auto t1 = std::chrono::steady_clock::now();
     local_ =
         std::make_unique<EngineImpl<Exec>>(local_input, device, &layout_, comm_.get(),

@@ -96,14 +96,18 @@ void add_run(CLI::App& app, const CommandActions& actions, std::function<int()>*
 void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()>* chosen) {
   const auto bench = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "time the step kernels (bond-updates/s, occupancy)");
-  cmd->add_option("--scene", bench->scene, "scene file; default: a synthetic lattice cube");
+  CLI::Option* scene =
+      cmd->add_option("--scene", bench->scene, "scene file; default: a synthetic lattice cube");
   cmd->add_option("--scale", bench->scale, "scene particle-count factor in (0, 1000]");
   cmd->add_option("--set", bench->overrides, "KEY=VALUE: change one scene key (repeatable)");
+  // The lattice's options describe the synthetic cube: with --scene they would do nothing.
   cmd->add_option("--lattice", bench->lattice, "lattice particles per side")
-      ->check(CLI::Range(int64_t(4), int64_t(1000)));
+      ->check(CLI::Range(int64_t(4), int64_t(1000)))
+      ->excludes(scene);
   cmd->add_option("--horizon", bench->horizon, "lattice delta / lambda")
-      ->check(finite_in(1, 20, "a horizon of 1 to 20 spacings"));
-  cmd->add_flag("--contact", bench->contact, "lattice: include collection + collisions");
+      ->check(finite_in(1, 20, "a horizon of 1 to 20 spacings"))
+      ->excludes(scene);
+  cmd->add_flag("--contact", bench->contact, "lattice: include collection + collisions")->excludes(scene);
   cmd->add_flag(
       "--explicit-families", bench->explicit_families,
       "find every partner through its stored index (box-grid bodies otherwise use lattice offsets)");
@@ -125,7 +129,8 @@ void add_bench(CLI::App& app, const CommandActions& actions, std::function<int()
       ->check(CLI::IsMember({"incremental", "full"}));
   cmd->add_option("--model", bench->model,
                   "lattice material: bond_based | state_based | plastic | anisotropic")
-      ->check(CLI::IsMember({"bond_based", "state_based", "plastic", "anisotropic"}));
+      ->check(CLI::IsMember({"bond_based", "state_based", "plastic", "anisotropic"}))
+      ->excludes(scene);
   cmd->add_option("--backend", bench->backend, "auto | cpu | cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cmd->add_option("--steps", bench->steps, "timed steps")->check(CLI::Range(int64_t(1), int64_t(1) << 40));

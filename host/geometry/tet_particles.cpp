@@ -94,9 +94,11 @@ ParticleGeometry tet_particles(const TriMesh& solid, const TetgenOptions& option
   // The volume bound's count against the limit, beside TetGen (which it stops when over).
   timed.while_running = [&] {
     if (options.while_running) options.while_running();
-    if (options.max_volume > 0)
-      check_particle_budget(signed_volume(solid), options.max_volume, max_particles(), name,
-                            "tet volumes of at most " + std::to_string(options.max_volume) + " m^3");
+    if (options.max_volume > 0) {
+      char bound[64];
+      std::snprintf(bound, sizeof bound, "tet volumes of at most %.3g m^3", options.max_volume);
+      check_particle_budget(signed_volume(solid), options.max_volume, max_particles(), name, bound);
+    }
   };
   TetMesh mesh = tetrahedralize(solid, timed, name);
   if (int64_t(mesh.tets.size()) > max_particles())

@@ -695,8 +695,10 @@ SceneShards parse_shards(const TableReader& r, const std::vector<SceneBody>& bod
                          const std::string& file) {
   SceneShards g;
   r.number("size", g.size, greater_than(0), Presence::required);
-  r.number("hold", g.hold, in_closed(1, 255));
-  if (g.hold == 1) r.fail("hold", "1 holds the cells no better than their faces", "a number in (1, 255]");
+  Bounds hold = in_closed(1, 255);
+  hold.lo_open = true;
+  hold.note = "1 would hold the cells no better than their faces";
+  r.number("hold", g.hold, hold);
   r.number("jitter", g.jitter, in_closed(0, 1));
   parse_body_name(r, g.body, bodies);
   if (r.string("pattern", g.pattern)) {
@@ -790,7 +792,7 @@ Scene parse_root(const toml::table& root, const std::string& path) {
     scene.dt_auto = true;
   } else {
     Bounds dt = at_least(1e-15);  // (below a femtosecond the clock of a long run stops advancing)
-    dt.note = "or \"auto\" for half the stable time step";
+    dt.note = "(or \"auto\" for half the stable time step)";
     sim.number("dt", scene.dt, dt);
   }
   sim.integer("steps_per_frame", scene.steps_per_frame, 1, kMaxStepsPerFrame);

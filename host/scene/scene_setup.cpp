@@ -260,6 +260,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
   for (const SceneAnchor& a : scene.anchors) in.motion.anchors.push_back(anchor_script(a));
   in.cuts = crack_triangles(scene);
   const auto regions = region_tests(scene);
+  std::vector<int64_t> region_particles(regions.size(), 0);
 
   // The particle budget, taken where first needed (a pending one is found beside the first tet
   // body's TetGen: setup_options_later).
@@ -396,6 +397,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
       for (size_t r = 0; r < regions.size(); ++r) {
         const SceneRegion& region = scene.regions[r];
         if ((!region.body.empty() && region.body != body.name) || !regions[r](geometry.position[i])) continue;
+        ++region_particles[r];
         if (region.strain_limit) base = *region.strain_limit;
         factor *= region.strain_limit_factor;
       }
@@ -407,6 +409,10 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
     clock.lap(key + " particle table");
   }
 
+  for (size_t r = 0; r < region_particles.size(); ++r)  // (as an anchor that holds none is told)
+    if (region_particles[r] == 0)
+      std::fprintf(stderr, "warning: regions[%zu]: it holds no particle%s, so it does nothing\n", r,
+                   scene.regions[r].body.empty() ? "" : (" of body '" + scene.regions[r].body + "'").c_str());
   if (!tet_solids->empty()) in.body_solids = std::move(tet_solids);
   result.shards = assign_shards(scene, ps, in.materials);
   for (const auto& [body_material, zone_material] : result.shards.zone_materials)

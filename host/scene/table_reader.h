@@ -59,7 +59,7 @@ struct Bounds {
       s = std::string("a number in ") + (lo_open ? "(" : "[") + bound_text(lo) + ", " + bound_text(hi) +
           (hi_open ? ")" : "]");
     }
-    return note.empty() ? s : s + ": " + note;
+    return note.empty() ? s : note[0] == '(' ? s + " " + note : s + ": " + note;
   }
 };
 
