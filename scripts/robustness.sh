@@ -254,6 +254,7 @@ case_ "limits" "a fracture energy giving a stretch above 1" 2 "materials\.glass\
 case_ "limits" "--scale leaving a box less than half a spacing thick" 2 "--scale: at this scale the spacing" "$BIN" "${P[@]}" s.toml --scale 1e-6 --out q6
 case_ "limits" "profile --timeline 1 over 1e8 steps" 2 "--timeline 1: 100000000 points" "$BIN" profile s.toml --backend cpu --steps 100000000 --timeline 1 --out q7
 case_ "limits" "bench --lattice past the memory" 2 "--lattice 400 is 64000000 particles" env PERIFRAC_HOST_MEMORY_MB=100 "$BIN" bench --lattice 400 --backend cpu
+case_ "command line" "bench-geometry at a spacing past the shape" 2 "the sphere holds no particle at a spacing of 100 m" "$BIN" bench-geometry --shape sphere --particles grid --spacing 100
 case_ "command line" "bench --scene with --lattice" 2 "--scene excludes --lattice" "$BIN" bench --scene s.toml --lattice 10
 case_ "command line" "a body name with a '/'" 2 "bodies\[0\]\.name: '\.\./x'" "$BIN" shapes s.toml --set 'bodies[0].name="../x"' --out q8
 

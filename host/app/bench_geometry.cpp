@@ -156,6 +156,12 @@ int bench_geometry_command(const GeometryBenchOptions& o) {
     exact = signed_volume(solid);
   }
   const double total = seconds_since(t0);
+  if (g.size() == 0) {  // (a spacing past the shape: nothing to time, no volume to compare)
+    char text[160];
+    std::snprintf(text, sizeof text, "holds no particle at a spacing of %.4g m", spacing);
+    throw std::invalid_argument("bench-geometry: the " + name + " " + text +
+                                " (allowed: a smaller --spacing or a larger --count)");
+  }
   stages.insert(stages.end(), g.stages.begin(), g.stages.end());
   const double error = (g.total_volume() - exact) / exact;
 

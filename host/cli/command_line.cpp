@@ -203,7 +203,7 @@ void add_bench_geometry(CLI::App& app, const CommandActions& actions, std::funct
                 "TetGen -Y: no points added on the surface");
   cmd->add_option("--shell-thickness", geometry->shell_thickness, "vase wall / shell depth in m");
   cmd->add_option("--threads", geometry->threads, "threads of the parallel stages (0: default)")
-      ->check(CLI::Range(0, 4096));
+      ->check(CLI::Range(0, 1024));
   cmd->add_option("--seed", geometry->seed, "Poisson-disk seed");
   cmd->add_option("--csv", geometry->csv, "append a row to this CSV file")->check(non_empty());
   on_parsed(cmd, chosen, [&actions, geometry] { return actions.bench_geometry(*geometry); });
