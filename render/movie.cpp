@@ -1,12 +1,11 @@
 #include "render/movie.h"
 
-#include <fcntl.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -20,10 +19,11 @@ namespace pd {
 
 namespace {
 
-// Writes `bytes` to `fd` whole; false when the reader went away or the write failed.
-bool write_all(int fd, const char* bytes, size_t n) {
+// Sends `bytes` to the socket `fd` whole, never raising SIGPIPE; false when the reader went away
+// or the send failed.
+bool send_all(int fd, const char* bytes, size_t n) {
   while (n > 0) {
-    const ssize_t w = ::write(fd, bytes, n);
+    const ssize_t w = ::send(fd, bytes, n, MSG_NOSIGNAL);
     if (w < 0 && errno == EINTR) continue;
     if (w <= 0) return false;
     bytes += w;
@@ -32,43 +32,35 @@ bool write_all(int fd, const char* bytes, size_t n) {
   return true;
 }
 
-// Runs argv[0] (a full path) with the arguments, its standard input fed with the bytes of `inputs`
-// in order, and waits; returns its exit status, or -1 when it could not be started, did not exit
-// normally, or an input could not be read. (SIGPIPE is ignored while feeding it: a program that
-// stops reading ends with its own status.)
+// Runs argv[0] (a full path) with the arguments, its standard input a socket fed with the bytes of
+// `inputs` in order, and waits; returns its exit status, or -1 when it could not be started, did
+// not exit normally, or an input could not be read. (A socket, not a pipe: a program that stops
+// reading ends the feeding with an error instead of a SIGPIPE for the whole process.)
 int run_program_fed(const std::vector<std::string>& args, const std::vector<std::string>& inputs) {
-  int pipe_fds[2];
-  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) return -1;
+  std::vector<char> buffer(1 << 20);
+  int fds[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0) return -1;
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fds[0], 0);
+  posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   pid_t pid = 0;
   const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  ::close(pipe_fds[0]);
-  if (spawned != 0) {
-    ::close(pipe_fds[1]);
-    return -1;
-  }
-  struct sigaction ignore = {}, previous = {};
-  ignore.sa_handler = SIG_IGN;
-  ::sigaction(SIGPIPE, &ignore, &previous);
-  bool fed = true;
-  std::vector<char> buffer(1 << 20);
-  for (const std::string& input : inputs) {
-    std::ifstream in(input, std::ios::binary);
-    if (!in) fed = false;
+  ::close(fds[0]);
+  bool fed = spawned == 0;
+  for (size_t k = 0; fed && k < inputs.size(); ++k) {
+    std::ifstream in(inputs[k], std::ios::binary);
+    fed = bool(in);
     while (fed && in) {
       in.read(buffer.data(), std::streamsize(buffer.size()));
-      fed = write_all(pipe_fds[1], buffer.data(), size_t(in.gcount()));
+      fed = send_all(fds[1], buffer.data(), size_t(in.gcount()));
     }
-    if (!fed) break;
   }
-  ::close(pipe_fds[1]);
-  ::sigaction(SIGPIPE, &previous, nullptr);
+  ::close(fds[1]);  // (end of input)
+  if (spawned != 0) return -1;
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) return -1;

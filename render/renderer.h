@@ -64,8 +64,8 @@ struct RenderSettings {
   real exposure = real(0.85);      // linear scale before the sRGB encoding
   real ior = real(1.5);            // index of refraction of glass elements
   bool count_rays = false;         // count every traced ray (RenderResult::traced_rays)
-  // Asked between parts of the frame (a sixty-fourth each) when set: true leaves the frame
-  // unfinished (RenderResult::stopped), so that a long frame can be interrupted.
+  // Asked between parts of a big frame (up to 64) when set: true leaves the frame unfinished
+  // (RenderResult::stopped), so that a long frame can be interrupted.
   std::function<bool()> stop;
 };
 

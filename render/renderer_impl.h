@@ -175,8 +175,10 @@ struct DevicePrimitives {
   DeviceArray<Vec3, Exec> tri_normal;
 };
 
-// The parts a frame is rendered in where RenderSettings::stop is set.
-inline constexpr int64_t kStopParts = 64;
+// The parts a frame is rendered in where RenderSettings::stop is set: up to 64, each of at least
+// 2^18 pixels (an H200's resident threads) and 2^22 samples (a second or so on a CPU core).
+inline constexpr int64_t kStopParts = 64, kStopPartPixels = int64_t(1) << 18,
+                         kStopPartSamples = int64_t(1) << 22;
 
 template <class Exec>
 class RendererImpl final : public Renderer {
@@ -230,9 +232,14 @@ class RendererImpl final : public Renderer {
     DeviceArray<uint32_t, Exec> ray_count(&exec_, s.count_rays ? size_t(s.width) * size_t(s.height) : 0);
     if (s.count_rays) p.ray_count = view_of(ray_count);
     const auto t0 = std::chrono::steady_clock::now();
-    // In parts where a stop question is set, asked between them (the pixels do not depend on it).
+    // In parts where a stop question is set and the frame is big, asked between them (the pixels
+    // do not depend on it): each part keeps a GPU full and takes a while on a CPU.
     RenderResult r;
-    const int64_t parts = s.stop ? std::min<int64_t>(kStopParts, p.tiles) : 1;
+    const int64_t pixels = p.tiles * kTilePixels, samples = pixels * s.spp;
+    const int64_t parts =
+        s.stop ? std::clamp<int64_t>(std::min(pixels / kStopPartPixels, samples / kStopPartSamples), 1,
+                                     kStopParts)
+               : 1;
     for (int64_t k = 0; k < parts && !r.stopped; ++k) {
       const int64_t first = p.tiles * k / parts * kTilePixels, end = p.tiles * (k + 1) / parts * kTilePixels;
       launch_render_pixels(exec_, p, image.data(), first, end - first);

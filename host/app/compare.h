@@ -13,8 +13,8 @@ struct CompareOptions {
 };
 
 // 0 when both folders hold the same complete frames (run_folder.h) and each pair agrees: the same
-// step and time, the displacement and the damage within the tolerances; 1 otherwise. Throws
-// std::invalid_argument for a folder that is not a run's.
+// step and time (to 1e-6 relative), the displacement and the damage within the tolerances; 1 otherwise.
+// Throws std::invalid_argument for a folder that is not a run's.
 int compare_command(const CompareOptions& options);
 
 }  // namespace pd

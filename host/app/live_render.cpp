@@ -17,6 +17,7 @@ LiveRender::LiveRender(const Scene& scene, const std::string& out_dir, const std
   const SceneRender& r = *scene.render;
   RenderOptions o = render_options_from_scene(scene, out_dir);
   o.backend = backend;
+  o.check_run_files = false;
   try {
     renderer_ = std::make_unique<RunRenderer>(o, "");
   } catch (const EnvironmentError& e) {
@@ -33,8 +34,14 @@ void LiveRender::frame(int64_t frame) {
   if (frame % every_ != 0) return;
   // First in this process (a resumed run): the run's earlier images that are missing, those an
   // interrupt left unfinished.
-  for (int64_t f = 0; !caught_up_ && f < frame; f += every_)
-    if (!std::filesystem::exists(renderer_->image_dir() + "/" + frame_file_name(f, "png"))) draw(f);
+  for (int64_t f = 0; !caught_up_ && f < frame && InterruptGuard::signal_received() == 0; f += every_) {
+    if (std::filesystem::exists(renderer_->image_dir() + "/" + frame_file_name(f, "png"))) continue;
+    try {
+      draw(f);
+    } catch (const IoError& e) {  // (an earlier frame's file gone: that image only is missing)
+      std::printf("\nrender     frame %lld's image not drawn: %s\n", (long long)f, e.what());
+    }
+  }
   caught_up_ = true;
   if (InterruptGuard::signal_received() == 0) draw(frame);
 }

@@ -127,7 +127,7 @@ void check_render_options(const RenderOptions& o) {
 
 RunRenderer::RunRenderer(const RenderOptions& o, const std::string& last_frame) : options_(o) {
   check_render_options(o);
-  run_ = read_run_contents(o.dir);
+  if (o.check_run_files) run_ = read_run_contents(o.dir);
   rest_ = read_rest_file((fs::path(o.dir) / kRestFileName).string());
   out_ = o.out.empty() ? (fs::path(o.dir) / "render").string() : o.out;
   // Rest-space geometry the run wrote: Voronoi bodies' trimtopes, tet bodies' tetrahedra.
@@ -444,6 +444,7 @@ int render_frames(const RenderOptions& cli) {
     announce_output(movie);
     made = make_movie(images, movie);
     std::printf("movie      %s\n", made.message.c_str());
+    if (InterruptGuard::signal_received()) return kExitInterrupted;  // (ffmpeg stopped by it)
   }
   if (!made.made && o.frames.empty() && fs::exists(movie, ec))
     std::printf("note       %s is from an earlier render, not of these images\n", movie.c_str());

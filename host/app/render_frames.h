@@ -39,6 +39,9 @@ struct RenderOptions {
   std::string environment = "sky";             // "sky" (procedural) or the path of a Radiance .hdr map
   bool movie = true;            // DIR/render/movie.mp4 when ffmpeg is on PATH (all frames only)
   std::vector<int64_t> frames;  // frame numbers to render; empty: every frame of the run
+  // A finished run's folder: a file its journal lists must be there (a run rendering as it goes
+  // does not hold it to its journal, which a resume rewrites).
+  bool check_run_files = true;
   // `perifrac render`: the options given on the command line (their long names); the others take
   // the run's scene's [render] block where it has one (render_frames).
   std::vector<std::string> given;

@@ -701,7 +701,9 @@ void finish_run(const Simulation& sim, RunOutput& output, int64_t first_frame, c
 
 namespace {
 
-int run_guarded(const RunOptions& options, std::optional<InterruptGuard>& interrupt) {
+// `setting_up`: true until the set-up's last stage (the engine started), for run_command to tell an
+// interrupted set-up from a failure after it.
+int run_guarded(const RunOptions& options, std::optional<InterruptGuard>& interrupt, bool& setting_up) {
   RunTimes run;
   RunOptions opt = options;
   output_thread_wanted();  // a bad PERIFRAC_OUTPUT_THREAD is refused before the set-up's work
@@ -712,6 +714,8 @@ int run_guarded(const RunOptions& options, std::optional<InterruptGuard>& interr
     check_resume_target(*resume, *found, opt.frames, opt.out);
   Simulation sim = set_up_simulation(opt, resume);
   start_engine(sim, opt);
+  throw_if_interrupted("set-up");  // (the engine's families and stable step are a stage of their own)
+  setting_up = false;
   auto t = lap(run.started, run.engine);
   StageClock clock(&sim.stages, false);  // (an interrupt from here on stops in the frame loop)
   // Only rank 0 of a run over MPI ranks gets here (the others serve its engine).
@@ -757,12 +761,16 @@ int run_command(const RunOptions& options) {
   // first frame, which the next run takes over.
   std::optional<InterruptGuard> interrupt;
   if (!world_comm()) interrupt.emplace();
+  bool setting_up = true;
   try {
-    return run_guarded(options, interrupt);
+    return run_guarded(options, interrupt, setting_up);
   } catch (const std::exception& e) {
-    if (!InterruptGuard::signal_received()) throw;
+    // An interrupt's stop, or a set-up failure it caused (TetGen killed by the terminal's Ctrl-C);
+    // a failure after the set-up is reported as it is.
+    const bool stopped = dynamic_cast<const Interrupted*>(&e) != nullptr;
+    if (!stopped && !(setting_up && InterruptGuard::signal_received())) throw;
     std::printf("\n%s: no frame written; start the run again to run it\n",
-                dynamic_cast<const Interrupted*>(&e) ? e.what() : "interrupted during set-up");
+                stopped ? e.what() : "interrupted during set-up");
     return kExitInterrupted;
   }
 }

@@ -186,7 +186,13 @@ std::optional<RunManifest> read_manifest(const std::string& dir) {
 
 RunContents read_run_contents(const std::string& dir) {
   RunContents run;
-  if (const std::optional<RunManifest> m = read_manifest(dir)) run.frames_written = m->frames_written;
+  std::optional<RunManifest> manifest;
+  try {
+    manifest = read_manifest(dir);
+  } catch (const RunFolderError& e) {  // (a damaged file of the run, for its readers)
+    throw IoError(e.what());
+  }
+  if (manifest) run.frames_written = manifest->frames_written;
   for (const JournalEntry& e : read_journal(dir)) run.files.insert(e.path);
   return run;
 }
@@ -253,10 +259,10 @@ std::optional<RunManifest> check_run_folder(const std::string& dir, FolderUse us
 }
 
 OutputJournal::OutputJournal(std::string dir) : dir_(std::move(dir)) {
+  for (const JournalEntry& e : read_journal(dir_)) recorded_.insert(e.path);
   const std::string path = dir_ + "/" + kJournalFileName;
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd_ < 0) throw io_error_errno("write", path, errno);
-  for (const JournalEntry& e : read_journal(dir_)) recorded_.insert(e.path);
   set_output_observer([this](const std::string& p) { record(p); });
 }
 
@@ -281,8 +287,12 @@ void OutputJournal::record(const std::string& path) {
     if (!recorded_.insert(relative.string()).second) return;
   }
   const std::string line = std::to_string(frame_) + " " + relative.string() + "\n";
-  if (::write(fd_, line.data(), line.size()) != ssize_t(line.size()))
-    throw io_error_errno("write", dir_ + "/" + kJournalFileName, errno);
+  if (::write(fd_, line.data(), line.size()) != ssize_t(line.size())) {
+    const int err = errno;
+    const std::lock_guard<std::mutex> lock(recorded_mutex_);
+    recorded_.erase(relative.string());  // (not journaled: the next write of it tries again)
+    throw io_error_errno("write", dir_ + "/" + kJournalFileName, err);
+  }
 }
 
 RunFolder::RunFolder(std::string dir, FolderUse use) : dir_(std::move(dir)) {

@@ -54,8 +54,7 @@ struct RunContents {
   bool wrote(const std::string& relative) const { return files.count(relative) > 0; }
 };
 
-// Reads DIR's manifest and journal (either may be missing). Throws RunFolderError for a broken
-// manifest.
+// Reads DIR's manifest and journal (either may be missing). Throws IoError for a broken manifest.
 RunContents read_run_contents(const std::string& dir);
 
 // The frame files DIR holds complete (frame_NNNNN.pfr), by frame number: those up to the

@@ -94,17 +94,9 @@ int main(int argc, char** argv) {
   // Under mpirun, rank 0 runs the command and the engine's other ranks serve it
   // (cuda/parallel/partitioned_engine.h): they print nothing but errors.
   if (const auto world = world_comm()) {
-    const std::string command = argc > 1 ? argv[1] : "";
-    if (command != "run" && command != "bench") {
-      if (world->rank() == 0)
-        std::fprintf(stderr,
-                     "error: under mpirun only `perifrac run` and `perifrac bench` use the ranks; "
-                     "start `perifrac %s` without mpirun\n",
-                     command.c_str());
-      return int(kExitUsage);
-    }
     // Every rank runs the same command (one scene, scale and --set values): a rank started with
-    // other arguments would take another set-up and hang or garble the collective steps.
+    // other arguments would take another set-up and hang or garble the collective steps. Checked
+    // first, so that every rank takes the same way out of what follows.
     std::string line;
     for (int k = 1; k < argc; ++k) line += std::string(argv[k]) + '\0';
     const uint64_t mine = std::hash<std::string>{}(line);
@@ -120,7 +112,20 @@ int main(int argc, char** argv) {
       leave_world();
       return int(kExitUsage);
     }
-    if (world->rank() != 0 && !std::freopen("/dev/null", "w", stdout)) return int(kExitRuntime);
+    const std::string command = argc > 1 ? argv[1] : "";
+    if (command != "run" && command != "bench") {
+      if (world->rank() == 0)
+        std::fprintf(stderr,
+                     "error: under mpirun only `perifrac run` and `perifrac bench` use the ranks; "
+                     "start `perifrac %s` without mpirun\n",
+                     command.c_str());
+      leave_world();
+      return int(kExitUsage);
+    }
+    if (world->rank() != 0 && !std::freopen("/dev/null", "w", stdout)) {
+      leave_world();
+      return int(kExitRuntime);
+    }
   }
   CLI::App app{"perifrac: peridynamic fracture simulation on GPU and CPU"};
   const CommandActions actions = command_actions();

@@ -400,8 +400,8 @@ TetMesh tetrahedralize(const TriMesh& surface, const TetgenOptions& options, con
   for (size_t t = 0; t < mesh.tets.size(); ++t)
     if (mesh.volume(t) < 0) std::swap(mesh.tets[t][0], mesh.tets[t][1]);
   mesh.neighbors = face_neighbors(mesh.tets, mesh.vertices.size());
+  if (cache) cache->store(mesh);  // (before the lap, where an interrupt would stop the set-up)
   clock.lap("tetgen output files");
-  if (cache) cache->store(mesh);
   return mesh;
 }
 

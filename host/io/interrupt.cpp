@@ -1,5 +1,6 @@
 #include "host/io/interrupt.h"
 
+#include <atomic>
 #include <csignal>
 #include <cstring>
 #include <string>
@@ -10,11 +11,13 @@ namespace pd {
 
 namespace {
 
-volatile std::sig_atomic_t g_signal = 0;
+// Read by other threads than the handler's (the renderer's stop question, the output writers).
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);  // (so the handler may store it)
 struct sigaction g_previous_int, g_previous_term;
 
-// Async-signal-safe: records the signal, says so with write(2), and lets a second signal take
-// the default action.
+// Async-signal-safe: records the signal, says so with write(2), and lets a second signal, of
+// either kind, take the default action.
 extern "C" void on_interrupt(int sig) {
   g_signal = sig;
   static const char kMsg[] =
@@ -23,7 +26,8 @@ extern "C" void on_interrupt(int sig) {
   struct sigaction dfl;
   std::memset(&dfl, 0, sizeof dfl);
   dfl.sa_handler = SIG_DFL;
-  ::sigaction(sig, &dfl, nullptr);
+  ::sigaction(SIGINT, &dfl, nullptr);
+  ::sigaction(SIGTERM, &dfl, nullptr);
 }
 
 }  // namespace
@@ -49,9 +53,9 @@ int InterruptGuard::signal_received() {
 }
 
 void throw_if_interrupted(const char* where) {
-  if (g_signal != 0)
+  if (const int sig = g_signal; sig != 0)
     throw Interrupted(std::string("interrupted during ") + where + " (" +
-                      (g_signal == SIGTERM ? "SIGTERM" : "SIGINT") + ")");
+                      (sig == SIGTERM ? "SIGTERM" : "SIGINT") + ")");
 }
 
 }  // namespace pd
