@@ -66,6 +66,28 @@ TEST(CudaRenderer, OpaqueCubesTetsAndTurnedCubesMatchTheCpu) {
                     "opaque cubes, tets, turned cubes");
 }
 
+// A big frame with a stop question is drawn in parts (RenderSettings::stop): on the GPU, launches
+// over stretches of the tiles, the same bits as one launch over all of them.
+TEST(CudaRenderer, AFrameInPartsIsTheFrameInOneLaunch) {
+  if (!gpu_or_skip()) GTEST_SKIP();
+  const PrimitiveSet prims = testing::random_scene(9, 400, 400);
+  const RenderScene scene =
+      make_render_scene(prims, std::vector<Vec3>(size_t(prims.size()), Vec3{0.6, 0.4, 0.3}));
+  RenderSettings s;
+  s.width = 1024;
+  s.height = 1024;
+  s.spp = 32;  // 2^20 pixels and 2^25 samples: four parts
+  const Camera camera = frame_box(scene.tree.bounds, s.width, s.height);
+  const std::unique_ptr<Renderer> gpu = make_renderer(true);
+  const RenderResult whole = gpu->render_frame(scene, camera, s);
+  int asked = 0;
+  s.stop = [&asked] { return ++asked < 0; };
+  const RenderResult parts = gpu->render_frame(scene, camera, s);
+  EXPECT_EQ(asked, 3);
+  EXPECT_FALSE(parts.stopped);
+  EXPECT_TRUE(parts.image.rgb == whole.image.rgb);
+}
+
 TEST(CudaRenderer, GlassBlockMatchesTheCpu) {
   if (!gpu_or_skip()) GTEST_SKIP();
   // A glass block of touching cubes in front of opaque tets: refraction, Fresnel reflection and
