@@ -9,7 +9,7 @@ namespace pd {
 
 void apply_override(toml::table& root, const std::string& setting, const std::string& file) {
   const std::string allowed =
-      "KEY=VALUE, KEY a dotted path (materials.glass.density, bodies[0].spacing), "
+      "KEY=VALUE, KEY a dotted path (materials.glass.density, bodies[0].spacing, materials.\"a.b\".density), "
       "VALUE a TOML value (2.5e9, \"text\", [1, 0, 0], true)";
   const size_t eq = setting.find('=');
   std::string key = eq == std::string::npos ? setting : setting.substr(0, eq);
@@ -47,10 +47,19 @@ void apply_override(toml::table& root, const std::string& setting, const std::st
     return false;
   };
   while (i < key.size()) {
-    const size_t end = key.find_first_of(".[", i);
-    name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
+    if (key[i] == '"') {  // a quoted name, as TOML writes one holding a dot: materials."a.b".density
+      const size_t close = key.find('"', i + 1);
+      if (close == std::string::npos) fail("an unclosed \"");
+      name = key.substr(i + 1, close - i - 1);
+      i = close + 1;
+      if (i < key.size() && key[i] != '.' && key[i] != '[')
+        fail("a quoted name followed by '" + key.substr(i, 1) + "'");
+    } else {
+      const size_t end = key.find_first_of(".[", i);
+      name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
+      i = end == std::string::npos ? key.size() : end;
+    }
     if (name.empty()) fail("an empty name in the path");
-    i = end == std::string::npos ? key.size() : end;
     if (step_into_name(i >= key.size())) return;
     while (i < key.size() && key[i] == '[') {
       const size_t close = key.find(']', i);

@@ -48,6 +48,15 @@ TEST(SceneOverrides, MistakesNameTheSetting) {
   EXPECT_NE(error_of("a..b=1").find("an empty name in the path"), std::string::npos);
   EXPECT_NE(error_of("simulation.frames.x=1").find("not a table"), std::string::npos);
   EXPECT_NE(error_of("v=1\nw=2").find("line break"), std::string::npos);
+  EXPECT_NE(error_of("materials.\"a.b=1").find("an unclosed \""), std::string::npos);
+  EXPECT_NE(error_of("materials.\"a\"b=1").find("a quoted name followed by 'b'"), std::string::npos);
+}
+
+// A name holding a dot, quoted as TOML quotes it.
+TEST(SceneOverrides, AQuotedNameMayHoldADot) {
+  toml::table root = toml::parse("[materials.\"soda.lime\"]\ndensity = 2500\n");
+  apply_override(root, "materials.\"soda.lime\".density=2440", "s.toml");
+  EXPECT_EQ(root["materials"]["soda.lime"]["density"].value<int64_t>(), 2440);
 }
 
 }  // namespace
