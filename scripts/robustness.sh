@@ -239,6 +239,7 @@ case_ "scene smell" "two bodies of one name" 0 "both named 'block'" "$BIN" "${P[
 case_ "scene smell" "a body below the floor" 0 "start below the floor" "$BIN" "${P[@]}" drop.toml --frames 0 --out s3
 scene overlap.toml '[[bodies]]\nname = "lid"\nmaterial = "glass"\ncenter = [0.004, 0, 0]\nsize = [0.02, 0.01, 0.01]\nspacing = 0.002\n'
 case_ "scene smell" "overlapping bodies" 0 "bodies 'block' and 'lid' overlap" "$BIN" "${P[@]}" overlap.toml --frames 0 --out s4
+case_ "scene smell" "a collider started inside the body: the blow-up names it" 3 "192 particles started inside or pressed into colliders" "$BIN" "${P[@]}" s.toml --set 'simulation.dt="auto"' --set 'colliders[0].shape="sphere"' --set 'colliders[0].radius=0.008' --set 'colliders[0].center=[0,0,0]' --set 'colliders[0].stiffness=1e13' --out s6
 scene region.toml '[[regions]]\nbox_min = [1, 1, 1]\nbox_max = [2, 2, 2]\nstrain_limit = 0.01\n'
 case_ "scene smell" "a region holding no particle" 0 "warning: regions\[0\]: it holds no particle" "$BIN" "${P[@]}" region.toml --frames 0 --out s5
 

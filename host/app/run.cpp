@@ -484,13 +484,21 @@ bool stopped_by_energy_growth(const Simulation& sim, const Energy& energy0, cons
   else
     std::snprintf(growth, sizeof growth, "the energy is no longer finite (it was %.3g J at the start)",
                   energy0.balance());
+  // The likely cause: particles that started in a collider (warned at set-up), else the step.
+  char cause[160] = "";
+  if (sim.setup.started_in_colliders > 0)
+    std::snprintf(cause, sizeof cause,
+                  "; %lld particles started inside or pressed into colliders (warned at set-up): move them "
+                  "clear",
+                  (long long)sim.setup.started_in_colliders);
+  else if (sim.scene.contact)
+    std::snprintf(cause, sizeof cause, "; a high contact stiffness needs a smaller dt too");
   std::fprintf(stderr,
                "\nerror: numerical blow-up: %s by step %lld (frame %lld); particle %lld moves fastest. dt = "
                "%.3g s is %.2f of the critical time step%s. Frames up to %lld are written in %s\n",
                growth, (long long)engine.step(), (long long)frame, (long long)fastest_particle(engine),
-               sim.setup.dt, sim.setup.dt / sim.setup.critical_dt,
-               sim.scene.contact ? "; a high contact stiffness needs a smaller dt too" : "",
-               (long long)(frame - 1), out.c_str());
+               sim.setup.dt, sim.setup.dt / sim.setup.critical_dt, cause, (long long)(frame - 1),
+               out.c_str());
   return true;
 }
 

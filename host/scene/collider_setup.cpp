@@ -307,8 +307,9 @@ double colliders_critical_dt(const SimulationInput& in, const std::vector<double
 
 // One line on stderr per collider that starts with particles' centres inside it: they would be
 // thrown out at once (a scene smell, not an error: a press may start closed on purpose).
-void warn_of_particles_inside_colliders(const SimulationInput& in,
-                                        const std::vector<std::string>& body_names) {
+int64_t warn_of_particles_inside_colliders(const SimulationInput& in,
+                                           const std::vector<std::string>& body_names) {
+  int64_t warned = 0;
   std::vector<Collider> posed = in.colliders;
   in.motion.pose_colliders(0, posed);
   FreeBodies(in.motion.colliders).pose(posed);
@@ -342,8 +343,10 @@ void warn_of_particles_inside_colliders(const SimulationInput& in,
                      "it (within their contact radius V^(1/3)/2): it pushes them from the first step, "
                      "which cracks a brittle body; move the body %.3g m or more away from it\n",
                      k, (long long)pressed[b], body_names[b].c_str(), deepest[b], deepest[b]);
+      warned += inside[b] + pressed[b];
     }
   }
+  return warned;
 }
 
 MassProperties mass_properties(const TriMesh& mesh) {

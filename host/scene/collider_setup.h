@@ -28,9 +28,10 @@ std::vector<TriMesh> add_colliders(const Scene& scene, SimulationInput& in);
 // `material_dt[material]`) and the free colliders' contacts with each other; infinity without.
 double colliders_critical_dt(const SimulationInput& in, const std::vector<double>& material_dt);
 
-// One line on stderr per collider that starts with particles' centres inside it.
-void warn_of_particles_inside_colliders(const SimulationInput& in,
-                                        const std::vector<std::string>& body_names);
+// One line on stderr per collider that starts with particles' centres inside it, or pressed into
+// it; returns how many particles start so.
+int64_t warn_of_particles_inside_colliders(const SimulationInput& in,
+                                           const std::vector<std::string>& body_names);
 
 // Volume, centroid and inertia tensor (about the centroid, per unit density, row major) of a
 // closed, outward mesh, from the signed tetrahedra of its triangles with the origin.

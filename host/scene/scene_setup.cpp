@@ -422,7 +422,7 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
 
   // Colliders (host/scene/collider_setup.h); their push enters every particle's stable step.
   result.collider_meshes = add_colliders(scene, in);
-  warn_of_particles_inside_colliders(in, result.body_names);
+  result.started_in_colliders = warn_of_particles_inside_colliders(in, result.body_names);
   for (const std::string& warning : scene_smells(scene, in, result.body_names))
     std::fprintf(stderr, "%s\n", warning.c_str());
   check_physical_ranges(scene, result);

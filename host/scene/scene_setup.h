@@ -55,7 +55,8 @@ struct SetupResult {
   SimulationInput input;
   std::vector<MaterialSummary> materials;  // one per material table entry
   std::vector<std::string> body_names;
-  double critical_dt = 0;      // smallest over the materials
+  double critical_dt = 0;            // smallest over the materials
+  int64_t started_in_colliders = 0;  // particles that start inside or pressed into a collider (warned)
   double dt = 0;               // the time step the run uses: the scene's, or kAutoDtFraction * critical_dt
   ElementAdjacency adjacency;  // which particles' elements share a face, over all bodies
   bool all_cubes = true;       // every body is made of grid cubes
