@@ -116,6 +116,16 @@ TEST_F(RenderFramesTest, RendersOnlyTheChosenFrames) {
   }
 }
 
+// render_frames's refusal of `o` (std::invalid_argument, the user's mistake), or "no refusal".
+std::string refusal(const RenderOptions& o) {
+  try {
+    render_frames(o);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no refusal";
+}
+
 // A run's manifest and journal (run_folder.h) as a run leaves them: frames 0 to `written`
 // complete, the files named in the journal.
 void write_run_records(const fs::path& dir, int64_t written, const std::vector<std::string>& files) {
@@ -172,12 +182,7 @@ TEST_F(RenderFramesTest, ARunWithoutBinaryFramesIsNamedAsSuch) {
   RenderOptions o;
   o.dir = dir_.string();
   o.backend = "cpu";
-  try {
-    render_frames(o);
-    FAIL() << "no refusal";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("output.binary = false"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(refusal(o).find("output.binary = false"), std::string::npos) << refusal(o);
 }
 
 // Repeated or unordered --frames render each frame once, in order; an --out that is a file is
@@ -193,12 +198,7 @@ TEST_F(RenderFramesTest, FramesOnceInOrderAndOutMustBeAFolder) {
   o.dir = dir_.string();
   o.backend = "cpu";
   o.out = path("frame_00000.pfr");
-  try {
-    render_frames(o);
-    FAIL() << "no refusal";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("is a file, not a folder"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(refusal(o).find("is a file, not a folder"), std::string::npos) << refusal(o);
 }
 
 // A camera straight above its target renders (the image's up is -z), one too far out is refused
@@ -214,12 +214,7 @@ TEST_F(RenderFramesTest, TopDownCameraRendersAndAFarOneIsRefused) {
   o.eye = Vec3{real(0.03), real(1), real(0.02)};
   EXPECT_EQ(render_frames(o), 0);
   o.eye = Vec3{real(1e30), real(1e30), real(1e30)};
-  try {
-    render_frames(o);
-    FAIL() << "no refusal";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("eye 1e+30"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(refusal(o).find("eye 1e+30"), std::string::npos) << refusal(o);
 }
 
 // SIGINT while `perifrac render` works: it stops after the image in progress, says how many are
