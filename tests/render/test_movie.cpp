@@ -81,7 +81,9 @@ TEST_F(Movie, EncodesTheGivenImagesWithFfmpeg) {
   EXPECT_EQ(std::string(head + 4, 4), "ftyp");  // an ISO media (MP4) file
   EXPECT_EQ(temporaries(), 0);
   const int frames = movie_frames(dir_ / kMovieFileName);
-  if (frames >= 0) EXPECT_EQ(frames, 3);
+  if (frames >= 0) {
+    EXPECT_EQ(frames, 3);
+  }
 }
 
 TEST_F(Movie, FailedEncodingLeavesNothingBehind) {

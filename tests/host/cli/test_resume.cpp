@@ -472,9 +472,11 @@ TEST_F(Resume, InterruptDuringTheSetUpStopsItCleanly) {
   EXPECT_NE(read_all(log_).find("interrupted during TetGen (SIGINT): no frame written"), std::string::npos)
       << read_all(log_);
   EXPECT_LT(seconds, 30);  // (the fake TetGen would sleep 60 s)
-  if (std::filesystem::exists(out))
-    for (const auto& e : std::filesystem::directory_iterator(out))
+  if (std::filesystem::exists(out)) {
+    for (const auto& e : std::filesystem::directory_iterator(out)) {
       EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+    }
+  }
 }
 
 }  // namespace
