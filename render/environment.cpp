@@ -28,6 +28,22 @@ namespace {
                          "twice as wide as high)");
 }
 
+// stb_image's reader through callbacks that note a read past the file's end: stb hands a
+// decoder zeros there, so a truncated file would decode to black texels without an error.
+struct CountingFile {
+  std::FILE* file;
+  bool read_past_end = false;
+
+  static int read(void* user, char* data, int size) {
+    auto* f = static_cast<CountingFile*>(user);
+    const size_t n = std::fread(data, 1, size_t(size), f->file);
+    if (n == 0) f->read_past_end = true;
+    return int(n);
+  }
+  static void skip(void* user, int n) { std::fseek(static_cast<CountingFile*>(user)->file, n, SEEK_CUR); }
+  static int eof(void* user) { return std::feof(static_cast<CountingFile*>(user)->file); }
+};
+
 }  // namespace
 
 EnvironmentMap load_environment(const std::string& path) {
@@ -36,8 +52,14 @@ EnvironmentMap load_environment(const std::string& path) {
   if (!file) cannot_read(path, std::strerror(errno));
   if (!stbi_is_hdr_from_file(file.get())) cannot_read(path, "not a Radiance .hdr file");
   int w = 0, h = 0, channels = 0;
-  const std::unique_ptr<float, void (*)(void*)> data(stbi_loadf_from_file(file.get(), &w, &h, &channels, 3),
-                                                     &stbi_image_free);
+  CountingFile reader{file.get()};
+  const stbi_io_callbacks callbacks{&CountingFile::read, &CountingFile::skip, &CountingFile::eof};
+  const std::unique_ptr<float, void (*)(void*)> data(
+      stbi_loadf_from_callbacks(&callbacks, &reader, &w, &h, &channels, 3), &stbi_image_free);
+  if (reader.read_past_end)
+    cannot_read(path, w > 0 && h > 0 ? "truncated: the file ends before its " + std::to_string(w) + " x " +
+                                           std::to_string(h) + " texels do"
+                                     : std::string("truncated"));
   if (!data) cannot_read(path, std::string("the decoder failed: ") + stbi_failure_reason());
   if (w != 2 * h) cannot_read(path, std::to_string(w) + " x " + std::to_string(h) + " texels");
   EnvironmentMap m;

@@ -186,6 +186,8 @@ case_ "command line" "render --out naming a file" 2 "--out 's.toml' is a file, n
 case_ "command line" "render --eye beyond 1e9 m" 2 "eye 1e\+30,1e\+30,1e\+30 is too far out" "$BIN" render o8 --eye 1e30,1e30,1e30
 case_ "command line" "render --eye straight above the target" 0 "rendered   3 frames" "$BIN" render o8 --eye 0,1,0 --look-at 0,0,0 --width 32 --height 32 --no-movie
 case_ "command line" "render --ior nan" 2 "--ior: value out of range" "$BIN" render o8 --ior nan
+{ printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n'; head -c 16 /dev/zero | tr '\0' '\200'; } >cut.hdr
+case_ "bounded input" "render --environment of a truncated .hdr" 2 "cut.hdr': truncated: the file ends before its 4 x 2 texels do" "$BIN" render o8 --environment cut.hdr
 case_ "command line" "info into a full disk (/dev/full)" 4 "cannot write the standard output" sh -c "'$BIN' info >/dev/full"
 # A killed run's last frame (past the manifest's frames written), and a frame file the run wrote gone.
 cp -r o8 o11 && sed -i 's/^frames_written 2$/frames_written 1/' o11/run.manifest

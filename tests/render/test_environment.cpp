@@ -122,6 +122,19 @@ TEST_F(Environment, UnusableFilesAreRefusedNamingTheFile) {
   const std::vector<float> pixels(3 * 16 * 16, 1.0f);
   ASSERT_NE(stbi_write_hdr(square.c_str(), 16, 16, 3, pixels.data()), 0);
   EXPECT_NE(message(square).find("16 x 16 texels"), std::string::npos) << message(square);
+  // A map cut short (a copy that stopped, a download that failed) is refused, not drawn black
+  // where its texels are missing; the whole file loads.
+  const std::string whole = write_map("whole.hdr", 64, [](Vec3) { return 1.0; });
+  EXPECT_EQ(message(whole), "no error");
+  const std::uintmax_t size = fs::file_size(whole);
+  for (const auto cut : {size - 1, size / 2, std::uintmax_t{20}}) {  // 20 bytes: within the header
+    const std::string cut_path = (dir_ / ("cut" + std::to_string(cut) + ".hdr")).string();
+    fs::copy_file(whole, cut_path);
+    fs::resize_file(cut_path, cut);
+    const std::string expected =
+        cut > 20 ? "truncated: the file ends before its 64 x 32 texels do" : "cut20.hdr': truncated (allowed";
+    EXPECT_NE(message(cut_path).find(expected), std::string::npos) << message(cut_path);
+  }
 }
 
 // The unit sphere as 320 tetrahedra: an icosahedron subdivided twice, projected onto the sphere,
