@@ -45,16 +45,13 @@ DistanceGrid distance_grid(const TriMesh& mesh, bool closed, double cell, double
   for (int64_t row = 0; row < ny * nz; ++row) {
     const int64_t j = row % ny, k = row / ny;
     const double y = g.origin[1] + cell * double(j), z = g.origin[2] + cell * double(k);
-    std::vector<double> xs;
+    std::vector<InsideTest::Crossing> xs;
     if (inside) inside->crossings(y, z, xs);
-    size_t after = 0;  // crossings at or before x
+    RowWalk walk(xs);
     for (int64_t i = 0; i < nx; ++i) {
       const double x = g.origin[0] + cell * double(i);
       double d = nearest.closest({x, y, z}).distance;
-      if (inside) {
-        while (after < xs.size() && xs[after] <= x) ++after;
-        if ((xs.size() - after) % 2 == 1) d = -d;  // an odd number of crossings beyond x: inside
-      }
+      if (inside && walk.inside(x)) d = -d;
       g.distance[size_t(i + nx * (j + ny * k))] = float(d);
     }
   }

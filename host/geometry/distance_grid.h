@@ -25,7 +25,7 @@ struct DistanceGrid {
 int64_t distance_grid_nodes(const TriMesh& mesh, double cell, double margin);
 
 // Samples the distance to `mesh` on nodes of spacing `cell` covering its bounding box and `margin`
-// around it; `closed`: signed by ray parity (InsideTest; the mesh must be a closed solid).
+// around it; `closed`: signed by the inside test (InsideTest; the mesh must be a closed solid).
 DistanceGrid distance_grid(const TriMesh& mesh, bool closed, double cell, double margin);
 
 }  // namespace pd

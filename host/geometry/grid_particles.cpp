@@ -64,23 +64,22 @@ ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t ma
     n[a] = int64_t(std::ceil(box.size()[a] / spacing)) + 1;
     origin[a] = center[a] + (0.5 - 0.5 * double(n[a])) * spacing;
   }
-  // One ray per (y, z) column: a centre is inside when an odd number of crossings lie beyond it.
+  // One ray per (y, z) column: a centre is inside by the winding of the crossings beyond it.
   ParticleGeometry g;
   StageClock clock(&g.stages);
   const InsideTest inside(solid);
   std::vector<int32_t> id(size_t(n[0] * n[1] * n[2]), -1);
   g.kind = ElementKind::cube;
   g.cube_side = spacing;
-  std::vector<double> xs;
+  std::vector<InsideTest::Crossing> xs;
   for (int64_t k = 0; k < n[2]; ++k)
     for (int64_t j = 0; j < n[1]; ++j) {
       const double y = origin[1] + double(j) * spacing, z = origin[2] + double(k) * spacing;
       inside.crossings(y, z, xs);
-      size_t beyond = 0;  // crossings <= x so far
+      RowWalk row(xs);
       for (int64_t i = 0; i < n[0]; ++i) {
         const double x = origin[0] + double(i) * spacing;
-        while (beyond < xs.size() && xs[beyond] <= x) ++beyond;
-        if ((xs.size() - beyond) % 2 == 0) continue;
+        if (!row.inside(x)) continue;
         id[size_t((k * n[1] + j) * n[0] + i)] = int32_t(g.position.size());
         g.position.push_back({x, y, z});
       }

@@ -66,7 +66,7 @@ InsideTest::InsideTest(const TriMesh& mesh) : mesh_(&mesh), box_(bounds(mesh)) {
   }
 }
 
-void InsideTest::crossings(double y, double z, std::vector<double>& xs) const {
+void InsideTest::crossings(double y, double z, std::vector<Crossing>& xs) const {
   xs.clear();
   if (!(y >= box_.lo[1] && y <= box_.hi[1] && z >= box_.lo[2] && z <= box_.hi[2])) return;
   const int i = std::min(ny_ - 1, int((y - y0_) * inv_cell_));
@@ -81,16 +81,33 @@ void InsideTest::crossings(double y, double z, std::vector<double>& xs) const {
     const Vec3d& a = mesh_->vertices[t[0]];
     const Vec3d n = cross(mesh_->vertices[t[1]] - a, mesh_->vertices[t[2]] - a);
     if (n[0] == 0) continue;
-    xs.push_back(a[0] - (n[1] * (y - a[1]) + n[2] * (z - a[2])) / n[0]);
+    xs.push_back({a[0] - (n[1] * (y - a[1]) + n[2] * (z - a[2])) / n[0], n[0] > 0 ? 1 : -1});
   }
-  std::sort(xs.begin(), xs.end());
+  std::sort(xs.begin(), xs.end(), [](const Crossing& a, const Crossing& b) { return a.x < b.x; });
 }
 
 bool InsideTest::inside(const Vec3d& p) const {
-  thread_local std::vector<double> xs;
+  thread_local std::vector<Crossing> xs;
   crossings(p[1], p[2], xs);
-  const size_t above = size_t(xs.end() - std::upper_bound(xs.begin(), xs.end(), p[0]));
-  return above % 2 == 1;
+  return inside_of_row(xs, p[0]);
+}
+
+bool inside_of_row(const std::vector<InsideTest::Crossing>& xs, double x) {
+  int winding = 0;
+  for (auto c = std::upper_bound(xs.begin(), xs.end(), x,
+                                 [](double v, const InsideTest::Crossing&k) { return v < k.x; });
+       c != xs.end(); ++c)
+    winding += c->sign;
+  return winding != 0;
+}
+
+RowWalk::RowWalk(const std::vector<InsideTest::Crossing>& xs) : xs_(xs) {
+  for (const InsideTest::Crossing& c : xs) winding_ += c.sign;
+}
+
+bool RowWalk::inside(double x) {
+  while (next_ < xs_.size() && xs_[next_].x <= x) winding_ -= xs_[next_++].sign;
+  return winding_ != 0;
 }
 
 }  // namespace pd

@@ -141,7 +141,7 @@ std::vector<Vec3d> poisson_disk_points(const TriMesh& solid, const InsideTest& i
         }
       }
     };
-    std::vector<double> xs;
+    std::vector<InsideTest::Crossing> xs;
     const int64_t lo[3] = {std::max<int64_t>(2, tx << kTileShift), std::max<int64_t>(2, ty << kTileShift),
                            std::max<int64_t>(2, tz << kTileShift)};
     const int64_t hi[3] = {std::min((tx + 1) << kTileShift, grid.count(0) + 2),
@@ -154,9 +154,8 @@ std::vector<Vec3d> poisson_disk_points(const TriMesh& solid, const InsideTest& i
         if (xs.empty()) continue;
         for (int64_t x = lo[0]; x < hi[0]; ++x) {
           const Vec3d p = grid.center(x, y, z);
-          const size_t beyond = size_t(xs.end() - std::upper_bound(xs.begin(), xs.end(), p[0]));
           const int64_t c[3] = {x, y, z};
-          if (beyond % 2 == 0 || !grid.empty(c) || !grid.free(p, c)) continue;
+          if (!inside_of_row(xs, p[0]) || !grid.empty(c) || !grid.free(p, c)) continue;
           accept(p, c);
           grow();
         }

@@ -29,13 +29,9 @@ bool TetBodySolids::has(int32_t body) const {
 
 void TetBodySolids::inside_along_x(int32_t body, double x0, double dx, double y, double z, int count,
                                    uint8_t* inside) const {
-  thread_local std::vector<double> xs;  // the crossings of the line (y, z), sorted
+  thread_local std::vector<InsideTest::Crossing> xs;  // the crossings of the line (y, z), sorted
   solids_[size_t(body)]->test.crossings(y, z, xs);
-  for (int k = 0; k < count; ++k) {
-    const double x = x0 + k * dx;
-    // Inside where an odd number of crossings lie past the point (InsideTest::crossings).
-    inside[k] = uint8_t((xs.end() - std::upper_bound(xs.begin(), xs.end(), x)) & 1);
-  }
+  for (int k = 0; k < count; ++k) inside[k] = uint8_t(inside_of_row(xs, x0 + k * dx));
 }
 
 }  // namespace pd

@@ -1,6 +1,6 @@
 // The solids of tet bodies for the ghost surface correction (cuda/engine/body_solids.h): each
-// body's tet mesh, its tets' faces without a neighbour as a closed surface, tested by ray parity
-// (inside_test.h), one ray per line of stencil points.
+// body's tet mesh, its tets' faces without a neighbour as a closed surface, tested by the
+// inside test (inside_test.h), one ray per line of stencil points.
 #pragma once
 
 #include <cstdint>

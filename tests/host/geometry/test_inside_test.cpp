@@ -1,5 +1,6 @@
-// Ray-parity inside test: exact on the grid alignments that break naive ray casting (rays
-// through vertices and along shared edges), and right for random points of curved shapes.
+// The inside test (nonzero winding): exact on the grid alignments that break naive ray casting
+// (rays through vertices and along shared edges), right for random points of curved shapes, the
+// union where closed parts overlap and empty in a cavity.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -47,6 +48,32 @@ TEST(InsideTest, BoxDiagonalsAndGridCentres) {
         const bool in = std::fabs(p[0]) < 1 && std::fabs(p[1]) < 1 && std::fabs(p[2]) < 1;
         ASSERT_EQ(inside.inside(p), in) << p[0] << " " << p[1] << " " << p[2];
       }
+}
+
+// Two closed boxes modelled into each other (an artist's mesh of parts): their union is inside,
+// the overlap too (ray parity left it empty); a box facing inward inside another is a cavity.
+TEST(InsideTest, OverlappingPartsAreTheirUnionAndACavityIsEmpty) {
+  TriMesh parts = box_mesh({2, 2, 2});
+  TriMesh moved = box_mesh({2, 2, 2});
+  for (Vec3d& v : moved.vertices) v[0] += 1.03;  // overlapping 0.97 along x
+  append(parts, moved);
+  const InsideTest union_test(parts);
+  for (int i = 0; i < 70; ++i)
+    for (double y : {-0.9, 0.1, 0.77}) {
+      const double x = -1.2 + 0.05 * i + 0.013;  // never on a face
+      const bool in = x > -1 && x < 2.03;
+      ASSERT_EQ(union_test.inside({x, y, 0.31}), in) << x << " " << y;
+    }
+  TriMesh hollow = box_mesh({2, 2, 2});
+  TriMesh cavity = box_mesh({1, 1, 1});
+  flip_orientation(cavity);
+  append(hollow, cavity);
+  const InsideTest hollow_test(hollow);
+  for (int i = 0; i < 48; ++i) {
+    const double x = -1.2 + 0.05 * i + 0.013;
+    const bool in = std::fabs(x) < 1 && std::fabs(x) > 0.5;
+    ASSERT_EQ(hollow_test.inside({x, 0.11, -0.07}), in) << x;
+  }
 }
 
 TEST(InsideTest, RandomPointsOfATorus) {
