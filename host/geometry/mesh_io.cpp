@@ -43,15 +43,54 @@ std::string printable(std::string_view text) {
 
 }  // namespace detail
 
+std::string_view without_utf8_mark(const std::string& bytes) {
+  std::string_view view(bytes);
+  if (view.substr(0, 3) == "\xEF\xBB\xBF") view.remove_prefix(3);
+  return view;
+}
+
+namespace {
+
+// Vertices no triangle uses left out (a stray point would still set the bounds that place the
+// body); a triangle naming a vertex that is not there keeps the mesh as it is, for its check.
+void drop_unused_vertices(TriMesh& mesh) {
+  std::vector<int32_t> remap(mesh.vertices.size(), -1);
+  for (const Triangle& t : mesh.triangles)
+    for (int32_t c : t) {
+      if (c < 0 || size_t(c) >= mesh.vertices.size()) return;
+      remap[size_t(c)] = 0;
+    }
+  std::vector<Vec3d> kept;
+  for (size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (remap[v] == 0) {
+      remap[v] = int32_t(kept.size());
+      kept.push_back(mesh.vertices[v]);
+    }
+  if (kept.size() == mesh.vertices.size()) return;
+  mesh.vertices = std::move(kept);
+  for (Triangle& t : mesh.triangles)
+    for (int32_t& c : t) c = remap[size_t(c)];
+}
+
+TriMesh read_by_extension(const std::string& path, const std::string& ext) {
+  if (ext == ".obj") return read_obj(path);
+  if (ext == ".ply") return read_ply(path);
+  return read_stl(path);
+}
+
+}  // namespace
+
 TriMesh read_mesh(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw MeshError(path, "is a folder, not a mesh file (allowed: an .obj, .ply or .stl file)");
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".obj") return read_obj(path);
-  if (ext == ".ply") return read_ply(path);
-  if (ext == ".stl") return read_stl(path);
+  if (ext == ".obj" || ext == ".ply" || ext == ".stl") {
+    TriMesh mesh = read_by_extension(path, ext);
+    drop_unused_vertices(mesh);
+    return mesh;
+  }
   throw MeshError(path,
                   (ext.empty() ? std::string("has no file extension") : "unknown mesh format '" + ext + "'") +
                       " (allowed: .obj, .ply, .stl)");

@@ -24,6 +24,9 @@ TriMesh parse_obj(const std::string& bytes, const std::string& path);
 TriMesh parse_ply(const std::string& bytes, const std::string& path);
 TriMesh parse_stl(const std::string& bytes, const std::string& path);
 
+// A text format's bytes without a UTF-8 byte-order mark at their start (an editor's mark).
+std::string_view without_utf8_mark(const std::string& bytes);
+
 // Writers (atomic: temporary file, then rename; IoError on failure).
 void write_obj(const TriMesh& mesh, const std::string& path);
 void write_ply(const TriMesh& mesh, const std::string& path, bool binary);

@@ -33,17 +33,18 @@ TriMesh read_obj(const std::string& path) {
   return parse_obj(detail::read_file_bytes(path), path);
 }
 
-TriMesh parse_obj(const std::string& text, const std::string& path) {
+TriMesh parse_obj(const std::string& bytes, const std::string& path) {
+  const std::string_view text = without_utf8_mark(bytes);
   TriMesh mesh;
   std::string token;
   std::vector<int32_t> polygon;
   size_t line_no = 0;
   for (size_t pos = 0; pos < text.size();) {
-    size_t eol = text.find('\n', pos);
+    size_t eol = text.find_first_of("\r\n", pos);  // lines end in LF, CR LF or CR alone
     if (eol == std::string::npos) eol = text.size();
     ++line_no;
     Line line{text.data() + pos, text.data() + eol};
-    pos = eol + 1;
+    pos = eol + (text.compare(eol, 2, "\r\n") == 0 ? 2 : 1);
     auto fail = [&](const std::string& what, const std::string& allowed) {
       throw MeshError(path, "line " + std::to_string(line_no) + ": " + what + " (allowed: " + allowed + ")");
     };
@@ -63,7 +64,7 @@ TriMesh parse_obj(const std::string& text, const std::string& path) {
     } else if (token == "f") {
       // Face: the vertex index before the first '/', 1-based or negative (relative).
       polygon.clear();
-      while (line.next(token)) {
+      while (line.next(token) && token[0] != '#') {  // a comment may end the line
         char* stop = nullptr;
         const long index = std::strtol(token.c_str(), &stop, 10);
         if (stop == token.c_str() || (*stop != '\0' && *stop != '/'))

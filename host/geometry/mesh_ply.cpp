@@ -143,7 +143,8 @@ TriMesh read_ply(const std::string& path) {
   return parse_ply(detail::read_file_bytes(path), path);
 }
 
-TriMesh parse_ply(const std::string& bytes, const std::string& path) {
+TriMesh parse_ply(const std::string& file_bytes, const std::string& path) {
+  const std::string bytes(without_utf8_mark(file_bytes));
   auto fail = [&](const std::string& what, const std::string& allowed) {
     throw MeshError(path, what + " (allowed: " + allowed + ")");
   };

@@ -1,5 +1,7 @@
 // STL, binary (80-byte header, count, 50-byte facets) or ascii (solid/facet/vertex). Facets
 // carry their own corners; bit-identical corners are merged so the mesh is indexed.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -58,25 +60,39 @@ TriMesh read_binary(const std::string& path, const std::string& bytes, uint32_t 
   return mesh;
 }
 
+// Keywords are compared in lower case (some exporters write SOLID, FACET, VERTEX).
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return text;
+}
+
 TriMesh read_ascii(const std::string& path, const std::string& text) {
   TriMesh mesh;
   Welder welder(mesh);
   Triangle t{};
-  int corner = 0;
+  int corner = 0, facet_vertices = 0;
+  bool ended = false;  // an endsolid line seen
   size_t line_no = 0;
   for (size_t pos = 0; pos < text.size();) {
     size_t eol = text.find('\n', pos);
     if (eol == std::string::npos) eol = text.size();
-    const std::string line = text.substr(pos, eol - pos);
+    const std::string line = lower(text.substr(pos, eol - pos));
     pos = eol + 1;
     ++line_no;
     const size_t start = line.find_first_not_of(" \t\r");
+    if (start != std::string::npos && line.compare(start, 8, "endsolid") == 0) ended = true;
     if (start == std::string::npos || line.compare(start, 6, "vertex") != 0) {
-      if (start != std::string::npos && line.compare(start, 8, "endfacet") == 0 && corner != 0)
-        throw MeshError(path, "line " + std::to_string(line_no) + ": a facet ends after " +
-                                  std::to_string(corner) + " vertices (allowed: 3 vertices per facet)");
+      if (start != std::string::npos && line.compare(start, 8, "endfacet") == 0) {
+        if (facet_vertices != 3)
+          throw MeshError(path, "line " + std::to_string(line_no) + ": a facet of " +
+                                    std::to_string(facet_vertices) +
+                                    " vertices (allowed: 3 vertices per facet)");
+        facet_vertices = 0;
+      }
       continue;
     }
+    ++facet_vertices;
     // "vertex x y z"
     Vec3d v{};
     const char* p = line.c_str() + start + 6;
@@ -95,6 +111,10 @@ TriMesh read_ascii(const std::string& path, const std::string& text) {
     }
   }
   if (mesh.triangles.empty()) throw MeshError(path, "no facets (allowed: a mesh with at least one triangle)");
+  if (!ended || facet_vertices != 0)
+    throw MeshError(path,
+                    "the file ends before its 'endsolid' line: cut short? (allowed: a whole ascii STL, "
+                    "solid ... endsolid)");
   return mesh;
 }
 
@@ -112,7 +132,8 @@ TriMesh parse_stl(const std::string& bytes, const std::string& path) {
     for (int k = 0; k < 4; ++k) count |= uint32_t(uint8_t(bytes[80 + k])) << (8 * k);
     if (bytes.size() == 84 + size_t(count) * 50) return read_binary(path, bytes, count);
   }
-  if (bytes.compare(0, 5, "solid") == 0) return read_ascii(path, bytes);
+  const std::string text(without_utf8_mark(bytes));
+  if (lower(text.substr(0, 5)) == "solid") return read_ascii(path, text);
   throw MeshError(path,
                   "neither binary STL (size 84 + 50 x facet count) nor ascii STL (starts with 'solid') "
                   "(allowed: binary or ascii STL)");

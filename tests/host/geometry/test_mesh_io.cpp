@@ -2,6 +2,8 @@
 // (STL binary to float precision); malformed files give a MeshError naming the file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "host/geometry/mesh_io.h"
 #include "host/geometry/shapes.h"
 #include "tests/host/geometry/geometry_fixtures.h"
@@ -101,7 +103,48 @@ TEST(MeshIo, MalformedFilesAreRefused) {
   expect_read_error(
       "partial.stl",
       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n",
-      "a facet ends after 2 vertices");
+      "line 7: a facet of 2 vertices");
+  expect_read_error("four.stl",
+                    "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                    "vertex 1 1 0\nendloop\nendfacet\nendsolid x\n",
+                    "line 9: a facet of 4 vertices");
+  // An ascii STL cut between facets (no endsolid) was read as a mesh with a hole.
+  expect_read_error("cut.stl",
+                    "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                    "vertex 0 1 0\nendloop\nendfacet\n",
+                    "the file ends before its 'endsolid' line");
+}
+
+// What editors and other exporters write: a UTF-8 byte-order mark, upper-case STL keywords, a
+// comment after a face, lines ending in CR alone; and vertices no face uses, which are left out
+// (a stray one set the bounds that place the body).
+TEST(MeshIo, EditorsMarksCommentsLineEndsAndStrayVertices) {
+  ScratchDir dir("editors");
+  const std::string mark = "\xEF\xBB\xBF";
+  const std::string tetra_obj =
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2 # base\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  write_text(dir.file("mark.obj"), mark + tetra_obj);
+  EXPECT_EQ(read_mesh(dir.file("mark.obj")).triangles.size(), 4u);
+  std::string cr = tetra_obj;
+  std::replace(cr.begin(), cr.end(), '\n', '\r');
+  write_text(dir.file("cr.obj"), cr);
+  EXPECT_EQ(read_mesh(dir.file("cr.obj")).triangles.size(), 4u);
+  write_text(dir.file("stray.obj"), "v 100 100 100\n" + tetra_obj.substr(0, 32) + "v 2 2 2\n" +
+                                        "f 2 4 3\nf 2 3 5\nf 2 5 4\nf 3 4 5\n");
+  const TriMesh stray = read_mesh(dir.file("stray.obj"));
+  ASSERT_EQ(stray.vertices.size(), 4u);
+  EXPECT_EQ(bounds(stray).hi, (Vec3d{1, 1, 1}));
+  EXPECT_EQ(stray.triangles[0], (Triangle{0, 2, 1}));
+  const std::string facet =
+      "FACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 0 0 0\nVERTEX 1 0 0\nVERTEX 0 1 0\nENDLOOP\nENDFACET\n";
+  write_text(dir.file("upper.stl"), mark + "SOLID X\n" + facet + "ENDSOLID X\n");
+  EXPECT_EQ(read_mesh(dir.file("upper.stl")).triangles.size(), 1u);
+  write_text(dir.file("mark.ply"), mark +
+                                       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                       "property float y\nproperty float z\nelement face 1\n"
+                                       "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n"
+                                       "0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(read_mesh(dir.file("mark.ply")).triangles.size(), 1u);
 }
 
 TEST(MeshIo, MissingFileNamesTheReason) {
