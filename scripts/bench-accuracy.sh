@@ -11,7 +11,7 @@
 #   scripts/bench-accuracy.sh BUILD [--double BUILD2] [--quick] [--out DIR] [--problems "a b"]
 #                             [--backends "cpu cuda"]
 # BUILD, BUILD2: a build folder holding `perifrac`, or the binary itself. --quick: coarse
-# resolutions only (fits ~3 minutes on a GPU machine, a few more on 2 CPU cores). --backends:
+# resolutions only (fits ~3 minutes on a GPU machine; well over 10 minutes on 2 CPU cores). --backends:
 # the backends to sweep (default: cpu, and cuda when the binary has it and a GPU answers).
 set -euo pipefail
 cd "$(dirname "$0")/.."

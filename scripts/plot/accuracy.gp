@@ -23,7 +23,7 @@ plot for [i=1:words(problems)] csv skip 1 using (strcol(1) eq word(problems, i) 
   with points pt (i % 13 + 1) ps 1.3 title word(problems, i)
 
 set output out.'/convergence.png'
-set title 'Error against resolution (dt = 0.5 dt_c, float, '.backend.'; solid: delta = 3 lambda, dashed: 4 lambda, dotted: 3 lambda, surface correction the other way; dash-dot: ghosts at 0.125 dt_c)'
+set title 'Error against resolution (dt = 0.5 dt_c, float, '.backend.'; solid: delta = 3 lambda, dashed: 4 lambda, dotted: 3 lambda, surface correction the other way; dash-dot: ghosts at 0.3 dt_c)'
 set xlabel 'resolution (particles across the width; plate: across the height)'
 # One series per figure and horizon, filtered by awk so that lines join consecutive resolutions.
 series(p, d, s) = sprintf("< awk -F, '$1 == \"%s\" && $5 == %d && $6 == 0.5 && $3 == \"float\" && $2 == \"%s\" && ($13 == \"default\") == (\"%s\" == \"default\")' '%s'", p, d, backend, s, csv)
