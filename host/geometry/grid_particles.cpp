@@ -43,7 +43,7 @@ void finish_cubes(ParticleGeometry& g, double spacing, const std::vector<int32_t
 void check_particle_budget(double volume, double particle_volume, int64_t max_particles,
                            const std::string& name, const std::string& what) {
   const double estimate = volume / particle_volume;
-  if (estimate > double(max_particles)) {
+  if (!(estimate <= double(max_particles))) {  // (not finite: counted as too many)
     char text[96];  // (%g: a mesh scaled by 1e20 has a volume of 60 digits and a count past int64)
     std::snprintf(text, sizeof text, "the solid (volume %.4g m^3) would need about %.4g particles at ",
                   volume, estimate);

@@ -319,13 +319,22 @@ void parse_body_name(const TableReader& r, std::string& out, const std::vector<S
     r.fail("body", "no body named " + in_quotes(out), join(names, true));
 }
 
+// A mesh's `scale`: the factor from the file's units to metres, up to a million (1e300 made a
+// body of infinite volume).
+Bounds mesh_scale() {
+  Bounds b = greater_than(0);
+  b.hi = 1e6;
+  b.note = "(the factor from the file's units to metres, e.g. 0.001 for millimetres)";
+  return b;
+}
+
 // A mesh file reference: `mesh` (required), `scale` and `translate`.
 void parse_mesh_reference(const TableReader& r, const std::string& file, std::string& mesh,
                           std::string& mesh_path, double& scale, Vec3d& translate) {
   r.string("mesh", mesh, {}, Presence::required);
   if (mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
   mesh_path = resolve_path(file, mesh);
-  r.number("scale", scale, greater_than(0));
+  r.number("scale", scale, mesh_scale());
   r.vec3("translate", translate);
 }
 
@@ -371,7 +380,7 @@ void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
     r.string("mesh", b.mesh, {}, Presence::required);
     if (b.mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
     b.mesh_path = resolve_path(file, b.mesh);
-    r.number("scale", b.scale, positive);
+    r.number("scale", b.scale, mesh_scale());
     r.string("repair", b.repair, {"none", "fill_holes"});
   }
 }
@@ -539,7 +548,7 @@ SceneCollider parse_collider(const TableReader& r) {
     r.string("mesh", c.mesh, {}, Presence::required);
     if (c.mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
     c.mesh_path = resolve_path(r.file(), c.mesh);
-    r.number("scale", c.scale, greater_than(0));
+    r.number("scale", c.scale, mesh_scale());
     double cell = 0;
     if (r.number("cell", cell, greater_than(0))) c.cell = cell;
   }

@@ -243,6 +243,27 @@ double body_solid_edge(const SceneBody& body, double spacing) {
   return tets ? 2 * spacing : spacing;
 }
 
+std::string tet_count_warning(size_t tets, double volume, double spacing, bool keep_surface,
+                              const std::string& key) {
+  const double grid = volume / (spacing * spacing * spacing), ratio = double(tets) / grid;
+  char text[512] = "";
+  if (ratio > 10)
+    std::snprintf(
+        text, sizeof text,
+        "%s: TetGen made %zu tets, %.0f times the %.0f a grid at spacing %.3g m holds: it keeps every "
+        "vertex of the surface, whose triangles are finer than the spacing (a coarser mesh, or "
+        "particles = \"voronoi\", follows the spacing)",
+        key.c_str(), tets, ratio, grid, spacing);
+  if (ratio < 0.1)
+    std::snprintf(
+        text, sizeof text, "%s: TetGen made %zu tets, a %.0fth of the %.0f a grid at spacing %.3g m holds%s",
+        key.c_str(), tets, 1 / ratio, grid, spacing,
+        keep_surface ? ": tet_keep_surface = true keeps the surface's triangles, which are coarser than "
+                       "the spacing (false lets TetGen split them)"
+                     : "");
+  return text;
+}
+
 // How far from the origin, in spacings, a body may reach (float positions: 1e5 spacings out their
 // rounding is 1% of a spacing).
 constexpr double kMaxSpacingsFromOrigin = 1e5;
@@ -315,7 +336,13 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
                                 ParticleLimit([&] { return max_now() - total; }), key);
     } catch (const MeshError& e) {
       const bool from_file = body.shape == "mesh" && e.path() == body.mesh_path;
-      throw SceneError(scene.path, key + (from_file ? ".mesh" : ".particles"), e.what());
+      const bool repaired = from_file && body.repair == "fill_holes" &&
+                            std::string(e.what()).find("tetgen") != std::string::npos;
+      throw SceneError(
+          scene.path, key + (from_file ? ".mesh" : ".particles"),
+          e.what() + std::string(repaired ? "; the mesh's holes were filled (repair = \"fill_holes\"), "
+                                            "and a filling may cross the surface around it"
+                                          : ""));
     } catch (const ShellThicknessError& e) {
       throw SceneError(scene.path, key + ".shell_thickness", e.what());
     }
@@ -325,6 +352,11 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
       throw SceneError(
           scene.path, key + ".spacing",
           std::string(text) + " (allowed: a spacing smaller than the body, or a larger --scale)");
+    }
+    if (body.particles == "tets") {
+      const std::string warning =
+          tet_count_warning(geometry.size(), geometry.total_volume(), spacing, body.tet_keep_surface, key);
+      if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }
     // The body's particle build: its own stages, and what they leave out (the solid, the shell).
     clock.lap(key + " particles");

@@ -88,6 +88,13 @@ bool body_solid_is_sheet(const SceneBody& body);
 // and shell bodies (a tet is about twice the spacing on a side).
 double body_solid_edge(const SceneBody& body, double spacing);
 
+// TetGen keeps every vertex of the surface it is given (and, with tet_keep_surface, every
+// triangle): a mesh much finer or coarser than the spacing gives far more (10x) or fewer (a tenth)
+// tets than a grid at the spacing would hold, and with them another time step. The warning that
+// says so for the body `key` (without "warning: "), or "" for a count within those bounds.
+std::string tet_count_warning(size_t tets, double volume, double spacing, bool keep_surface,
+                              const std::string& key);
+
 // Entry `to` of `materials` becomes a copy of entry `from`, its body named with `suffix` added: the
 // summary of a material table entry copied for part of a body (copy_material_entry).
 void copy_material_summary(std::vector<MaterialSummary>& materials, uint16_t from, uint16_t to,

@@ -841,6 +841,9 @@ TEST(SceneLoader, ShapeKeysAreValidated) {
   expect_error(body("shape = \"mesh\"\nmesh = \"a.obj\"\nrepair = \"magic\"\n"), "bodies[0].repair",
                "\"fill_holes\"");
   expect_error(body("shape = \"mesh\"\nmesh = \"a.obj\"\nscale = 0\n"), "bodies[0].scale", "out of range");
+  // (1e300 made a body of infinite volume: `shapes` wrote it with a volume of nan.)
+  expect_error(body("shape = \"mesh\"\nmesh = \"a.obj\"\nscale = 1e300\n"), "bodies[0].scale",
+               "e.g. 0.001 for millimetres");
   expect_error(body("size = [1, 1, 1]\nparticles = \"sph\"\n"), "bodies[0].particles", "\"voronoi\"");
   expect_error(body("size = [1, 1, 1]\ntet_quality = 1.2\n"), "bodies[0].tet_quality", "only for particles");
   expect_error(body("size = [1, 1, 1]\nparticles = \"tets\"\ntet_quality = 1.0\n"), "bodies[0].tet_quality",

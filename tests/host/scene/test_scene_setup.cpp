@@ -182,5 +182,22 @@ TEST(SceneSetup, APathAnchorStartsAtItsFirstSegmentsVelocity) {
   EXPECT_GT(anchored, 0);
 }
 
+// A mesh finer than the spacing gave 82,085 tets at a spacing asking for ~3,300 (and a time step
+// 6.5 times shorter), and tet_keep_surface on a cube 6 for 1,000, both without a word.
+TEST(SceneSetup, TetCountsFarFromTheSpacingAreWarnedOf) {
+  EXPECT_EQ(tet_count_warning(3000, 0.2, 0.04, false, "bodies[0]"), "");  // 3125 a grid would hold
+  EXPECT_EQ(
+      tet_count_warning(82085, 0.7182, 0.06, false, "bodies[0]"),
+      "bodies[0]: TetGen made 82085 tets, 25 times the 3325 a grid at spacing 0.06 m holds: it keeps every "
+      "vertex of the surface, whose triangles are finer than the spacing (a coarser mesh, or particles = "
+      "\"voronoi\", follows the spacing)");
+  const std::string few = tet_count_warning(6, 0.001, 0.01, true, "bodies[2]");
+  EXPECT_EQ(few.rfind("bodies[2]: TetGen made 6 tets, a 167th of the 1000 a grid at spacing 0.01 m holds: "
+                      "tet_keep_surface = true keeps",
+                      0),
+            0u)
+      << few;
+}
+
 }  // namespace
 }  // namespace pd
