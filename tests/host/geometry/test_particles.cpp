@@ -89,6 +89,23 @@ TEST(GridParticles, BoxGridKeepsTheBoxLayout) {
   EXPECT_EQ(box_grid_particles({0, 0, 0}, {0.01, 0.01, 0.01}, 0.01).min_distance, 0);
 }
 
+// A box-like mesh a whole number of spacings wide, wherever it was modelled: its layers are the
+// box grid's, whatever the round-off of its coordinates (a 0.1 m cube at a spacing of 0.01 m gave
+// 729 particles at some offsets, 1000 at others: the grid's points lay on its faces).
+TEST(GridParticles, ABoxMeshGetsTheBoxLayersWhereverItWasModelled) {
+  for (double t : {0.0, 0.3, 1.0, 3.7, 12.34, 100.0, -0.005}) {
+    TriMesh cube = box_mesh({0.1, 0.1, 0.1});
+    for (Vec3d& v : cube.vertices) v = v + Vec3d{t, t, t};
+    const ParticleGeometry g = grid_particles(cube, 0.01, kBudget, "cube");
+    EXPECT_EQ(g.size(), 1000u) << t;
+    EXPECT_NEAR(g.total_volume(), 1e-3, 1e-12) << t;
+  }
+  const ParticleGeometry plate = grid_particles(box_mesh({0.3, 0.016, 0.3}), 0.01, kBudget, "plate");
+  EXPECT_EQ(plate.size(), 30u * 2 * 30);  // 1.6 spacings thick: two layers, as the box grid has
+  const ParticleGeometry sheet = grid_particles(box_mesh({0.3, 0.006, 0.3}), 0.01, kBudget, "sheet");
+  EXPECT_EQ(sheet.size(), 30u * 1 * 30);  // less than a spacing: one layer (no particle before)
+}
+
 TEST(GridParticles, SpotVolume) {
   PD_REQUIRE_SHARED_MESH(path, "spot.obj");
   const TriMesh spot = spot_solid(path);
