@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <unordered_map>
+
+#include "host/geometry/inside_test.h"
 
 namespace pd {
 
@@ -30,6 +33,71 @@ int weld_identical(TriMesh& mesh) {
   for (Triangle& t : mesh.triangles)
     for (int32_t& c : t) c = remap[c];
   return merged;
+}
+
+// Each vertex's first earlier vertex within `distance` (itself where none is): a hash of cells of
+// side `distance`, each vertex looking in the 27 cells around it.
+std::vector<int32_t> near_vertices(const std::vector<Vec3d>& vertices, double distance) {
+  std::unordered_map<uint64_t, std::vector<int32_t>> cells;
+  auto cell_key = [](int64_t x, int64_t y, int64_t z) {
+    return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
+  };
+  std::vector<int32_t> to(vertices.size());
+  for (size_t v = 0; v < vertices.size(); ++v) {
+    int64_t c[3];
+    for (int a = 0; a < 3; ++a) c[a] = int64_t(std::floor(vertices[v][a] / distance));
+    to[v] = int32_t(v);
+    for (int64_t dz = -1; dz <= 1 && to[v] == int32_t(v); ++dz)
+      for (int64_t dy = -1; dy <= 1 && to[v] == int32_t(v); ++dy)
+        for (int64_t dx = -1; dx <= 1 && to[v] == int32_t(v); ++dx) {
+          const auto it = cells.find(cell_key(c[0] + dx, c[1] + dy, c[2] + dz));
+          if (it == cells.end()) continue;
+          for (int32_t w : it->second)
+            if (distance2(vertices[v], vertices[size_t(w)]) <= distance * distance) {
+              to[v] = to[size_t(w)];
+              break;
+            }
+        }
+    cells[cell_key(c[0], c[1], c[2])].push_back(int32_t(v));
+  }
+  return to;
+}
+
+// Merges vertices within kWeldDistance of the diagonal of each other; returns how many.
+int weld_near(TriMesh& mesh) {
+  const std::vector<int32_t> to = near_vertices(mesh.vertices, kWeldDistance * norm(bounds(mesh).size()));
+  std::vector<int32_t> remap(mesh.vertices.size());
+  std::vector<Vec3d> kept;
+  for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+    if (to[v] == int32_t(v)) {
+      remap[v] = int32_t(kept.size());
+      kept.push_back(mesh.vertices[v]);
+    } else {
+      remap[v] = remap[size_t(to[v])];
+    }
+  }
+  const int merged = int(mesh.vertices.size() - kept.size());
+  mesh.vertices = std::move(kept);
+  for (Triangle& t : mesh.triangles)
+    for (int32_t& c : t) c = remap[size_t(c)];
+  // Triangles that lost a corner to the merge (two corners one vertex now) are left out.
+  mesh.triangles.erase(
+      std::remove_if(mesh.triangles.begin(), mesh.triangles.end(),
+                     [](const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; }),
+      mesh.triangles.end());
+  return merged;
+}
+
+// How many boundary vertices have another boundary vertex within kWeldDistance of the diagonal:
+// an open mesh whose pieces are a round-off apart rather than a mesh with holes.
+size_t near_boundary_vertices(const TriMesh& mesh, const std::vector<std::vector<int32_t>>& loops) {
+  std::vector<Vec3d> boundary;
+  for (const auto& loop : loops)
+    for (int32_t v : loop) boundary.push_back(mesh.vertices[size_t(v)]);
+  const std::vector<int32_t> to = near_vertices(boundary, kWeldDistance * norm(bounds(mesh).size()));
+  size_t near = 0;
+  for (size_t v = 0; v < to.size(); ++v) near += to[v] != int32_t(v);
+  return near;
 }
 
 // Half-edge a->b of triangle t, grouped by the undirected edge {min, max}.
@@ -153,6 +221,86 @@ void check_triangles(const TriMesh& mesh, const std::string& path) {
                               std::to_string(first) + ", 0-based) (allowed: triangles of non-zero area)");
 }
 
+// The closed parts of a mesh (triangles joined through their corners), each as a mesh of its own.
+std::vector<TriMesh> mesh_parts(const TriMesh& mesh, std::vector<int32_t>& part_of_triangle) {
+  std::vector<int32_t> root(mesh.vertices.size());
+  for (size_t v = 0; v < root.size(); ++v) root[v] = int32_t(v);
+  auto find = [&](int32_t v) {
+    while (root[size_t(v)] != v) v = root[size_t(v)] = root[size_t(root[size_t(v)])];
+    return v;
+  };
+  for (const Triangle& t : mesh.triangles)
+    for (int c = 1; c < 3; ++c) {
+      const int32_t a = find(t[0]), b = find(t[size_t(c)]);
+      if (a != b) root[size_t(std::max(a, b))] = std::min(a, b);
+    }
+  std::vector<TriMesh> parts;
+  std::unordered_map<int32_t, int32_t> part_of_root;
+  part_of_triangle.assign(mesh.triangles.size(), 0);
+  std::vector<int32_t> local_index(mesh.vertices.size(), -1);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto [it, added] = part_of_root.emplace(find(mesh.triangles[t][0]), int32_t(parts.size()));
+    if (added) parts.emplace_back();
+    TriMesh& part = parts[size_t(it->second)];
+    part_of_triangle[t] = it->second;
+    Triangle local_t{};
+    for (int c = 0; c < 3; ++c) {
+      const int32_t v = mesh.triangles[t][size_t(c)];
+      if (local_index[size_t(v)] < 0) {
+        local_index[size_t(v)] = int32_t(part.vertices.size());
+        part.vertices.push_back(mesh.vertices[size_t(v)]);
+      }
+      local_t[size_t(c)] = local_index[size_t(v)];
+    }
+    part.triangles.push_back(local_t);
+  }
+  return parts;
+}
+
+// Orients a mesh of several closed parts by how they nest: a part inside no other faces out, a
+// part inside one faces in (a cavity), inside two out again, and so on; a part that crosses
+// another (some of its corners inside it, some not: limbs modelled into a body) keeps its own
+// orientation, the inside test then filling their union. Returns how many parts it flipped.
+// (A part facing in on its own made Voronoi cells of negative volume and TetGen a cavity.)
+int orient_parts(TriMesh& mesh) {
+  constexpr size_t kMaxParts = 2000;  // pairs are compared: beyond this the parts stay as they are
+  constexpr size_t kSamples = 4096;   // corners of a part tested against another, at most
+  std::vector<int32_t> part_of_triangle;
+  const std::vector<TriMesh> parts = mesh_parts(mesh, part_of_triangle);
+  if (parts.size() < 2 || parts.size() > kMaxParts) return 0;
+  std::vector<Box3d> box;
+  std::vector<double> volume;
+  for (const TriMesh& p : parts) {
+    box.push_back(bounds(p));
+    volume.push_back(signed_volume(p));
+  }
+  std::vector<std::unique_ptr<InsideTest>> test(parts.size());
+  std::vector<bool> flip(parts.size(), false);
+  for (size_t c = 0; c < parts.size(); ++c) {
+    int depth = 0;
+    bool crossing = false;
+    for (size_t d = 0; d < parts.size() && !crossing; ++d) {
+      if (d == c) continue;
+      bool overlap = true;
+      for (int a = 0; a < 3; ++a)
+        overlap = overlap && box[c].lo[a] <= box[d].hi[a] && box[d].lo[a] <= box[c].hi[a];
+      if (!overlap) continue;
+      if (!test[d]) test[d] = std::make_unique<InsideTest>(parts[d]);
+      const size_t n = parts[c].vertices.size(), samples = std::min(n, kSamples);
+      size_t inside = 0;
+      for (size_t k = 0; k < samples; ++k) inside += test[d]->inside(parts[c].vertices[k * n / samples]);
+      if (inside == samples) ++depth;
+      crossing = inside != 0 && inside != samples;
+    }
+    if (!crossing) flip[c] = (volume[c] < 0) != (depth % 2 == 1);
+  }
+  int flipped = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    if (flip[size_t(part_of_triangle[t])]) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+  for (bool f : flip) flipped += f;
+  return flipped;
+}
+
 }  // namespace
 
 std::vector<std::vector<int32_t>> boundary_loops(const TriMesh& mesh, const std::string& path,
@@ -176,10 +324,13 @@ MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOp
         throw MeshError(path, "a triangle refers to vertex " + std::to_string(c) + " (allowed: 0.." +
                                   std::to_string(mesh.vertices.size() - 1) + ")");
 
-  report.welded_vertices = weld_identical(mesh);
+  report.welded_vertices = options.weld_near ? weld_near(mesh) : weld_identical(mesh);
   if (report.welded_vertices)
-    report.notes.push_back(
-        "merged " + count_text(size_t(report.welded_vertices), "duplicate vertex", "duplicate vertices"));
+    report.notes.push_back("merged " +
+                           count_text(size_t(report.welded_vertices),
+                                      options.weld_near ? "vertex" : "duplicate vertex",
+                                      options.weld_near ? "vertices" : "duplicate vertices") +
+                           (options.weld_near ? " within 1e-6 of the mesh's size of another" : ""));
   check_triangles(mesh, path);
 
   // Boundary: refuse, or fill the loops and check the patches like any triangle.
@@ -188,13 +339,20 @@ MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOp
   if (!loops.empty()) {
     size_t edges = 0;
     for (const auto& l : loops) edges += l.size();
-    if (!options.fill_holes)
+    if (!options.fill_holes) {
+      const size_t near = options.weld_near ? 0 : near_boundary_vertices(mesh, loops);
+      const std::string apart =
+          near ? "; " + count_text(near, "boundary vertex lies", "boundary vertices lie") +
+                     " within 1e-6 of the mesh's size of another: faces exported apart, not holes"
+               : "";
       throw MeshError(
           path, "the mesh is open: " + count_text(loops.size(), "hole", "holes") + " (boundary loops) with " +
-                    count_text(edges, "boundary edge", "boundary edges") +
-                    (options.repair_offered
-                         ? " (allowed: a closed mesh, or repair = \"fill_holes\" to close simple holes)"
-                         : " (allowed: a closed mesh)"));
+                    count_text(edges, "boundary edge", "boundary edges") + apart +
+                    (!options.repair_offered ? " (allowed: a closed mesh)"
+                     : near ? " (allowed: a closed mesh, or repair = \"weld\" to merge such vertices)"
+                            : " (allowed: a closed mesh, or repair = \"fill_holes\" to close simple "
+                              "holes)"));
+    }
     fill_loops(mesh, loops);
     check_triangles(mesh, path);
     check_edges(mesh, path);
@@ -202,14 +360,26 @@ MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOp
                            std::to_string(edges) + " boundary edges) by fan triangulation");
   }
 
-  // Orientation: outward normals give a positive volume.
-  const double volume = signed_volume(mesh);
-  const double diag = norm(bounds(mesh).size());
-  if (!(std::fabs(volume) > 1e-12 * diag * diag * diag))
+  // Orientation: outward normals give a positive volume; then part by part, by how parts nest.
+  double volume = signed_volume(mesh);
+  const double diag = norm(bounds(mesh).size()), none = 1e-12 * diag * diag * diag;
+  if (volume < -none) {
+    flip_orientation(mesh);
+    report.flipped = true;
+    report.notes.push_back("the triangles faced inward (negative signed volume): flipped");
+    volume = -volume;
+  }
+  if (const int parts = orient_parts(mesh)) {
+    report.notes.push_back(
+        "flipped " + count_text(size_t(parts), "part", "parts") +
+        " of the mesh to face out of the solid (a part inside another faces into it, a cavity)");
+    volume = signed_volume(mesh);
+  }
+  if (!(std::fabs(volume) > none))
     throw MeshError(path, "the mesh encloses no volume (allowed: a closed surface around a solid)");
   if (volume < 0) {
     flip_orientation(mesh);
-    report.flipped = true;
+    report.flipped = !report.flipped;
     report.notes.push_back("the triangles faced inward (negative signed volume): flipped");
   }
   return report;

@@ -9,11 +9,17 @@
 
 namespace pd {
 
+// How near, relative to the bounding box's diagonal, vertices merged by weld_near are.
+constexpr double kWeldDistance = 1e-6;
+
 struct MeshCheckOptions {
   bool fill_holes = false;  // close simple boundary loops by a fan around their centroid
   // Whether the caller takes repair = "fill_holes" (a body's mesh), which an open mesh's message
   // then offers; elsewhere it asks for a closed mesh.
   bool repair_offered = false;
+  // Merge vertices within kWeldDistance of the bounding box's diagonal of each other (a mesh whose
+  // faces were exported apart, their corners a round-off from each other).
+  bool weld_near = false;
 };
 
 // What the check changed, one line each (e.g. "filled 5 holes (boundary loops)").

@@ -41,6 +41,32 @@ std::string printable(std::string_view text) {
   return out;
 }
 
+void add_polygon(TriMesh& mesh, const std::vector<int32_t>& polygon) {
+  const size_t n = polygon.size();
+  auto corner = [&](size_t k) { return polygon[k % n]; };
+  size_t apex = 0;
+  if (n > 3) {
+    double size2 = 0;  // the polygon's size, squared: the scale of "no area"
+    for (size_t k = 1; k < n; ++k)
+      size2 = std::max(size2, distance2(mesh.vertices[corner(k)], mesh.vertices[corner(0)]));
+    auto has_area = [&](size_t a, size_t b, size_t c) {
+      const Vec3d &p = mesh.vertices[corner(a)], &q = mesh.vertices[corner(b)], &r = mesh.vertices[corner(c)];
+      const Vec3d n = cross(q - p, r - p);
+      return dot(n, n) > 1e-24 * size2 * size2;
+    };
+    for (size_t r = 0; r < n; ++r) {
+      bool all = true;
+      for (size_t k = 1; all && k + 1 < n; ++k) all = has_area(r, r + k, r + k + 1);
+      if (all) {
+        apex = r;
+        break;
+      }
+    }
+  }
+  for (size_t k = 1; k + 1 < n; ++k)
+    mesh.triangles.push_back({corner(apex), corner(apex + k), corner(apex + k + 1)});
+}
+
 }  // namespace detail
 
 std::string_view without_utf8_mark(const std::string& bytes) {

@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "host/geometry/tri_mesh.h"
 
@@ -38,6 +39,10 @@ std::string read_file_bytes(const std::string& path);
 // Text of a file quoted in a message: control characters as \xNN and at most 60 characters
 // ("..." marks a cut), so every message stays one printable line.
 std::string printable(std::string_view text);
+// A polygon's triangles (its corners' positions already in `mesh`): a fan from the first corner
+// whose triangles all have area, so that a corner lying on an edge between two others (a T
+// junction a modeller left) makes no triangle of zero area; from the first corner where none does.
+void add_polygon(TriMesh& mesh, const std::vector<int32_t>& polygon);
 }  // namespace detail
 
 }  // namespace pd

@@ -78,8 +78,7 @@ TriMesh parse_obj(const std::string& bytes, const std::string& path) {
         polygon.push_back(int32_t(resolved));
       }
       if (polygon.size() < 3) fail("a face needs at least 3 vertices", "f i j k ...");
-      for (size_t k = 1; k + 1 < polygon.size(); ++k)
-        mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+      detail::add_polygon(mesh, polygon);
     }
   }
   if (mesh.triangles.empty()) throw MeshError(path, "no faces (allowed: a mesh with at least one triangle)");

@@ -1,8 +1,10 @@
 // Stanford PLY, ascii and binary little-endian: the `vertex` element's x, y, z and the `face`
 // element's vertex_indices (or vertex_index) list; other elements and properties are skipped.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -17,6 +19,13 @@ namespace pd {
 namespace {
 
 enum class Type { i8, u8, i16, u16, i32, u32, f32, f64 };
+
+// A number read from the file, as it was written (an index of -1 read as -1.000000).
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
 
 struct Property {
   std::string name;
@@ -236,19 +245,23 @@ TriMesh parse_ply(const std::string& file_bytes, const std::string& path) {
           const double index = body.value(p.type, where);
           if (int(k) != indices) continue;
           if (!(index >= 0) || index >= double(mesh.vertices.size()) || index != std::floor(index))
-            fail(where + ": vertex index " + std::to_string(index) + " is out of range",
+            fail(where + ": vertex index " + number_text(index) + " is out of range",
                  "0.." + std::to_string(long(mesh.vertices.size()) - 1));
           polygon.push_back(int32_t(index));
         }
         if (int(k) != indices) continue;
         if (polygon.size() < 3) fail(where + ": a face needs at least 3 vertices", "3 or more indices");
-        for (size_t q = 1; q + 1 < polygon.size(); ++q)
-          mesh.triangles.push_back({polygon[0], polygon[q], polygon[q + 1]});
+        detail::add_polygon(mesh, polygon);
       }
       if (is_vertex) mesh.vertices.push_back(v);
     }
   }
-  if (!has_faces || mesh.triangles.empty()) fail("no faces", "a mesh with at least one triangle");
+  if (!has_faces || mesh.triangles.empty()) {
+    const bool strips =
+        std::any_of(elements.begin(), elements.end(), [](const Element& e) { return e.name == "tristrips"; });
+    fail(strips ? "no faces, only triangle strips (a tristrips element), which are not read" : "no faces",
+         "a mesh with at least one triangle in a face element");
+  }
   return mesh;
 }
 

@@ -381,7 +381,7 @@ void parse_shape(const TableReader& r, SceneBody& b, const std::string& file) {
     if (b.mesh.empty()) r.fail("mesh", "the path is empty", "a path to an .obj, .ply or .stl file");
     b.mesh_path = resolve_path(file, b.mesh);
     r.number("scale", b.scale, mesh_scale());
-    r.string("repair", b.repair, {"none", "fill_holes"});
+    r.string("repair", b.repair, {"none", "fill_holes", "weld"});
   }
 }
 

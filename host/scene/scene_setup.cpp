@@ -224,7 +224,8 @@ TriMesh body_solid(const SceneBody& body, double edge, const std::string& key) {
                                      : vase_mesh(body.radius, body.height, body.wall, edge);
   if (body.shape == "mesh") {
     mesh = read_mesh(body.mesh_path);
-    const MeshReport report = check_solid(mesh, body.mesh_path, {body.repair == "fill_holes", true});
+    const MeshReport report =
+        check_solid(mesh, body.mesh_path, {body.repair == "fill_holes", true, body.repair == "weld"});
     for (const std::string& note : report.notes)
       std::fprintf(stderr, "note: %s.mesh: %s: %s\n", key.c_str(), body.mesh_path.c_str(), note.c_str());
     transform(mesh, body.scale, {0, 0, 0});

@@ -6,6 +6,7 @@
 
 #include "host/geometry/mesh_check.h"
 #include "host/geometry/mesh_io.h"
+#include "host/geometry/random.h"
 #include "host/geometry/shapes.h"
 #include "tests/host/geometry/geometry_fixtures.h"
 
@@ -138,6 +139,79 @@ TEST(MeshCheck, InvertedOrientationIsFlipped) {
   EXPECT_TRUE(r.flipped);
   EXPECT_NEAR(signed_volume(m), volume, 1e-12 * volume);
   EXPECT_NE(r.notes.back().find("flipped"), std::string::npos);
+}
+
+// Parts are oriented by how they nest (a part on its own faces out, one inside another into it),
+// so that every fill reads a mesh of parts one way: a separate cube facing in made Voronoi cells
+// of negative volume, a cube inside another facing out was hollow for grids and filled for tets.
+TEST(MeshCheck, PartsAreOrientedByHowTheyNest) {
+  auto moved = [](TriMesh m, double dx) {
+    for (Vec3d& v : m.vertices) v[0] += dx;
+    return m;
+  };
+  auto flipped = [](TriMesh m) {
+    flip_orientation(m);
+    return m;
+  };
+  auto checked = [](const TriMesh& m, int& notes) {
+    TriMesh copy = m;
+    const MeshReport r = check_solid(copy, "parts.obj", {});
+    notes = int(r.notes.size());
+    return signed_volume(copy);
+  };
+  int notes = 0;
+  TriMesh apart = box_mesh({1, 1, 1});
+  append(apart, flipped(moved(box_mesh({1, 1, 1}), 3)));  // a second cube facing in, beside it
+  EXPECT_NEAR(checked(apart, notes), 2, 1e-12);           // was "encloses no volume"
+  EXPECT_EQ(notes, 1);
+  TriMesh nested = box_mesh({2, 2, 2});
+  append(nested, box_mesh({1, 1, 1}));  // an inner cube facing out: a cavity
+  EXPECT_NEAR(checked(nested, notes), 7, 1e-12);
+  EXPECT_EQ(notes, 1);
+  TriMesh hollow = box_mesh({2, 2, 2});
+  append(hollow, flipped(box_mesh({1, 1, 1})));  // as it should be: nothing to say
+  EXPECT_NEAR(checked(hollow, notes), 7, 1e-12);
+  EXPECT_EQ(notes, 0);
+  EXPECT_NEAR(checked(flipped(hollow), notes), 7, 1e-12);  // inside out as a whole: one flip
+  EXPECT_EQ(notes, 1);
+  TriMesh crossing = box_mesh({1, 1, 1});
+  TriMesh into = box_mesh({1, 1, 1});
+  for (Vec3d& v : into.vertices) v = v + Vec3d{0.53, 0.21, 0.17};
+  append(crossing, into);  // modelled into each other: kept, their union
+  EXPECT_NEAR(checked(crossing, notes), 2, 1e-12);
+  EXPECT_EQ(notes, 0);
+}
+
+// A cube whose triangles were exported apart, each corner a round-off from its copies: named as
+// such (it was "open: 12 holes", and fill_holes then found no volume), and welded on request.
+TEST(MeshCheck, FacesExportedApartAreNamedAndWeldedOnRequest) {
+  const TriMesh cube = box_mesh({1, 1, 1});
+  TriMesh apart;
+  Random rng(5);
+  for (const Triangle& t : cube.triangles) {
+    Triangle own{};
+    for (int c = 0; c < 3; ++c) {
+      own[size_t(c)] = int32_t(apart.vertices.size());
+      apart.vertices.push_back(cube.vertices[size_t(t[size_t(c)])] +
+                               Vec3d{1e-9 * rng.uniform(), 1e-9 * rng.uniform(), 1e-9 * rng.uniform()});
+    }
+    apart.triangles.push_back(own);
+  }
+  TriMesh refused = apart;
+  try {
+    check_solid(refused, kPath, {false, true});
+    ADD_FAILURE() << "accepted";
+  } catch (const MeshError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("28 boundary vertices lie within 1e-6 of the mesh's size of another"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("repair = \"weld\""), std::string::npos) << m;
+  }
+  TriMesh welded = apart;
+  const MeshReport r = check_solid(welded, kPath, {false, true, true});
+  EXPECT_EQ(welded.vertices.size(), 8u);
+  EXPECT_NEAR(signed_volume(welded), 1, 1e-8);
+  EXPECT_EQ(r.notes.front(), "merged 28 vertices within 1e-6 of the mesh's size of another");
 }
 
 TEST(MeshCheck, IdenticalVerticesAreMerged) {

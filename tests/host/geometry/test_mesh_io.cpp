@@ -99,6 +99,17 @@ TEST(MeshIo, MalformedFilesAreRefused) {
       "ends early");
   expect_read_error("noxyz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float u\nend_header\n0\n",
                     "lacks x, y or z");
+  expect_read_error(
+      "strips.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+      "only triangle strips (a tristrips element), which are not read");
+  expect_read_error("minus.ply",
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n",
+                    "face 0: vertex index -1 is out of range");
   expect_read_error("junk.stl", "not an stl file at all", "neither binary STL");
   expect_read_error(
       "partial.stl",
@@ -113,6 +124,26 @@ TEST(MeshIo, MalformedFilesAreRefused) {
                     "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
                     "vertex 0 1 0\nendloop\nendfacet\n",
                     "the file ends before its 'endsolid' line");
+}
+
+// A polygon with a corner on the edge between two others (a T junction): split from a corner
+// where every triangle has area (a fan from its first corner made one of zero area, refused).
+TEST(MeshIo, APolygonWithACornerOnAnEdgeGetsNoFlatTriangle) {
+  ScratchDir dir("tjunction");
+  write_text(dir.file("t.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0 0\nf 1 4 3 2 5\n");
+  const TriMesh m = read_mesh(dir.file("t.obj"));
+  ASSERT_EQ(m.triangles.size(), 3u);
+  double area = 0;
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    EXPECT_GT(triangle_area(m, t), 0.1) << t;
+    area += triangle_area(m, t);
+  }
+  EXPECT_DOUBLE_EQ(area, 1.0);
+  write_text(dir.file("t.ply"),
+             "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+             "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+             "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0 0\n5 0 3 2 1 4\n");
+  for (size_t t = 0; t < 3; ++t) EXPECT_GT(triangle_area(read_mesh(dir.file("t.ply")), t), 0.1) << t;
 }
 
 // What editors and other exporters write: a UTF-8 byte-order mark, upper-case STL keywords, a
