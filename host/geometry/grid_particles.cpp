@@ -60,12 +60,12 @@ ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t ma
   const Vec3d center = box.center();
   int64_t n[3];
   double origin[3];
-  // Cells of side `spacing` covering the solid's box, centred on it, a particle at each cell's
-  // centre: a box-like mesh a whole number of spacings wide gets the box grid's layers, half a
-  // spacing in from its faces (a millionth of a spacing of slack for the box's round-off; points
-  // on the faces themselves went in or out by the round-off of where the mesh was modelled).
+  // Cells of side `spacing` across the solid's box, as many as fit to the nearest (as the box
+  // grid counts them), centred on it, a particle at each cell's centre: a box-like mesh gets the
+  // box grid's layers, half a spacing in from its faces (points on the faces themselves went in
+  // or out by the round-off of where the mesh was modelled).
   for (int a = 0; a < 3; ++a) {
-    n[a] = std::max<int64_t>(1, int64_t(std::ceil(box.size()[a] / spacing - 1e-6)));
+    n[a] = std::max<int64_t>(1, std::llround(box.size()[a] / spacing));
     origin[a] = center[a] + (0.5 - 0.5 * double(n[a])) * spacing;
   }
   // One ray per (y, z) column: a centre is inside by the winding of the crossings beyond it.

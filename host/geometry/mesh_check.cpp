@@ -258,41 +258,52 @@ std::vector<TriMesh> mesh_parts(const TriMesh& mesh, std::vector<int32_t>& part_
 }
 
 // Orients a mesh of several closed parts by how they nest: a part inside no other faces out, a
-// part inside one faces in (a cavity), inside two out again, and so on; a part that crosses
-// another (some of its corners inside it, some not: limbs modelled into a body) keeps its own
-// orientation, the inside test then filling their union. Returns how many parts it flipped.
+// part inside one faces in (a cavity), a part inside that cavity out again, and so on. A part is
+// inside another when all its corners are (up to 4096 of them, spread over its list); parts that
+// cross (limbs modelled into a body) are on one level, both facing out, and the inside test fills
+// their union; a cavity inside two crossing parts is one level down. Returns how many parts it
+// flipped, or -1 where the mesh has more than kMaxParts parts, left as they are.
 // (A part facing in on its own made Voronoi cells of negative volume and TetGen a cavity.)
+constexpr size_t kMaxParts = 20000;
+
 int orient_parts(TriMesh& mesh) {
-  constexpr size_t kMaxParts = 2000;  // pairs are compared: beyond this the parts stay as they are
-  constexpr size_t kSamples = 4096;   // corners of a part tested against another, at most
+  constexpr size_t kSamples = 4096;  // corners of a part tested against another, at most
   std::vector<int32_t> part_of_triangle;
   const std::vector<TriMesh> parts = mesh_parts(mesh, part_of_triangle);
-  if (parts.size() < 2 || parts.size() > kMaxParts) return 0;
+  if (parts.size() < 2) return 0;
+  if (parts.size() > kMaxParts) return -1;
   std::vector<Box3d> box;
-  std::vector<double> volume;
+  std::vector<double> volume, box_volume;
   for (const TriMesh& p : parts) {
     box.push_back(bounds(p));
     volume.push_back(signed_volume(p));
+    const Vec3d size = box.back().size();
+    box_volume.push_back(size[0] * size[1] * size[2]);
   }
+  // Largest boxes first: a part's containers come before it.
+  std::vector<size_t> order(parts.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return box_volume[a] > box_volume[b]; });
   std::vector<std::unique_ptr<InsideTest>> test(parts.size());
+  std::vector<int> level(parts.size(), 0);
   std::vector<bool> flip(parts.size(), false);
-  for (size_t c = 0; c < parts.size(); ++c) {
-    int depth = 0;
-    bool crossing = false;
-    for (size_t d = 0; d < parts.size() && !crossing; ++d) {
-      if (d == c) continue;
-      bool overlap = true;
+  for (size_t i = 0; i < order.size(); ++i) {
+    const size_t c = order[i];
+    for (size_t j = 0; j < i; ++j) {
+      const size_t d = order[j];
+      bool holds = true;  // d's box holds c's
       for (int a = 0; a < 3; ++a)
-        overlap = overlap && box[c].lo[a] <= box[d].hi[a] && box[d].lo[a] <= box[c].hi[a];
-      if (!overlap) continue;
+        holds = holds && box[d].lo[a] <= box[c].lo[a] && box[c].hi[a] <= box[d].hi[a];
+      if (!holds || level[d] + 1 <= level[c]) continue;
       if (!test[d]) test[d] = std::make_unique<InsideTest>(parts[d]);
       const size_t n = parts[c].vertices.size(), samples = std::min(n, kSamples);
-      size_t inside = 0;
-      for (size_t k = 0; k < samples; ++k) inside += test[d]->inside(parts[c].vertices[k * n / samples]);
-      if (inside == samples) ++depth;
-      crossing = inside != 0 && inside != samples;
+      bool inside = true;
+      for (size_t k = 0; k < samples && inside; ++k)
+        inside = test[d]->inside(parts[c].vertices[k * n / samples]);
+      if (inside) level[c] = level[d] + 1;
     }
-    if (!crossing) flip[c] = (volume[c] < 0) != (depth % 2 == 1);
+    flip[c] = (volume[c] < 0) != (level[c] % 2 == 1);
   }
   int flipped = 0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
@@ -369,12 +380,17 @@ MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOp
     report.notes.push_back("the triangles faced inward (negative signed volume): flipped");
     volume = -volume;
   }
-  if (const int parts = orient_parts(mesh)) {
+  const int parts = orient_parts(mesh);
+  if (parts > 0) {
     report.notes.push_back(
         "flipped " + count_text(size_t(parts), "part", "parts") +
-        " of the mesh to face out of the solid (a part inside another faces into it, a cavity)");
+        " of the mesh to face out of the solid they bound (a part inside another bounds a cavity, "
+        "facing into it)");
     volume = signed_volume(mesh);
   }
+  if (parts < 0)
+    report.notes.push_back("more than " + std::to_string(kMaxParts) +
+                           " parts: each kept facing as modelled, not oriented by how they nest");
   if (!(std::fabs(volume) > none))
     throw MeshError(path, "the mesh encloses no volume (allowed: a closed surface around a solid)");
   if (volume < 0) {

@@ -180,6 +180,16 @@ TEST(MeshCheck, PartsAreOrientedByHowTheyNest) {
   append(crossing, into);  // modelled into each other: kept, their union
   EXPECT_NEAR(checked(crossing, notes), 2, 1e-12);
   EXPECT_EQ(notes, 0);
+  TriMesh cavity = box_mesh({0.1, 0.1, 0.1});  // in the two cubes' overlap: one level down, kept
+  for (Vec3d& v : cavity.vertices) v = v + Vec3d{0.3, 0.1, 0.1};
+  TriMesh with_cavity = crossing;
+  append(with_cavity, flipped(cavity));
+  EXPECT_NEAR(checked(with_cavity, notes), 2 - 1e-3, 1e-12);
+  EXPECT_EQ(notes, 0);
+  TriMesh reversed_into = box_mesh({1, 1, 1});  // a part crossing another, facing in: turned out
+  append(reversed_into, flipped(into));
+  EXPECT_NEAR(checked(reversed_into, notes), 2, 1e-12);
+  EXPECT_EQ(notes, 1);
 }
 
 // A cube whose triangles were exported apart, each corner a round-off from its copies: named as

@@ -100,6 +100,10 @@ TEST(GridParticles, ABoxMeshGetsTheBoxLayersWhereverItWasModelled) {
     EXPECT_EQ(g.size(), 1000u) << t;
     EXPECT_NEAR(g.total_volume(), 1e-3, 1e-12) << t;
   }
+  // A hair over a whole number of spacings, or 0.4 of one: the box grid's count (a layer more before).
+  for (double side : {0.1 * (1 + 1e-7), 0.104})
+    EXPECT_EQ(grid_particles(box_mesh({side, side, side}), 0.01, kBudget, "cube").size(), 1000u) << side;
+  EXPECT_EQ(grid_particles(box_mesh({0.3, 0.0101, 0.3}), 0.01, kBudget, "plate").size(), 900u);
   const ParticleGeometry plate = grid_particles(box_mesh({0.3, 0.016, 0.3}), 0.01, kBudget, "plate");
   EXPECT_EQ(plate.size(), 30u * 2 * 30);  // 1.6 spacings thick: two layers, as the box grid has
   const ParticleGeometry sheet = grid_particles(box_mesh({0.3, 0.006, 0.3}), 0.01, kBudget, "sheet");
