@@ -16,7 +16,7 @@ namespace pd {
 
 const char* const kValidationCsvHeader =
     "problem,backend,precision,resolution,delta_over_lambda,dt_fraction,particles,steps,wall_s,measured,"
-    "reference,rel_error,surface_correction";
+    "reference,rel_error,surface_correction,traction_mpa";
 
 namespace {
 
@@ -34,16 +34,18 @@ const char* precision_name() {
 }
 
 std::string csv_row(const ValidationResult& r, const ValidationCase& c) {
-  char line[512];
-  std::snprintf(line, sizeof line, "%s,%s,%s,%d,%g,%g,%lld,%lld,%.4f,%.9g,%.9g,%.6g,%s\n", r.problem.c_str(),
-                backend_name(c.backend), precision_name(), c.resolution, c.delta_over_lambda, c.dt_fraction,
-                (long long)r.particles, (long long)r.steps, r.wall_s, r.measured, r.reference, r.rel_error,
-                surface_name(c));
+  char line[512], traction[32] = "";  // the --traction given, in MPa (empty: the problem's own load)
+  if (c.traction > 0) std::snprintf(traction, sizeof traction, "%.9g", c.traction / 1e6);
+  std::snprintf(line, sizeof line, "%s,%s,%s,%d,%g,%g,%lld,%lld,%.4f,%.9g,%.9g,%.6g,%s,%s\n",
+                r.problem.c_str(), backend_name(c.backend), precision_name(), c.resolution,
+                c.delta_over_lambda, c.dt_fraction, (long long)r.particles, (long long)r.steps, r.wall_s,
+                r.measured, r.reference, r.rel_error, surface_name(c), traction);
   return line;
 }
 
-// Appends rows to the CSV, rewriting it atomically (header first when it is new or empty).
-void append_csv(const std::string& path, const std::string& rows) {
+// Appends rows to the CSV, rewriting it atomically (header first when it is new or empty). A file
+// whose header is another (an older perifrac's columns) is not appended to: false.
+bool append_csv(const std::string& path, const std::string& rows) {
   std::string text;
   if (std::filesystem::exists(path)) {
     std::ifstream in(path, std::ios::binary);
@@ -52,7 +54,9 @@ void append_csv(const std::string& path, const std::string& rows) {
     text = old.str();
   }
   if (text.empty()) text = std::string(kValidationCsvHeader) + "\n";
+  if (text.compare(0, text.find('\n'), kValidationCsvHeader) != 0) return false;
   write_file_atomic(path, text + rows);
+  return true;
 }
 
 }  // namespace
@@ -106,7 +110,15 @@ int validate_command(const ValidateOptions& o) {
                    kMaxResolution);
       return 2;
     }
-  if (!o.csv.empty()) append_csv(o.csv, "");  // the header now: an unwritable path fails before the work
+  // The header now: an unwritable path, or a file of other columns, fails before the work.
+  if (!o.csv.empty() && !append_csv(o.csv, "")) {
+    std::fprintf(
+        stderr,
+        "error: validate: --csv '%s': its first line is not this perifrac's header (allowed: a new file, "
+        "or one this perifrac wrote, whose columns are %s)\n",
+        o.csv.c_str(), kValidationCsvHeader);
+    return 2;
+  }
   std::string note;
   ValidationCase c;
   try {

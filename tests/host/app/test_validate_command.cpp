@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace pd {
@@ -36,6 +38,38 @@ TEST(ValidateCommand, RefusesATractionThatIsNotPositive) {
     EXPECT_NE(message.find("--traction"), std::string::npos) << message;
     EXPECT_NE(message.find("allowed: a traction in MPa, > 0 and < 1e6"), std::string::npos) << message;
   }
+}
+
+// The CSV records the traction a crack-branching run was given (two loads' rows were alike but
+// for their step counts), and is not appended to where its columns are an older perifrac's.
+TEST(ValidateCommand, TheCsvRecordsTheTractionAndKeepsItsColumns) {
+  const std::string dir = testing::TempDir() + "/perifrac-validate-csv";
+  std::filesystem::create_directories(dir);
+  const std::string csv = dir + "/a.csv";
+  std::filesystem::remove(csv);
+  ValidateOptions o;
+  o.problem = "tension_bar_pmb";
+  o.resolutions = {2};
+  o.csv = csv;
+  o.quiet = true;
+  ASSERT_EQ(validate_command(o), 0);
+  std::ifstream in(csv);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  EXPECT_EQ(header, kValidationCsvHeader);
+  EXPECT_EQ(header.substr(header.rfind(',') + 1), "traction_mpa");
+  EXPECT_EQ(row.back(), ',') << row;  // no --traction: the column empty
+  const std::string old = dir + "/old.csv";
+  std::ofstream(old) << "problem,backend,precision,resolution\n";
+  o.csv = old;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(validate_command(o), 2);
+  const std::string message = testing::internal::GetCapturedStderr();
+  EXPECT_NE(message.find("--csv '" + old + "': its first line is not this perifrac's header"),
+            std::string::npos)
+      << message;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
