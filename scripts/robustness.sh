@@ -205,6 +205,12 @@ case_ "limits" "a shell deeper than its sphere: refused before TetGen" 2 "bodies
 mkdir -p folder.obj
 scene dirmesh.toml '[[bodies]]\nshape = "mesh"\nmesh = "folder.obj"\nmaterial = "glass"\nspacing = 0.002\n'
 case_ "bounded input" "a mesh path that is a folder" 2 "is a folder, not a mesh file" "$BIN" "${P[@]}" dirmesh.toml --out o10
+printf 'v 0 0 0\nv 0.01 0 0\nv 0 0.01 0\nv 0 0 0.01\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >tetra.obj
+scene hugemesh.toml '[[bodies]]\nshape = "mesh"\nmesh = "tetra.obj"\nscale = 1e300\nmaterial = "glass"\nspacing = 0.002\n'
+case_ "limits" "a mesh scale of 1e300" 2 "bodies\[1\]\.scale: 1e\+300 is out of range" "$BIN" "${P[@]}" hugemesh.toml --out o13
+printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n' >cut.stl
+scene cutmesh.toml '[[bodies]]\nshape = "mesh"\nmesh = "cut.stl"\nmaterial = "glass"\nspacing = 0.002\n'
+case_ "bounded input" "an ascii STL cut short" 2 "cut.stl: the file ends before its 'endsolid' line" "$BIN" "${P[@]}" cutmesh.toml --out o14
 scene tets.toml '[[bodies]]\nname = "ball"\nmaterial = "glass"\nshape = "sphere"\nradius = 0.01\ncenter = [0.1, 0, 0]\nspacing = 0.004\nparticles = "tets"\n'
 case_ "limits" "a TetGen run that does not end: stopped" 2 "was stopped after 1 s" \
   env PATH="$PWD/slow-tetgen:$PATH" PERIFRAC_TETGEN_SECONDS=1 PERIFRAC_TET_CACHE=off "$BIN" "${P[@]}" tets.toml --out l1

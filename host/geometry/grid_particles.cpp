@@ -89,6 +89,10 @@ ParticleGeometry grid_particles(const TriMesh& solid, double spacing, int64_t ma
       }
     }
   clock.lap("grid cells inside (ray per row)");
+  // A solid much smaller than a cube of the spacing (a sphere less than a spacing across) would be
+  // a particle of several times its volume, and mass: none, which the callers report as a body
+  // holding no particle at this spacing.
+  if (double(g.position.size()) * spacing * spacing * spacing > 2 * signed_volume(solid)) return {};
   finish_cubes(g, spacing, id, n, clock);
   return g;
 }

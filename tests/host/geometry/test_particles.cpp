@@ -108,6 +108,8 @@ TEST(GridParticles, ABoxMeshGetsTheBoxLayersWhereverItWasModelled) {
   EXPECT_EQ(plate.size(), 30u * 2 * 30);  // 1.6 spacings thick: two layers, as the box grid has
   const ParticleGeometry sheet = grid_particles(box_mesh({0.3, 0.006, 0.3}), 0.01, kBudget, "sheet");
   EXPECT_EQ(sheet.size(), 30u * 1 * 30);  // less than a spacing: one layer (no particle before)
+  // A sphere 0.8 spacings across would be one cube of 3.7 times its volume: none.
+  EXPECT_EQ(grid_particles(sphere_mesh(0.004, 0.001), 0.01, kBudget, "speck").size(), 0u);
 }
 
 TEST(GridParticles, SpotVolume) {
