@@ -81,7 +81,9 @@ void InsideTest::crossings(double y, double z, std::vector<Crossing>& xs) const 
     const Vec3d& a = mesh_->vertices[t[0]];
     const Vec3d n = cross(mesh_->vertices[t[1]] - a, mesh_->vertices[t[2]] - a);
     if (n[0] == 0) continue;
-    xs.push_back({a[0] - (n[1] * (y - a[1]) + n[2] * (z - a[2])) / n[0], n[0] > 0 ? 1 : -1});
+    // The crossing's sign is the triangle's projected orientation, which the exact side tests
+    // give (n[0]'s sign, rounded, could disagree on a sliver).
+    xs.push_back({a[0] - (n[1] * (y - a[1]) + n[2] * (z - a[2])) / n[0], s0});
   }
   std::sort(xs.begin(), xs.end(), [](const Crossing& a, const Crossing& b) { return a.x < b.x; });
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <unordered_map>
@@ -38,22 +39,28 @@ int weld_identical(TriMesh& mesh) {
 // Each vertex's first earlier vertex within `distance` (itself where none is): a hash of cells of
 // side `distance`, each vertex looking in the 27 cells around it.
 std::vector<int32_t> near_vertices(const std::vector<Vec3d>& vertices, double distance) {
+  std::vector<int32_t> to(vertices.size());
+  for (size_t v = 0; v < to.size(); ++v) to[v] = int32_t(v);
+  if (vertices.empty() || !(distance > 0)) return to;
   std::unordered_map<uint64_t, std::vector<int32_t>> cells;
   auto cell_key = [](int64_t x, int64_t y, int64_t z) {
     return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
   };
-  std::vector<int32_t> to(vertices.size());
+  Box3d box;
+  for (const Vec3d& v : vertices) box.add(v);
+  // Cells counted from the box's corner, at most (its size / distance) + 1 along an axis.
+  const double most = 1e15;
   for (size_t v = 0; v < vertices.size(); ++v) {
     int64_t c[3];
-    for (int a = 0; a < 3; ++a) c[a] = int64_t(std::floor(vertices[v][a] / distance));
-    to[v] = int32_t(v);
+    for (int a = 0; a < 3; ++a)
+      c[a] = int64_t(std::min(most, std::floor((vertices[v][a] - box.lo[a]) / distance)));
     for (int64_t dz = -1; dz <= 1 && to[v] == int32_t(v); ++dz)
       for (int64_t dy = -1; dy <= 1 && to[v] == int32_t(v); ++dy)
         for (int64_t dx = -1; dx <= 1 && to[v] == int32_t(v); ++dx) {
           const auto it = cells.find(cell_key(c[0] + dx, c[1] + dy, c[2] + dz));
           if (it == cells.end()) continue;
-          for (int32_t w : it->second)
-            if (distance2(vertices[v], vertices[size_t(w)]) <= distance * distance) {
+          for (int32_t w : it->second)  // merged into w's own target, when that is near too
+            if (distance2(vertices[v], vertices[size_t(to[size_t(w)])]) <= distance * distance) {
               to[v] = to[size_t(w)];
               break;
             }
@@ -221,7 +228,8 @@ void check_triangles(const TriMesh& mesh, const std::string& path) {
                               std::to_string(first) + ", 0-based) (allowed: triangles of non-zero area)");
 }
 
-// The closed parts of a mesh (triangles joined through their corners), each as a mesh of its own.
+// The closed parts of a mesh (triangles joined through their corners), each as a mesh of its own;
+// none where the mesh is one part.
 std::vector<TriMesh> mesh_parts(const TriMesh& mesh, std::vector<int32_t>& part_of_triangle) {
   std::vector<int32_t> root(mesh.vertices.size());
   for (size_t v = 0; v < root.size(); ++v) root[v] = int32_t(v);
@@ -234,9 +242,13 @@ std::vector<TriMesh> mesh_parts(const TriMesh& mesh, std::vector<int32_t>& part_
       const int32_t a = find(t[0]), b = find(t[size_t(c)]);
       if (a != b) root[size_t(std::max(a, b))] = std::min(a, b);
     }
+  part_of_triangle.assign(mesh.triangles.size(), 0);
+  const int32_t first = mesh.triangles.empty() ? 0 : find(mesh.triangles[0][0]);
+  if (std::all_of(mesh.triangles.begin(), mesh.triangles.end(),
+                  [&](const Triangle& t) { return find(t[0]) == first; }))
+    return {};  // one part: no copy
   std::vector<TriMesh> parts;
   std::unordered_map<int32_t, int32_t> part_of_root;
-  part_of_triangle.assign(mesh.triangles.size(), 0);
   std::vector<int32_t> local_index(mesh.vertices.size(), -1);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto [it, added] = part_of_root.emplace(find(mesh.triangles[t][0]), int32_t(parts.size()));
@@ -257,59 +269,110 @@ std::vector<TriMesh> mesh_parts(const TriMesh& mesh, std::vector<int32_t>& part_
   return parts;
 }
 
+// Points that stand for a part in the nesting tests: its corners, edge midpoints and triangle
+// centroids (a bar whose corners lie in the two arms of a U is not inside it: its edges' midpoints
+// span the gap), up to kSamples spread over the list.
+std::vector<Vec3d> part_samples(const TriMesh& part) {
+  constexpr size_t kSamples = 4096;
+  std::vector<Vec3d> all = part.vertices;
+  for (const Triangle& t : part.triangles) {
+    const Vec3d &a = part.vertices[size_t(t[0])], &b = part.vertices[size_t(t[1])],
+                &c = part.vertices[size_t(t[2])];
+    all.push_back(0.5 * (a + b));
+    all.push_back((1.0 / 3) * (a + b + c));
+  }
+  if (all.size() <= kSamples) return all;
+  std::vector<Vec3d> some(kSamples);
+  for (size_t k = 0; k < kSamples; ++k) some[k] = all[k * all.size() / kSamples];
+  return some;
+}
+
 // Orients a mesh of several closed parts by how they nest: a part inside no other faces out, a
 // part inside one faces in (a cavity), a part inside that cavity out again, and so on. A part is
-// inside another when all its corners are (up to 4096 of them, spread over its list); parts that
-// cross (limbs modelled into a body) are on one level, both facing out, and the inside test fills
-// their union; a cavity inside two crossing parts is one level down. Returns how many parts it
-// flipped, or -1 where the mesh has more than kMaxParts parts, left as they are.
+// inside another when all its samples are (part_samples); parts that cross (limbs modelled into
+// a body) are on one level, both facing out, and the inside test fills their union; a cavity
+// inside two crossing parts is one level down, and one facing in that lies within their union
+// but inside neither stays a cavity. Returns how many parts it flipped, or -1 where the mesh has
+// more than kMaxParts parts, left as they are.
 // (A part facing in on its own made Voronoi cells of negative volume and TetGen a cavity.)
 constexpr size_t kMaxParts = 20000;
 
-int orient_parts(TriMesh& mesh) {
-  constexpr size_t kSamples = 4096;  // corners of a part tested against another, at most
+struct PartsOriented {
+  int flipped = 0;   // parts turned over; -1: more than kMaxParts, left as they are
+  int crossing = 0;  // parts that cross another (some of their samples inside it, some not)
+};
+
+PartsOriented orient_parts(TriMesh& mesh) {
   std::vector<int32_t> part_of_triangle;
   const std::vector<TriMesh> parts = mesh_parts(mesh, part_of_triangle);
-  if (parts.size() < 2) return 0;
-  if (parts.size() > kMaxParts) return -1;
+  if (parts.size() < 2) return {};
+  if (parts.size() > kMaxParts) return {-1, 0};
   std::vector<Box3d> box;
   std::vector<double> volume, box_volume;
+  std::vector<std::vector<Vec3d>> samples;
   for (const TriMesh& p : parts) {
     box.push_back(bounds(p));
     volume.push_back(signed_volume(p));
+    samples.push_back(part_samples(p));
     const Vec3d size = box.back().size();
     box_volume.push_back(size[0] * size[1] * size[2]);
   }
+  std::vector<std::unique_ptr<InsideTest>> test(parts.size());
+  auto inside = [&](size_t d, const Vec3d& p) {
+    if (!test[d]) test[d] = std::make_unique<InsideTest>(parts[d]);
+    return test[d]->inside(p);
+  };
+  auto boxes = [&](size_t d, size_t c, bool hold) {  // d's box holds (or meets) c's
+    for (int a = 0; a < 3; ++a)
+      if (hold ? !(box[d].lo[a] <= box[c].lo[a] && box[c].hi[a] <= box[d].hi[a])
+               : !(box[d].lo[a] <= box[c].hi[a] && box[c].lo[a] <= box[d].hi[a]))
+        return false;
+    return true;
+  };
   // Largest boxes first: a part's containers come before it.
   std::vector<size_t> order(parts.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return box_volume[a] > box_volume[b]; });
-  std::vector<std::unique_ptr<InsideTest>> test(parts.size());
   std::vector<int> level(parts.size(), 0);
   std::vector<bool> flip(parts.size(), false);
+  PartsOriented out;
+  for (size_t c = 0; c < parts.size(); ++c) {  // crossings, for the note
+    bool crosses = false;
+    for (size_t d = 0; d < parts.size() && !crosses; ++d) {
+      if (d == c || !boxes(d, c, false)) continue;
+      bool in = false, out_of = false;
+      for (size_t k = 0; k < samples[c].size() && !(in && out_of); ++k)
+        (inside(d, samples[c][k]) ? in : out_of) = true;
+      crosses = in && out_of;
+    }
+    out.crossing += crosses;
+  }
   for (size_t i = 0; i < order.size(); ++i) {
     const size_t c = order[i];
     for (size_t j = 0; j < i; ++j) {
       const size_t d = order[j];
-      bool holds = true;  // d's box holds c's
-      for (int a = 0; a < 3; ++a)
-        holds = holds && box[d].lo[a] <= box[c].lo[a] && box[c].hi[a] <= box[d].hi[a];
-      if (!holds || level[d] + 1 <= level[c]) continue;
-      if (!test[d]) test[d] = std::make_unique<InsideTest>(parts[d]);
-      const size_t n = parts[c].vertices.size(), samples = std::min(n, kSamples);
-      bool inside = true;
-      for (size_t k = 0; k < samples && inside; ++k)
-        inside = test[d]->inside(parts[c].vertices[k * n / samples]);
-      if (inside) level[c] = level[d] + 1;
+      if (!boxes(d, c, true) || level[d] + 1 <= level[c]) continue;
+      bool all = true;
+      for (size_t k = 0; k < samples[c].size() && all; ++k) all = inside(d, samples[c][k]);
+      if (all) level[c] = level[d] + 1;
     }
     flip[c] = (volume[c] < 0) != (level[c] % 2 == 1);
+    if (flip[c] && volume[c] < 0) {  // facing in on level 0: a cavity in the union of crossing parts?
+      bool in_union = true;
+      for (size_t k = 0; k < samples[c].size() && in_union; ++k) {
+        bool any = false;
+        for (size_t d = 0; d < parts.size() && !any; ++d)
+          any = d != c && boxes(d, c, false) && inside(d, samples[c][k]);
+        in_union = any;
+      }
+      flip[c] = !in_union;
+    }
   }
-  int flipped = 0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
     if (flip[size_t(part_of_triangle[t])]) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
-  for (bool f : flip) flipped += f;
-  return flipped;
+  for (bool f : flip) out.flipped += f;
+  return out;
 }
 
 }  // namespace
@@ -324,11 +387,20 @@ MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOp
   if (mesh.vertices.empty() || mesh.triangles.empty())
     throw MeshError(path, "the mesh is empty (allowed: a mesh with at least one triangle)");
   for (size_t v = 0; v < mesh.vertices.size(); ++v)
-    for (double c : mesh.vertices[v])
+    for (double c : mesh.vertices[v]) {
       if (!std::isfinite(c))
         throw MeshError(path, "vertex " + std::to_string(v) +
                                   " (0-based) has a coordinate that is not a finite number (allowed: finite "
                                   "coordinates)");
+      if (std::fabs(c) > 1e15) {  // (1e103 made the volume infinite)
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "vertex %zu (0-based) has a coordinate of %g (allowed: coordinates within 1e15 "
+                      "of the origin)",
+                      v, c);
+        throw MeshError(path, text);
+      }
+    }
   for (const Triangle& t : mesh.triangles)
     for (int32_t c : t)
       if (c < 0 || size_t(c) >= mesh.vertices.size())
@@ -380,17 +452,22 @@ MeshReport check_solid(TriMesh& mesh, const std::string& path, const MeshCheckOp
     report.notes.push_back("the triangles faced inward (negative signed volume): flipped");
     volume = -volume;
   }
-  const int parts = orient_parts(mesh);
-  if (parts > 0) {
+  const PartsOriented parts = orient_parts(mesh);
+  if (parts.flipped > 0) {
     report.notes.push_back(
-        "flipped " + count_text(size_t(parts), "part", "parts") +
+        "flipped " + count_text(size_t(parts.flipped), "part", "parts") +
         " of the mesh to face out of the solid they bound (a part inside another bounds a cavity, "
         "facing into it)");
     volume = signed_volume(mesh);
   }
-  if (parts < 0)
+  if (parts.flipped < 0)
     report.notes.push_back("more than " + std::to_string(kMaxParts) +
                            " parts: each kept facing as modelled, not oriented by how they nest");
+  if (parts.crossing > 0)
+    report.notes.push_back(
+        count_text(size_t(parts.crossing), "part crosses", "parts cross") +
+        " another: grid particles fill their union; Voronoi cells count the walls inside it "
+        "(their volumes wrong there) and TetGen refuses crossing faces");
   if (!(std::fabs(volume) > none))
     throw MeshError(path, "the mesh encloses no volume (allowed: a closed surface around a solid)");
   if (volume < 0) {

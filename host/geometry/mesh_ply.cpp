@@ -153,7 +153,9 @@ TriMesh read_ply(const std::string& path) {
 }
 
 TriMesh parse_ply(const std::string& file_bytes, const std::string& path) {
-  const std::string bytes(without_utf8_mark(file_bytes));
+  const std::string marked =
+      without_utf8_mark(file_bytes).size() == file_bytes.size() ? "" : file_bytes.substr(3);
+  const std::string& bytes = marked.empty() ? file_bytes : marked;  // (a copy only without a mark)
   auto fail = [&](const std::string& what, const std::string& allowed) {
     throw MeshError(path, what + " (allowed: " + allowed + ")");
   };

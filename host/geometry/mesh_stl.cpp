@@ -132,7 +132,8 @@ TriMesh parse_stl(const std::string& bytes, const std::string& path) {
     for (int k = 0; k < 4; ++k) count |= uint32_t(uint8_t(bytes[80 + k])) << (8 * k);
     if (bytes.size() == 84 + size_t(count) * 50) return read_binary(path, bytes, count);
   }
-  const std::string text(without_utf8_mark(bytes));
+  const std::string marked = without_utf8_mark(bytes).size() == bytes.size() ? "" : bytes.substr(3);
+  const std::string& text = marked.empty() ? bytes : marked;  // (a copy only without a mark)
   if (lower(text.substr(0, 5)) == "solid") return read_ascii(path, text);
   throw MeshError(path,
                   "neither binary STL (size 84 + 50 x facet count) nor ascii STL (starts with 'solid') "

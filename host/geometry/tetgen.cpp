@@ -34,6 +34,13 @@ extern char** environ;
 
 namespace pd {
 
+// What TetGen needs, for its failures' messages: a shell's inner surface is the mesh moved inward
+// by shell_thickness, which crosses itself where the thickness passes the mesh's own.
+const std::string kTetgenAllowed =
+    "(allowed: a closed mesh without self-intersections; for particles = \"shell\", a shell_thickness "
+    "below the mesh's own thickness and radii of curvature; particles = \"grid\" fills a mesh whose "
+    "parts cross, as their union)";
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -153,13 +160,6 @@ void write_nodes(const std::vector<Vec3d>& points, const std::string& path) {
   }
   if (!out) throw std::runtime_error("cannot write " + path);
 }
-
-// What TetGen needs, for its failures' messages: a shell's inner surface is the mesh moved inward
-// by shell_thickness, which crosses itself where the thickness passes the mesh's own.
-const std::string kTetgenAllowed =
-    "(allowed: a closed mesh without self-intersections; for particles = \"shell\", a shell_thickness "
-    "below the mesh's own thickness and radii of curvature; particles = \"voronoi\" or \"grid\" fill a "
-    "mesh whose parts cross, as their union)";
 
 constexpr int kStopped = -2;      // run_program: the program ran past its time and was killed
 constexpr int kSignalled = 1000;  // run_program: kSignalled + the signal that ended the program

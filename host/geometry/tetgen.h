@@ -12,6 +12,9 @@
 
 namespace pd {
 
+// The "(allowed: ...)" text that ends a TetGen failure's message (also how callers tell one).
+extern const std::string kTetgenAllowed;
+
 // TetGen's -q bound as scenes (tet_quality) and bench-geometry take it: 0 (no quality refinement)
 // or a radius-edge bound in [1.1, 10] (below, TetGen may refine without end).
 constexpr const char* kTetQualityAllowed = "0 (no quality refinement) or a radius-edge bound in [1.1, 10]";

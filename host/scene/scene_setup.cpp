@@ -23,6 +23,7 @@
 #include "host/geometry/shapes.h"
 #include "host/geometry/tet_body_solids.h"
 #include "host/geometry/tet_particles.h"
+#include "host/geometry/tetgen.h"
 #include "host/geometry/voronoi_particles.h"
 #include "host/scene/collider_setup.h"
 #include "host/scene/range_checks.h"
@@ -337,8 +338,8 @@ SetupResult setup_scene(const Scene& scene, const SetupOptions& options) {
                                 ParticleLimit([&] { return max_now() - total; }), key);
     } catch (const MeshError& e) {
       const bool from_file = body.shape == "mesh" && e.path() == body.mesh_path;
-      const bool repaired = from_file && body.repair == "fill_holes" &&
-                            std::string(e.what()).find("tetgen") != std::string::npos;
+      const bool repaired = from_file && body.repair == "fill_holes" &&  // TetGen refused the surface
+                            std::string(e.what()).find(kTetgenAllowed) != std::string::npos;
       throw SceneError(
           scene.path, key + (from_file ? ".mesh" : ".particles"),
           e.what() + std::string(repaired ? "; the mesh's holes were filled (repair = \"fill_holes\"), "

@@ -65,6 +65,9 @@ TEST(MeshCheck, NonFiniteCoordinate) {
   TriMesh m = tetrahedron();
   m.vertices[2][1] = std::nan("");
   expect_refused(m, "vertex 2 (0-based) has a coordinate that is not a finite number");
+  TriMesh far = tetrahedron();
+  far.vertices[1][0] = 1e103;  // finite, but the volume would not be
+  expect_refused(far, "vertex 1 (0-based) has a coordinate of 1e+103 (allowed: coordinates within 1e15");
 }
 
 TEST(MeshCheck, DegenerateTriangles) {
@@ -177,19 +180,25 @@ TEST(MeshCheck, PartsAreOrientedByHowTheyNest) {
   TriMesh crossing = box_mesh({1, 1, 1});
   TriMesh into = box_mesh({1, 1, 1});
   for (Vec3d& v : into.vertices) v = v + Vec3d{0.53, 0.21, 0.17};
-  append(crossing, into);  // modelled into each other: kept, their union
+  append(crossing, into);  // modelled into each other: kept, their union, and said
   EXPECT_NEAR(checked(crossing, notes), 2, 1e-12);
-  EXPECT_EQ(notes, 0);
+  EXPECT_EQ(notes, 1);
+  {
+    TriMesh copy = crossing;
+    EXPECT_EQ(
+        check_solid(copy, "parts.obj", {}).notes.back().rfind("2 parts cross another: grid particles", 0),
+        0u);
+  }
   TriMesh cavity = box_mesh({0.1, 0.1, 0.1});  // in the two cubes' overlap: one level down, kept
   for (Vec3d& v : cavity.vertices) v = v + Vec3d{0.3, 0.1, 0.1};
   TriMesh with_cavity = crossing;
   append(with_cavity, flipped(cavity));
   EXPECT_NEAR(checked(with_cavity, notes), 2 - 1e-3, 1e-12);
-  EXPECT_EQ(notes, 0);
+  EXPECT_EQ(notes, 1);                          // (the crossing)
   TriMesh reversed_into = box_mesh({1, 1, 1});  // a part crossing another, facing in: turned out
   append(reversed_into, flipped(into));
   EXPECT_NEAR(checked(reversed_into, notes), 2, 1e-12);
-  EXPECT_EQ(notes, 1);
+  EXPECT_EQ(notes, 2);
 }
 
 // A cube whose triangles were exported apart, each corner a round-off from its copies: named as

@@ -143,7 +143,9 @@ TEST(MeshIo, APolygonWithACornerOnAnEdgeGetsNoFlatTriangle) {
              "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
              "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
              "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0 0\n5 0 3 2 1 4\n");
-  for (size_t t = 0; t < 3; ++t) EXPECT_GT(triangle_area(read_mesh(dir.file("t.ply")), t), 0.1) << t;
+  const TriMesh ply = read_mesh(dir.file("t.ply"));
+  ASSERT_EQ(ply.triangles.size(), 3u);
+  for (size_t t = 0; t < 3; ++t) EXPECT_GT(triangle_area(ply, t), 0.1) << t;
 }
 
 // What editors and other exporters write: a UTF-8 byte-order mark, upper-case STL keywords, a
