@@ -23,6 +23,13 @@ int edge_side(const TriMesh& m, int32_t a, int32_t b, double y, double z) {
   return a < b ? side(m.vertices[a], m.vertices[b], y, z) : -side(m.vertices[b], m.vertices[a], y, z);
 }
 
+// floor(x) clamped to [0, n - 1] before it becomes an int (a flat or huge mesh's ratios reach
+// 1e150; converting those is undefined).
+int bin_of(double x, int n) {
+  if (!(x >= 1)) return 0;
+  return x >= double(n - 1) ? n - 1 : int(x);
+}
+
 }  // namespace
 
 InsideTest::InsideTest(const TriMesh& mesh) : mesh_(&mesh), box_(bounds(mesh)) {
@@ -30,8 +37,8 @@ InsideTest::InsideTest(const TriMesh& mesh) : mesh_(&mesh), box_(bounds(mesh)) {
   const double sy = std::max(box_.size()[1], 1e-300), sz = std::max(box_.size()[2], 1e-300);
   const double cell = std::sqrt(sy * sz / std::max<double>(1, double(mesh.triangles.size())));
   inv_cell_ = 1 / cell;
-  ny_ = std::max(1, std::min(4096, int(std::ceil(sy / cell))));
-  nz_ = std::max(1, std::min(4096, int(std::ceil(sz / cell))));
+  ny_ = 1 + bin_of(std::ceil(sy / cell) - 1, 4096);  // 1 to 4096 bins a side
+  nz_ = 1 + bin_of(std::ceil(sz / cell) - 1, 4096);
   inv_cell_ = std::min(double(ny_) / sy, double(nz_) / sz);
   y0_ = box_.lo[1];
   z0_ = box_.lo[2];
@@ -44,8 +51,8 @@ InsideTest::InsideTest(const TriMesh& mesh) : mesh_(&mesh), box_(bounds(mesh)) {
         mn = std::fmin(mn, mesh.vertices[v][1 + a]);
         mx = std::fmax(mx, mesh.vertices[v][1 + a]);
       }
-      lo[a] = std::clamp(int(std::floor((mn - origin) * inv_cell_)), 0, n - 1);
-      hi[a] = std::clamp(int(std::floor((mx - origin) * inv_cell_)), 0, n - 1);
+      lo[a] = bin_of((mn - origin) * inv_cell_, n);
+      hi[a] = bin_of((mx - origin) * inv_cell_, n);
     }
   };
   // Counting pass, then fill.
@@ -69,8 +76,7 @@ InsideTest::InsideTest(const TriMesh& mesh) : mesh_(&mesh), box_(bounds(mesh)) {
 void InsideTest::crossings(double y, double z, std::vector<Crossing>& xs) const {
   xs.clear();
   if (!(y >= box_.lo[1] && y <= box_.hi[1] && z >= box_.lo[2] && z <= box_.hi[2])) return;
-  const int i = std::min(ny_ - 1, int((y - y0_) * inv_cell_));
-  const int j = std::min(nz_ - 1, int((z - z0_) * inv_cell_));
+  const int i = bin_of((y - y0_) * inv_cell_, ny_), j = bin_of((z - z0_) * inv_cell_, nz_);
   const size_t bin = size_t(j) * ny_ + i;
   for (int64_t k = bin_start_[bin]; k < bin_start_[bin + 1]; ++k) {
     const Triangle& t = mesh_->triangles[size_t(bin_triangles_[size_t(k)])];
